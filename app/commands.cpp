@@ -1,0 +1,242 @@
+#include "commands.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "gl/shader.h"
+#include "image.h"
+
+namespace gis {
+
+namespace {
+
+void parseSize(const std::string& text, int& w, int& h) {
+    static const std::regex re(R"(^(\d{1,5})x(\d{1,5})$)");
+    std::smatch m;
+    if (!std::regex_match(text, m, re)) throw Error("--size '" + text + "' is not WIDTHxHEIGHT (e.g. 256x256)");
+    w = std::stoi(m[1]);
+    h = std::stoi(m[2]);
+    if (w < 1 || h < 1 || w > 16384 || h > 16384)
+        throw Error("--size " + text + " is out of range (1..16384 per side)");
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() &&
+           std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) { return std::tolower(a) == b; });
+}
+
+void printWarnings(const Scene& scene) {
+    for (const std::string& w : scene.warnings) std::fprintf(stderr, "gisandbox: warning: %s\n", w.c_str());
+}
+
+std::unique_ptr<GlContext> headlessContext(const std::string& backend, bool debug, bool verbose) {
+    ContextOptions co;
+    co.backend = parseBackend(backend);
+    co.debug = debug;
+    auto ctx = createContext(co);
+    if (verbose)
+        std::fprintf(stderr, "backend: %s (%s)\nGL_RENDERER: %s\nGL_VERSION: %s\n", backendName(ctx->backend()),
+                     ctx->detail.c_str(), ctx->renderer.c_str(), ctx->version.c_str());
+    return ctx;
+}
+
+double mib(int64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
+
+}  // namespace
+
+void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
+    cmd.add_option("--scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME (cornell, cornell-area)")->required();
+    cmd.add_option("--out", o.out, "Output image: .png (tonemapped sRGB 8-bit) or .exr (linear float radiance)")
+        ->required();
+    cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+    cmd.add_option("--backend", o.backend, "OpenGL context: auto (EGL, else OSMesa), egl, osmesa, glfw (hidden window)")
+        ->capture_default_str();
+    cmd.add_option("--camera", o.camera, "Index of the glTF camera (a default camera frames the scene if it has none)")
+        ->capture_default_str();
+    cmd.add_option("--gi", o.gi, "Global illumination method: " + giMethodNames())->capture_default_str();
+    cmd.add_option("--diffuse", o.diffuse, "Diffuse BRDF: lambert")->capture_default_str();
+    cmd.add_option("--specular", o.specular, "Specular BRDF: ggx, none")->capture_default_str();
+    cmd.add_option("--tonemap", o.tonemap, "Tone mapper for PNG output: aces (fitted), linear (clamp)")
+        ->capture_default_str();
+    cmd.add_option("--exposure", o.exposure, "Exposure in EV (scale 2^EV) before tone mapping")->capture_default_str();
+    cmd.add_option("--ambient", o.ambient, "Constant ambient radiance for --gi none: one value or R,G,B")
+        ->delimiter(',')
+        ->expected(1, 3)
+        ->capture_default_str();
+    cmd.add_option("--shadow-size", o.shadowSize, "Shadow map resolution for directional and spot lights")
+        ->capture_default_str();
+    cmd.add_option("--shadow-cube-size", o.shadowCubeSize, "Shadow cube map resolution for point lights")
+        ->capture_default_str();
+    cmd.add_flag("--no-shadows", o.noShadows, "Disable shadow maps");
+    cmd.add_flag("--hdr32", o.hdr32, "Light into RGBA32F instead of RGBA16F");
+    cmd.add_flag("--timings", o.timings, "Render --frames frames and print GPU ms per pass (median after warm-up)");
+    cmd.add_option("--frames", o.frames, "Frames rendered with --timings")->capture_default_str();
+    cmd.add_option("--warmup", o.warmup, "Frames left out of the --timings median")->capture_default_str();
+    cmd.add_flag("--gl-debug", o.glDebug, "Debug context; print KHR_debug messages (always on in Debug builds)");
+    cmd.add_flag("-v,--verbose", o.verbose, "Print the backend, GL_RENDERER and GL_VERSION");
+}
+
+int runRender(const RenderOptions& o) {
+    RenderSettings s;
+    parseSize(o.size, s.width, s.height);
+    const bool exr = endsWith(o.out, ".exr");
+    if (!exr && !endsWith(o.out, ".png")) throw Error("--out '" + o.out + "' must end in .png or .exr");
+    if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
+    if (o.warmup < 0 || o.warmup >= o.frames) throw Error("--warmup must be in [0, --frames)");
+    if (o.ambient.size() != 1 && o.ambient.size() != 3) throw Error("--ambient takes one value or R,G,B");
+    s.camera = o.camera;
+    s.gi = o.gi;
+    checkGiMethod(s.gi);
+    s.diffuse = parseDiffuse(o.diffuse);
+    s.specular = parseSpecular(o.specular);
+    s.tonemap = parseTonemapper(o.tonemap);
+    s.exposureEV = o.exposure;
+    s.ambient = o.ambient.size() == 3 ? glm::vec3(o.ambient[0], o.ambient[1], o.ambient[2]) : glm::vec3(o.ambient[0]);
+    s.shadowMapSize = o.shadowSize;
+    s.shadowCubeSize = o.shadowCubeSize;
+    s.shadows = !o.noShadows;
+    s.hdr32 = o.hdr32;
+    {
+        namespace fs = std::filesystem;
+        fs::path dir = fs::path(o.out).parent_path();
+        if (!dir.empty() && !fs::is_directory(dir)) throw Error("--out: directory '" + dir.string() + "' does not exist");
+    }
+
+    Scene scene = loadScene(o.scene);
+    printWarnings(scene);
+    std::unique_ptr<GlContext> ctx;
+    if (parseBackend(o.backend) == Backend::Glfw) {
+        ContextOptions co;
+        co.backend = Backend::Glfw;
+        co.debug = o.glDebug;
+        ctx = createContext(co);
+        if (o.verbose)
+            std::fprintf(stderr, "backend: glfw (%s)\nGL_RENDERER: %s\nGL_VERSION: %s\n", ctx->detail.c_str(),
+                         ctx->renderer.c_str(), ctx->version.c_str());
+    } else {
+        ctx = headlessContext(o.backend, o.glDebug, o.verbose);
+    }
+    Renderer renderer(scene, s);
+    const int frames = o.timings ? o.frames : 1;
+    for (int i = 0; i < frames; ++i) renderer.renderFrame();
+
+    if (exr) writeExr(o.out, renderer.readHdr());
+    else writePng(o.out, renderer.readLdr());
+
+    if (o.timings) {
+        // GPU milliseconds per pass: median over the frames after warm-up; the first frame apart,
+        // since it builds what later frames reuse.
+        const auto& owners = renderer.memory().bytesByOwner;
+        std::printf("%-10s %10s %10s %9s\n", "pass", "median ms", "first ms", "MiB");
+        double total = 0.0;
+        for (const PassTiming& t : renderer.timings(o.warmup)) {
+            std::printf("%-10s %10.3f %10.3f %9.2f%s\n", t.pass.c_str(), t.medianMs, t.firstMs, mib(t.bytes),
+                        t.cached ? "  (cached: scene and lights unchanged)" : "");
+            total += t.medianMs;
+        }
+        std::printf("%-10s %10s %10s %9.2f\n", "scene", "", "", mib(owners.count("scene") ? owners.at("scene") : 0));
+        std::printf("%-10s %10.3f %10s %9.2f  (%dx%d, %d frames, median of the last %d)\n", "total", total, "",
+                    mib(renderer.memory().total()), s.width, s.height, frames, frames - o.warmup);
+    }
+    std::printf("wrote %s\n", o.out.c_str());
+    return 0;
+}
+
+void addInfoOptions(CLI::App& cmd, InfoOptions& o) {
+    cmd.add_option("--scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME")->required();
+    cmd.add_option("--size", o.size, "Image size the GPU memory figures assume")->capture_default_str();
+    cmd.add_option("--backend", o.backend, "OpenGL context for the GPU memory figures: auto, egl, osmesa")
+        ->capture_default_str();
+    cmd.add_flag("--json", o.json, "Print JSON instead of text");
+    cmd.add_flag("--no-gpu", o.noGpu, "Skip the GPU memory figures (no OpenGL context needed)");
+}
+
+int runInfo(const InfoOptions& o) {
+    int w = 0, h = 0;
+    parseSize(o.size, w, h);
+    Scene scene = loadScene(o.scene);
+    nlohmann::ordered_json j;
+    j["scene"] = scene.name;
+    j["meshes"] = scene.primitives.size();
+    j["draws"] = scene.draws.size();
+    j["triangles"] = scene.triangleCount();
+    j["materials"] = scene.materials.size();
+    j["textures"] = scene.images.size();
+    j["lights"] = scene.lights.size();
+    j["cameras"] = scene.cameras.size();
+    j["bounds"] = {{"min", {scene.bounds.min.x, scene.bounds.min.y, scene.bounds.min.z}},
+                   {"max", {scene.bounds.max.x, scene.bounds.max.y, scene.bounds.max.z}}};
+    static const char* lightTypes[] = {"directional", "point", "spot"};
+    for (const Light& l : scene.lights)
+        j["light_list"].push_back({{"name", l.name}, {"type", lightTypes[int(l.type)]}, {"intensity", l.intensity},
+                                   {"color", {l.color.r, l.color.g, l.color.b}},
+                                   {"position", {l.position.x, l.position.y, l.position.z}}});
+    j["warnings"] = scene.warnings;
+    if (!o.noGpu) {
+        auto ctx = headlessContext(o.backend, false, false);
+        RenderSettings s;
+        s.width = w;
+        s.height = h;
+        Renderer renderer(scene, s);
+        j["gpu"] = {{"renderer", ctx->renderer}, {"size", o.size}};
+        for (const auto& [owner, bytes] : renderer.memory().bytesByOwner) j["gpu"]["bytes"][owner] = bytes;
+        j["gpu"]["total_bytes"] = renderer.memory().total();
+    }
+    if (o.json) {
+        std::printf("%s\n", j.dump(2).c_str());
+        return 0;
+    }
+    std::printf("scene      %s\n", scene.name.c_str());
+    std::printf("meshes     %zu primitives, %zu draws, %zu triangles\n", scene.primitives.size(), scene.draws.size(),
+                scene.triangleCount());
+    std::printf("materials  %zu (%zu textures)\n", scene.materials.size(), scene.images.size());
+    std::printf("lights     %zu\n", scene.lights.size());
+    for (const Light& l : scene.lights)
+        std::printf("  %-11s %-16s intensity %g colour (%g, %g, %g)\n", lightTypes[int(l.type)], l.name.c_str(),
+                    l.intensity, l.color.r, l.color.g, l.color.b);
+    std::printf("cameras    %zu\n", scene.cameras.size());
+    std::printf("bounds     (%g, %g, %g) .. (%g, %g, %g)\n", scene.bounds.min.x, scene.bounds.min.y,
+                scene.bounds.min.z, scene.bounds.max.x, scene.bounds.max.y, scene.bounds.max.z);
+    for (const std::string& warning : scene.warnings) std::printf("warning    %s\n", warning.c_str());
+    if (!o.noGpu) {
+        std::printf("GPU memory at %s on %s:\n", o.size.c_str(), j["gpu"]["renderer"].get<std::string>().c_str());
+        for (const auto& [owner, bytes] : j["gpu"]["bytes"].items())
+            std::printf("  %-10s %8.2f MiB\n", owner.c_str(), mib(bytes.get<int64_t>()));
+        std::printf("  %-10s %8.2f MiB\n", "total", mib(j["gpu"]["total_bytes"].get<int64_t>()));
+    }
+    return 0;
+}
+
+void addShaderDumpOptions(CLI::App& cmd, ShaderDumpOptions& o) {
+    cmd.add_option("--dump", o.dir, "Directory to write PROGRAM.STAGEFILE files into (for glslangValidator)")
+        ->required();
+}
+
+int runShaderDump(const ShaderDumpOptions& o) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(o.dir, ec);
+    if (!fs::is_directory(o.dir)) throw Error("--dump: cannot create directory '" + o.dir + "'");
+    int count = 0;
+    for (const ProgramDesc& p : allPrograms()) {
+        for (const std::string& stage : p.stages) {
+            const PreprocessedShader pre = preprocessShader(stage, p.defines);
+            const std::string path = o.dir + "/" + p.name + "." + stage;
+            writeAtomically(path, [&](const std::string& tmp) {
+                std::ofstream out(tmp, std::ios::binary);
+                out << pre.source;
+                if (!out) throw Error(path + ": cannot write");
+            });
+            ++count;
+        }
+    }
+    std::printf("wrote %d shader stages to %s\n", count, o.dir.c_str());
+    return 0;
+}
+
+}  // namespace gis

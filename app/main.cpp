@@ -1,0 +1,48 @@
+// gisandbox command line: render, info, shaders. Every failure ends with one line on stderr
+// ("gisandbox: error: ...") and a non-zero exit status.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <new>
+
+#include "commands.h"
+#include "scene/scene.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"gisandbox: explore and compare real-time global illumination against a reference"};
+    app.require_subcommand(1);
+    app.set_help_all_flag("--help-all", "Show help for every subcommand");
+
+    gis::RenderOptions render;
+    CLI::App* renderCmd = app.add_subcommand("render", "Render a scene headless (or in a hidden window) to PNG or EXR");
+    gis::addRenderOptions(*renderCmd, render);
+
+    gis::InfoOptions info;
+    CLI::App* infoCmd = app.add_subcommand("info", "Print a scene's meshes, triangles, materials, lights, bounds and GPU memory");
+    gis::addInfoOptions(*infoCmd, info);
+
+    gis::ShaderDumpOptions dump;
+    CLI::App* shadersCmd = app.add_subcommand("shaders", "Write every shader program the app can request, preprocessed");
+    gis::addShaderDumpOptions(*shadersCmd, dump);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    try {
+        if (renderCmd->parsed()) return gis::runRender(render);
+        if (infoCmd->parsed()) return gis::runInfo(info);
+        if (shadersCmd->parsed()) return gis::runShaderDump(dump);
+    } catch (const gis::Error& e) {
+        std::fprintf(stderr, "gisandbox: error: %s\n", e.what());
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "gisandbox: error: out of memory\n");
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "gisandbox: error: %s\n", e.what());
+        return 1;
+    }
+    return 1;
+}

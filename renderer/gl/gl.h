@@ -1,0 +1,103 @@
+// Small RAII types over OpenGL objects. Every texture and buffer is charged to an owner (a pass,
+// the scene) in a MemoryLedger when it is allocated and credited back when it is destroyed, so the
+// app can say how much GPU memory each technique holds.
+#pragma once
+
+#include <glad/gl.h>
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace gis::gl {
+
+// Bytes held per owner. Lives as long as the renderer; resources keep a pointer to it.
+struct MemoryLedger {
+    std::map<std::string, int64_t> bytesByOwner;
+    int64_t total() const;
+};
+
+// Where an allocation is charged: which ledger, under which owner's name.
+struct MemoryScope {
+    MemoryLedger* ledger = nullptr;
+    std::string owner;
+};
+
+// Moves, never copies; releases the GL name (and its ledger charge) when it dies.
+class Object {
+public:
+    using Deleter = void (*)(GLuint);
+    Object() = default;
+    Object(GLuint id, Deleter deleter) : id_(id), deleter_(deleter) {}
+    Object(Object&& o) noexcept { *this = std::move(o); }
+    Object& operator=(Object&& o) noexcept;
+    Object(const Object&) = delete;
+    Object& operator=(const Object&) = delete;
+    ~Object() { reset(); }
+    GLuint id() const { return id_; }
+    explicit operator bool() const { return id_ != 0; }
+    void charge(const MemoryScope& scope, int64_t bytes);
+    int64_t bytes() const { return bytes_; }
+    void reset();
+
+private:
+    GLuint id_ = 0;
+    Deleter deleter_ = nullptr;
+    MemoryScope scope_;
+    int64_t bytes_ = 0;
+};
+
+struct Texture {
+    Object object;
+    GLenum target = 0;
+    GLenum format = 0;
+    int width = 0, height = 0, depth = 1, levels = 1;  // depth = layers (array) or slices (3D)
+    GLuint id() const { return object.id(); }
+};
+
+// Immutable-storage textures (glTextureStorage*). Throws gis::Error on GL_OUT_OF_MEMORY.
+Texture createTexture2D(const MemoryScope& scope, GLenum format, int width, int height, int levels = 1);
+Texture createTexture2DArray(const MemoryScope& scope, GLenum format, int width, int height, int layers);
+Texture createTextureCubeArray(const MemoryScope& scope, GLenum format, int size, int cubes);
+Texture createTexture3D(const MemoryScope& scope, GLenum format, int width, int height, int depth, int levels = 1);
+int64_t bytesPerTexel(GLenum format);
+int mipLevelsFor(int width, int height);
+
+struct Buffer {
+    Object object;
+    int64_t size = 0;
+    GLuint id() const { return object.id(); }
+};
+Buffer createBuffer(const MemoryScope& scope, int64_t size, const void* data, GLbitfield flags = 0);
+
+Object createFramebuffer();
+// Throws gis::Error naming `what` when the framebuffer is not complete.
+void checkFramebuffer(GLuint fbo, const char* what);
+Object createVertexArray();
+Object createSampler();
+
+// Pairs of GL_TIMESTAMP queries in a small ring, so reading a result never stalls the frame that
+// issued it in interactive use; headless code calls collect(true). (Timestamps rather than
+// GL_TIME_ELAPSED: llvmpipe's first TIME_ELAPSED query of a context reports time since an epoch.)
+class GpuTimer {
+public:
+    void begin();
+    void end();
+    // Reads every finished query into samples (milliseconds). wait = block until all are done.
+    void collect(bool wait);
+    std::vector<double> samples;
+
+private:
+    static constexpr int kRing = 4;
+    Object begin_[kRing], end_[kRing];
+    bool pending_[kRing] = {};
+    int next_ = 0;
+    bool open_ = false;
+};
+
+// Throws gis::Error("out of GPU memory while ...") if GL reported GL_OUT_OF_MEMORY.
+void checkOutOfMemory(const std::string& what);
+
+}  // namespace gis::gl

@@ -1,0 +1,116 @@
+#include "gpu_scene.h"
+
+#include "uniforms.h"
+
+namespace gis {
+
+namespace {
+gl::Texture uploadImage(const gl::MemoryScope& scope, const Image& image) {
+    const GLenum format = image.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
+    gl::Texture t = gl::createTexture2D(scope, format, image.width, image.height,
+                                        gl::mipLevelsFor(image.width, image.height));
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(t.id(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba8.data());
+    glGenerateTextureMipmap(t.id());
+    return t;
+}
+
+gl::Texture solidTexture(const gl::MemoryScope& scope, uint8_t r, uint8_t g, uint8_t b, uint8_t a) {
+    gl::Texture t = gl::createTexture2D(scope, GL_RGBA8, 1, 1, 1);
+    const uint8_t texel[4] = {r, g, b, a};
+    glTextureSubImage2D(t.id(), 0, 0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, texel);
+    return t;
+}
+}  // namespace
+
+GpuScene::GpuScene(const Scene& scene, gl::MemoryLedger& ledger) : cpu(scene) {
+    const gl::MemoryScope scope{&ledger, "scene"};
+    std::vector<Vertex> allVertices;
+    std::vector<uint32_t> allIndices;
+    std::vector<GLuint> firstIndex, baseVertex;
+    for (const Primitive& p : scene.primitives) {
+        firstIndex.push_back(static_cast<GLuint>(allIndices.size()));
+        baseVertex.push_back(static_cast<GLuint>(allVertices.size()));
+        allVertices.insert(allVertices.end(), p.vertices.begin(), p.vertices.end());
+        allIndices.insert(allIndices.end(), p.indices.begin(), p.indices.end());
+    }
+    vertices = gl::createBuffer(scope, int64_t(allVertices.size() * sizeof(Vertex)), allVertices.data());
+    indices = gl::createBuffer(scope, int64_t(allIndices.size() * sizeof(uint32_t)), allIndices.data());
+
+    vao = gl::createVertexArray();
+    const GLuint v = vao.id();
+    glVertexArrayVertexBuffer(v, 0, vertices.id(), 0, sizeof(Vertex));
+    glVertexArrayElementBuffer(v, indices.id());
+    struct Attrib { GLuint index; GLint size; size_t offset; };
+    const Attrib attribs[] = {{0, 3, offsetof(Vertex, position)}, {1, 3, offsetof(Vertex, normal)},
+                              {2, 4, offsetof(Vertex, tangent)},  {3, 2, offsetof(Vertex, uv)},
+                              {4, 4, offsetof(Vertex, color)}};
+    for (const Attrib& a : attribs) {
+        glEnableVertexArrayAttrib(v, a.index);
+        glVertexArrayAttribFormat(v, a.index, a.size, GL_FLOAT, GL_FALSE, static_cast<GLuint>(a.offset));
+        glVertexArrayAttribBinding(v, a.index, 0);
+    }
+
+    for (const Image& image : scene.images) textures.push_back(uploadImage(scope, image));
+    const size_t whiteIndex = textures.size();
+    textures.push_back(solidTexture(scope, 255, 255, 255, 255));
+    const GLuint white = textures[whiteIndex].id();
+
+    sampler = gl::createSampler();
+    glSamplerParameteri(sampler.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glSamplerParameteri(sampler.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glSamplerParameteri(sampler.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glSamplerParameteri(sampler.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+
+    auto tex = [&](int index) { return index >= 0 && index < int(scene.images.size()) ? textures[index].id() : white; };
+    std::vector<Material> params = scene.materials;
+    params.push_back(Material{});  // the default material, for primitives without one
+    params.back().name = "default";
+    for (const Material& m : params) {
+        GpuMaterial g;
+        g.params = m;
+        g.baseColor = tex(m.baseColorTexture);
+        g.metallicRoughness = tex(m.metallicRoughnessTexture);
+        g.normal = tex(m.normalTexture);
+        g.emissive = tex(m.emissiveTexture);
+        g.occlusion = tex(m.occlusionTexture);
+        g.hasNormalMap = m.normalTexture >= 0 && m.normalTexture < int(scene.images.size());
+        materials.push_back(g);
+    }
+    const int defaultMaterial = int(materials.size()) - 1;
+
+    for (const DrawItem& d : scene.draws) {
+        const Primitive& p = scene.primitives[d.primitive];
+        GpuDraw g;
+        g.indexCount = static_cast<GLsizei>(p.indices.size());
+        g.firstIndex = firstIndex[d.primitive];
+        g.baseVertex = static_cast<GLint>(baseVertex[d.primitive]);
+        g.material = p.material >= 0 && p.material < defaultMaterial ? p.material : defaultMaterial;
+        g.world = d.world;
+        g.normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.world)));
+        draws.push_back(g);
+    }
+    gl::checkOutOfMemory("uploading the scene");
+}
+
+void GpuScene::bindMaterial(const GpuMaterial& m) const {
+    const GLuint units[5] = {m.baseColor, m.metallicRoughness, m.normal, m.emissive, m.occlusion};
+    glBindTextures(0, 5, units);
+    const GLuint samplers[5] = {sampler.id(), sampler.id(), sampler.id(), sampler.id(), sampler.id()};
+    glBindSamplers(0, 5, samplers);
+}
+
+void GpuScene::setDrawUniforms(GLuint program, const GpuDraw& draw) const {
+    const Material& m = materials[draw.material].params;
+    glProgramUniformMatrix4fv(program, U_MODEL, 1, GL_FALSE, &draw.world[0][0]);
+    glProgramUniformMatrix3fv(program, U_NORMAL_MATRIX, 1, GL_FALSE, &draw.normalMatrix[0][0]);
+    glProgramUniform4fv(program, U_BASE_COLOR_FACTOR, 1, &m.baseColorFactor[0]);
+    glProgramUniform4f(program, U_MATERIAL_PARAMS, m.metallicFactor, m.roughnessFactor, m.specularFactor,
+                       m.occlusionStrength);
+    glProgramUniform3fv(program, U_EMISSIVE, 1, &m.emissive[0]);
+    glProgramUniform4f(program, U_ALPHA_PARAMS, m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f,
+                       m.normalScale, materials[draw.material].hasNormalMap ? 1.0f : 0.0f,
+                       m.doubleSided ? 1.0f : 0.0f);
+}
+
+}  // namespace gis

@@ -1,0 +1,33 @@
+// CPU images and their files: PNG (tonemapped sRGB, stb) and EXR (linear float, tinyexr).
+// Files are written atomically: to a temporary file beside the target, then renamed.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace gis {
+
+struct ImageF {  // RGBA float, rows top to bottom
+    int width = 0, height = 0;
+    std::vector<float> rgba;
+    float* at(int x, int y) { return &rgba[(size_t(y) * width + x) * 4]; }
+    const float* at(int x, int y) const { return &rgba[(size_t(y) * width + x) * 4]; }
+};
+
+struct ImageU8 {  // RGBA 8-bit, rows top to bottom
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgba;
+};
+
+// Throw gis::Error naming the file on failure; leave no partial file behind.
+void writePng(const std::string& path, const ImageU8& image);
+void writeExr(const std::string& path, const ImageF& image);  // RGB float32, ZIP
+ImageF readExr(const std::string& path);
+ImageU8 readPng(const std::string& path);
+
+// Writes through `write(tmpPath)` and renames onto `path`; removes the temporary on failure.
+void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write);
+
+}  // namespace gis

@@ -1,0 +1,66 @@
+#include "passes/gbuffer_pass.h"
+
+#include "uniforms.h"
+
+namespace gis {
+
+std::vector<ProgramDesc> GBufferPass::programs() { return {{"gbuffer", {"scene.vert", "gbuffer.frag"}, {}}}; }
+
+GBufferPass::GBufferPass(int width, int height, gl::MemoryLedger& ledger) {
+    const gl::MemoryScope scope{&ledger, name()};
+    depth_ = gl::createTexture2D(scope, GL_DEPTH_COMPONENT32F, width, height);
+    // sRGB storage keeps dark albedos (0.05) precise to ~0.1% instead of 8-bit linear's ~2%.
+    baseColor_ = gl::createTexture2D(scope, GL_SRGB8_ALPHA8, width, height);
+    normal_ = gl::createTexture2D(scope, GL_RGBA16F, width, height);
+    material_ = gl::createTexture2D(scope, GL_RGBA8, width, height);
+    emissive_ = gl::createTexture2D(scope, GL_RGBA16F, width, height);
+    fbo_ = gl::createFramebuffer();
+    const GLuint f = fbo_.id();
+    glNamedFramebufferTexture(f, GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+    glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT0, baseColor_.id(), 0);
+    glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT1, normal_.id(), 0);
+    glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT2, material_.id(), 0);
+    glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT3, emissive_.id(), 0);
+    const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(f, 4, buffers);
+    gl::checkFramebuffer(f, "G-buffer");
+    program_ = buildProgram(programs()[0]);
+}
+
+void GBufferPass::execute(Frame& frame) {
+    const GpuScene& scene = frame.scene;
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+    glViewport(0, 0, depth_.width, depth_.height);
+    glEnable(GL_FRAMEBUFFER_SRGB);  // encode base colour into its sRGB target
+    const float zero[4] = {0, 0, 0, 0};
+    const float farDepth = 1.0f;
+    for (int i = 0; i < 4; ++i) glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, i, zero);
+    glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &farDepth);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glFrontFace(GL_CCW);
+    glUseProgram(program_.id());
+    glBindVertexArray(scene.vao.id());
+    glProgramUniformMatrix4fv(program_.id(), U_VIEW_PROJ, 1, GL_FALSE, &frame.camera.viewProj[0][0]);
+    for (const GpuDraw& d : scene.draws) {
+        const GpuMaterial& m = scene.materials[d.material];
+        if (m.params.doubleSided) glDisable(GL_CULL_FACE);
+        else glEnable(GL_CULL_FACE);
+        // A mirroring transform (negative determinant) flips the winding.
+        glFrontFace(glm::determinant(glm::mat3(d.world)) < 0.0f ? GL_CW : GL_CCW);
+        scene.setDrawUniforms(program_.id(), d);
+        scene.bindMaterial(m);
+        glDrawElementsBaseVertex(GL_TRIANGLES, d.indexCount, GL_UNSIGNED_INT,
+                                 reinterpret_cast<const void*>(uintptr_t(d.firstIndex) * 4), d.baseVertex);
+    }
+    glFrontFace(GL_CCW);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    frame.textures["gbuffer.depth"] = depth_.id();
+    frame.textures["gbuffer.baseColor"] = baseColor_.id();
+    frame.textures["gbuffer.normal"] = normal_.id();
+    frame.textures["gbuffer.material"] = material_.id();
+    frame.textures["gbuffer.emissive"] = emissive_.id();
+}
+
+}  // namespace gis

@@ -1,0 +1,23 @@
+// G-buffer: depth plus four colour targets (base colour, normal, material, emission).
+#pragma once
+
+#include "renderer.h"
+
+namespace gis {
+
+class GBufferPass final : public Pass {
+public:
+    GBufferPass(int width, int height, gl::MemoryLedger& ledger);
+    const char* name() const override { return "gbuffer"; }
+    std::vector<std::string> outputs() const override {
+        return {"gbuffer.depth", "gbuffer.baseColor", "gbuffer.normal", "gbuffer.material", "gbuffer.emissive"};
+    }
+    void execute(Frame& frame) override;
+    static std::vector<ProgramDesc> programs();
+
+private:
+    gl::Texture depth_, baseColor_, normal_, material_, emissive_;
+    gl::Object fbo_, program_;
+};
+
+}  // namespace gis

@@ -1,0 +1,44 @@
+// Shadow maps for every punctual light, sized by what the scene holds: one 2D array layer per
+// directional/spot light (directional fitted to the scene bounds, spot perspective over its cone),
+// one cube per point light. Scene and lights are static, so the maps are rendered once and reused
+// until invalidate(). Outputs the light list (with shadow matrices) for the lighting pass.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "renderer.h"
+
+namespace gis {
+
+struct GpuLight {  // std430, mirrors shaders/lights.glsl
+    glm::vec4 positionType;
+    glm::vec4 directionRange;
+    glm::vec4 radiance;
+    glm::vec4 cone;
+    glm::vec4 shadowParams;
+    glm::mat4 shadowMatrix;
+};
+
+class ShadowPass final : public Pass {
+public:
+    ShadowPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger);
+    const char* name() const override { return "shadows"; }
+    std::vector<std::string> outputs() const override { return {"lights", "shadow.maps", "shadow.cubes"}; }
+    void execute(Frame& frame) override;
+    bool reusedLastFrame() const override { return reused_; }
+    void invalidate() { valid_ = false; }
+    static std::vector<ProgramDesc> programs();
+    const std::vector<GpuLight>& lights() const { return lights_; }
+
+private:
+    struct View { glm::mat4 viewProj; int layer; bool cube; };
+    std::vector<GpuLight> lights_;
+    std::vector<View> views_;          // one per 2D layer or cube face
+    gl::Buffer lightBuffer_;
+    gl::Texture maps_, cubes_;         // 1-layer placeholders when the scene needs none
+    gl::Object fbo_, program_;
+    int mapSize_, cubeSize_;
+    bool valid_ = false, reused_ = false;
+};
+
+}  // namespace gis

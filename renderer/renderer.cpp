@@ -1,0 +1,193 @@
+#include "renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "passes/gbuffer_pass.h"
+#include "passes/lighting_pass.h"
+#include "passes/shadow_pass.h"
+
+namespace gis {
+
+DiffuseModel parseDiffuse(const std::string& s) {
+    if (s == "lambert") return DiffuseModel::Lambert;
+    throw Error("unknown diffuse BRDF '" + s + "' (expected lambert)");
+}
+
+SpecularModel parseSpecular(const std::string& s) {
+    if (s == "ggx") return SpecularModel::Ggx;
+    if (s == "none") return SpecularModel::None;
+    throw Error("unknown specular BRDF '" + s + "' (expected ggx or none)");
+}
+
+Tonemapper parseTonemapper(const std::string& s) {
+    if (s == "aces") return Tonemapper::Aces;
+    if (s == "linear") return Tonemapper::Linear;
+    throw Error("unknown tonemapper '" + s + "' (expected aces or linear)");
+}
+
+std::string giMethodNames() { return "none"; }
+
+void checkGiMethod(const std::string& s) {
+    if (s != "none") throw Error("unknown GI method '" + s + "' (available: " + giMethodNames() + ")");
+}
+
+CameraMatrices cameraMatrices(const Scene& scene, int cameraIndex, float aspect) {
+    if (!scene.cameras.empty() && (cameraIndex < 0 || cameraIndex >= int(scene.cameras.size())))
+        throw Error("camera " + std::to_string(cameraIndex) + " does not exist (the scene has " +
+                    std::to_string(scene.cameras.size()) + ")");
+    const Camera cam = scene.cameras.empty() ? defaultCamera(scene.bounds, aspect) : scene.cameras[cameraIndex];
+    CameraMatrices m;
+    m.view = glm::inverse(cam.cameraToWorld);
+    m.position = glm::vec3(cam.cameraToWorld[3]);
+    m.znear = cam.znear;
+    m.zfar = cam.zfar;
+    if (cam.orthographic) {
+        // Keep the file's vertical extent; the width follows the viewport's aspect.
+        m.proj = glm::ortho(-cam.ymag * aspect, cam.ymag * aspect, -cam.ymag, cam.ymag, cam.znear, cam.zfar);
+    } else if (cam.zfar <= 0.0f) {
+        m.proj = glm::infinitePerspective(cam.yfov, aspect, cam.znear);
+    } else {
+        m.proj = glm::perspective(cam.yfov, aspect, cam.znear, cam.zfar);
+    }
+    m.viewProj = m.proj * m.view;
+    m.invViewProj = glm::inverse(m.viewProj);
+    return m;
+}
+
+GLuint Frame::texture(const std::string& name) const {
+    auto it = textures.find(name);
+    if (it == textures.end()) throw Error("internal: no pass produced texture '" + name + "'");
+    return it->second;
+}
+
+GLuint Frame::buffer(const std::string& name) const {
+    auto it = buffers.find(name);
+    if (it == buffers.end()) throw Error("internal: no pass produced buffer '" + name + "'");
+    return it->second;
+}
+
+namespace {
+void checkSettings(const RenderSettings& s) {
+    auto range = [](const char* what, int v, int lo, int hi) {
+        if (v < lo || v > hi)
+            throw Error(std::string(what) + " " + std::to_string(v) + " is out of range [" + std::to_string(lo) +
+                        ", " + std::to_string(hi) + "]");
+    };
+    range("image width", s.width, 1, 16384);
+    range("image height", s.height, 1, 16384);
+    range("shadow map size", s.shadowMapSize, 16, 16384);
+    range("shadow cube size", s.shadowCubeSize, 16, 8192);
+    if (!std::isfinite(s.exposureEV) || std::abs(s.exposureEV) > 64.0f)
+        throw Error("exposure " + std::to_string(s.exposureEV) + " EV is out of range [-64, 64]");
+    for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(s.ambient[c]) || s.ambient[c] < 0.0f)
+            throw Error("ambient radiance must be finite and non-negative");
+    checkGiMethod(s.gi);
+}
+}  // namespace
+
+Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : settings_(settings) {
+    checkSettings(settings_);
+    camera_ = cameraMatrices(scene, settings_.camera, float(settings_.width) / float(settings_.height));
+    gpuScene_ = std::make_unique<GpuScene>(scene, ledger_);
+    const int w = settings_.width, h = settings_.height;
+    passes_.push_back(std::make_unique<ShadowPass>(*gpuScene_, settings_, ledger_));
+    passes_.push_back(std::make_unique<GBufferPass>(w, h, ledger_));
+    passes_.push_back(std::make_unique<LightingPass>(w, h, int(scene.lights.size()), settings_.hdr32, ledger_));
+    passes_.push_back(std::make_unique<TonemapPass>(w, h, ledger_));
+
+    // Every declared input must be the output of an earlier pass.
+    std::set<std::string> produced;
+    for (const auto& pass : passes_) {
+        for (const std::string& in : pass->inputs())
+            if (!produced.count(in))
+                throw Error(std::string("internal: pass '") + pass->name() + "' reads '" + in +
+                            "' before any pass writes it");
+        for (const std::string& out : pass->outputs()) produced.insert(out);
+    }
+    gl::checkOutOfMemory("creating the render passes");
+}
+
+Renderer::~Renderer() = default;
+
+void Renderer::renderFrame() {
+    Frame frame{settings_, *gpuScene_, camera_, {}, {}};
+    for (const auto& pass : passes_) {
+        pass->timer.begin();
+        pass->execute(frame);
+        pass->timer.end();
+    }
+    hdr_ = frame.texture("radiance");
+    ldr_ = frame.texture("display");
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    for (const auto& pass : passes_) pass->timer.collect(false);
+    gl::checkOutOfMemory("rendering a frame");
+}
+
+namespace {
+template <typename T>
+void flipRows(std::vector<T>& data, int width, int height) {
+    const size_t row = size_t(width) * 4;
+    for (int y = 0; y < height / 2; ++y)
+        std::swap_ranges(data.begin() + y * row, data.begin() + (y + 1) * row, data.begin() + (height - 1 - y) * row);
+}
+}  // namespace
+
+ImageF Renderer::readHdr() const {
+    if (!hdr_) throw Error("internal: readHdr before renderFrame");
+    ImageF img;
+    img.width = settings_.width;
+    img.height = settings_.height;
+    img.rgba.resize(size_t(img.width) * img.height * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(hdr_, 0, GL_RGBA, GL_FLOAT, GLsizei(img.rgba.size() * sizeof(float)), img.rgba.data());
+    flipRows(img.rgba, img.width, img.height);  // GL's first row is the bottom one
+    return img;
+}
+
+ImageU8 Renderer::readLdr() const {
+    if (!ldr_) throw Error("internal: readLdr before renderFrame");
+    ImageU8 img;
+    img.width = settings_.width;
+    img.height = settings_.height;
+    img.rgba.resize(size_t(img.width) * img.height * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(ldr_, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(img.rgba.size()), img.rgba.data());
+    flipRows(img.rgba, img.width, img.height);
+    return img;
+}
+
+std::vector<PassTiming> Renderer::timings(int warmup) const {
+    glFinish();
+    std::vector<PassTiming> out;
+    for (const auto& pass : passes_) {
+        pass->timer.collect(true);
+        PassTiming t;
+        t.pass = pass->name();
+        const auto& s = pass->timer.samples;
+        if (!s.empty()) t.firstMs = s.front();
+        std::vector<double> steady(s.begin() + std::min<size_t>(size_t(std::max(warmup, 0)), s.size()), s.end());
+        if (!steady.empty()) {
+            std::nth_element(steady.begin(), steady.begin() + steady.size() / 2, steady.end());
+            t.medianMs = steady[steady.size() / 2];
+        }
+        auto it = ledger_.bytesByOwner.find(t.pass);
+        t.bytes = it == ledger_.bytesByOwner.end() ? 0 : it->second;
+        t.cached = pass->reusedLastFrame();
+        out.push_back(t);
+    }
+    return out;
+}
+
+std::vector<ProgramDesc> allPrograms() {
+    std::vector<ProgramDesc> all;
+    for (auto list : {ShadowPass::programs(), GBufferPass::programs(), LightingPass::programs(), TonemapPass::programs()})
+        all.insert(all.end(), list.begin(), list.end());
+    return all;
+}
+
+}  // namespace gis

@@ -1,0 +1,111 @@
+// The frame: a plain, linear list of passes over one uploaded scene. Each pass declares the named
+// textures/buffers it reads and writes, owns its GL resources (charged to its name in the memory
+// ledger) and is timed with GPU timer queries. Adding a GI method = adding a pass.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/gl.h"
+#include "gl/shader.h"
+#include "gpu_scene.h"
+#include "image.h"
+#include "scene/scene.h"
+
+namespace gis {
+
+enum class DiffuseModel { Lambert };
+enum class SpecularModel { Ggx, None };
+enum class Tonemapper { Aces, Linear };
+
+DiffuseModel parseDiffuse(const std::string& s);
+SpecularModel parseSpecular(const std::string& s);
+Tonemapper parseTonemapper(const std::string& s);
+std::string giMethodNames();          // "none" (others as they land)
+void checkGiMethod(const std::string& s);
+
+struct RenderSettings {
+    int width = 256, height = 256;
+    int camera = 0;                    // index into Scene::cameras; a default camera when there are none
+    std::string gi = "none";
+    DiffuseModel diffuse = DiffuseModel::Lambert;
+    SpecularModel specular = SpecularModel::Ggx;
+    Tonemapper tonemap = Tonemapper::Aces;
+    float exposureEV = 0.0f;
+    glm::vec3 ambient{0.03f};          // constant ambient radiance: the `--gi none` baseline
+    int shadowMapSize = 1024;          // directional and spot lights
+    int shadowCubeSize = 512;          // point lights
+    bool shadows = true;
+    bool hdr32 = false;                // RGBA32F lighting buffer instead of RGBA16F
+};
+
+struct CameraMatrices {
+    glm::mat4 view{1.0f}, proj{1.0f}, viewProj{1.0f}, invViewProj{1.0f};
+    glm::vec3 position{0.0f};
+    float znear = 0.01f, zfar = 100.0f;
+};
+CameraMatrices cameraMatrices(const Scene& scene, int cameraIndex, float aspect);
+
+// What the passes share during one frame: settings, the scene, the camera and named resources.
+struct Frame {
+    const RenderSettings& settings;
+    const GpuScene& scene;
+    CameraMatrices camera;
+    std::map<std::string, GLuint> textures;
+    std::map<std::string, GLuint> buffers;
+    GLuint texture(const std::string& name) const;
+    GLuint buffer(const std::string& name) const;
+};
+
+class Pass {
+public:
+    virtual ~Pass() = default;
+    virtual const char* name() const = 0;
+    virtual std::vector<std::string> inputs() const { return {}; }
+    virtual std::vector<std::string> outputs() const { return {}; }
+    virtual void execute(Frame& frame) = 0;
+    // True when the last execute() reused cached results (e.g. static shadow maps).
+    virtual bool reusedLastFrame() const { return false; }
+    gl::GpuTimer timer;
+};
+
+struct PassTiming {
+    std::string pass;
+    double medianMs = 0.0;   // over frames after warm-up (0 when every frame reused a cache)
+    double firstMs = 0.0;    // the first frame, which builds caches
+    int64_t bytes = 0;       // GPU memory the pass holds
+    bool cached = false;     // the last frame reused this pass's results instead of recomputing
+};
+
+class Renderer {
+public:
+    // Needs a current GL 4.5 context. Throws gis::Error on bad settings or GL failure.
+    Renderer(const Scene& scene, const RenderSettings& settings);
+    ~Renderer();
+    void renderFrame();
+    ImageF readHdr() const;      // linear radiance, rows top to bottom
+    ImageU8 readLdr() const;     // tonemapped sRGB RGBA8, rows top to bottom
+    // Per pass, in execution order; `warmup` first frames are left out of the median.
+    std::vector<PassTiming> timings(int warmup) const;
+    const gl::MemoryLedger& memory() const { return ledger_; }
+    const RenderSettings& settings() const { return settings_; }
+    const std::vector<std::unique_ptr<Pass>>& passes() const { return passes_; }
+
+private:
+    RenderSettings settings_;
+    gl::MemoryLedger ledger_;
+    std::unique_ptr<GpuScene> gpuScene_;
+    std::vector<std::unique_ptr<Pass>> passes_;
+    CameraMatrices camera_;
+    GLuint hdr_ = 0, ldr_ = 0;
+    std::vector<double> firstFrame_;
+};
+
+// Every program (with its permutations) any pass can request: the shader test compiles them all.
+std::vector<ProgramDesc> allPrograms();
+
+}  // namespace gis

@@ -1,0 +1,30 @@
+// Explicit uniform locations shared by C++ and GLSL (shaders/uniforms.glsl mirrors this file).
+// Fixed locations mean no glGetUniformLocation lookups and no silent name mismatches.
+#pragma once
+
+namespace gis {
+enum UniformLocation : int {
+    // per draw (scene geometry)
+    U_MODEL = 0,
+    U_NORMAL_MATRIX = 1,
+    U_VIEW_PROJ = 2,
+    U_BASE_COLOR_FACTOR = 3,
+    U_MATERIAL_PARAMS = 4,   // metallic, roughness, specularFactor, occlusionStrength
+    U_EMISSIVE = 5,
+    U_ALPHA_PARAMS = 6,      // alpha cutoff (<0: opaque), normal scale, has normal map, double sided
+    // shadow pass
+    U_LIGHT_POS_FAR = 10,    // point light position, 1/far
+    // lighting pass
+    U_INV_VIEW_PROJ = 20,
+    U_CAMERA_POS = 21,
+    U_LIGHT_COUNT = 22,
+    U_AMBIENT = 23,
+    U_BACKGROUND = 24,
+    U_BRDF_MODELS = 25,      // diffuse model, specular model
+    U_SHADOWS_ENABLED = 26,
+    U_MAX_RADIANCE = 27,     // largest value the radiance target can hold
+    // tonemap pass
+    U_EXPOSURE = 30,
+    U_TONEMAPPER = 31,
+};
+}  // namespace gis

@@ -1,0 +1,48 @@
+// G-buffer: base colour (sRGB target), world normal, material parameters, emitted radiance.
+#include "common.glsl"
+#include "material.glsl"
+
+in VertexData {
+    vec3 worldPos;
+    vec3 normal;
+    vec4 tangent;
+    vec2 uv;
+    vec4 color;
+} v_in;
+
+layout(location = 0) out vec4 o_baseColor;   // rgb base colour, a unused
+layout(location = 1) out vec4 o_normal;      // xyz world normal
+layout(location = 2) out vec4 o_material;    // metallic, roughness, occlusion, specular factor
+layout(location = 3) out vec4 o_emissive;    // rgb emitted radiance
+
+// A normal that is never zero-length, even for degenerate input.
+vec3 safeNormalize(vec3 v, vec3 fallback) {
+    float len2 = dot(v, v);
+    return len2 > 1e-20 ? v * inversesqrt(len2) : fallback;
+}
+
+void main() {
+    vec4 base = materialBaseColor(v_in.uv, v_in.color);
+    if (materialCutout(base.a)) discard;
+
+    vec3 geometricNormal = safeNormalize(cross(dFdx(v_in.worldPos), dFdy(v_in.worldPos)), vec3(0.0, 1.0, 0.0));
+    vec3 n = safeNormalize(v_in.normal, geometricNormal);
+    if (u_alphaParams.w > 0.5 && !gl_FrontFacing) n = -n;  // double-sided: light the side we see
+    if (u_alphaParams.z > 0.5) {
+        vec3 t = v_in.tangent.xyz - n * dot(n, v_in.tangent.xyz);
+        t = safeNormalize(t, abs(n.y) < 0.99 ? normalize(cross(n, vec3(0, 1, 0))) : vec3(1, 0, 0));
+        vec3 b = cross(n, t) * (v_in.tangent.w < 0.0 ? -1.0 : 1.0);
+        vec3 tn = texture(s_normal, v_in.uv).xyz * 2.0 - 1.0;
+        tn.xy *= u_alphaParams.y;
+        n = safeNormalize(mat3(t, b, n) * tn, n);
+    }
+
+    vec4 mr = texture(s_metallicRoughness, v_in.uv);
+    float occlusion = 1.0 + u_materialParams.w * (texture(s_occlusion, v_in.uv).r - 1.0);
+    o_baseColor = vec4(saturate(base.rgb), 1.0);
+    o_normal = vec4(n, 0.0);
+    o_material = vec4(saturate(u_materialParams.x * mr.b), saturate(u_materialParams.y * mr.g),
+                      saturate(occlusion), saturate(u_materialParams.z));
+    // Clamped to the largest half float: the target is RGBA16F.
+    o_emissive = vec4(min(finiteOrZero(max(u_emissive * texture(s_emissive, v_in.uv).rgb, vec3(0.0))), vec3(65504.0)), 0.0);
+}

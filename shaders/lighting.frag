@@ -1,0 +1,111 @@
+// Deferred lighting: every punctual light with its shadow map, emission, and the constant ambient
+// term that is the `--gi none` baseline. Output is linear radiance.
+#include "common.glsl"
+#include "brdf.glsl"
+#include "lights.glsl"
+#include "uniforms.glsl"
+
+layout(binding = 0) uniform sampler2D s_depth;
+layout(binding = 1) uniform sampler2D s_gbufBaseColor;
+layout(binding = 2) uniform sampler2D s_gbufNormal;
+layout(binding = 3) uniform sampler2D s_gbufMaterial;
+layout(binding = 4) uniform sampler2D s_gbufEmissive;
+layout(binding = 5) uniform sampler2DArrayShadow s_shadowMaps;
+layout(binding = 6) uniform samplerCubeArrayShadow s_shadowCubes;
+
+layout(location = U_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
+layout(location = U_CAMERA_POS) uniform vec3 u_cameraPos;
+layout(location = U_LIGHT_COUNT) uniform int u_lightCount;
+layout(location = U_AMBIENT) uniform vec3 u_ambient;
+layout(location = U_BACKGROUND) uniform vec3 u_background;
+layout(location = U_BRDF_MODELS) uniform ivec2 u_brdfModels;
+layout(location = U_SHADOWS_ENABLED) uniform int u_shadowsEnabled;
+layout(location = U_MAX_RADIANCE) uniform float u_maxRadiance;  // 65504 for an RGBA16F target: no Inf
+
+in vec2 v_uv;
+layout(location = 0) out vec4 o_radiance;
+
+// Receiver-side bias: move the lookup along the normal by a few shadow-map texels, more at grazing
+// light, so a lit plane never shadows itself (acne) and contact shadows stay (little peter-panning).
+const float SHADOW_NORMAL_OFFSET_TEXELS = 1.5;
+// 3x3 taps, each a hardware 2x2 comparison (bilinear PCF): a soft edge about 4 texels wide.
+const int PCF_RADIUS = 1;
+
+float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
+    int layer = int(light.cone.z);
+    if (u_shadowsEnabled == 0 || layer < 0) return 1.0;
+    int type = int(light.positionType.w);
+    float distance = type == LIGHT_DIRECTIONAL ? 0.0 : length(light.positionType.xyz - P);
+    float texel = light.shadowParams.x + light.shadowParams.y * distance;
+    vec3 Po = P + N * texel * SHADOW_NORMAL_OFFSET_TEXELS * (1.0 - 0.5 * NoL);
+    // PCF taps lie in the receiver's tangent plane, one shadow texel apart: taps spread across
+    // the light's view instead would sink into a tilted receiver and shadow it (acne at grazing).
+    vec3 T = normalize(abs(N.y) < 0.99 ? cross(N, vec3(0.0, 1.0, 0.0)) : cross(N, vec3(1.0, 0.0, 0.0)));
+    vec3 B = cross(N, T);
+
+    float sum = 0.0;
+    for (int i = -PCF_RADIUS; i <= PCF_RADIUS; ++i)
+        for (int j = -PCF_RADIUS; j <= PCF_RADIUS; ++j) {
+            vec3 tap = Po + (T * float(i) + B * float(j)) * texel;
+            if (type == LIGHT_POINT) {
+                // Compare with the depth the cube face's perspective projection stores: its view
+                // depth is the distance along the dominant axis.
+                vec3 d = tap - light.positionType.xyz;
+                vec3 ad = abs(d);
+                float n = light.shadowParams.z, f = light.shadowParams.w;
+                float z = max(max(max(ad.x, ad.y), ad.z), n);
+                float depth = ((f + n) / (f - n) - 2.0 * f * n / ((f - n) * z)) * 0.5 + 0.5;
+                sum += texture(s_shadowCubes, vec4(d, float(layer)), depth);
+            } else {
+                vec4 clip = light.shadowMatrix * vec4(tap, 1.0);
+                vec3 p = clip.xyz / max(clip.w, 1e-20) * 0.5 + 0.5;
+                // Outside the map (or behind a spot light) nothing was rendered: lit.
+                bool outside = clip.w <= 0.0 || any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)));
+                sum += outside ? 1.0 : texture(s_shadowMaps, vec4(p.xy, float(layer), p.z));
+            }
+        }
+    float taps = float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
+    return sum / taps;
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(s_depth, pixel, 0).r;
+    if (depth >= 1.0) {
+        o_radiance = vec4(min(u_background, vec3(u_maxRadiance)), 1.0);
+        return;
+    }
+    vec4 world = u_invViewProj * vec4(v_uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    vec3 P = world.xyz / world.w;
+    vec3 N = normalize(texelFetch(s_gbufNormal, pixel, 0).xyz);
+    vec3 baseColor = texelFetch(s_gbufBaseColor, pixel, 0).rgb;
+    vec4 material = texelFetch(s_gbufMaterial, pixel, 0);  // metallic, roughness, occlusion, specular
+    vec3 emissive = texelFetch(s_gbufEmissive, pixel, 0).rgb;
+    vec3 V = normalize(u_cameraPos - P);
+
+    SurfaceBrdf surface = makeSurfaceBrdf(baseColor, material.x, material.y, material.w);
+    vec3 radiance = emissive;
+    for (int i = 0; i < u_lightCount; ++i) {
+        GpuLight light = u_lights[i];
+        int type = int(light.positionType.w);
+        vec3 L;
+        vec3 irradiance = light.radiance.rgb;  // at normal incidence
+        if (type == LIGHT_DIRECTIONAL) {
+            L = -light.directionRange.xyz;
+        } else {
+            vec3 toLight = light.positionType.xyz - P;
+            float d2 = max(dot(toLight, toLight), 1e-12);
+            float d = sqrt(d2);
+            L = toLight / d;
+            irradiance *= rangeWindow(d, light.directionRange.w) / d2;  // inverse square law
+            if (type == LIGHT_SPOT)
+                irradiance *= spotCone(dot(-L, light.directionRange.xyz), light.cone.x, light.cone.y);
+        }
+        float NoL = dot(N, L);
+        if (NoL <= 0.0 || all(equal(irradiance, vec3(0.0)))) continue;
+        vec3 f = evaluateBrdf(surface, N, V, L, u_brdfModels.x, u_brdfModels.y);
+        radiance += f * irradiance * NoL * shadowVisibility(light, P, N, NoL);
+    }
+    radiance += u_ambient * (surface.diffuseColor + surface.f0) * material.z;
+    o_radiance = vec4(min(finiteOrZero(radiance), vec3(u_maxRadiance)), 1.0);
+}

@@ -1,0 +1,30 @@
+// Punctual lights (KHR_lights_punctual) and their shadow maps. Mirrors renderer/passes/shadow_pass.h.
+#define LIGHT_DIRECTIONAL 0
+#define LIGHT_POINT 1
+#define LIGHT_SPOT 2
+
+struct GpuLight {
+    vec4 positionType;    // xyz world position, w = type
+    vec4 directionRange;  // xyz direction the light travels (unit), w = range (0: infinite)
+    vec4 radiance;        // rgb colour * intensity (W/sr for point/spot, W/m^2 for directional)
+    vec4 cone;            // cos(outer), cos(inner), shadow layer (-1: none), unused
+    vec4 shadowParams;    // texel world size = x + y * distance; z = near, w = far (point)
+    mat4 shadowMatrix;    // world -> shadow clip (directional, spot)
+};
+
+layout(std430, binding = 0) readonly buffer LightBuffer { GpuLight u_lights[]; };
+
+// glTF's recommended smooth range window: (1 - (d/range)^4)^2, 1 without a range.
+float rangeWindow(float distance, float range) {
+    if (range <= 0.0) return 1.0;
+    float r = distance / range;
+    float r4 = r * r * r * r;
+    float w = clamp(1.0 - r4, 0.0, 1.0);
+    return w * w;
+}
+
+// glTF spot cone: smooth from outer to inner angle.
+float spotCone(float cosAngle, float cosOuter, float cosInner) {
+    float t = clamp((cosAngle - cosOuter) / max(cosInner - cosOuter, 1e-4), 0.0, 1.0);
+    return t * t;
+}

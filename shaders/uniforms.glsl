@@ -1,0 +1,19 @@
+// Explicit uniform locations: mirrors renderer/uniforms.h (keep the two in step).
+#define U_MODEL 0
+#define U_NORMAL_MATRIX 1
+#define U_VIEW_PROJ 2
+#define U_BASE_COLOR_FACTOR 3
+#define U_MATERIAL_PARAMS 4
+#define U_EMISSIVE 5
+#define U_ALPHA_PARAMS 6
+#define U_LIGHT_POS_FAR 10
+#define U_INV_VIEW_PROJ 20
+#define U_CAMERA_POS 21
+#define U_LIGHT_COUNT 22
+#define U_AMBIENT 23
+#define U_BACKGROUND 24
+#define U_BRDF_MODELS 25
+#define U_SHADOWS_ENABLED 26
+#define U_MAX_RADIANCE 27
+#define U_EXPOSURE 30
+#define U_TONEMAPPER 31

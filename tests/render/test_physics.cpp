@@ -1,0 +1,238 @@
+// Physical checks that need no golden image: each compares the rasterizer's linear radiance with a
+// closed-form answer. A white Lambertian surface has BRDF 1/pi, so its outgoing radiance is E/pi
+// where E is the irradiance the light delivers to it.
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render_test_util.h"
+
+namespace gis::test {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A 10 m white floor at y = 0, a camera above and in front of it, no ambient.
+Scene floorScene() {
+    Scene s;
+    s.name = "floor";
+    s.materials.push_back(lambert(glm::vec3(1.0f)));
+    addQuad(s, glm::vec3(0), glm::vec3(0, 1, 0), 10.0f, 0);
+    s.cameras.push_back(lookAtCamera(glm::vec3(0, 3, 3), glm::vec3(0)));
+    return s;
+}
+
+RenderSettings plainSettings() {
+    RenderSettings r;
+    r.width = r.height = 128;
+    r.ambient = glm::vec3(0.0f);
+    return r;
+}
+
+// World point where the ray through the centre of pixel (x, y) meets the plane y = 0.
+bool floorPointOfPixel(const Scene& scene, const RenderSettings& s, int x, int y, glm::vec3& p) {
+    CameraMatrices m = cameraMatrices(scene, s.camera, float(s.width) / float(s.height));
+    glm::vec2 ndc((x + 0.5f) / s.width * 2.0f - 1.0f, 1.0f - (y + 0.5f) / s.height * 2.0f);
+    glm::vec4 a = m.invViewProj * glm::vec4(ndc, -1.0f, 1.0f), b = m.invViewProj * glm::vec4(ndc, 1.0f, 1.0f);
+    glm::dvec3 o = glm::dvec3(a) / double(a.w), e = glm::dvec3(b) / double(b.w);
+    glm::dvec3 d = e - o;
+    if (std::abs(d.y) < 1e-9) return false;
+    double t = -o.y / d.y;
+    if (t <= 0.0) return false;
+    p = glm::vec3(o + d * t);
+    return true;
+}
+
+Light pointLight(glm::vec3 position, float intensity) {
+    Light l;
+    l.type = LightType::Point;
+    l.position = position;
+    l.intensity = intensity;
+    return l;
+}
+
+TEST(Physics, WhiteLambertUnderDirectionalLightIsEOverPi) {
+    Scene s = floorScene();
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::vec3(0, -1, 0);
+    sun.intensity = 2.0f;  // irradiance at normal incidence, W/m^2
+    s.lights.push_back(sun);
+    finalizeScene(s);
+    RenderSettings r = plainSettings();
+    ImageF img = renderHdr(s, r);
+    const double expected = 2.0 / kPi;
+    int checked = 0;
+    for (int y = 0; y < r.height; y += 3)
+        for (int x = 0; x < r.width; x += 3) {
+            glm::vec3 p;
+            if (!floorPointOfPixel(s, r, x, y, p) || std::abs(p.x) > 4.5f || std::abs(p.z) > 4.5f) continue;
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(img.at(x, y)[c], expected, 0.01 * expected) << x << "," << y;
+            ++checked;
+        }
+    EXPECT_GT(checked, 500);
+}
+
+// E = I cos(theta) / d^2 for a point light of radiant intensity I: checked at every floor pixel
+// within 60 degrees of the light's nadir, and the 1/d^2 law by raising the light from 1 m to 2 m.
+double pointLightRadiance(glm::vec3 light, float intensity, glm::vec3 p) {
+    glm::dvec3 d = glm::dvec3(light) - glm::dvec3(p);
+    double dist = glm::length(d);
+    return intensity * (d.y / dist) / (dist * dist) / kPi;
+}
+
+TEST(Physics, PointLightFallsOffAsInverseSquare) {
+    double centre[2];
+    for (int k = 0; k < 2; ++k) {
+        const float height = k == 0 ? 1.0f : 2.0f;
+        Scene s = floorScene();
+        const glm::vec3 lightPos(0, height, 0);
+        s.lights.push_back(pointLight(lightPos, 2.0f));
+        finalizeScene(s);
+        RenderSettings r = plainSettings();
+        ImageF img = renderHdr(s, r);
+        int checked = 0;
+        for (int y = 0; y < r.height; y += 2)
+            for (int x = 0; x < r.width; x += 2) {
+                glm::vec3 p;
+                if (!floorPointOfPixel(s, r, x, y, p)) continue;
+                const glm::vec3 toLight = lightPos - p;
+                if (toLight.y / glm::length(toLight) < 0.5f || std::abs(p.x) > 4.5f || std::abs(p.z) > 4.5f) continue;
+                const double expected = pointLightRadiance(lightPos, 2.0f, p);
+                ASSERT_NEAR(img.at(x, y)[1], expected, 0.01 * expected) << "pixel " << x << "," << y << " height " << height;
+                ++checked;
+            }
+        EXPECT_GT(checked, 100);
+        glm::ivec2 c = projectToPixel(s, r, glm::vec3(0));
+        glm::vec3 p;
+        ASSERT_TRUE(floorPointOfPixel(s, r, c.x, c.y, p));
+        centre[k] = img.at(c.x, c.y)[0] / pointLightRadiance(lightPos, 2.0f, p) * (2.0 / (height * height) / kPi);
+    }
+    EXPECT_NEAR(centre[0] / centre[1], 4.0, 0.04);  // twice the distance, a quarter of the light
+}
+
+// An occluder between light and floor: the point under it receives no direct light while a point
+// outside its shadow is fully lit - for each kind of shadow map (directional, spot, point cube).
+class ShadowTest : public ::testing::TestWithParam<LightType> {};
+
+TEST_P(ShadowTest, ShadowedPointGetsNoDirectLight) {
+    Scene s = floorScene();
+    s.materials.push_back(lambert(glm::vec3(0.5f)));
+    addQuad(s, glm::vec3(0, 1.5f, 0), glm::vec3(0, 1, 0), 0.5f, 1);  // occluder, seen from above
+    Light l;
+    l.type = GetParam();
+    l.position = glm::vec3(0, 3, 0);
+    l.direction = glm::vec3(0, -1, 0);
+    l.intensity = 5.0f;
+    l.outerConeAngle = glm::radians(40.0f);
+    l.innerConeAngle = glm::radians(30.0f);
+    s.lights.push_back(l);
+    // Look from the side so the floor under the occluder is visible.
+    s.cameras[0] = lookAtCamera(glm::vec3(0, 1.0f, 4.0f), glm::vec3(0, 0, 0), 50.0f);
+    finalizeScene(s);
+    RenderSettings r = plainSettings();
+    ImageF img = renderHdr(s, r);
+    const glm::ivec2 under = projectToPixel(s, r, glm::vec3(0, 0, 0));
+    const glm::ivec2 outside = projectToPixel(s, r, glm::vec3(1.2f, 0, 0.3f));
+    for (int c = 0; c < 3; ++c) EXPECT_LT(meanAround(img, under.x, under.y, 1, c), 1e-6) << "channel " << c;
+    EXPECT_GT(meanAround(img, outside.x, outside.y, 0, 0), 0.05);
+
+    r.shadows = false;  // the same point is lit when shadows are off: the zero came from the shadow
+    ImageF unshadowed = renderHdr(s, r);
+    EXPECT_GT(meanAround(unshadowed, under.x, under.y, 1, 0), 0.05);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllLightTypes, ShadowTest,
+                         ::testing::Values(LightType::Directional, LightType::Spot, LightType::Point),
+                         [](const auto& info) {
+                             return std::string(info.param == LightType::Directional ? "Directional"
+                                                : info.param == LightType::Spot      ? "Spot"
+                                                                                     : "Point");
+                         });
+
+TEST(Physics, SpotConeIsFullInsideInnerAndDarkOutsideOuter) {
+    Scene s = floorScene();
+    Light l;
+    l.type = LightType::Spot;
+    l.position = glm::vec3(0, 2, 0);
+    l.direction = glm::vec3(0, -1, 0);
+    l.intensity = 3.0f;
+    l.innerConeAngle = glm::radians(20.0f);
+    l.outerConeAngle = glm::radians(30.0f);
+    s.lights.push_back(l);
+    finalizeScene(s);
+    RenderSettings r = plainSettings();
+    ImageF img = renderHdr(s, r);
+    const glm::vec3 inside(2.0f * std::tan(glm::radians(10.0f)), 0, 0);
+    const glm::vec3 outside(2.0f * std::tan(glm::radians(35.0f)), 0, 0);
+    glm::ivec2 pi = projectToPixel(s, r, inside), po = projectToPixel(s, r, outside);
+    glm::vec3 p;
+    ASSERT_TRUE(floorPointOfPixel(s, r, pi.x, pi.y, p));
+    EXPECT_NEAR(img.at(pi.x, pi.y)[0], pointLightRadiance(l.position, 3.0f, p), 0.01 * pointLightRadiance(l.position, 3.0f, p));
+    EXPECT_EQ(img.at(po.x, po.y)[0], 0.0f);
+}
+
+TEST(Physics, RendersAreDeterministic) {
+    Scene s = makeBuiltinScene("cornell");
+    RenderSettings r = plainSettings();
+    context();
+    std::vector<float> hdr[2];
+    std::vector<uint8_t> ldr[2];
+    for (int k = 0; k < 2; ++k) {
+        Renderer renderer(s, r);
+        renderer.renderFrame();
+        hdr[k] = renderer.readHdr().rgba;
+        ldr[k] = renderer.readLdr().rgba;
+    }
+    EXPECT_TRUE(hdr[0] == hdr[1]);
+    EXPECT_TRUE(ldr[0] == ldr[1]);
+}
+
+// Stability at the extremes of scale and brightness: the Cornell box scaled by 1e-3 and 1e3 (camera,
+// lights and clip planes with it, light intensity by scale^2 so irradiance is unchanged), and a
+// light 1e6 times too bright. Every pixel must stay finite and the image must look the same.
+Scene scaledCornell(float scale) {
+    Scene s = makeBuiltinScene("cornell");
+    const glm::mat4 m = glm::scale(glm::mat4(1.0f), glm::vec3(scale));
+    for (DrawItem& d : s.draws) d.world = m * d.world;
+    for (Light& l : s.lights) {
+        l.position *= scale;
+        l.intensity *= scale * scale;
+    }
+    for (Camera& c : s.cameras) {
+        c.cameraToWorld[3] = glm::vec4(glm::vec3(c.cameraToWorld[3]) * scale, 1.0f);
+        c.znear *= scale;
+        c.zfar *= scale;
+    }
+    finalizeScene(s);
+    return s;
+}
+
+double meanChannel(const ImageF& img, int c) {
+    double sum = 0.0;
+    for (size_t i = 0; i < img.rgba.size() / 4; ++i) sum += img.rgba[i * 4 + c];
+    return sum / double(img.rgba.size() / 4);
+}
+
+TEST(Extremes, HugeAndTinyScenesAndBrightLightsStayFinite) {
+    RenderSettings r = plainSettings();
+    r.width = r.height = 96;
+    const ImageF reference = renderHdr(scaledCornell(1.0f), r);
+    const double refMean = meanChannel(reference, 0);
+    ASSERT_GT(refMean, 0.01);
+    for (float scale : {1e-3f, 1e3f}) {
+        ImageF img = renderHdr(scaledCornell(scale), r);
+        for (float v : img.rgba) ASSERT_TRUE(std::isfinite(v)) << "scale " << scale;
+        EXPECT_NEAR(meanChannel(img, 0), refMean, 0.03 * refMean) << "scale " << scale;
+    }
+    Scene bright = makeBuiltinScene("cornell");
+    for (Light& l : bright.lights) l.intensity *= 1e6f;
+    r.hdr32 = false;
+    Renderer renderer(bright, r);
+    renderer.renderFrame();
+    const ImageF img = renderer.readHdr();
+    for (float v : img.rgba) ASSERT_TRUE(std::isfinite(v)) << "1e6 x light in RGBA16F";
+    const ImageU8 ldr = renderer.readLdr();
+    EXPECT_GT(ldr.rgba[(size_t(r.height / 2) * r.width + r.width / 2) * 4], 200);  // saturates to white, not black
+}
+
+}  // namespace
+}  // namespace gis::test
