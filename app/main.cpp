@@ -12,6 +12,10 @@ int main(int argc, char** argv) {
     CLI::App app{"gisandbox: explore and compare real-time global illumination against a reference"};
     app.require_subcommand(1);
     app.set_help_all_flag("--help-all", "Show help for every subcommand");
+    // Usage errors are one line too, like every other failure.
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {
+        return std::string("gisandbox: error: ") + e.what() + " (see --help)\n";
+    });
 
     gis::RenderOptions render;
     CLI::App* renderCmd = app.add_subcommand("render", "Render a scene headless (or in a hidden window) to PNG or EXR");

@@ -24,29 +24,31 @@ std::string readShaderFile(const std::string& path) {
     return s.str();
 }
 
+void emit(PreprocessedShader& out, const std::string& text, const std::string& file, int line) {
+    out.source += text + "\n";
+    out.lines.push_back({file, line});
+}
+
 void expand(const std::string& name, PreprocessedShader& out, std::set<std::string>& included, int depth) {
     if (depth > 16) throw Error("shader include nesting too deep at " + name);
     const std::string path = shaderDir() + "/" + name;
     const std::string text = readShaderFile(path);
-    const int fileIndex = static_cast<int>(out.files.size());
-    out.files.push_back("shaders/" + name);
+    const std::string file = "shaders/" + name;
     static const std::regex includeLine(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
     static const std::regex versionLine(R"(^\s*#\s*version\b.*$)");
     std::istringstream lines(text);
     std::string line;
     int lineNo = 0;
-    out.source += "#line 1 " + std::to_string(fileIndex) + "\n";
     while (std::getline(lines, line)) {
         ++lineNo;
         std::smatch m;
         if (std::regex_match(line, m, includeLine)) {
             const std::string inc = m[1];
             if (included.insert(inc).second) expand(inc, out, included, depth + 1);
-            out.source += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(fileIndex) + "\n";
         } else if (std::regex_match(line, versionLine)) {
-            out.source += "\n";  // the version line is emitted once, first, by preprocessShader
+            emit(out, "", file, lineNo);  // the version line is emitted once, first, by preprocessShader
         } else {
-            out.source += line + "\n";
+            emit(out, line, file, lineNo);
         }
     }
 }
@@ -56,24 +58,26 @@ void expand(const std::string& name, PreprocessedShader& out, std::set<std::stri
 PreprocessedShader preprocessShader(const std::string& file,
                                     const std::vector<std::pair<std::string, std::string>>& defines) {
     PreprocessedShader out;
-    out.source = "#version 450 core\n";
-    for (const auto& [name, value] : defines) out.source += "#define " + name + " " + value + "\n";
+    emit(out, "#version 450 core", "(generated)", 0);
+    for (const auto& [name, value] : defines) emit(out, "#define " + name + " " + value, "(generated)", 0);
     std::set<std::string> included;
     expand(file, out, included, 0);
     return out;
 }
 
-std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files) {
-    static const std::regex mesa(R"(^(\d+):(\d+)\(\d+\):\s*(.*)$)");
-    static const std::regex nvidia(R"(^(\d+)\((\d+)\)\s*:\s*(.*)$)");
+std::string mapShaderLog(const std::string& log, const PreprocessedShader& shader) {
+    static const std::regex mesa(R"(^\d+:(\d+)\(\d+\):\s*(.*)$)");
+    static const std::regex nvidia(R"(^\d+\((\d+)\)\s*:\s*(.*)$)");
     std::istringstream lines(log);
     std::string line, out;
     while (std::getline(lines, line)) {
         std::smatch m;
         if (std::regex_match(line, m, mesa) || std::regex_match(line, m, nvidia)) {
-            size_t index = std::stoul(m[1]);
-            std::string file = index < files.size() ? files[index] : "string " + m[1].str();
-            line = file + ":" + m[2].str() + ": " + m[3].str();
+            const size_t index = std::stoul(m[1]);
+            if (index >= 1 && index <= shader.lines.size()) {
+                const auto& origin = shader.lines[index - 1];
+                line = origin.file + ":" + std::to_string(origin.line) + ": " + m[2].str();
+            }
         }
         if (!line.empty()) out += line + "\n";
     }
@@ -128,7 +132,7 @@ gl::Object buildProgram(const ProgramDesc& desc) {
                 std::string log(std::max(len, 1), '\0');
                 glGetShaderInfoLog(shader, len, nullptr, log.data());
                 throw Error("shader compile error in program '" + desc.name + "': " +
-                            firstLines(mapShaderLog(log.c_str(), pre.files), 3));
+                            firstLines(mapShaderLog(log.c_str(), pre), 3));
             }
             glAttachShader(program.id(), shader);
         }

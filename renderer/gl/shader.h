@@ -1,6 +1,8 @@
 // GLSL programs built from files under shaders/. `#include "file.glsl"` is resolved here (each file
-// once per stage), defines are injected after #version, and `#line` directives keep a source-string
-// number per file so a compile error can be reported as "shaders/file.glsl:LINE: message".
+// once per stage) and defines are injected after #version. The expanded source keeps a table from
+// each of its lines to the file and line it came from, so a compile error is reported as
+// "shaders/file.glsl:LINE: message". (A table rather than `#line N FILE` directives: Mesa ignores
+// the source-string number of #line in its messages.)
 #pragma once
 
 #include <string>
@@ -19,15 +21,19 @@ struct ProgramDesc {
 };
 
 struct PreprocessedShader {
+    struct Origin {
+        std::string file;               // "shaders/NAME"
+        int line = 0;                   // 1-based line in that file; 0 for injected lines
+    };
     std::string source;                 // ready for glShaderSource / glslangValidator
-    std::vector<std::string> files;     // source-string number -> file path (for error mapping)
+    std::vector<Origin> lines;          // origin of each line of `source`
 };
 
 std::string shaderDir();  // GIS_SHADER_DIR environment variable, else the build's source path
 PreprocessedShader preprocessShader(const std::string& file,
                                     const std::vector<std::pair<std::string, std::string>>& defines);
-// Rewrites "N:LINE(COL): msg" (Mesa) and "N(LINE) : msg" (NVIDIA) into "file:LINE: msg".
-std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files);
+// Rewrites "0:LINE(COL): msg" (Mesa) and "0(LINE) : msg" (NVIDIA) into "shaders/file:LINE: msg".
+std::string mapShaderLog(const std::string& log, const PreprocessedShader& shader);
 
 // Compiles and links; throws gis::Error naming the file and line of the first error.
 gl::Object buildProgram(const ProgramDesc& desc);

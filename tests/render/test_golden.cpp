@@ -48,6 +48,8 @@ struct GoldenCase {
     Tolerance tolerance;
 };
 
+void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.scene << " via " << c.backend; }
+
 class Golden : public ::testing::TestWithParam<GoldenCase> {};
 
 TEST_P(Golden, MatchesCommittedImage) {
