@@ -1,0 +1,159 @@
+// The built-in scenes must be the reference glTFs (shared/assets/reference/scenes/) exactly:
+// geometry (as world-space triangles with their winding), materials, light, camera.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "test_util.h"
+
+using namespace gistest;
+
+namespace {
+
+struct Tri {
+    glm::vec3 v[3];
+    glm::vec4 albedo;
+    glm::vec3 emissive;
+    float metallic, roughness, specular;
+    bool doubleSided;
+};
+
+// World-space triangles, each rotated so its lexicographically smallest vertex comes first
+// (keeps the winding), with the material it is drawn with.
+std::vector<Tri> worldTriangles(const gis::Scene& s) {
+    std::vector<Tri> out;
+    for (const auto& d : s.draws) {
+        const auto& p = s.primitives[size_t(d.primitive)];
+        const gis::Material m = p.material >= 0 ? s.materials[size_t(p.material)] : gis::Material{};
+        for (size_t i = 0; i + 2 < p.indices.size(); i += 3) {
+            Tri t;
+            for (int k = 0; k < 3; ++k)
+                t.v[k] = glm::vec3(d.world * glm::vec4(p.vertices[p.indices[i + size_t(k)]].position, 1.0f));
+            auto less = [](const glm::vec3& a, const glm::vec3& b) {
+                if (std::fabs(a.x - b.x) > 1e-4f) return a.x < b.x;
+                if (std::fabs(a.y - b.y) > 1e-4f) return a.y < b.y;
+                return a.z < b.z - 1e-4f;
+            };
+            int first = 0;
+            for (int k = 1; k < 3; ++k)
+                if (less(t.v[k], t.v[first])) first = k;
+            std::rotate(t.v, t.v + first, t.v + 3);
+            t.albedo = m.baseColorFactor;
+            t.emissive = m.emissive;
+            t.metallic = m.metallicFactor;
+            t.roughness = m.roughnessFactor;
+            t.specular = m.specularFactor;
+            t.doubleSided = m.doubleSided;
+            out.push_back(t);
+        }
+    }
+    return out;
+}
+
+bool near3(const glm::vec3& a, const glm::vec3& b, float tol = 1e-4f) {
+    return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::vec3(tol)));
+}
+
+bool same(const Tri& a, const Tri& b) {
+    for (int k = 0; k < 3; ++k)
+        if (!near3(a.v[k], b.v[k])) return false;
+    return glm::all(glm::lessThanEqual(glm::abs(a.albedo - b.albedo), glm::vec4(1e-6f))) &&
+           near3(a.emissive, b.emissive, 1e-5f) && a.metallic == b.metallic &&
+           a.roughness == b.roughness && a.specular == b.specular && a.doubleSided == b.doubleSided;
+}
+
+void compareWithReference(const std::string& builtin, const std::string& ref) {
+    const gis::Scene b = gis::makeBuiltinScene(builtin);
+    const gis::Scene r = gis::loadGltfFile(referenceScene(ref));
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+
+    EXPECT_EQ(b.triangleCount(), r.triangleCount());
+    EXPECT_TRUE(near3(b.bounds.min, r.bounds.min)) << builtin;
+    EXPECT_TRUE(near3(b.bounds.max, r.bounds.max)) << builtin;
+    EXPECT_EQ(b.background, glm::vec3(0.0f));
+
+    // Materials as sets of (albedo, emission, parameters).
+    ASSERT_EQ(b.materials.size(), r.materials.size());
+    for (const auto& rm : r.materials) {
+        bool found = false;
+        for (const auto& bm : b.materials)
+            found = found || (bm.name == rm.name && bm.baseColorFactor == rm.baseColorFactor &&
+                              near3(bm.emissive, rm.emissive, 1e-6f) &&
+                              bm.metallicFactor == rm.metallicFactor &&
+                              bm.roughnessFactor == rm.roughnessFactor &&
+                              bm.specularFactor == rm.specularFactor && bm.doubleSided == rm.doubleSided &&
+                              bm.alphaMode == rm.alphaMode);
+        EXPECT_TRUE(found) << "reference material " << rm.name << " missing from " << builtin;
+    }
+
+    // Same triangles (set equality up to tolerance; winding kept), each with the same material.
+    std::vector<Tri> bt = worldTriangles(b), rt = worldTriangles(r);
+    ASSERT_EQ(bt.size(), rt.size());
+    std::vector<char> used(rt.size(), 0);
+    for (const Tri& t : bt) {
+        bool matched = false;
+        for (size_t i = 0; i < rt.size() && !matched; ++i)
+            if (!used[i] && same(t, rt[i])) used[i] = matched = true;
+        EXPECT_TRUE(matched) << builtin << ": triangle (" << t.v[0].x << "," << t.v[0].y << ","
+                             << t.v[0].z << ") has no match in the reference";
+    }
+    // Normals agree with the winding (single-sided quads face the inside of the box).
+    for (const auto& p : b.primitives)
+        for (size_t i = 0; i + 2 < p.indices.size(); i += 3) {
+            const auto& a = p.vertices[p.indices[i]];
+            const glm::vec3 n = glm::cross(p.vertices[p.indices[i + 1]].position - a.position,
+                                           p.vertices[p.indices[i + 2]].position - a.position);
+            EXPECT_GT(glm::dot(n, a.normal), 0.0f);
+        }
+
+    ASSERT_EQ(b.lights.size(), r.lights.size());
+    for (size_t i = 0; i < b.lights.size(); ++i) {
+        EXPECT_EQ(b.lights[i].type, r.lights[i].type);
+        EXPECT_TRUE(near3(b.lights[i].position, r.lights[i].position));
+        EXPECT_EQ(b.lights[i].color, r.lights[i].color);
+        EXPECT_FLOAT_EQ(b.lights[i].intensity, r.lights[i].intensity);
+        EXPECT_EQ(b.lights[i].range, r.lights[i].range);
+        EXPECT_EQ(b.lights[i].name, r.lights[i].name);
+    }
+    ASSERT_EQ(b.cameras.size(), 1u);
+    ASSERT_EQ(r.cameras.size(), 1u);
+    const gis::Camera &bc = b.cameras[0], &rc = r.cameras[0];
+    EXPECT_FALSE(bc.orthographic);
+    EXPECT_FLOAT_EQ(bc.yfov, rc.yfov);
+    EXPECT_FLOAT_EQ(bc.znear, rc.znear);
+    EXPECT_FLOAT_EQ(bc.zfar, rc.zfar);
+    for (int c = 0; c < 4; ++c)
+        EXPECT_TRUE(near3(glm::vec3(bc.cameraToWorld[c]), glm::vec3(rc.cameraToWorld[c]), 1e-6f));
+    EXPECT_TRUE(near3(glm::vec3(bc.cameraToWorld[3]), glm::vec3(0.0f, 1.0f, 3.9f), 1e-6f));
+}
+
+}  // namespace
+
+TEST(Builtin, Names) {
+    EXPECT_EQ(gis::builtinSceneNames(), (std::vector<std::string>{"cornell", "cornell-area"}));
+}
+
+TEST(Builtin, CornellMatchesCornellPointReference) {
+    compareWithReference("cornell", "cornell_point");
+    const gis::Scene b = gis::makeBuiltinScene("cornell");
+    ASSERT_EQ(b.lights.size(), 1u);
+    EXPECT_EQ(b.lights[0].position, glm::vec3(0.0f, 1.8f, 0.0f));
+    EXPECT_FLOAT_EQ(b.lights[0].intensity, 1.2f);
+    EXPECT_EQ(b.triangleCount(), 10u + 12u + 12u);
+    for (const auto& m : b.materials) EXPECT_EQ(m.emissive, glm::vec3(0.0f));
+}
+
+TEST(Builtin, CornellAreaMatchesCornellBoxReference) {
+    compareWithReference("cornell-area", "cornell_box");
+    const gis::Scene b = gis::makeBuiltinScene("cornell-area");
+    EXPECT_TRUE(b.lights.empty());
+    EXPECT_EQ(b.triangleCount(), 10u + 2u + 12u + 12u);
+    int emitters = 0;
+    for (const auto& m : b.materials)
+        if (m.emissive == glm::vec3(15.0f)) {
+            ++emitters;
+            EXPECT_EQ(m.baseColorFactor, glm::vec4(0, 0, 0, 1));
+            EXPECT_FALSE(m.doubleSided);
+        }
+    EXPECT_EQ(emitters, 1);
+}
