@@ -11,8 +11,8 @@ PACKAGES=(
   python3-glad glslang-tools
   # libraries
   libglm-dev libimgui-dev libtinygltf-dev libstb-dev libtinyexr-dev libcli11-dev nlohmann-json3-dev
-  # tests
-  libgtest-dev
+  # tests (xvfb: the GLFW window backend runs under a virtual X server)
+  libgtest-dev xvfb xauth
 )
 
 missing=()

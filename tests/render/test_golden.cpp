@@ -91,6 +91,19 @@ INSTANTIATE_TEST_SUITE_P(BuiltinScenes, Golden,
                              return n;
                          });
 
+// The window backend (GLFW on GLX) under a virtual X server matches the same golden.
+TEST(Backends, GlfwWindowUnderXvfbMatchesGolden) {
+    const std::string dir = tempDir("golden_glfw");
+    CliResult r = runCli("render --scene builtin:cornell --size 128x128 --backend glfw -v --out " + dir + "/glfw.png",
+                         "xvfb-run -a");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("backend: glfw"), std::string::npos) << r.err;
+    const ImageU8 expected = readPng(std::string(GIS_SOURCE_DIR) + "/tests/golden/cornell_128.png");
+    const Comparison d = compare(readPng(dir + "/glfw.png"), expected, kLlvmpipe.outlierLevels);
+    EXPECT_LE(d.meanAbs, kLlvmpipe.meanAbs);
+    EXPECT_LE(d.outlierShare, kLlvmpipe.outlierShare);
+}
+
 // The same scene through EGL and OSMesa: linear radiance agrees to 1e-3 relative everywhere.
 TEST(Backends, EglAndOSMesaAgree) {
     const std::string dir = tempDir("backends_agree");
