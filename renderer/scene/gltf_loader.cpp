@@ -42,8 +42,8 @@ constexpr uint64_t kMaxTotalReadBytes = 4ull << 30;      // all external files o
 constexpr uint64_t kMaxInputBytes = (1ull << 31) - 1;    // tinygltf takes an unsigned int length
 constexpr uint64_t kMaxImagePixels = 1ull << 26;         // 64 Mpixel (256 MiB RGBA8) per image
 constexpr uint64_t kMaxTotalImagePixels = 1ull << 28;    // 1 GiB of RGBA8 per scene
-constexpr uint64_t kMaxTotalVertices = 1ull << 25;       // 2 GiB of gis::Vertex per scene
-constexpr uint64_t kMaxTotalIndices = 1ull << 28;        // 1 GiB of indices per scene
+constexpr uint64_t kMaxTotalVertices = 1ull << 24;       // 1 GiB of gis::Vertex per scene
+constexpr uint64_t kMaxTotalIndices = 1ull << 26;        // 256 MiB of indices per scene
 constexpr int kMaxJsonDepth = 64;
 
 constexpr uint32_t kGlbMagic = 0x46546C67;  // "glTF"
@@ -78,8 +78,31 @@ void writeU32(std::vector<uint8_t>& out, uint32_t v) {
 
 // --- File access (also tinygltf's callbacks) -----------------------------------------------
 struct FsState {
+    std::string baseDir;
     uint64_t totalRead = 0;
 };
+
+// External files must lie under the base directory: a relative URI without '..' segments
+// (glTF URIs are relative references). Absolute paths and escapes like ../../etc/passwd are
+// refused, so a downloaded file cannot read arbitrary files into its buffers or textures.
+bool allowedPath(const std::string& path, const FsState* st) {
+    std::string rest = path;
+    const std::string& base = st ? st->baseDir : std::string();
+    if (!base.empty()) {
+        const std::string prefix = base.back() == '/' ? base : base + "/";
+        if (path.compare(0, prefix.size(), prefix) != 0) return false;
+        rest = path.substr(prefix.size());
+    }
+    if (rest.empty() || rest[0] == '/') return false;
+    size_t start = 0;
+    while (start <= rest.size()) {
+        size_t end = rest.find('/', start);
+        if (end == std::string::npos) end = rest.size();
+        if (rest.compare(start, end - start, "..") == 0 && end - start == 2) return false;
+        start = end + 1;
+    }
+    return true;
+}
 
 // Reads a regular file of at most kMaxFileBytes. On failure returns false with a reason.
 bool readRegularFile(const std::string& path, std::vector<unsigned char>& out, std::string& why,
@@ -120,9 +143,10 @@ bool readRegularFile(const std::string& path, std::vector<unsigned char>& out, s
     return true;
 }
 
-bool fsFileExists(const std::string& path, void*) {
+bool fsFileExists(const std::string& path, void* user) {
     struct stat st {};
-    return !path.empty() && stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+    return allowedPath(path, static_cast<FsState*>(user)) && stat(path.c_str(), &st) == 0 &&
+           S_ISREG(st.st_mode);
 }
 
 std::string fsExpandFilePath(const std::string& path, void*) { return path; }  // no expansion
@@ -130,6 +154,10 @@ std::string fsExpandFilePath(const std::string& path, void*) { return path; }  /
 bool fsReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
                      void* user) {
     std::string why;
+    if (!allowedPath(path, static_cast<FsState*>(user))) {
+        if (err) *err += path + ": outside the glTF's directory\n";
+        return false;
+    }
     if (!readRegularFile(path, *out, why, static_cast<FsState*>(user))) {
         if (err) *err += path + ": " + why + "\n";
         return false;
@@ -352,6 +380,7 @@ Scene Loader::load(const uint8_t* data, size_t size, const std::string& baseDir)
 
     tinygltf::TinyGLTF parser;
     FsState fsState;
+    fsState.baseDir = baseDir;
     tinygltf::FsCallbacks fs;
     fs.FileExists = &fsFileExists;
     fs.ExpandFilePath = &fsExpandFilePath;
@@ -590,9 +619,15 @@ void Loader::readAccessor(int index, const std::string& what, bool asIndices, Ac
                  ")");
         }
         src += off;
-    } else if (!acc.sparse.isSparse) {
-        // Allowed by the spec (all zeros) but never useful for geometry.
-        warn("an accessor without bufferView is read as zeros");
+    } else {
+        // Allowed by the spec (zeros, usually the base of a sparse accessor). Its size is not
+        // backed by any buffer, so bound it by the data the file actually has.
+        uint64_t bufferBytes = 0;
+        for (const auto& b : model_.buffers) bufferBytes += b.data.size();
+        if (count > std::max<uint64_t>(65536, bufferBytes))
+            fail(name + " has no bufferView and " + str(count) +
+                 " elements, more than the file's buffers could describe");
+        if (!acc.sparse.isSparse) warn("an accessor without bufferView is read as zeros");
     }
 
     const size_t n = static_cast<size_t>(count);

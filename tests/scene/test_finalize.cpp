@@ -480,6 +480,31 @@ TEST(Loader, HostileInputsAreCleanErrors) {
     EXPECT_NE(msg.find("evil name"), std::string::npos) << msg;
 }
 
+TEST(Loader, ExternalFilesOnlyUnderTheBaseDirectory) {
+    const std::string dir = gltfDir() + "/Box/glTF";
+    std::vector<uint8_t> json = readBytes(dir + "/Box.gltf");
+    std::string text(json.begin(), json.end());
+    EXPECT_NO_THROW(gis::loadGltfMemory(reinterpret_cast<const uint8_t*>(text.data()), text.size(), dir));
+    // Same buffer reached by an absolute path or through '..': refused.
+    for (const std::string& uri : {dir + "/Box0.bin", std::string("../glTF/Box0.bin")}) {
+        std::string evil = text;
+        const size_t at = evil.find("\"Box0.bin\"");
+        ASSERT_NE(at, std::string::npos);
+        evil.replace(at, 10, "\"" + uri + "\"");
+        const std::string msg = errorOf([&] {
+            gis::loadGltfMemory(reinterpret_cast<const uint8_t*>(evil.data()), evil.size(), dir);
+        });
+        EXPECT_NE(msg, "") << uri;
+    }
+}
+
+TEST(Loader, UnbackedAccessorCountIsBounded) {
+    GltfBuilder g = stripBuilder(4);
+    g.j["accessors"][0].erase("bufferView");
+    g.j["accessors"][0]["count"] = 5000000;   // zeros, not backed by any buffer bytes
+    EXPECT_NE(errorOf([&] { g.load(); }).find("no bufferView"), std::string::npos);
+}
+
 TEST(Loader, EmptySceneLoads) {
     Scene s = loadString("{\"asset\":{\"version\":\"2.0\"}}");
     EXPECT_EQ(s.triangleCount(), 0u);
