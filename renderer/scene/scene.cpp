@@ -274,7 +274,10 @@ Camera defaultCamera(const Aabb& bounds, float aspect) {
     const float halfX = std::atan(std::tan(halfY) * aspect);
     const float half = std::min(halfY, halfX);
     const float dist = radius / std::sin(half);
-    cam.cameraToWorld = glm::translate(glm::mat4(1.0f), center + glm::vec3(0.0f, 0.0f, dist));
+    // From +Z, raised 20 degrees: a flat scene (a ground plane) is not seen edge-on.
+    const float elevation = glm::radians(20.0f);
+    const glm::vec3 eye = center + dist * glm::vec3(0.0f, std::sin(elevation), std::cos(elevation));
+    cam.cameraToWorld = glm::inverse(glm::lookAt(eye, center, glm::vec3(0.0f, 1.0f, 0.0f)));
     cam.znear = std::max(0.5f * (dist - radius), 1e-4f * dist);
     cam.zfar = 2.0f * (dist + radius);
     return cam;

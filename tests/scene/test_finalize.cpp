@@ -182,19 +182,23 @@ TEST(Finalize, InstancedPrimitiveCountsPerDraw) {
     EXPECT_FLOAT_EQ(s.bounds.max.x, 11.0f);
 }
 
-TEST(DefaultCamera, FramesBoundsFromPlusZ) {
+TEST(DefaultCamera, FramesBoundsFromPlusZRaised) {
     gis::Aabb b;
     b.extend({-1, -1, -1});
     b.extend({1, 1, 1});
     const gis::Camera c = gis::defaultCamera(b, 1.5f);
     const glm::vec3 pos(c.cameraToWorld[3]);
+    const float dist = glm::length(pos), r = std::sqrt(3.0f);
     EXPECT_NEAR(pos.x, 0.0f, 1e-6f);
-    EXPECT_GT(pos.z, std::sqrt(3.0f));
+    EXPECT_GT(pos.z, 0.0f);
+    EXPECT_NEAR(pos.y / dist, std::sin(glm::radians(20.0f)), 1e-5f);  // raised: a ground plane is not edge-on
+    const glm::vec3 forward = -glm::vec3(c.cameraToWorld[2]);
+    EXPECT_NEAR(glm::dot(glm::normalize(forward), -pos / dist), 1.0f, 1e-5f);  // looks at the centre
     EXPECT_GT(c.znear, 0.0f);
-    EXPECT_LT(c.znear, pos.z - std::sqrt(3.0f));
-    EXPECT_GT(c.zfar, pos.z + std::sqrt(3.0f));
+    EXPECT_LT(c.znear, dist - r);
+    EXPECT_GT(c.zfar, dist + r);
     // The bounding sphere fits the vertical field of view.
-    EXPECT_LE(std::sqrt(3.0f) / pos.z, std::sin(0.5f * c.yfov) + 1e-5f);
+    EXPECT_LE(r / dist, std::sin(0.5f * c.yfov) + 1e-5f);
     const gis::Camera e = gis::defaultCamera(gis::Aabb{}, 0.0f);  // empty scene, bad aspect
     EXPECT_TRUE(finite(glm::vec3(e.cameraToWorld[3])));
     EXPECT_GT(e.zfar, e.znear);
