@@ -6,8 +6,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <chrono>
 #include <regex>
+#include <unistd.h>
 
+#include "bvh.h"
 #include "gl/shader.h"
 #include "image.h"
 
@@ -47,6 +50,39 @@ std::unique_ptr<GlContext> headlessContext(const std::string& backend, bool debu
 
 double mib(int64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 
+// Samples done, elapsed time and ETA on stderr: redrawn in place on a terminal, a line per
+// quarter otherwise (logs stay short).
+class ProgressBar {
+public:
+    explicit ProgressBar(int total) : total_(total), start_(std::chrono::steady_clock::now()), tty_(isatty(2)) {}
+    void update(int done) {
+        const double elapsed = seconds();
+        const double eta = done > 0 ? elapsed * (total_ - done) / done : 0.0;
+        const int quarter = total_ > 0 ? 4 * done / total_ : 4;
+        if (tty_) {
+            const int width = 30, filled = total_ > 0 ? width * done / total_ : width;
+            std::fprintf(stderr, "\r[%s%s] %d/%d spp  %.1f s elapsed  ETA %.1f s ", std::string(filled, '#').c_str(),
+                         std::string(width - filled, '.').c_str(), done, total_, elapsed, eta);
+        } else if (quarter > lastQuarter_) {
+            std::fprintf(stderr, "%d/%d spp  %.1f s elapsed  ETA %.1f s\n", done, total_, elapsed, eta);
+        }
+        lastQuarter_ = std::max(lastQuarter_, quarter);
+        std::fflush(stderr);
+    }
+    void finish() {
+        if (tty_) std::fprintf(stderr, "\n");
+    }
+
+private:
+    double seconds() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+    int total_;
+    std::chrono::steady_clock::time_point start_;
+    bool tty_;
+    int lastQuarter_ = 0;
+};
+
 }  // namespace
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
@@ -71,6 +107,12 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--shadow-size", o.shadowSize, "Shadow map resolution for directional and spot lights")
         ->capture_default_str();
     cmd.add_option("--shadow-cube-size", o.shadowCubeSize, "Shadow cube map resolution for point lights")
+        ->capture_default_str();
+    cmd.add_option("--background", o.background, "Environment radiance R,G,B (or one value), overriding the scene's")
+        ->delimiter(',')
+        ->expected(1, 3);
+    cmd.add_option("--spp", o.spp, "--gi pathtrace: samples per pixel")->capture_default_str();
+    cmd.add_option("--max-bounces", o.maxBounces, "--gi pathtrace: indirect bounces (0 = direct light only)")
         ->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable shadow maps");
     cmd.add_flag("--hdr32", o.hdr32, "Light into RGBA32F instead of RGBA16F");
@@ -101,6 +143,15 @@ int runRender(const RenderOptions& o) {
     s.shadowCubeSize = o.shadowCubeSize;
     s.shadows = !o.noShadows;
     s.hdr32 = o.hdr32;
+    if (!o.background.empty()) {
+        if (o.background.size() != 1 && o.background.size() != 3) throw Error("--background takes one value or R,G,B");
+        s.background = o.background.size() == 3 ? glm::vec3(o.background[0], o.background[1], o.background[2])
+                                                : glm::vec3(o.background[0]);
+    }
+    s.spp = o.spp;
+    s.maxBounces = o.maxBounces;
+    // Progressive methods add a few samples per frame so progress can be shown between frames.
+    s.samplesPerFrame = 4;
     {
         namespace fs = std::filesystem;
         fs::path dir = fs::path(o.out).parent_path();
@@ -124,6 +175,15 @@ int runRender(const RenderOptions& o) {
     Renderer renderer(scene, s);
     const int frames = o.timings ? o.frames : 1;
     for (int i = 0; i < frames; ++i) renderer.renderFrame();
+    if (!renderer.converged()) {
+        ProgressBar progress(s.spp);
+        do {
+            renderer.renderFrame();
+            glFinish();
+            progress.update(renderer.samplesDone());
+        } while (!renderer.converged());
+        progress.finish();
+    }
 
     if (exr) writeExr(o.out, renderer.readHdr());
     else writePng(o.out, renderer.readLdr());
@@ -177,6 +237,12 @@ int runInfo(const InfoOptions& o) {
                                    {"color", {l.color.r, l.color.g, l.color.b}},
                                    {"position", {l.position.x, l.position.y, l.position.z}}});
     j["warnings"] = scene.warnings;
+    if (scene.triangleCount() > 0) {
+        const Bvh bvh = buildBvh(scene);  // what --gi pathtrace builds
+        j["bvh"] = {{"builder", "Embree rtcBuildBVH, SAH, binary, <= 4 triangles per leaf"},
+                    {"nodes", bvh.nodes.size()}, {"leaves", bvh.leafCount}, {"depth", bvh.depth},
+                    {"sah_cost", bvh.sahCost}, {"build_ms", bvh.buildMs}};
+    }
     if (!o.noGpu) {
         auto ctx = headlessContext(o.backend, false, false);
         RenderSettings s;
@@ -202,6 +268,10 @@ int runInfo(const InfoOptions& o) {
     std::printf("cameras    %zu\n", scene.cameras.size());
     std::printf("bounds     (%g, %g, %g) .. (%g, %g, %g)\n", scene.bounds.min.x, scene.bounds.min.y,
                 scene.bounds.min.z, scene.bounds.max.x, scene.bounds.max.y, scene.bounds.max.z);
+    if (j.contains("bvh"))
+        std::printf("BVH        %zu nodes, %d leaves, depth %d, SAH cost %.2f, built in %.2f ms (Embree SAH)\n",
+                    j["bvh"]["nodes"].get<size_t>(), j["bvh"]["leaves"].get<int>(), j["bvh"]["depth"].get<int>(),
+                    j["bvh"]["sah_cost"].get<double>(), j["bvh"]["build_ms"].get<double>());
     for (const std::string& warning : scene.warnings) std::printf("warning    %s\n", warning.c_str());
     if (!o.noGpu) {
         std::printf("GPU memory at %s on %s:\n", o.size.c_str(), j["gpu"]["renderer"].get<std::string>().c_str());

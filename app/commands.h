@@ -28,6 +28,9 @@ struct RenderOptions {
     bool timings = false;
     int frames = 30;
     int warmup = 5;
+    std::vector<float> background;
+    int spp = 64;
+    int maxBounces = 16;
     bool glDebug = false;
     bool verbose = false;
 };

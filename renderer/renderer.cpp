@@ -8,6 +8,7 @@
 
 #include "passes/gbuffer_pass.h"
 #include "passes/lighting_pass.h"
+#include "passes/pathtrace_pass.h"
 #include "passes/shadow_pass.h"
 
 namespace gis {
@@ -29,10 +30,11 @@ Tonemapper parseTonemapper(const std::string& s) {
     throw Error("unknown tonemapper '" + s + "' (expected aces or linear)");
 }
 
-std::string giMethodNames() { return "none"; }
+std::string giMethodNames() { return "none, pathtrace"; }
 
 void checkGiMethod(const std::string& s) {
-    if (s != "none") throw Error("unknown GI method '" + s + "' (available: " + giMethodNames() + ")");
+    if (s != "none" && s != "pathtrace")
+        throw Error("unknown GI method '" + s + "' (available: " + giMethodNames() + ")");
 }
 
 CameraMatrices cameraMatrices(const Scene& scene, int cameraIndex, float aspect) {
@@ -86,6 +88,13 @@ void checkSettings(const RenderSettings& s) {
     for (int c = 0; c < 3; ++c)
         if (!std::isfinite(s.ambient[c]) || s.ambient[c] < 0.0f)
             throw Error("ambient radiance must be finite and non-negative");
+    if (s.background)
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite((*s.background)[c]) || (*s.background)[c] < 0.0f)
+                throw Error("background radiance must be finite and non-negative");
+    range("samples per pixel", s.spp, 1, 1 << 20);
+    range("samples per frame", s.samplesPerFrame, 1, 1 << 16);
+    range("max bounces", s.maxBounces, 0, 1024);
     checkGiMethod(s.gi);
 }
 }  // namespace
@@ -95,9 +104,13 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     camera_ = cameraMatrices(scene, settings_.camera, float(settings_.width) / float(settings_.height));
     gpuScene_ = std::make_unique<GpuScene>(scene, ledger_);
     const int w = settings_.width, h = settings_.height;
-    passes_.push_back(std::make_unique<ShadowPass>(*gpuScene_, settings_, ledger_));
-    passes_.push_back(std::make_unique<GBufferPass>(w, h, ledger_));
-    passes_.push_back(std::make_unique<LightingPass>(w, h, int(scene.lights.size()), settings_.hdr32, ledger_));
+    if (settings_.gi == "pathtrace") {
+        passes_.push_back(std::make_unique<PathTracePass>(*gpuScene_, settings_, ledger_));
+    } else {
+        passes_.push_back(std::make_unique<ShadowPass>(*gpuScene_, settings_, ledger_));
+        passes_.push_back(std::make_unique<GBufferPass>(w, h, ledger_));
+        passes_.push_back(std::make_unique<LightingPass>(w, h, int(scene.lights.size()), settings_.hdr32, ledger_));
+    }
     passes_.push_back(std::make_unique<TonemapPass>(w, h, ledger_));
 
     // Every declared input must be the output of an earlier pass.
@@ -113,6 +126,18 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
 }
 
 Renderer::~Renderer() = default;
+
+int Renderer::samplesDone() const {
+    for (const auto& pass : passes_)
+        if (const auto* pt = dynamic_cast<const PathTracePass*>(pass.get())) return pt->samplesDone();
+    return 1;
+}
+
+bool Renderer::converged() const {
+    for (const auto& pass : passes_)
+        if (const auto* pt = dynamic_cast<const PathTracePass*>(pass.get())) return pt->done();
+    return true;
+}
 
 void Renderer::renderFrame() {
     Frame frame{settings_, *gpuScene_, camera_, {}, {}};
@@ -185,7 +210,8 @@ std::vector<PassTiming> Renderer::timings(int warmup) const {
 
 std::vector<ProgramDesc> allPrograms() {
     std::vector<ProgramDesc> all;
-    for (auto list : {ShadowPass::programs(), GBufferPass::programs(), LightingPass::programs(), TonemapPass::programs()})
+    for (auto list : {ShadowPass::programs(), GBufferPass::programs(), LightingPass::programs(),
+                      TonemapPass::programs(), PathTracePass::programs()})
         all.insert(all.end(), list.begin(), list.end());
     return all;
 }

@@ -5,6 +5,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,13 @@ struct RenderSettings {
     int shadowCubeSize = 512;          // point lights
     bool shadows = true;
     bool hdr32 = false;                // RGBA32F lighting buffer instead of RGBA16F
+    std::optional<glm::vec3> background;  // overrides the scene's environment radiance
+    // --gi pathtrace
+    int spp = 64;                      // samples per pixel to accumulate
+    int samplesPerFrame = 1;           // samples added by each renderFrame()
+    int maxBounces = 16;               // indirect bounces; 0 = direct lighting only
+    int russianRouletteStart = 3;      // bounce from which Russian roulette may end a path
+    uint32_t seed = 0;                 // fixed: the same settings give the same image
 };
 
 struct CameraMatrices {
@@ -94,6 +102,9 @@ public:
     const gl::MemoryLedger& memory() const { return ledger_; }
     const RenderSettings& settings() const { return settings_; }
     const std::vector<std::unique_ptr<Pass>>& passes() const { return passes_; }
+    // Progressive methods (the path tracer): samples accumulated so far, and the target.
+    int samplesDone() const;
+    bool converged() const;
 
 private:
     RenderSettings settings_;

@@ -23,6 +23,12 @@ enum UniformLocation : int {
     U_BRDF_MODELS = 25,      // diffuse model, specular model
     U_SHADOWS_ENABLED = 26,
     U_MAX_RADIANCE = 27,     // largest value the radiance target can hold
+    // path tracer
+    U_SAMPLE_INDEX = 40,
+    U_SEED = 41,
+    U_MAX_BOUNCES = 42,
+    U_EMITTER_COUNT = 43,
+    U_RR_START = 44,
     // tonemap pass
     U_EXPOSURE = 30,
     U_TONEMAPPER = 31,

@@ -10,7 +10,7 @@ PACKAGES=(
   libegl-dev libopengl-dev libgl-dev libosmesa6-dev libgl1-mesa-dri libegl-mesa0 libglfw3-dev
   python3-glad glslang-tools
   # libraries
-  libglm-dev libimgui-dev libtinygltf-dev libstb-dev libtinyexr-dev libcli11-dev nlohmann-json3-dev
+  libglm-dev libimgui-dev libtinygltf-dev libstb-dev libtinyexr-dev libcli11-dev nlohmann-json3-dev libembree-dev
   # tests (xvfb: the GLFW window backend runs under a virtual X server)
   libgtest-dev xvfb xauth
 )

@@ -17,3 +17,8 @@
 #define U_MAX_RADIANCE 27
 #define U_EXPOSURE 30
 #define U_TONEMAPPER 31
+#define U_SAMPLE_INDEX 40
+#define U_SEED 41
+#define U_MAX_BOUNCES 42
+#define U_EMITTER_COUNT 43
+#define U_RR_START 44

@@ -46,7 +46,8 @@ void LightingPass::execute(Frame& frame) {
     glProgramUniform3fv(p, U_CAMERA_POS, 1, &frame.camera.position[0]);
     glProgramUniform1i(p, U_LIGHT_COUNT, lightCount_);
     glProgramUniform3fv(p, U_AMBIENT, 1, &s.ambient[0]);
-    glProgramUniform3fv(p, U_BACKGROUND, 1, &frame.scene.cpu.background[0]);
+    const glm::vec3 background = s.background.value_or(frame.scene.cpu.background);
+    glProgramUniform3fv(p, U_BACKGROUND, 1, &background[0]);
     glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));
     glProgramUniform1i(p, U_SHADOWS_ENABLED, s.shadows ? 1 : 0);
     glProgramUniform1f(p, U_MAX_RADIANCE, radiance_.format == GL_RGBA16F ? kMaxHalf : kMaxFloat);

@@ -12,8 +12,6 @@ namespace gis {
 
 namespace {
 
-constexpr int kTypeDirectional = 0, kTypePoint = 1, kTypeSpot = 2;
-
 std::array<glm::vec3, 8> corners(const Aabb& b) {
     std::array<glm::vec3, 8> c;
     for (int i = 0; i < 8; ++i)
@@ -39,56 +37,50 @@ ShadowPass::ShadowPass(const GpuScene& scene, const RenderSettings& settings, gl
     const glm::vec3 center = bounds.center();
     const float radius = std::max(0.5f * glm::length(bounds.extent()), 1e-6f);
     int layers = 0, cubes = 0;
-    for (const Light& l : cpu.lights) {
-        GpuLight g{};
-        g.radiance = glm::vec4(l.color * l.intensity, 0.0f);
-        g.directionRange = glm::vec4(glm::normalize(l.direction), l.range);
-        g.cone = glm::vec4(std::cos(l.outerConeAngle), std::cos(l.innerConeAngle), -1.0f, 0.0f);
-        const bool castsShadow = settings.shadows && !cpu.draws.empty();
+    lights_ = makeGpuLights(cpu);
+    const bool castsShadow = settings.shadows && !cpu.draws.empty();
+    for (size_t i = 0; i < cpu.lights.size() && castsShadow; ++i) {
+        const Light& l = cpu.lights[i];
+        GpuLight& g = lights_[i];
         const glm::vec3 dir = glm::vec3(g.directionRange);
         if (l.type == LightType::Directional) {
-            g.positionType = glm::vec4(0, 0, 0, kTypeDirectional);
-            if (castsShadow) {
-                // Orthographic box around the scene bounds, as seen along the light.
-                glm::mat4 view = glm::lookAt(center - dir * radius * 2.0f, center, anyPerpendicularUp(dir));
-                glm::vec3 lo(1e30f), hi(-1e30f);
-                for (const glm::vec3& c : corners(bounds)) {
-                    glm::vec3 v = glm::vec3(view * glm::vec4(c, 1.0f));
-                    lo = glm::min(lo, v);
-                    hi = glm::max(hi, v);
-                }
-                const float pad = radius * 0.01f;
-                glm::mat4 proj = glm::ortho(lo.x - pad, hi.x + pad, lo.y - pad, hi.y + pad, -hi.z - pad, -lo.z + pad);
-                g.shadowMatrix = proj * view;
-                g.cone.z = float(layers);
-                g.shadowParams = glm::vec4(std::max(hi.x - lo.x, hi.y - lo.y) / mapSize_, 0.0f, 0.0f, 0.0f);
-                views_.push_back({g.shadowMatrix, layers++, false});
+            // Orthographic box around the scene bounds, as seen along the light.
+            glm::mat4 view = glm::lookAt(center - dir * radius * 2.0f, center, anyPerpendicularUp(dir));
+            glm::vec3 lo(1e30f), hi(-1e30f);
+            for (const glm::vec3& c : corners(bounds)) {
+                glm::vec3 v = glm::vec3(view * glm::vec4(c, 1.0f));
+                lo = glm::min(lo, v);
+                hi = glm::max(hi, v);
             }
-        } else {
-            g.positionType = glm::vec4(l.position, l.type == LightType::Point ? kTypePoint : kTypeSpot);
-            float farthest = 0.0f;
-            for (const glm::vec3& c : corners(bounds)) farthest = std::max(farthest, glm::length(c - l.position));
-            const float zfar = std::max(farthest * 1.01f, 1e-4f);
-            const float znear = std::min(shadowNear(radius), zfar * 0.5f);
-            if (castsShadow && l.type == LightType::Spot) {
-                const float fov = std::min(2.0f * l.outerConeAngle + 0.05f, glm::radians(170.0f));
-                glm::mat4 view = glm::lookAt(l.position, l.position + dir, anyPerpendicularUp(dir));
-                g.shadowMatrix = glm::perspective(fov, 1.0f, znear, zfar) * view;
-                g.cone.z = float(layers);
-                g.shadowParams = glm::vec4(0.0f, 2.0f * std::tan(0.5f * fov) / mapSize_, znear, zfar);
-                views_.push_back({g.shadowMatrix, layers++, false});
-            } else if (castsShadow) {
-                // Cube faces in GL's order (+X -X +Y -Y +Z -Z) with the conventional up vectors.
-                static const glm::vec3 targets[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-                static const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
-                const glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, znear, zfar);
-                for (int f = 0; f < 6; ++f)
-                    views_.push_back({proj * glm::lookAt(l.position, l.position + targets[f], ups[f]), cubes * 6 + f, true});
-                g.cone.z = float(cubes++);
-                g.shadowParams = glm::vec4(0.0f, 2.0f / cubeSize_, znear, zfar);
-            }
+            const float pad = radius * 0.01f;
+            glm::mat4 proj = glm::ortho(lo.x - pad, hi.x + pad, lo.y - pad, hi.y + pad, -hi.z - pad, -lo.z + pad);
+            g.shadowMatrix = proj * view;
+            g.cone.z = float(layers);
+            g.shadowParams = glm::vec4(std::max(hi.x - lo.x, hi.y - lo.y) / mapSize_, 0.0f, 0.0f, 0.0f);
+            views_.push_back({g.shadowMatrix, layers++, false});
+            continue;
         }
-        lights_.push_back(g);
+        float farthest = 0.0f;
+        for (const glm::vec3& c : corners(bounds)) farthest = std::max(farthest, glm::length(c - l.position));
+        const float zfar = std::max(farthest * 1.01f, 1e-4f);
+        const float znear = std::min(shadowNear(radius), zfar * 0.5f);
+        if (l.type == LightType::Spot) {
+            const float fov = std::min(2.0f * l.outerConeAngle + 0.05f, glm::radians(170.0f));
+            glm::mat4 view = glm::lookAt(l.position, l.position + dir, anyPerpendicularUp(dir));
+            g.shadowMatrix = glm::perspective(fov, 1.0f, znear, zfar) * view;
+            g.cone.z = float(layers);
+            g.shadowParams = glm::vec4(0.0f, 2.0f * std::tan(0.5f * fov) / mapSize_, znear, zfar);
+            views_.push_back({g.shadowMatrix, layers++, false});
+        } else {
+            // Cube faces in GL's order (+X -X +Y -Y +Z -Z) with the conventional up vectors.
+            static const glm::vec3 targets[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+            static const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+            const glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, znear, zfar);
+            for (int f = 0; f < 6; ++f)
+                views_.push_back({proj * glm::lookAt(l.position, l.position + targets[f], ups[f]), cubes * 6 + f, true});
+            g.cone.z = float(cubes++);
+            g.shadowParams = glm::vec4(0.0f, 2.0f / cubeSize_, znear, zfar);
+        }
     }
 
     const gl::MemoryScope scope{&ledger, name()};

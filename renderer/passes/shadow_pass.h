@@ -6,18 +6,10 @@
 
 #include <glm/glm.hpp>
 
+#include "lights.h"
 #include "renderer.h"
 
 namespace gis {
-
-struct GpuLight {  // std430, mirrors shaders/lights.glsl
-    glm::vec4 positionType;
-    glm::vec4 directionRange;
-    glm::vec4 radiance;
-    glm::vec4 cone;
-    glm::vec4 shadowParams;
-    glm::mat4 shadowMatrix;
-};
 
 class ShadowPass final : public Pass {
 public:

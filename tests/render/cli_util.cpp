@@ -27,6 +27,7 @@ std::string tempDir(const std::string& name) {
 
 CliResult runCli(const std::string& args, const std::string& env) {
     static int counter = 0;
+    std::filesystem::create_directories(GIS_TEST_TMP);
     const std::string base = std::string(GIS_TEST_TMP) + "/cli" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
     const std::string cmd = env + (env.empty() ? "" : " ") + "'" + GIS_BINARY + "' " + args + " >'" + base +
                             ".out' 2>'" + base + ".err' </dev/null";

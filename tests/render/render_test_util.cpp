@@ -64,7 +64,8 @@ ImageF renderHdr(const Scene& scene, RenderSettings settings) {
     context();
     settings.hdr32 = true;
     Renderer renderer(scene, settings);
-    renderer.renderFrame();
+    do renderer.renderFrame();
+    while (!renderer.converged());  // progressive methods: until every sample is in
     return renderer.readHdr();
 }
 
@@ -86,6 +87,131 @@ glm::ivec2 projectToPixel(const Scene& scene, const RenderSettings& settings, gl
     glm::vec2 ndc = glm::vec2(clip) / clip.w;
     return {int(std::floor((ndc.x * 0.5f + 0.5f) * settings.width)),
             int(std::floor((0.5f - ndc.y * 0.5f) * settings.height))};
+}
+
+}  // namespace gis::test
+
+namespace gis::test {
+
+namespace {
+
+struct WorldTriangle {
+    glm::dvec3 a, b, c, n;
+    int region;
+};
+
+std::vector<WorldTriangle> worldTriangles(const Scene& s) {
+    std::vector<WorldTriangle> out;
+    for (size_t d = 0; d < s.draws.size(); ++d) {
+        const Primitive& p = s.primitives[s.draws[d].primitive];
+        const glm::dmat4 m(s.draws[d].world);
+        std::vector<glm::dvec3> planeNormals;  // faces of a box: triangles with the same normal
+        for (size_t i = 0; i + 2 < p.indices.size(); i += 3) {
+            WorldTriangle t;
+            t.a = glm::dvec3(m * glm::dvec4(glm::dvec3(p.vertices[p.indices[i]].position), 1.0));
+            t.b = glm::dvec3(m * glm::dvec4(glm::dvec3(p.vertices[p.indices[i + 1]].position), 1.0));
+            t.c = glm::dvec3(m * glm::dvec4(glm::dvec3(p.vertices[p.indices[i + 2]].position), 1.0));
+            const glm::dvec3 n = glm::cross(t.b - t.a, t.c - t.a);
+            if (glm::length(n) == 0.0) continue;
+            t.n = glm::normalize(n);
+            int face = -1;
+            for (size_t f = 0; f < planeNormals.size(); ++f)
+                if (glm::dot(planeNormals[f], t.n) > 0.999) face = int(f);
+            if (face < 0) {
+                face = int(planeNormals.size());
+                planeNormals.push_back(t.n);
+            }
+            t.region = int(d) * 8 + std::min(face, 7);
+            out.push_back(t);
+        }
+    }
+    return out;
+}
+
+// Moller-Trumbore in double precision; the distance, or -1.
+double intersect(const WorldTriangle& t, glm::dvec3 o, glm::dvec3 d) {
+    const glm::dvec3 e1 = t.b - t.a, e2 = t.c - t.a, p = glm::cross(d, e2);
+    const double det = glm::dot(e1, p);
+    if (std::abs(det) < 1e-14) return -1.0;
+    const glm::dvec3 s = o - t.a;
+    const double u = glm::dot(s, p) / det;
+    if (u < 0.0 || u > 1.0) return -1.0;
+    const glm::dvec3 q = glm::cross(s, e1);
+    const double v = glm::dot(d, q) / det;
+    if (v < 0.0 || u + v > 1.0) return -1.0;
+    const double dist = glm::dot(e2, q) / det;
+    return dist > 1e-9 ? dist : -1.0;
+}
+
+}  // namespace
+
+std::vector<PixelHit> castPixels(const Scene& scene, int camera, int width, int height, const glm::vec3* light) {
+    const std::vector<WorldTriangle> tris = worldTriangles(scene);
+    const CameraMatrices cam = cameraMatrices(scene, camera, float(width) / float(height));
+    std::vector<PixelHit> hits(size_t(width) * height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const glm::vec2 ndc((x + 0.5f) / width * 2.0f - 1.0f, 1.0f - (y + 0.5f) / height * 2.0f);
+            const glm::dvec4 nearP = glm::dmat4(cam.invViewProj) * glm::dvec4(ndc, -1.0, 1.0);
+            const glm::dvec4 farP = glm::dmat4(cam.invViewProj) * glm::dvec4(ndc, 0.0, 1.0);
+            const glm::dvec3 o = glm::dvec3(nearP) / nearP.w;
+            const glm::dvec3 d = glm::normalize(glm::dvec3(farP) / farP.w - o);
+            double best = 1e300;
+            const WorldTriangle* hit = nullptr;
+            for (const WorldTriangle& t : tris) {
+                const double dist = intersect(t, o, d);
+                if (dist > 0.0 && dist < best) {
+                    best = dist;
+                    hit = &t;
+                }
+            }
+            if (!hit) continue;
+            PixelHit& h = hits[size_t(y) * width + x];
+            h.region = hit->region;
+            if (!light) continue;
+            const glm::dvec3 n = glm::dot(hit->n, d) < 0.0 ? hit->n : -hit->n;
+            const glm::dvec3 p = o + d * best + n * 1e-6;
+            const glm::dvec3 toLight = glm::dvec3(*light) - p;
+            const double lightDist = glm::length(toLight);
+            h.lit = glm::dot(toLight, hit->n) > 0.0;
+            for (const WorldTriangle& t : tris) {
+                if (!h.lit) break;
+                const double dist = intersect(t, p, toLight / lightDist);
+                if (dist > 0.0 && dist < lightDist - 1e-6) h.lit = false;
+            }
+        }
+    return hits;
+}
+
+std::vector<bool> interiorPixels(const std::vector<PixelHit>& hits, int width, int height, int edgeRadius,
+                                 int shadowRadius) {
+    std::vector<bool> keep(hits.size(), false);
+    const int r = std::max(edgeRadius, shadowRadius);
+    for (int y = r; y < height - r; ++y)
+        for (int x = r; x < width - r; ++x) {
+            const PixelHit& h = hits[size_t(y) * width + x];
+            bool ok = h.region >= 0;
+            for (int j = -r; j <= r && ok; ++j)
+                for (int i = -r; i <= r && ok; ++i) {
+                    const PixelHit& o = hits[size_t(y + j) * width + x + i];
+                    if (std::abs(i) <= shadowRadius && std::abs(j) <= shadowRadius && o.lit != h.lit) ok = false;
+                    if (std::abs(i) <= edgeRadius && std::abs(j) <= edgeRadius && o.region != h.region) ok = false;
+                }
+            keep[size_t(y) * width + x] = ok;
+        }
+    return keep;
+}
+
+ImageF downsample(const ImageF& img, int factor) {
+    ImageF out;
+    out.width = img.width / factor;
+    out.height = img.height / factor;
+    out.rgba.assign(size_t(out.width) * out.height * 4, 0.0f);
+    const float norm = 1.0f / float(factor * factor);
+    for (int y = 0; y < out.height * factor; ++y)
+        for (int x = 0; x < out.width * factor; ++x)
+            for (int c = 0; c < 4; ++c) out.at(x / factor, y / factor)[c] += img.at(x, y)[c] * norm;
+    return out;
 }
 
 }  // namespace gis::test

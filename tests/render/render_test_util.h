@@ -27,7 +27,8 @@ void addQuad(Scene& scene, glm::vec3 center, glm::vec3 normal, float size, int m
 // Camera at `eye` looking at `target` (+Y up unless looking straight down).
 Camera lookAtCamera(glm::vec3 eye, glm::vec3 target, float yfovDegrees = 40.0f);
 
-// Renders one frame with the given settings; returns linear radiance (RGBA32F target).
+// Renders with the given settings (progressive methods until converged); returns linear radiance
+// (RGBA32F target).
 ImageF renderHdr(const Scene& scene, RenderSettings settings);
 
 // Mean of channel c over the square of half-size r pixels around (x, y).
@@ -35,5 +36,22 @@ double meanAround(const ImageF& img, int x, int y, int r, int c = 0);
 
 // Pixel covering world point p for a scene rendered with the given settings (rounded).
 glm::ivec2 projectToPixel(const Scene& scene, const RenderSettings& settings, glm::vec3 p);
+
+// What the centre of each pixel of a width x height render through camera `camera` sees, found by a
+// CPU ray cast of the same triangles: the face (draw index * 8 + face of that draw, faces told
+// apart by their plane normal) or -1 for the background, and whether it sees `light` (if given).
+struct PixelHit {
+    int region = -1;
+    bool lit = false;
+};
+std::vector<PixelHit> castPixels(const Scene& scene, int camera, int width, int height, const glm::vec3* light);
+
+// Pixels away from geometric edges (every pixel within edgeRadius sees the same face) and from
+// shadow boundaries (every pixel within shadowRadius has the same visibility); image borders out.
+std::vector<bool> interiorPixels(const std::vector<PixelHit>& hits, int width, int height, int edgeRadius,
+                                 int shadowRadius);
+
+// Box-filter downsampling by an integer factor.
+ImageF downsample(const ImageF& img, int factor);
 
 }  // namespace gis::test

@@ -1,0 +1,371 @@
+// Path-traced reference: one sample per pixel per dispatch, accumulated. Unidirectional path
+// tracing with next-event estimation to every punctual light and to emissive triangles, multiple
+// importance sampling (power heuristic, Veach 1997) between light and BSDF sampling for emitters,
+// Russian roulette, a constant environment colour. The BRDF is the rasterizer's (brdf.glsl).
+#include "common.glsl"
+#include "brdf.glsl"
+#include "lights.glsl"
+#include "random.glsl"
+#include "uniforms.glsl"
+#include "bvh.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+struct TriangleAttributes {
+    vec4 n0, n1, n2;          // shading normals
+    vec4 t0, t1, t2;          // tangents, w = bitangent sign
+    vec4 c0, c1, c2;          // vertex colours
+    vec4 uv01;                // uv0, uv1
+    vec4 uv2MaterialEmitter;  // uv2, material index, emitter selection pdf / triangle area (0: not an emitter)
+};
+
+struct PtMaterial {
+    vec4 baseColor;
+    vec4 emissive;            // rgb radiance, w = double sided
+    vec4 params;              // metallic, roughness, specular factor, alpha cutoff (< 0: opaque)
+    vec4 params2;             // normal scale, unused
+    ivec4 textures;           // texture-array layers: base colour, metallic-roughness, normal, emissive (-1: none)
+};
+
+struct Emitter {
+    uint triangle;
+    float cdf;                // inclusive running sum of selection probabilities
+    float pad0, pad1;
+};
+
+layout(std430, binding = 3) readonly buffer Attributes { TriangleAttributes u_attributes[]; };
+layout(std430, binding = 4) readonly buffer Materials { PtMaterial u_materials[]; };
+layout(std430, binding = 5) readonly buffer Emitters { Emitter u_emitters[]; };
+
+layout(binding = 0, rgba32f) uniform image2D u_accumulation;
+layout(binding = 1, rgba32f) uniform writeonly image2D u_output;
+layout(binding = 0) uniform sampler2DArray s_textures;
+
+layout(location = U_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
+layout(location = U_LIGHT_COUNT) uniform int u_lightCount;
+layout(location = U_BACKGROUND) uniform vec3 u_background;
+layout(location = U_BRDF_MODELS) uniform ivec2 u_brdfModels;
+layout(location = U_SAMPLE_INDEX) uniform uint u_sampleIndex;
+layout(location = U_SEED) uniform uint u_seed;
+layout(location = U_MAX_BOUNCES) uniform int u_maxBounces;
+layout(location = U_EMITTER_COUNT) uniform int u_emitterCount;
+layout(location = U_RR_START) uniform int u_rrStart;
+
+// Throughput below this ends a path: nothing it could still carry would show.
+const float MIN_THROUGHPUT = 1e-7;
+// Russian roulette never keeps a path with probability above this, so paths end eventually.
+const float MAX_SURVIVAL = 0.95;
+
+vec3 srgbToLinear(vec3 c) {
+    return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
+}
+
+vec4 sampleLayer(int layer, vec2 uv) {
+    return layer < 0 ? vec4(1.0) : textureLod(s_textures, vec3(uv, float(layer)), 0.0);
+}
+
+vec2 triangleUv(TriangleAttributes a, vec2 b) {
+    return a.uv01.xy * (1.0 - b.x - b.y) + a.uv01.zw * b.x + a.uv2MaterialEmitter.xy * b.y;
+}
+
+bool bvhTriangleIsCutout(uint triangle, vec2 barycentric) {
+    TriangleAttributes a = u_attributes[triangle];
+    PtMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
+    if (m.params.w < 0.0) return false;
+    vec4 color = a.c0 * (1.0 - barycentric.x - barycentric.y) + a.c1 * barycentric.x + a.c2 * barycentric.y;
+    return m.baseColor.a * color.a * sampleLayer(m.textures.x, triangleUv(a, barycentric)).a < m.params.w;
+}
+
+// Moves a ray origin off its surface by a few units in the last place of each coordinate, so
+// the offset scales with the magnitude of the position (huge scenes) yet never vanishes near
+// the origin (tiny scenes). After Waechter and Binder, Ray Tracing Gems ch. 6 (2019).
+vec3 offsetRayOrigin(vec3 p, vec3 n) {
+    const float ORIGIN = 1.0 / 32.0, FLOAT_SCALE = 1.0 / 65536.0, INT_SCALE = 256.0;
+    ivec3 ofs = ivec3(INT_SCALE * n);
+    vec3 q;
+    for (int i = 0; i < 3; ++i) {
+        int bits = floatBitsToInt(p[i]) + (p[i] < 0.0 ? -ofs[i] : ofs[i]);
+        q[i] = abs(p[i]) < ORIGIN ? p[i] + FLOAT_SCALE * n[i] : intBitsToFloat(bits);
+    }
+    return q;
+}
+
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
+float powerHeuristic(float a, float b) {
+    float a2 = a * a, b2 = b * b;
+    return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
+}
+
+void orthonormalBasis(vec3 n, out vec3 t, out vec3 b) {
+    // Duff et al. 2017, "Building an orthonormal basis, revisited".
+    float s = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + n.z);
+    float c = n.x * n.y * a;
+    t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+    b = vec3(c, s + n.y * n.y * a, -n.y);
+}
+
+// Smith G1 for GGX.
+float smithG1(float NoV, float alpha) {
+    float a2 = alpha * alpha;
+    return 2.0 * NoV / max(NoV + sqrt(a2 + (1.0 - a2) * NoV * NoV), 1e-8);
+}
+
+// Visible-normal sampling of GGX (Heitz 2018), in the local frame where the normal is +Z.
+vec3 sampleGgxVisibleNormal(vec3 v, float alpha, vec2 u) {
+    vec3 vh = normalize(vec3(alpha * v.x, alpha * v.y, v.z));
+    float len2 = vh.x * vh.x + vh.y * vh.y;
+    vec3 t1 = len2 > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(len2) : vec3(1.0, 0.0, 0.0);
+    vec3 t2 = cross(vh, t1);
+    float r = sqrt(u.x), phi = 2.0 * PI * u.y;
+    float p1 = r * cos(phi), p2 = r * sin(phi);
+    float s = 0.5 * (1.0 + vh.z);
+    p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * p2;
+    vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+    return normalize(vec3(alpha * nh.x, alpha * nh.y, max(nh.z, 1e-6)));
+}
+
+struct SurfacePoint {
+    vec3 position;
+    vec3 geometricNormal;     // faces the incoming ray
+    vec3 normal;              // shading normal, same hemisphere as geometricNormal
+    SurfaceBrdf brdf;
+    vec3 emission;            // radiance towards the incoming ray (0 from the back of one-sided emitters)
+    float emitterPdfPerArea;
+    bool hasSpecular;
+};
+
+SurfacePoint shade(Hit hit, vec3 rayDir) {
+    TraceTriangle tri = u_triangles[hit.triangle];
+    TriangleAttributes a = u_attributes[hit.triangle];
+    PtMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
+    vec3 w = vec3(1.0 - hit.barycentric.x - hit.barycentric.y, hit.barycentric);
+    vec2 uv = triangleUv(a, hit.barycentric);
+
+    SurfacePoint s;
+    s.position = tri.p0.xyz * w.x + tri.p1.xyz * w.y + tri.p2.xyz * w.z;
+    vec3 ng = cross(tri.p1.xyz - tri.p0.xyz, tri.p2.xyz - tri.p0.xyz);
+    ng = dot(ng, ng) > 0.0 ? normalize(ng) : -rayDir;
+    bool frontFace = dot(ng, rayDir) < 0.0;
+    s.geometricNormal = frontFace ? ng : -ng;
+
+    vec3 n = a.n0.xyz * w.x + a.n1.xyz * w.y + a.n2.xyz * w.z;
+    n = dot(n, n) > 1e-20 ? normalize(n) : ng;
+    if (m.textures.z >= 0) {
+        vec3 t = a.t0.xyz * w.x + a.t1.xyz * w.y + a.t2.xyz * w.z;
+        t -= n * dot(n, t);
+        if (dot(t, t) > 1e-20) {
+            t = normalize(t);
+            vec3 b = cross(n, t) * (a.t0.w < 0.0 ? -1.0 : 1.0);
+            vec3 tn = sampleLayer(m.textures.z, uv).xyz * 2.0 - 1.0;
+            tn.xy *= m.params2.x;
+            vec3 mapped = mat3(t, b, n) * tn;
+            if (dot(mapped, mapped) > 1e-20) n = normalize(mapped);
+        }
+    }
+    // Shade the side the ray arrives on (surfaces are two-sided for reflection, as in Cycles).
+    if (dot(n, s.geometricNormal) < 0.0) n = -n;
+    s.normal = n;
+
+    vec4 color = a.c0 * w.x + a.c1 * w.y + a.c2 * w.z;
+    vec4 baseTex = sampleLayer(m.textures.x, uv);
+    vec3 baseColor = saturate(m.baseColor.rgb * color.rgb * srgbToLinear(baseTex.rgb));
+    vec4 mr = sampleLayer(m.textures.y, uv);
+    s.brdf = makeSurfaceBrdf(baseColor, saturate(m.params.x * mr.b), saturate(m.params.y * mr.g), m.params.z);
+    s.hasSpecular = u_brdfModels.y == SPECULAR_GGX && any(greaterThan(s.brdf.f0, vec3(0.0)));
+
+    bool emits = frontFace || m.emissive.w > 0.5;
+    vec3 emissiveTex = m.textures.w >= 0 ? srgbToLinear(sampleLayer(m.textures.w, uv).rgb) : vec3(1.0);
+    s.emission = emits ? m.emissive.rgb * emissiveTex : vec3(0.0);
+    s.emitterPdfPerArea = a.uv2MaterialEmitter.w;
+    return s;
+}
+
+// Probability of choosing the specular lobe when sampling a direction.
+float specularChoice(SurfacePoint s, float NoV) {
+    if (!s.hasSpecular) return 0.0;
+    float diff = luminance(s.brdf.diffuseColor);
+    if (diff <= 0.0) return 1.0;  // a metal: the specular lobe is all there is
+    float spec = luminance(fresnelSchlick(s.brdf.f0, NoV));
+    // Never below 10% either way, so neither lobe's samples become rare enough to spike.
+    return clamp(spec / (spec + diff), 0.1, 0.9);
+}
+
+// Solid-angle density of sampling L (cosine-weighted diffuse + GGX visible normals, mixed).
+float bsdfPdf(SurfacePoint s, vec3 V, vec3 L, float pSpecular) {
+    float NoL = dot(s.normal, L);
+    if (NoL <= 0.0) return 0.0;
+    float pdf = (1.0 - pSpecular) * NoL * INV_PI;
+    if (pSpecular > 0.0) {
+        float NoV = max(dot(s.normal, V), MIN_N_DOT_V);
+        vec3 H = normalize(V + L);
+        float alpha = s.brdf.roughness * s.brdf.roughness;
+        pdf += pSpecular * smithG1(NoV, alpha) * distributionGgx(saturate(dot(s.normal, H)), alpha) / (4.0 * NoV);
+    }
+    return pdf;
+}
+
+bool sampleBsdf(SurfacePoint s, vec3 V, float pSpecular, inout Rng rng, out vec3 L) {
+    vec3 t, b;
+    orthonormalBasis(s.normal, t, b);
+    vec2 u = nextFloat2(rng);
+    if (nextFloat(rng) < pSpecular) {
+        vec3 vLocal = vec3(dot(V, t), dot(V, b), max(dot(V, s.normal), MIN_N_DOT_V));
+        float alpha = s.brdf.roughness * s.brdf.roughness;
+        vec3 h = sampleGgxVisibleNormal(normalize(vLocal), alpha, u);
+        vec3 H = t * h.x + b * h.y + s.normal * h.z;
+        L = reflect(-V, H);
+    } else {
+        // Cosine-weighted hemisphere (Malley's method).
+        float r = sqrt(u.x), phi = 2.0 * PI * u.y;
+        L = t * (r * cos(phi)) + b * (r * sin(phi)) + s.normal * sqrt(max(0.0, 1.0 - u.x));
+    }
+    return dot(L, s.normal) > 0.0 && dot(L, s.geometricNormal) > 0.0;
+}
+
+// Irradiance at P (facing the light) and the direction/distance to a punctual light.
+vec3 punctualIrradiance(GpuLight light, vec3 P, out vec3 L, out float dist) {
+    int type = int(light.positionType.w);
+    if (type == LIGHT_DIRECTIONAL) {
+        L = -light.directionRange.xyz;
+        dist = 1e30;
+        return light.radiance.rgb;
+    }
+    vec3 toLight = light.positionType.xyz - P;
+    float d2 = max(dot(toLight, toLight), 1e-20);
+    dist = sqrt(d2);
+    L = toLight / dist;
+    vec3 e = light.radiance.rgb * rangeWindow(dist, light.directionRange.w) / d2;
+    if (type == LIGHT_SPOT) e *= spotCone(dot(-L, light.directionRange.xyz), light.cone.x, light.cone.y);
+    return e;
+}
+
+// Picks an emissive triangle in proportion to its power (binary search in the CDF).
+uint pickEmitter(float u) {
+    int lo = 0, hi = u_emitterCount - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (u_emitters[mid].cdf < u) lo = mid + 1;
+        else hi = mid;
+    }
+    return u_emitters[lo].triangle;
+}
+
+bool visible(vec3 from, vec3 dir, float dist) {
+    Hit h;
+    return !traceRay(from, dir, dist, true, h);
+}
+
+// Direct light at a surface point: every punctual light, plus one emissive triangle sampled by
+// power and weighted by MIS against BSDF sampling.
+vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, inout Rng rng) {
+    vec3 origin = offsetRayOrigin(s.position, s.geometricNormal);
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < u_lightCount; ++i) {
+        vec3 L;
+        float dist;
+        vec3 e = punctualIrradiance(u_lights[i], s.position, L, dist);
+        float NoL = dot(s.normal, L);
+        if (NoL <= 0.0 || dot(s.geometricNormal, L) <= 0.0 || all(equal(e, vec3(0.0)))) continue;
+        if (!visible(origin, L, dist * (1.0 - 1e-4))) continue;
+        sum += evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, u_brdfModels.y) * e * NoL;
+    }
+    if (u_emitterCount > 0) {
+        uint ti = pickEmitter(nextFloat(rng));
+        TraceTriangle tri = u_triangles[ti];
+        TriangleAttributes a = u_attributes[ti];
+        vec2 u = nextFloat2(rng);
+        float su = sqrt(u.x);
+        vec2 b = vec2(su * (1.0 - u.y), su * u.y);  // uniform on the triangle
+        vec3 q = tri.p0.xyz * (1.0 - b.x - b.y) + tri.p1.xyz * b.x + tri.p2.xyz * b.y;
+        vec3 nl = cross(tri.p1.xyz - tri.p0.xyz, tri.p2.xyz - tri.p0.xyz);
+        vec3 toLight = q - s.position;
+        float d2 = dot(toLight, toLight);
+        if (d2 > 0.0 && dot(nl, nl) > 0.0) {
+            float dist = sqrt(d2);
+            vec3 L = toLight / dist;
+            nl = normalize(nl);
+            PtMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
+            float cosLight = dot(nl, -L);
+            bool emits = cosLight > 0.0 || m.emissive.w > 0.5;
+            float NoL = dot(s.normal, L);
+            if (emits && NoL > 0.0 && dot(s.geometricNormal, L) > 0.0 && abs(cosLight) > 1e-8) {
+                vec3 le = m.emissive.rgb;
+                if (m.textures.w >= 0) le *= srgbToLinear(sampleLayer(m.textures.w, triangleUv(a, b)).rgb);
+                float lightPdf = a.uv2MaterialEmitter.w * d2 / abs(cosLight);
+                if (lightPdf > 0.0 && visible(origin, L, dist * (1.0 - 1e-4))) {
+                    float weight = powerHeuristic(lightPdf, bsdfPdf(s, V, L, pSpecular));
+                    sum += evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, u_brdfModels.y) * le * NoL *
+                           (weight / lightPdf);
+                }
+            }
+        }
+    }
+    return sum;
+}
+
+vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
+    vec3 radiance = vec3(0.0);
+    vec3 throughput = vec3(1.0);
+    float lastBsdfPdf = 0.0;   // 0 = the ray came from the camera (no MIS for what it hits)
+    for (int depth = 0;; ++depth) {
+        Hit hit;
+        if (!traceRay(origin, dir, 1e30, false, hit)) {
+            radiance += throughput * u_background;
+            break;
+        }
+        SurfacePoint s = shade(hit, dir);
+        if (any(greaterThan(s.emission, vec3(0.0)))) {
+            float weight = 1.0;
+            if (lastBsdfPdf > 0.0 && s.emitterPdfPerArea > 0.0) {
+                float cosLight = abs(dot(s.geometricNormal, dir));
+                float lightPdf = s.emitterPdfPerArea * hit.t * hit.t / max(cosLight, 1e-8);
+                weight = powerHeuristic(lastBsdfPdf, lightPdf);
+            }
+            radiance += throughput * s.emission * weight;
+        }
+        if (depth > u_maxBounces) break;  // that hit was only looked at for emission
+
+        vec3 V = -dir;
+        float NoV = max(dot(s.normal, V), MIN_N_DOT_V);
+        float pSpecular = specularChoice(s, NoV);
+        radiance += throughput * directLight(s, V, pSpecular, rng);
+
+        vec3 L;
+        if (!sampleBsdf(s, V, pSpecular, rng, L)) break;
+        float pdf = bsdfPdf(s, V, L, pSpecular);
+        if (!(pdf > 1e-12)) break;
+        throughput *= evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, u_brdfModels.y) * dot(s.normal, L) / pdf;
+        if (!(max(max(throughput.r, throughput.g), throughput.b) > MIN_THROUGHPUT)) break;
+        if (depth >= u_rrStart) {
+            float survive = min(max(max(throughput.r, throughput.g), throughput.b), MAX_SURVIVAL);
+            if (nextFloat(rng) >= survive) break;
+            throughput /= survive;
+        }
+        lastBsdfPdf = pdf;
+        origin = offsetRayOrigin(s.position, s.geometricNormal);
+        dir = L;
+    }
+    return radiance;
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(u_output);
+    if (pixel.x >= size.x || pixel.y >= size.y) return;
+    Rng rng = makeRng(uvec2(pixel), u_sampleIndex, u_seed);
+    // A uniformly jittered point in the pixel: the box filter Cycles' references use.
+    vec2 ndc = (vec2(pixel) + nextFloat2(rng)) / vec2(size) * 2.0 - 1.0;
+    // Unprojecting the near and far planes serves perspective and orthographic cameras alike.
+    vec4 near = u_invViewProj * vec4(ndc, -1.0, 1.0);
+    vec4 far = u_invViewProj * vec4(ndc, 0.0, 1.0);  // not the far plane: it may be at infinity
+    vec3 origin = near.xyz / near.w;
+    vec3 dir = normalize(far.xyz / far.w - origin);
+    vec3 radiance = finiteOrZero(tracePath(origin, dir, rng));
+
+    vec4 sum = u_sampleIndex == 0u ? vec4(0.0) : imageLoad(u_accumulation, pixel);
+    sum += vec4(radiance, 1.0);
+    imageStore(u_accumulation, pixel, sum);
+    imageStore(u_output, pixel, vec4(sum.rgb / sum.w, 1.0));
+}

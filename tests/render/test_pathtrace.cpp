@@ -1,0 +1,185 @@
+// The path-traced reference against an external renderer (Blender Cycles, shared/assets/reference)
+// and against closed-form answers.
+#include <cstdio>
+#include <map>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render_test_util.h"
+
+namespace gis::test {
+namespace {
+
+const std::string kReference = std::string(GIS_SHARED_DIR) + "/assets/reference";
+
+// Cycles' references are 256x256 at 2048 spp. The path tracer renders 64x64 (a quarter of the
+// resolution) and the reference is box-downsampled 4x4 to match, so each compared pixel averages
+// 16 reference pixels: the reference's own noise there is ~0.25% (README of the references).
+constexpr int kSize = 64;
+constexpr int kSpp = 256;
+constexpr double kImageTolerance = 0.02;
+// Per face: 4%, not the 2% we aim for. White faces agree within 1.3% (most within 0.8%), but on
+// the coloured walls Cycles is lower in their weak channels by a near-constant ~0.002 of albedo
+// (measured per channel in direct light: red wall G -3%, B -4%; the rasterizer shows the same),
+// and inter-reflection compounds it to 2-3.6% on those walls in the full solution. Cause not
+// established; README "Path tracer" has the table.
+constexpr double kRegionTolerance = 0.04;
+
+struct CyclesCase {
+    const char* scene;    // folder under scenes/ and refs/
+    const char* pass;     // full, direct, bounce1
+    int maxBounces;
+};
+
+void PrintTo(const CyclesCase& c, std::ostream* os) { *os << c.scene << "/" << c.pass; }
+
+class MatchesCycles : public ::testing::TestWithParam<CyclesCase> {};
+
+double sum3(const float* p) { return double(p[0]) + p[1] + p[2]; }
+
+TEST_P(MatchesCycles, ImageMeanWithinTwoPercentFacesWithinFour) {
+    const CyclesCase& c = GetParam();
+    const Scene scene = loadGltfFile(kReference + "/scenes/" + c.scene + "/" + c.scene + ".gltf");
+    const ImageF ref = downsample(readExr(kReference + "/refs/" + c.scene + "/" + c.pass + ".exr"), 256 / kSize);
+    RenderSettings r;
+    r.width = r.height = kSize;
+    r.gi = "pathtrace";
+    r.spp = kSpp;
+    r.samplesPerFrame = 32;
+    r.maxBounces = c.maxBounces;
+    const ImageF img = renderHdr(scene, r);
+
+    // Faces seen at pixel centres, edges masked: per-region means compare like with like.
+    const std::vector<PixelHit> hits = castPixels(scene, 0, kSize, kSize, nullptr);
+    const std::vector<bool> keep = interiorPixels(hits, kSize, kSize, 1, 0);
+    struct Sum { double ours = 0, cycles = 0; int n = 0; };
+    std::map<int, Sum> regions;
+    Sum image;
+    double relErrSum = 0.0;
+    int relErrCount = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const double a = sum3(img.at(x, y)), b = sum3(ref.at(x, y));
+            image.ours += a;
+            image.cycles += b;
+            if (b > 1e-3) {
+                relErrSum += std::abs(a - b) / b;
+                ++relErrCount;
+            }
+            const size_t i = size_t(y) * kSize + x;
+            if (!keep[i]) continue;
+            Sum& s = regions[hits[i].region];
+            s.ours += a;
+            s.cycles += b;
+            ++s.n;
+        }
+    const double imageErr = std::abs(image.ours - image.cycles) / image.cycles;
+    std::printf("%s/%s: image mean ours %.5f cycles %.5f (error %.2f%%); mean per-pixel relative error %.2f%% "
+                "(noise-dominated at %d spp)\n",
+                c.scene, c.pass, image.ours / (3.0 * kSize * kSize), image.cycles / (3.0 * kSize * kSize),
+                100.0 * imageErr, 100.0 * relErrSum / std::max(relErrCount, 1), kSpp);
+    EXPECT_LT(imageErr, kImageTolerance);
+    int compared = 0;
+    for (const auto& [region, s] : regions) {
+        if (s.n < 20 || s.cycles / s.n < 3e-3) continue;  // slivers; faces in full shadow
+        const double err = std::abs(s.ours - s.cycles) / s.cycles;
+        std::printf("  region %2d/%d  %4d px  ours %.5f  cycles %.5f  error %.2f%%\n", region / 8, region % 8, s.n,
+                    s.ours / (3.0 * s.n), s.cycles / (3.0 * s.n), 100.0 * err);
+        EXPECT_LT(err, kRegionTolerance) << "draw " << region / 8 << " face " << region % 8;
+        ++compared;
+    }
+    EXPECT_GE(compared, 5);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    CornellBoxes, MatchesCycles,
+    ::testing::Values(CyclesCase{"cornell_box", "full", 64}, CyclesCase{"cornell_box", "direct", 0},
+                      CyclesCase{"cornell_box", "bounce1", 1}, CyclesCase{"cornell_point", "full", 64},
+                      CyclesCase{"cornell_point", "direct", 0}, CyclesCase{"cornell_point", "bounce1", 1}),
+    [](const auto& info) { return std::string(info.param.scene) + "_" + info.param.pass; });
+
+// A UV sphere of radius r at the origin, smooth normals.
+void addSphere(Scene& s, float radius, int material, int rings = 24, int segments = 48) {
+    Primitive p;
+    for (int i = 0; i <= rings; ++i)
+        for (int j = 0; j <= segments; ++j) {
+            const float theta = glm::pi<float>() * i / rings, phi = 2.0f * glm::pi<float>() * j / segments;
+            Vertex v;
+            v.normal = glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+            v.position = v.normal * radius;
+            p.vertices.push_back(v);
+        }
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            const uint32_t a = i * (segments + 1) + j, b = a + segments + 1;
+            for (uint32_t idx : {a, a + 1, b, b, a + 1, b + 1}) p.indices.push_back(idx);
+        }
+    p.material = material;
+    s.primitives.push_back(p);
+    s.draws.push_back({int(s.primitives.size()) - 1, glm::mat4(1.0f)});
+}
+
+// White furnace: a white Lambertian sphere under a uniform white sky reflects exactly the sky's
+// radiance (every bounce keeps all energy; paths end only by escaping), so every pixel is 1.
+TEST(PathTrace, FurnaceSphereReturnsSkyRadiance) {
+    Scene s;
+    s.materials.push_back(lambert(glm::vec3(1.0f)));
+    addSphere(s, 1.0f, 0);
+    s.background = glm::vec3(1.0f);
+    s.cameras.push_back(lookAtCamera(glm::vec3(0, 0, 3.5f), glm::vec3(0), 40.0f));
+    finalizeScene(s);
+    RenderSettings r;
+    r.width = r.height = 24;
+    r.gi = "pathtrace";
+    r.spp = 1024;
+    r.samplesPerFrame = 128;
+    r.maxBounces = 64;
+    const ImageF img = renderHdr(s, r);
+    double worst = 0.0, mean = 0.0;
+    for (int y = 0; y < r.height; ++y)
+        for (int x = 0; x < r.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                worst = std::max(worst, std::abs(img.at(x, y)[c] - 1.0));
+                mean += img.at(x, y)[c] / (3.0 * r.width * r.height);
+            }
+    std::printf("furnace: mean %.5f, worst pixel off by %.4f\n", mean, worst);
+    EXPECT_NEAR(mean, 1.0, 0.02);
+    EXPECT_LT(worst, 0.02);
+}
+
+ImageF renderCornell(int spp, uint32_t seed = 0) {
+    RenderSettings r;
+    r.width = r.height = 32;
+    r.gi = "pathtrace";
+    r.spp = spp;
+    r.samplesPerFrame = 64;
+    r.seed = seed;
+    return renderHdr(makeBuiltinScene("cornell-area"), r);
+}
+
+double rmse(const ImageF& a, const ImageF& b) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.rgba.size(); ++i)
+        if (i % 4 != 3) sum += double(a.rgba[i] - b.rgba[i]) * (a.rgba[i] - b.rgba[i]);
+    return std::sqrt(sum / (a.rgba.size() * 0.75));
+}
+
+TEST(PathTrace, DeterministicWithAFixedSeed) {
+    const ImageF a = renderCornell(8), b = renderCornell(8), c = renderCornell(8, 7);
+    EXPECT_TRUE(a.rgba == b.rgba);
+    EXPECT_FALSE(a.rgba == c.rgba);  // the seed matters
+}
+
+// Monte Carlo error falls as 1/sqrt(spp): four times the samples, half the error. Against a
+// reference with 16x the larger sample count, the expected RMSE ratio between 16 and 64 spp is
+// sqrt((4 + 1/16) / (1 + 1/16)) = 1.96 (the reference's own variance adds to both).
+TEST(PathTrace, ConvergesAsOneOverSqrtSpp) {
+    const ImageF ref = renderCornell(1024, 99);
+    const double e16 = rmse(renderCornell(16), ref), e64 = rmse(renderCornell(64), ref);
+    std::printf("RMSE vs 1024 spp: 16 spp %.5f, 64 spp %.5f, ratio %.2f (expected 1.96)\n", e16, e64, e16 / e64);
+    EXPECT_GT(e16 / e64, 1.6);
+    EXPECT_LT(e16 / e64, 2.4);
+}
+
+}  // namespace
+}  // namespace gis::test
