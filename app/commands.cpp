@@ -16,9 +16,7 @@
 
 namespace gis {
 
-namespace {
-
-void parseSize(const std::string& text, int& w, int& h) {
+void parseRenderSize(const std::string& text, int& w, int& h) {
     static const std::regex re(R"(^(\d{1,5})x(\d{1,5})$)");
     std::smatch m;
     if (!std::regex_match(text, m, re)) throw Error("--size '" + text + "' is not WIDTHxHEIGHT (e.g. 256x256)");
@@ -27,6 +25,8 @@ void parseSize(const std::string& text, int& w, int& h) {
     if (w < 1 || h < 1 || w > 16384 || h > 16384)
         throw Error("--size " + text + " is out of range (1..16384 per side)");
 }
+
+namespace {
 
 bool endsWith(const std::string& s, const std::string& suffix) {
     return s.size() >= suffix.size() &&
@@ -125,7 +125,7 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
 
 int runRender(const RenderOptions& o) {
     RenderSettings s;
-    parseSize(o.size, s.width, s.height);
+    parseRenderSize(o.size, s.width, s.height);
     const bool exr = endsWith(o.out, ".exr");
     if (!exr && !endsWith(o.out, ".png")) throw Error("--out '" + o.out + "' must end in .png or .exr");
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
@@ -218,7 +218,7 @@ void addInfoOptions(CLI::App& cmd, InfoOptions& o) {
 
 int runInfo(const InfoOptions& o) {
     int w = 0, h = 0;
-    parseSize(o.size, w, h);
+    parseRenderSize(o.size, w, h);
     Scene scene = loadScene(o.scene);
     nlohmann::ordered_json j;
     j["scene"] = scene.name;

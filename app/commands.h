@@ -47,6 +47,26 @@ struct ShaderDumpOptions {
     std::string dir;
 };
 
+struct BenchOptions {
+    std::vector<std::string> scenes{"builtin:cornell", "builtin:cornell-area"};
+    std::string size = "128x128";
+    int frames = 20;
+    int warmup = 5;
+    std::vector<std::string> methods;
+    std::vector<std::string> presets{"low", "medium", "high"};
+    int referenceSpp = 512;
+    std::string metric = "flip";
+    std::string outDir = "bench";
+    std::string cacheDir;
+    std::string backend = "auto";
+};
+
+// "WxH" -> width, height; throws gis::Error naming the flag value.
+void parseRenderSize(const std::string& text, int& width, int& height);
+
+void addBenchOptions(CLI::App& cmd, BenchOptions& o);
+int runBench(const BenchOptions& o);
+
 void addRenderOptions(CLI::App& cmd, RenderOptions& o);
 void addInfoOptions(CLI::App& cmd, InfoOptions& o);
 void addShaderDumpOptions(CLI::App& cmd, ShaderDumpOptions& o);

@@ -1,0 +1,218 @@
+// gisandbox bench: for each scene, every GI method at each quality preset - GPU milliseconds per
+// pass, GPU memory held, and error against a path-traced reference rendered once and cached.
+// Writes bench.json, bench.csv, a labelled comparison grid and an error-versus-milliseconds chart
+// (with the Pareto front) per scene.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include "commands.h"
+#include "metrics.h"
+#include "plot.h"
+#include "presets.h"
+#include "tonemap.h"
+
+namespace gis {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BenchRow {
+    std::string scene, method, preset, description;
+    double ms = 0.0;                          // per frame; for progressive methods, to converge
+    std::vector<std::pair<std::string, double>> passMs;
+    int64_t bytes = 0;
+    ImageMetrics error;
+};
+
+// The reference depends on the scene (and the file's size and time for glTF files), camera,
+// size, sample count, bounces and seed: all of them are in the cache key.
+std::string referenceKey(const std::string& sceneSpec, const RenderSettings& s) {
+    std::ostringstream key;
+    key << sceneSpec << "|" << s.width << "x" << s.height << "|cam" << s.camera << "|spp" << s.spp << "|b"
+        << s.maxBounces << "|seed" << s.seed;
+    std::error_code ec;
+    if (fs::is_regular_file(sceneSpec, ec))
+        key << "|" << fs::file_size(sceneSpec, ec) << "|" << fs::last_write_time(sceneSpec, ec).time_since_epoch().count();
+    char hex[20];
+    std::snprintf(hex, sizeof hex, "%016zx", std::hash<std::string>{}(key.str()));
+    return hex;
+}
+
+std::string fileSafe(std::string s) {
+    for (char& c : s)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+    return s;
+}
+
+// Renders until converged; returns the GPU ms (median per frame after warm-up, or the sum of all
+// frames for a progressive method) and per-pass figures.
+void measure(Renderer& renderer, int frames, int warmup, BenchRow& row) {
+    const bool progressive = !renderer.converged();
+    if (progressive) {
+        do renderer.renderFrame();
+        while (!renderer.converged());
+    } else {
+        for (int i = 0; i < frames; ++i) renderer.renderFrame();
+    }
+    for (const PassTiming& t : renderer.timings(progressive ? 0 : warmup)) {
+        const auto& samples = renderer.passes()[row.passMs.size()]->timer.samples;
+        double ms = t.medianMs;
+        if (progressive) {
+            ms = 0.0;
+            for (double v : samples) ms += v;
+        }
+        row.passMs.emplace_back(t.pass, ms);
+        row.ms += ms;
+    }
+    row.bytes = renderer.memory().total();
+}
+
+}  // namespace
+
+void addBenchOptions(CLI::App& cmd, BenchOptions& o) {
+    cmd.add_option("--scenes", o.scenes, "Scenes to measure (glTF paths or builtin:NAME)")->capture_default_str();
+    cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+    cmd.add_option("--frames", o.frames, "Frames per measurement (rasterized methods)")->capture_default_str();
+    cmd.add_option("--warmup", o.warmup, "Frames left out of the median")->capture_default_str();
+    cmd.add_option("--methods", o.methods, "GI methods (default: every method but the reference's own settings)");
+    cmd.add_option("--presets", o.presets, "Quality presets: low, medium, high")->capture_default_str();
+    cmd.add_option("--reference-spp", o.referenceSpp, "Samples per pixel of the path-traced reference")
+        ->capture_default_str();
+    cmd.add_option("--metric", o.metric, "Error on the chart's y axis: flip, rmse, relmse, ssim")->capture_default_str();
+    cmd.add_option("--out-dir", o.outDir, "Where bench.json, bench.csv and the PNGs go")->capture_default_str();
+    cmd.add_option("--cache-dir", o.cacheDir, "Where references are cached (default: OUT_DIR/cache)");
+    cmd.add_option("--backend", o.backend, "OpenGL context: auto, egl, osmesa")->capture_default_str();
+}
+
+int runBench(const BenchOptions& o) {
+    RenderSettings base;
+    parseRenderSize(o.size, base.width, base.height);
+    if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
+    if (o.warmup < 0 || o.warmup >= o.frames) throw Error("--warmup must be in [0, --frames)");
+    if (o.referenceSpp < 1 || o.referenceSpp > (1 << 20)) throw Error("--reference-spp must be in [1, 1048576]");
+    const ErrorMetric metric = parseErrorMetric(o.metric);
+    const std::vector<std::string> methods = o.methods.empty() ? benchmarkMethods() : o.methods;
+    for (const std::string& m : methods) checkGiMethod(m);
+    for (const std::string& p : o.presets) describePreset("none", p);  // validates the name
+    if (o.scenes.empty()) throw Error("--scenes needs at least one scene");
+    std::vector<Scene> scenes;
+    for (const std::string& spec : o.scenes) scenes.push_back(loadScene(spec));  // fail early on bad input
+    std::error_code ec;
+    const std::string cacheDir = o.cacheDir.empty() ? o.outDir + "/cache" : o.cacheDir;
+    fs::create_directories(cacheDir, ec);
+    if (!fs::is_directory(o.outDir) || !fs::is_directory(cacheDir))
+        throw Error("cannot create --out-dir '" + o.outDir + "' or --cache-dir '" + cacheDir + "'");
+
+    ContextOptions co;
+    co.backend = parseBackend(o.backend);
+    auto ctx = createContext(co);
+    std::fprintf(stderr, "bench on %s (%s), %dx%d\n", ctx->renderer.c_str(), backendName(ctx->backend()), base.width,
+                 base.height);
+
+    std::vector<BenchRow> rows;
+    for (size_t si = 0; si < scenes.size(); ++si) {
+        const Scene& scene = scenes[si];
+        const std::string sceneName = scene.name.empty() ? o.scenes[si] : scene.name;
+        RenderSettings refSettings = base;
+        refSettings.gi = "pathtrace";
+        refSettings.spp = o.referenceSpp;
+        refSettings.samplesPerFrame = 16;
+        refSettings.maxBounces = 64;
+        const std::string refPath = cacheDir + "/reference_" + fileSafe(sceneName) + "_" +
+                                    referenceKey(o.scenes[si], refSettings) + ".exr";
+        ImageF reference;
+        ImageU8 referenceLdr;
+        {
+            Renderer refRenderer(scene, refSettings);
+            if (fs::exists(refPath)) {
+                reference = readExr(refPath);
+                std::fprintf(stderr, "%s: reference from cache %s\n", sceneName.c_str(), refPath.c_str());
+                refSettings.spp = 1;  // only for the grid's thumbnail below: the cached image is what is compared
+            } else {
+                std::fprintf(stderr, "%s: rendering the reference (%d spp)...\n", sceneName.c_str(), o.referenceSpp);
+                do refRenderer.renderFrame();
+                while (!refRenderer.converged());
+                reference = refRenderer.readHdr();
+                writeExr(refPath, reference);
+            }
+        }
+        std::vector<std::pair<std::string, ImageU8>> tiles;
+        tiles.emplace_back("reference: path traced, " + std::to_string(o.referenceSpp) + " spp", toLdrImage(reference, DisplaySettings{}));
+
+        std::vector<ChartPoint> points;
+        for (size_t mi = 0; mi < methods.size(); ++mi)
+            for (const std::string& preset : o.presets) {
+                BenchRow row;
+                row.scene = sceneName;
+                row.method = methods[mi];
+                row.preset = preset;
+                row.description = describePreset(methods[mi], preset);
+                RenderSettings s = base;
+                applyPreset(s, methods[mi], preset);
+                Renderer renderer(scene, s);
+                measure(renderer, o.frames, o.warmup, row);
+                const ImageF image = renderer.readHdr();
+                row.error = compareImages(image, reference);
+                const double y = metric == ErrorMetric::Flip     ? row.error.flip
+                                 : metric == ErrorMetric::Rmse   ? row.error.rmse
+                                 : metric == ErrorMetric::RelMse ? row.error.relMse
+                                                                 : 1.0 - row.error.ssim;
+                char label[160];
+                std::snprintf(label, sizeof label, "%s/%s", row.method.c_str(), row.preset.c_str());
+                points.push_back({label, row.ms, y, int(mi)});
+                char caption[200];
+                std::snprintf(caption, sizeof caption, "%s  %.1f ms  %s %.4f", label, row.ms, o.metric.c_str(), y);
+                tiles.emplace_back(caption, renderer.readLdr());
+                std::fprintf(stderr, "%-14s %-10s %-8s %10.2f ms %8.2f MiB  FLIP %.4f  RMSE %.5f  SSIM %.4f\n",
+                             sceneName.c_str(), row.method.c_str(), row.preset.c_str(), row.ms,
+                             double(row.bytes) / (1 << 20), row.error.flip, row.error.rmse, row.error.ssim);
+                rows.push_back(row);
+            }
+        const std::string stem = o.outDir + "/" + fileSafe(sceneName);
+        writePng(stem + "_grid.png", composeGrid(tiles, std::min<int>(4, int(tiles.size()))));
+        const std::string yLabel = o.metric == "ssim" ? "1 - SSIM vs reference" : o.metric + " vs reference";
+        writePng(stem + "_chart.png",
+                 drawTradeoffChart(points, sceneName + ": error against GPU time (" + ctx->renderer.substr(0, 40) + ")",
+                                   "GPU milliseconds (per frame; path tracer: to converge)", yLabel));
+    }
+
+    nlohmann::ordered_json j;
+    j["machine"] = {{"gl_renderer", ctx->renderer}, {"gl_version", ctx->version}, {"backend", backendName(ctx->backend())}};
+    j["size"] = o.size;
+    j["frames"] = o.frames;
+    j["warmup"] = o.warmup;
+    j["reference_spp"] = o.referenceSpp;
+    for (const BenchRow& r : rows) {
+        nlohmann::ordered_json e{{"scene", r.scene}, {"method", r.method}, {"preset", r.preset},
+                                 {"description", r.description}, {"gpu_ms", r.ms}, {"gpu_bytes", r.bytes},
+                                 {"rmse", r.error.rmse}, {"relmse", r.error.relMse}, {"psnr_linear", r.error.psnrLinear},
+                                 {"psnr_srgb", r.error.psnrSrgb}, {"ssim", r.error.ssim}, {"flip", r.error.flip}};
+        for (const auto& [pass, ms] : r.passMs) e["pass_ms"][pass] = ms;
+        j["results"].push_back(e);
+    }
+    writeAtomically(o.outDir + "/bench.json", [&](const std::string& tmp) {
+        std::ofstream f(tmp);
+        f << j.dump(2) << "\n";
+        if (!f) throw Error(o.outDir + "/bench.json: cannot write");
+    });
+    writeAtomically(o.outDir + "/bench.csv", [&](const std::string& tmp) {
+        std::ofstream f(tmp);
+        f << "scene,method,preset,gpu_ms,gpu_bytes,rmse,relmse,psnr_linear,psnr_srgb,ssim,flip\n";
+        for (const BenchRow& r : rows)
+            f << r.scene << "," << r.method << "," << r.preset << "," << r.ms << "," << r.bytes << "," << r.error.rmse
+              << "," << r.error.relMse << "," << formatMetric(r.error.psnrLinear) << ","
+              << formatMetric(r.error.psnrSrgb) << "," << r.error.ssim << "," << r.error.flip << "\n";
+        if (!f) throw Error(o.outDir + "/bench.csv: cannot write");
+    });
+    std::printf("wrote %s/bench.json, %s/bench.csv and a grid and chart per scene\n", o.outDir.c_str(), o.outDir.c_str());
+    return 0;
+}
+
+}  // namespace gis
