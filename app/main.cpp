@@ -29,6 +29,10 @@ int main(int argc, char** argv) {
     CLI::App* shadersCmd = app.add_subcommand("shaders", "Write every shader program the app can request, preprocessed");
     gis::addShaderDumpOptions(*shadersCmd, dump);
 
+    gis::DiffOptions diff;
+    CLI::App* diffCmd = app.add_subcommand("diff", "Compare an image with a reference: RMSE, relMSE, PSNR, SSIM, FLIP");
+    gis::addDiffOptions(*diffCmd, diff);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -38,6 +42,7 @@ int main(int argc, char** argv) {
         if (renderCmd->parsed()) return gis::runRender(render);
         if (infoCmd->parsed()) return gis::runInfo(info);
         if (shadersCmd->parsed()) return gis::runShaderDump(dump);
+        if (diffCmd->parsed()) return gis::runDiff(diff);
     } catch (const gis::Error& e) {
         std::fprintf(stderr, "gisandbox: error: %s\n", e.what());
         return 1;
