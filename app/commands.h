@@ -67,12 +67,27 @@ void parseRenderSize(const std::string& text, int& width, int& height);
 void addBenchOptions(CLI::App& cmd, BenchOptions& o);
 int runBench(const BenchOptions& o);
 
+struct DiffOptions {  // app/diff_command.cpp
+    std::string test, reference;
+    std::string heatmap;
+    std::string metric = "flip";
+    std::string tonemap = "auto";
+    float exposure = 0.0f;
+    double ppd = 67.0;
+    double heatmapMax = 0.0;  // 0: 1 for flip and ssim, the map's maximum for rmse and relmse
+    std::string mask;
+    bool colorBar = false;
+    bool json = false;
+};
+
 void addRenderOptions(CLI::App& cmd, RenderOptions& o);
 void addInfoOptions(CLI::App& cmd, InfoOptions& o);
 void addShaderDumpOptions(CLI::App& cmd, ShaderDumpOptions& o);
+void addDiffOptions(CLI::App& cmd, DiffOptions& o);
 
 int runRender(const RenderOptions& o);
 int runInfo(const InfoOptions& o);
 int runShaderDump(const ShaderDumpOptions& o);
+int runDiff(const DiffOptions& o);
 
 }  // namespace gis
