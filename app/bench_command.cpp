@@ -77,12 +77,16 @@ void measure(Renderer& renderer, int frames, int warmup, BenchRow& row) {
 }  // namespace
 
 void addBenchOptions(CLI::App& cmd, BenchOptions& o) {
-    cmd.add_option("--scenes", o.scenes, "Scenes to measure (glTF paths or builtin:NAME)")->capture_default_str();
+    cmd.add_option("--scenes", o.scenes, "Scenes to measure (glTF paths or builtin:NAME), comma separated")
+        ->delimiter(',')
+        ->capture_default_str();
     cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT")->capture_default_str();
     cmd.add_option("--frames", o.frames, "Frames per measurement (rasterized methods)")->capture_default_str();
     cmd.add_option("--warmup", o.warmup, "Frames left out of the median")->capture_default_str();
-    cmd.add_option("--methods", o.methods, "GI methods (default: every method but the reference's own settings)");
-    cmd.add_option("--presets", o.presets, "Quality presets: low, medium, high")->capture_default_str();
+    cmd.add_option("--methods", o.methods, "GI methods, comma separated (default: every method)")->delimiter(',');
+    cmd.add_option("--presets", o.presets, "Quality presets, comma separated: low, medium, high")
+        ->delimiter(',')
+        ->capture_default_str();
     cmd.add_option("--reference-spp", o.referenceSpp, "Samples per pixel of the path-traced reference")
         ->capture_default_str();
     cmd.add_option("--metric", o.metric, "Error on the chart's y axis: flip, rmse, relmse, ssim")->capture_default_str();
@@ -144,7 +148,7 @@ int runBench(const BenchOptions& o) {
             }
         }
         std::vector<std::pair<std::string, ImageU8>> tiles;
-        tiles.emplace_back("reference: path traced, " + std::to_string(o.referenceSpp) + " spp", toLdrImage(reference, DisplaySettings{}));
+        tiles.emplace_back("reference  path traced, " + std::to_string(o.referenceSpp) + " spp", toLdrImage(reference, DisplaySettings{}));
 
         std::vector<ChartPoint> points;
         for (size_t mi = 0; mi < methods.size(); ++mi)
@@ -168,7 +172,7 @@ int runBench(const BenchOptions& o) {
                 std::snprintf(label, sizeof label, "%s/%s", row.method.c_str(), row.preset.c_str());
                 points.push_back({label, row.ms, y, int(mi)});
                 char caption[200];
-                std::snprintf(caption, sizeof caption, "%s  %.1f ms  %s %.4f", label, row.ms, o.metric.c_str(), y);
+                std::snprintf(caption, sizeof caption, "%s  %.1f ms, %s %.4f", label, row.ms, o.metric.c_str(), y);
                 tiles.emplace_back(caption, renderer.readLdr());
                 std::fprintf(stderr, "%-14s %-10s %-8s %10.2f ms %8.2f MiB  FLIP %.4f  RMSE %.5f  SSIM %.4f\n",
                              sceneName.c_str(), row.method.c_str(), row.preset.c_str(), row.ms,
@@ -179,8 +183,10 @@ int runBench(const BenchOptions& o) {
         writePng(stem + "_grid.png", composeGrid(tiles, std::min<int>(4, int(tiles.size()))));
         const std::string yLabel = o.metric == "ssim" ? "1 - SSIM vs reference" : o.metric + " vs reference";
         writePng(stem + "_chart.png",
-                 drawTradeoffChart(points, sceneName + ": error against GPU time (" + ctx->renderer.substr(0, 40) + ")",
-                                   "GPU milliseconds (per frame; path tracer: to converge)", yLabel));
+                 drawTradeoffChart(points, sceneName + ": error vs GPU time, " + o.size,
+                                   "GPU ms on " + ctx->renderer.substr(0, ctx->renderer.find(" (")) +
+                                       " (per frame; path tracer: all samples)",
+                                   yLabel));
     }
 
     nlohmann::ordered_json j;

@@ -3,6 +3,7 @@
 #include <stb_easy_font.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -95,8 +96,8 @@ std::vector<size_t> paretoFront(const std::vector<ChartPoint>& points) {
 ImageU8 drawTradeoffChart(const std::vector<ChartPoint>& points, const std::string& title, const std::string& xLabel,
                           const std::string& yLabel, int width, int height) {
     Canvas c(width, height, kWhite);
-    const int left = 110, right = width - 30, top = 60, bottom = height - 80;
-    c.text(left, 20, title, kBlack, 3);
+    const int left = 110, right = width - 30, top = 80, bottom = height - 80;
+    c.text(left, 12, title, kBlack, 3);
     std::vector<ChartPoint> pts;
     for (const ChartPoint& p : points)
         if (p.x > 0.0 && p.y > 0.0 && std::isfinite(p.x) && std::isfinite(p.y)) pts.push_back(p);
@@ -131,7 +132,7 @@ ImageU8 drawTradeoffChart(const std::vector<ChartPoint>& points, const std::stri
     c.line(left, bottom, right, bottom, 2, kBlack);
     c.line(left, top, left, bottom, 2, kBlack);
     c.text((left + right - Canvas::textWidth(xLabel)) / 2, bottom + 40, xLabel, kBlack);
-    c.text(10, top - 30, yLabel, kBlack);
+    c.text(10, top - 26, yLabel, kBlack);
 
     const std::vector<size_t> front = paretoFront(pts);
     for (size_t i = 1; i < front.size(); ++i) {  // staircase: the best error reachable within a budget
@@ -139,13 +140,26 @@ ImageU8 drawTradeoffChart(const std::vector<ChartPoint>& points, const std::stri
         c.line(px(a.x), py(a.y), px(b.x), py(a.y), 3, {120, 120, 120});
         c.line(px(b.x), py(a.y), px(b.x), py(b.y), 3, {120, 120, 120});
     }
+    std::vector<std::array<int, 4>> placed;  // label boxes already drawn: later labels move down
     for (const ChartPoint& p : pts) {
         const Rgba col = kSeriesColors[size_t(std::max(p.series, 0)) % 8];
         c.disc(px(p.x), py(p.y), 7, kBlack);
         c.disc(px(p.x), py(p.y), 5.5, col);
-        c.text(int(px(p.x)) + 10, int(py(p.y)) - 16, p.label, col);
+        const int w = Canvas::textWidth(p.label), h = 16;
+        int x = int(px(p.x)) + 10, y = int(py(p.y)) - 16;
+        if (x + w > width) x = int(px(p.x)) - 10 - w;
+        for (bool moved = true; moved;) {
+            moved = false;
+            for (const auto& b : placed)
+                if (x < b[2] && x + w > b[0] && y < b[3] && y + h > b[1]) {
+                    y = b[3] + 1;
+                    moved = true;
+                }
+        }
+        c.text(x, y, p.label, col);
+        placed.push_back({x, y, x + w, y + h});
     }
-    c.text(right - Canvas::textWidth("grey staircase: Pareto front"), top - 30, "grey staircase: Pareto front", kDark);
+    c.text(right - Canvas::textWidth("grey staircase: Pareto front"), top - 26, "grey staircase: Pareto front", kDark);
     return c.image;
 }
 
@@ -154,13 +168,29 @@ ImageU8 composeGrid(const std::vector<std::pair<std::string, ImageU8>>& tiles, i
     columns = std::max(1, std::min(columns, int(tiles.size())));
     int tw = 0, th = 0;
     for (const auto& [label, img] : tiles) tw = std::max(tw, img.width), th = std::max(th, img.height);
-    const int caption = 24, pad = 6;
+    // Small renders are enlarged (nearest neighbour, whole factors) so captions fit under them.
+    const int zoom = std::max(1, (200 + tw - 1) / std::max(tw, 1));
+    tw *= zoom, th *= zoom;
+    const int caption = 30, pad = 8;
     const int rows = (int(tiles.size()) + columns - 1) / columns;
     Canvas c(columns * (tw + pad) + pad, rows * (th + caption + pad) + pad, kWhite);
     for (size_t i = 0; i < tiles.size(); ++i) {
         const int x = pad + int(i % columns) * (tw + pad), y = pad + int(i / columns) * (th + caption + pad);
-        c.blit(tiles[i].second, x, y);
-        c.text(x + 2, y + th + 6, tiles[i].first, kBlack, 1);
+        const ImageU8& src = tiles[i].second;
+        ImageU8 big;
+        big.width = src.width * zoom;
+        big.height = src.height * zoom;
+        big.rgba.resize(size_t(big.width) * big.height * 4);
+        for (int j = 0; j < big.height; ++j)
+            for (int k = 0; k < big.width; ++k)
+                std::copy_n(&src.rgba[(size_t(j / zoom) * src.width + k / zoom) * 4], 4,
+                            &big.rgba[(size_t(j) * big.width + k) * 4]);
+        c.blit(big, x, y);
+        // Caption: first line up to "  " (two spaces), the rest on the second line.
+        const std::string& label = tiles[i].first;
+        const size_t split = label.find("  ");
+        c.text(x + 2, y + th + 4, label.substr(0, split), kBlack, 1);
+        if (split != std::string::npos) c.text(x + 2, y + th + 16, label.substr(split + 2), kDark, 1);
     }
     return c.image;
 }

@@ -1,0 +1,64 @@
+// `gisandbox bench` end to end at a tiny size: well-formed JSON/CSV, a grid and a chart per scene,
+// the reference cached between runs, and clean failures on bad flags.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+#include "cli_util.h"
+#include "image.h"
+
+namespace gis::test {
+namespace {
+
+TEST(Bench, RunsEndToEndAndCachesTheReference) {
+    const std::string dir = tempDir("bench_tiny");
+    const std::string args = "bench --scenes builtin:cornell --size 24x24 --frames 3 --warmup 1 --reference-spp 8 "
+                             "--presets low,high --out-dir " + dir;
+    CliResult r = runCli(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("rendering the reference"), std::string::npos) << r.err;
+
+    std::ifstream jf(dir + "/bench.json");
+    const nlohmann::json j = nlohmann::json::parse(jf);
+    EXPECT_FALSE(j["machine"]["gl_renderer"].get<std::string>().empty());
+    ASSERT_EQ(j["results"].size(), 4u);  // {none, pathtrace} x {low, high}
+    for (const auto& row : j["results"]) {
+        EXPECT_EQ(row["scene"], "cornell");
+        EXPECT_GT(row["gpu_ms"].get<double>(), 0.0) << row.dump();
+        EXPECT_GT(row["gpu_bytes"].get<int64_t>(), 0) << row.dump();
+        EXPECT_GE(row["flip"].get<double>(), 0.0);
+        EXPECT_LE(row["flip"].get<double>(), 1.0);
+        EXPECT_GE(row["rmse"].get<double>(), 0.0);
+        EXPECT_TRUE(row["pass_ms"].is_object());
+    }
+    std::ifstream cf(dir + "/bench.csv");
+    std::string line;
+    int lines = 0;
+    while (std::getline(cf, line)) ++lines;
+    EXPECT_EQ(lines, 5);  // header + 4 rows
+    const ImageU8 chart = readPng(dir + "/cornell_chart.png"), grid = readPng(dir + "/cornell_grid.png");
+    EXPECT_GT(chart.width, 100);
+    EXPECT_GT(grid.width, 100);
+
+    r = runCli(args);  // second run: the reference comes from the cache
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("reference from cache"), std::string::npos) << r.err;
+}
+
+TEST(Bench, BadFlagsFailCleanly) {
+    const std::string dir = tempDir("bench_bad");
+    for (const std::string& args : {std::string("bench --presets ultra --out-dir ") + dir,
+                                    std::string("bench --methods magic --out-dir ") + dir,
+                                    std::string("bench --scenes builtin:nothing --out-dir ") + dir,
+                                    std::string("bench --metric beauty --out-dir ") + dir,
+                                    std::string("bench --size 0x0 --out-dir ") + dir}) {
+        CliResult r = runCli(args);
+        EXPECT_NE(r.status, 0) << args;
+        EXPECT_EQ(countLines(r.err), 1) << args << ": " << r.err;
+        EXPECT_FALSE(fileExists(dir + "/bench.json")) << args;
+    }
+}
+
+}  // namespace
+}  // namespace gis::test
