@@ -7,39 +7,12 @@
 #include "lights.glsl"
 #include "random.glsl"
 #include "uniforms.glsl"
-#include "bvh.glsl"
+#include "ray_scene.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-struct TriangleAttributes {
-    vec4 n0, n1, n2;          // shading normals
-    vec4 t0, t1, t2;          // tangents, w = bitangent sign
-    vec4 c0, c1, c2;          // vertex colours
-    vec4 uv01;                // uv0, uv1
-    vec4 uv2MaterialEmitter;  // uv2, material index, emitter selection pdf / triangle area (0: not an emitter)
-};
-
-struct PtMaterial {
-    vec4 baseColor;
-    vec4 emissive;            // rgb radiance, w = double sided
-    vec4 params;              // metallic, roughness, specular factor, alpha cutoff (< 0: opaque)
-    vec4 params2;             // normal scale, unused
-    ivec4 textures;           // texture-array layers: base colour, metallic-roughness, normal, emissive (-1: none)
-};
-
-struct Emitter {
-    uint triangle;
-    float cdf;                // inclusive running sum of selection probabilities
-    float pad0, pad1;
-};
-
-layout(std430, binding = 3) readonly buffer Attributes { TriangleAttributes u_attributes[]; };
-layout(std430, binding = 4) readonly buffer Materials { PtMaterial u_materials[]; };
-layout(std430, binding = 5) readonly buffer Emitters { Emitter u_emitters[]; };
-
 layout(binding = 0, rgba32f) uniform image2D u_accumulation;
 layout(binding = 1, rgba32f) uniform writeonly image2D u_output;
-layout(binding = 0) uniform sampler2DArray s_textures;
 
 layout(location = U_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = U_LIGHT_COUNT) uniform int u_lightCount;
@@ -56,54 +29,11 @@ const float MIN_THROUGHPUT = 1e-7;
 // Russian roulette never keeps a path with probability above this, so paths end eventually.
 const float MAX_SURVIVAL = 0.95;
 
-vec3 srgbToLinear(vec3 c) {
-    return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
-}
-
-vec4 sampleLayer(int layer, vec2 uv) {
-    return layer < 0 ? vec4(1.0) : textureLod(s_textures, vec3(uv, float(layer)), 0.0);
-}
-
-vec2 triangleUv(TriangleAttributes a, vec2 b) {
-    return a.uv01.xy * (1.0 - b.x - b.y) + a.uv01.zw * b.x + a.uv2MaterialEmitter.xy * b.y;
-}
-
-bool bvhTriangleIsCutout(uint triangle, vec2 barycentric) {
-    TriangleAttributes a = u_attributes[triangle];
-    PtMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
-    if (m.params.w < 0.0) return false;
-    vec4 color = a.c0 * (1.0 - barycentric.x - barycentric.y) + a.c1 * barycentric.x + a.c2 * barycentric.y;
-    return m.baseColor.a * color.a * sampleLayer(m.textures.x, triangleUv(a, barycentric)).a < m.params.w;
-}
-
-// Moves a ray origin off its surface by a few units in the last place of each coordinate, so
-// the offset scales with the magnitude of the position (huge scenes) yet never vanishes near
-// the origin (tiny scenes). After Waechter and Binder, Ray Tracing Gems ch. 6 (2019).
-vec3 offsetRayOrigin(vec3 p, vec3 n) {
-    const float ORIGIN = 1.0 / 32.0, FLOAT_SCALE = 1.0 / 65536.0, INT_SCALE = 256.0;
-    ivec3 ofs = ivec3(INT_SCALE * n);
-    vec3 q;
-    for (int i = 0; i < 3; ++i) {
-        int bits = floatBitsToInt(p[i]) + (p[i] < 0.0 ? -ofs[i] : ofs[i]);
-        q[i] = abs(p[i]) < ORIGIN ? p[i] + FLOAT_SCALE * n[i] : intBitsToFloat(bits);
-    }
-    return q;
-}
-
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 float powerHeuristic(float a, float b) {
     float a2 = a * a, b2 = b * b;
     return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
-}
-
-void orthonormalBasis(vec3 n, out vec3 t, out vec3 b) {
-    // Duff et al. 2017, "Building an orthonormal basis, revisited".
-    float s = n.z >= 0.0 ? 1.0 : -1.0;
-    float a = -1.0 / (s + n.z);
-    float c = n.x * n.y * a;
-    t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
-    b = vec3(c, s + n.y * n.y * a, -n.y);
 }
 
 // Smith G1 for GGX.
@@ -137,36 +67,17 @@ struct SurfacePoint {
 };
 
 SurfacePoint shade(Hit hit, vec3 rayDir) {
-    TraceTriangle tri = u_triangles[hit.triangle];
+    RayHitGeometry g = hitGeometry(hit, rayDir);
     TriangleAttributes a = u_attributes[hit.triangle];
-    PtMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
-    vec3 w = vec3(1.0 - hit.barycentric.x - hit.barycentric.y, hit.barycentric);
-    vec2 uv = triangleUv(a, hit.barycentric);
+    RayMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
+    vec3 w = g.weights;
+    vec2 uv = g.uv;
+    bool frontFace = g.frontFace;
 
     SurfacePoint s;
-    s.position = tri.p0.xyz * w.x + tri.p1.xyz * w.y + tri.p2.xyz * w.z;
-    vec3 ng = cross(tri.p1.xyz - tri.p0.xyz, tri.p2.xyz - tri.p0.xyz);
-    ng = dot(ng, ng) > 0.0 ? normalize(ng) : -rayDir;
-    bool frontFace = dot(ng, rayDir) < 0.0;
-    s.geometricNormal = frontFace ? ng : -ng;
-
-    vec3 n = a.n0.xyz * w.x + a.n1.xyz * w.y + a.n2.xyz * w.z;
-    n = dot(n, n) > 1e-20 ? normalize(n) : ng;
-    if (m.textures.z >= 0) {
-        vec3 t = a.t0.xyz * w.x + a.t1.xyz * w.y + a.t2.xyz * w.z;
-        t -= n * dot(n, t);
-        if (dot(t, t) > 1e-20) {
-            t = normalize(t);
-            vec3 b = cross(n, t) * (a.t0.w < 0.0 ? -1.0 : 1.0);
-            vec3 tn = sampleLayer(m.textures.z, uv).xyz * 2.0 - 1.0;
-            tn.xy *= m.params2.x;
-            vec3 mapped = mat3(t, b, n) * tn;
-            if (dot(mapped, mapped) > 1e-20) n = normalize(mapped);
-        }
-    }
-    // Shade the side the ray arrives on (surfaces are two-sided for reflection, as in Cycles).
-    if (dot(n, s.geometricNormal) < 0.0) n = -n;
-    s.normal = n;
+    s.position = g.position;
+    s.geometricNormal = g.geometricNormal;
+    s.normal = g.normal;
 
     vec4 color = a.c0 * w.x + a.c1 * w.y + a.c2 * w.z;
     vec4 baseTex = sampleLayer(m.textures.x, uv);
@@ -286,7 +197,7 @@ vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, inout Rng rng) {
             float dist = sqrt(d2);
             vec3 L = toLight / dist;
             nl = normalize(nl);
-            PtMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
+            RayMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
             float cosLight = dot(nl, -L);
             bool emits = cosLight > 0.0 || m.emissive.w > 0.5;
             float NoL = dot(s.normal, L);

@@ -1,158 +1,17 @@
 #include "passes/pathtrace_pass.h"
 
-#include <stb_image_resize.h>
-
 #include <algorithm>
-#include <cmath>
 
-#include "lights.h"
 #include "uniforms.h"
 
 namespace gis {
 
-namespace {
-
-// std430 layouts, mirroring shaders/pathtrace.comp and shaders/bvh.glsl.
-struct GpuTraceTriangle {
-    glm::vec4 p0, p1, p2;
-};
-struct GpuTriangleAttributes {
-    glm::vec4 n0, n1, n2;
-    glm::vec4 t0, t1, t2;
-    glm::vec4 c0, c1, c2;
-    glm::vec4 uv01;
-    glm::vec4 uv2MaterialEmitter;
-};
-struct GpuPtMaterial {
-    glm::vec4 baseColor;
-    glm::vec4 emissive;
-    glm::vec4 params;
-    glm::vec4 params2;
-    glm::ivec4 textures;
-};
-struct GpuEmitter {
-    uint32_t triangle;
-    float cdf;
-    float pad0, pad1;
-};
-
-// Path-traced textures share one array, so every image is resampled to one size: the largest
-// image's, capped here (no ray differentials are tracked, so finer texels would only alias).
-constexpr int kMaxTextureSize = 1024;
-
-float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
-
-float luminance(glm::vec3 c) { return glm::dot(c, glm::vec3(0.2126f, 0.7152f, 0.0722f)); }
-
-}  // namespace
-
 std::vector<ProgramDesc> PathTracePass::programs() { return {{"pathtrace", {"pathtrace.comp"}, {}}}; }
 
 PathTracePass::PathTracePass(const GpuScene& gpuScene, const RenderSettings& settings, gl::MemoryLedger& ledger)
-    : targetSamples_(settings.spp), samplesPerFrame_(std::max(1, settings.samplesPerFrame)) {
-    const Scene& scene = gpuScene.cpu;
+    : rays_(gpuScene, ledger, name()), targetSamples_(settings.spp),
+      samplesPerFrame_(std::max(1, settings.samplesPerFrame)) {
     const gl::MemoryScope scope{&ledger, name()};
-    bvh_ = buildBvh(scene);
-
-    // Textures: one array layer per scene image.
-    int size = 1;
-    for (const Image& img : scene.images) size = std::max({size, img.width, img.height});
-    size = std::min(size, kMaxTextureSize);
-    const int layers = std::max<int>(1, int(scene.images.size()));
-    textures_ = gl::createTexture2DArray(scope, GL_RGBA8, size, size, layers);
-    std::vector<glm::vec3> meanLinear(scene.images.size(), glm::vec3(1.0f));
-    std::vector<uint8_t> resized(size_t(size) * size * 4);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    for (size_t i = 0; i < scene.images.size(); ++i) {
-        const Image& img = scene.images[i];
-        const bool ok = img.srgb ? stbir_resize_uint8_srgb(img.rgba8.data(), img.width, img.height, 0, resized.data(),
-                                                           size, size, 0, 4, 3, 0)
-                                 : stbir_resize_uint8(img.rgba8.data(), img.width, img.height, 0, resized.data(), size,
-                                                      size, 0, 4);
-        if (!ok) throw Error("path tracer: cannot resample texture '" + img.name + "'");
-        glTextureSubImage3D(textures_.id(), 0, 0, 0, GLint(i), size, size, 1, GL_RGBA, GL_UNSIGNED_BYTE, resized.data());
-        glm::dvec3 sum(0.0);
-        for (size_t p = 0; p < resized.size(); p += 4)
-            for (int c = 0; c < 3; ++c) sum[c] += srgbToLinear(resized[p + c] / 255.0f);
-        meanLinear[i] = glm::vec3(sum / double(size_t(size) * size));
-    }
-    sampler_ = gl::createSampler();
-    glSamplerParameteri(sampler_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glSamplerParameteri(sampler_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glSamplerParameteri(sampler_.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glSamplerParameteri(sampler_.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
-
-    // Materials (the GpuScene's list, which ends with the default material).
-    auto layerOf = [&](int image) { return image >= 0 && image < int(scene.images.size()) ? image : -1; };
-    std::vector<GpuPtMaterial> materials;
-    for (const GpuMaterial& gm : gpuScene.materials) {
-        const Material& m = gm.params;
-        GpuPtMaterial g{};
-        g.baseColor = m.baseColorFactor;
-        g.emissive = glm::vec4(m.emissive, m.doubleSided ? 1.0f : 0.0f);
-        g.params = glm::vec4(m.metallicFactor, m.roughnessFactor, m.specularFactor,
-                             m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f);
-        g.params2 = glm::vec4(m.normalScale, 0.0f, 0.0f, 0.0f);
-        g.textures = glm::ivec4(layerOf(m.baseColorTexture), layerOf(m.metallicRoughnessTexture),
-                                layerOf(m.normalTexture), layerOf(m.emissiveTexture));
-        materials.push_back(g);
-    }
-
-    // Triangles in BVH leaf order, with their shading attributes; emitters weighted by power.
-    std::vector<GpuTraceTriangle> tris;
-    std::vector<GpuTriangleAttributes> attrs;
-    std::vector<double> power;
-    std::vector<uint32_t> emitterTriangles;
-    tris.reserve(bvh_.triangles.size());
-    attrs.reserve(bvh_.triangles.size());
-    for (const TraceTriangle& t : bvh_.triangles) {
-        const GpuDraw& draw = gpuScene.draws[t.draw];
-        const Primitive& prim = scene.primitives[scene.draws[t.draw].primitive];
-        const Vertex* v[3];
-        for (int k = 0; k < 3; ++k) v[k] = &prim.vertices[prim.indices[t.primitiveTriangle * 3 + k]];
-        tris.push_back({glm::vec4(t.p0, 0.0f), glm::vec4(t.p1, 0.0f), glm::vec4(t.p2, 0.0f)});
-        GpuTriangleAttributes a{};
-        glm::vec4* normals[3] = {&a.n0, &a.n1, &a.n2};
-        glm::vec4* tangents[3] = {&a.t0, &a.t1, &a.t2};
-        glm::vec4* colors[3] = {&a.c0, &a.c1, &a.c2};
-        for (int k = 0; k < 3; ++k) {
-            *normals[k] = glm::vec4(draw.normalMatrix * v[k]->normal, 0.0f);
-            *tangents[k] = glm::vec4(glm::mat3(draw.world) * glm::vec3(v[k]->tangent), v[k]->tangent.w);
-            *colors[k] = v[k]->color;
-        }
-        a.uv01 = glm::vec4(v[0]->uv, v[1]->uv);
-        a.uv2MaterialEmitter = glm::vec4(v[2]->uv, float(draw.material), 0.0f);
-        const Material& m = gpuScene.materials[draw.material].params;
-        const glm::vec3 meanEmission =
-            m.emissive * (layerOf(m.emissiveTexture) >= 0 ? meanLinear[m.emissiveTexture] : glm::vec3(1.0f));
-        const float area = 0.5f * glm::length(glm::cross(t.p1 - t.p0, t.p2 - t.p0));
-        const double p = double(area) * luminance(meanEmission) * (m.doubleSided ? 2.0 : 1.0);
-        if (p > 0.0 && std::isfinite(p)) {
-            emitterTriangles.push_back(uint32_t(attrs.size()));
-            power.push_back(p);
-        }
-        attrs.push_back(a);
-    }
-    double totalPower = 0.0;
-    for (double p : power) totalPower += p;
-    std::vector<GpuEmitter> emitters;
-    double running = 0.0;
-    for (size_t i = 0; i < power.size(); ++i) {
-        running += power[i] / totalPower;
-        emitters.push_back({emitterTriangles[i], float(i + 1 == power.size() ? 1.0 : running), 0.0f, 0.0f});
-        const TraceTriangle& t = bvh_.triangles[emitterTriangles[i]];
-        const float area = 0.5f * glm::length(glm::cross(t.p1 - t.p0, t.p2 - t.p0));
-        attrs[emitterTriangles[i]].uv2MaterialEmitter.w = float(power[i] / totalPower / area);
-    }
-    emitterCount_ = emitters.size();
-
-    const std::vector<GpuLight> lights = makeGpuLights(scene);
-    lights_ = gl::createBuffer(scope, int64_t(lights.size() * sizeof(GpuLight)), lights.data());
-    nodes_ = gl::createBuffer(scope, int64_t(bvh_.nodes.size() * sizeof(BvhNode)), bvh_.nodes.data());
-    triangles_ = gl::createBuffer(scope, int64_t(tris.size() * sizeof(GpuTraceTriangle)), tris.data());
-    attributes_ = gl::createBuffer(scope, int64_t(attrs.size() * sizeof(GpuTriangleAttributes)), attrs.data());
-    materials_ = gl::createBuffer(scope, int64_t(materials.size() * sizeof(GpuPtMaterial)), materials.data());
-    emitters_ = gl::createBuffer(scope, int64_t(emitters.size() * sizeof(GpuEmitter)), emitters.data());
     accumulation_ = gl::createTexture2D(scope, GL_RGBA32F, settings.width, settings.height);
     output_ = gl::createTexture2D(scope, GL_RGBA32F, settings.width, settings.height);
     program_ = buildProgram(programs()[0]);
@@ -164,17 +23,9 @@ void PathTracePass::execute(Frame& frame) {
     const RenderSettings& s = frame.settings;
     const GLuint p = program_.id();
     glUseProgram(p);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, nodes_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, triangles_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, attributes_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, materials_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, emitters_.id());
+    rays_.bind();
     glBindImageTexture(0, accumulation_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     glBindImageTexture(1, output_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    const GLuint tex = textures_.id(), smp = sampler_.id();
-    glBindTextures(0, 1, &tex);
-    glBindSamplers(0, 1, &smp);
     const glm::vec3 background = s.background.value_or(frame.scene.cpu.background);
     glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));
@@ -182,7 +33,7 @@ void PathTracePass::execute(Frame& frame) {
     glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));
     glProgramUniform1ui(p, U_SEED, s.seed);
     glProgramUniform1i(p, U_MAX_BOUNCES, s.maxBounces);
-    glProgramUniform1i(p, U_EMITTER_COUNT, int(emitterCount_));
+    glProgramUniform1i(p, U_EMITTER_COUNT, int(rays_.emitterCount));
     glProgramUniform1i(p, U_RR_START, s.russianRouletteStart);
     const GLuint groupsX = GLuint((output_.width + 7) / 8), groupsY = GLuint((output_.height + 7) / 8);
     const int batch = std::min(samplesPerFrame_, targetSamples_ - samplesDone_);

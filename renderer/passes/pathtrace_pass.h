@@ -4,7 +4,7 @@
 // and the BVH built once; later frames only add samples.
 #pragma once
 
-#include "bvh.h"
+#include "ray_scene.h"
 #include "renderer.h"
 
 namespace gis {
@@ -20,15 +20,12 @@ public:
 
     int samplesDone() const { return samplesDone_; }
     bool done() const { return samplesDone_ >= targetSamples_; }
-    const Bvh& bvh() const { return bvh_; }
-    size_t emitterCount() const { return emitterCount_; }
+    const Bvh& bvh() const { return rays_.bvh; }
 
 private:
-    Bvh bvh_;
-    gl::Buffer lights_, nodes_, triangles_, attributes_, materials_, emitters_;
-    gl::Texture textures_, accumulation_, output_;
-    gl::Object program_, sampler_;
-    size_t emitterCount_ = 0;
+    RayScene rays_;
+    gl::Texture accumulation_, output_;
+    gl::Object program_;
     int samplesDone_ = 0, targetSamples_ = 0, samplesPerFrame_ = 1;
 };
 

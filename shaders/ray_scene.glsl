@@ -1,0 +1,125 @@
+// The scene as ray tracers see it (renderer/ray_scene.h): BVH and triangles (bvh.glsl), per-triangle
+// shading attributes, materials, one texture array, emissive triangles; and what every tracer needs
+// at a hit - position, normals facing the ray, texture coordinates - plus alpha cut-outs.
+#include "common.glsl"
+#include "bvh.glsl"
+
+struct TriangleAttributes {
+    vec4 n0, n1, n2;          // shading normals
+    vec4 t0, t1, t2;          // tangents, w = bitangent sign
+    vec4 c0, c1, c2;          // vertex colours
+    vec4 uv01;                // uv0, uv1
+    vec4 uv2MaterialEmitter;  // uv2, material index, emitter selection pdf / triangle area (0: not an emitter)
+};
+
+struct RayMaterial {
+    vec4 baseColor;
+    vec4 emissive;            // rgb radiance, w = double sided
+    vec4 params;              // metallic, roughness, specular factor, alpha cutoff (< 0: opaque)
+    vec4 params2;             // normal scale, unused
+    ivec4 textures;           // texture-array layers: base colour, metallic-roughness, normal, emissive (-1: none)
+};
+
+struct Emitter {
+    uint triangle;
+    float cdf;                // inclusive running sum of selection probabilities
+    float pad0, pad1;
+};
+
+layout(std430, binding = 3) readonly buffer Attributes { TriangleAttributes u_attributes[]; };
+layout(std430, binding = 4) readonly buffer Materials { RayMaterial u_materials[]; };
+layout(std430, binding = 5) readonly buffer Emitters { Emitter u_emitters[]; };
+layout(binding = 0) uniform sampler2DArray s_textures;
+
+vec3 srgbToLinear(vec3 c) {
+    return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
+}
+
+vec4 sampleLayer(int layer, vec2 uv) {
+    return layer < 0 ? vec4(1.0) : textureLod(s_textures, vec3(uv, float(layer)), 0.0);
+}
+
+vec2 triangleUv(TriangleAttributes a, vec2 b) {
+    return a.uv01.xy * (1.0 - b.x - b.y) + a.uv01.zw * b.x + a.uv2MaterialEmitter.xy * b.y;
+}
+
+bool bvhTriangleIsCutout(uint triangle, vec2 barycentric) {
+    TriangleAttributes a = u_attributes[triangle];
+    RayMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
+    if (m.params.w < 0.0) return false;
+    vec4 color = a.c0 * (1.0 - barycentric.x - barycentric.y) + a.c1 * barycentric.x + a.c2 * barycentric.y;
+    return m.baseColor.a * color.a * sampleLayer(m.textures.x, triangleUv(a, barycentric)).a < m.params.w;
+}
+
+// Moves a ray origin off its surface by a few units in the last place of each coordinate, so
+// the offset scales with the magnitude of the position (huge scenes) yet never vanishes near
+// the origin (tiny scenes). After Waechter and Binder, Ray Tracing Gems ch. 6 (2019).
+vec3 offsetRayOrigin(vec3 p, vec3 n) {
+    const float ORIGIN = 1.0 / 32.0, FLOAT_SCALE = 1.0 / 65536.0, INT_SCALE = 256.0;
+    ivec3 ofs = ivec3(INT_SCALE * n);
+    vec3 q;
+    for (int i = 0; i < 3; ++i) {
+        int bits = floatBitsToInt(p[i]) + (p[i] < 0.0 ? -ofs[i] : ofs[i]);
+        q[i] = abs(p[i]) < ORIGIN ? p[i] + FLOAT_SCALE * n[i] : intBitsToFloat(bits);
+    }
+    return q;
+}
+
+struct RayHitGeometry {
+    vec3 position;
+    vec3 geometricNormal;     // faces the incoming ray
+    vec3 normal;              // shading normal (normal map applied), same hemisphere as geometricNormal
+    vec3 weights;             // barycentric weights of the three corners
+    vec2 uv;
+    bool frontFace;           // the ray hit the side the winding faces
+};
+
+RayHitGeometry hitGeometry(Hit hit, vec3 rayDir) {
+    TraceTriangle tri = u_triangles[hit.triangle];
+    TriangleAttributes a = u_attributes[hit.triangle];
+    RayMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
+    RayHitGeometry g;
+    vec3 w = vec3(1.0 - hit.barycentric.x - hit.barycentric.y, hit.barycentric);
+    g.weights = w;
+    g.uv = triangleUv(a, hit.barycentric);
+    g.position = tri.p0.xyz * w.x + tri.p1.xyz * w.y + tri.p2.xyz * w.z;
+    vec3 ng = cross(tri.p1.xyz - tri.p0.xyz, tri.p2.xyz - tri.p0.xyz);
+    ng = dot(ng, ng) > 0.0 ? normalize(ng) : -rayDir;
+    g.frontFace = dot(ng, rayDir) < 0.0;
+    g.geometricNormal = g.frontFace ? ng : -ng;
+
+    vec3 n = a.n0.xyz * w.x + a.n1.xyz * w.y + a.n2.xyz * w.z;
+    n = dot(n, n) > 1e-20 ? normalize(n) : ng;
+    if (m.textures.z >= 0) {
+        vec3 t = a.t0.xyz * w.x + a.t1.xyz * w.y + a.t2.xyz * w.z;
+        t -= n * dot(n, t);
+        if (dot(t, t) > 1e-20) {
+            t = normalize(t);
+            vec3 b = cross(n, t) * (a.t0.w < 0.0 ? -1.0 : 1.0);
+            vec3 tn = sampleLayer(m.textures.z, g.uv).xyz * 2.0 - 1.0;
+            tn.xy *= m.params2.x;
+            vec3 mapped = mat3(t, b, n) * tn;
+            if (dot(mapped, mapped) > 1e-20) n = normalize(mapped);
+        }
+    }
+    // Shade the side the ray arrives on (surfaces are two-sided for reflection, as in Cycles).
+    g.normal = dot(n, g.geometricNormal) < 0.0 ? -n : n;
+    return g;
+}
+
+void orthonormalBasis(vec3 n, out vec3 t, out vec3 b) {
+    // Duff et al. 2017, "Building an orthonormal basis, revisited".
+    float s = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + n.z);
+    float c = n.x * n.y * a;
+    t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+    b = vec3(c, s + n.y * n.y * a, -n.y);
+}
+
+// Cosine-weighted direction around n (Malley's method: uniform on the disk, lifted).
+vec3 cosineDirection(vec3 n, vec2 u) {
+    vec3 t, b;
+    orthonormalBasis(n, t, b);
+    float r = sqrt(u.x), phi = 2.0 * PI * u.y;
+    return t * (r * cos(phi)) + b * (r * sin(phi)) + n * sqrt(max(0.0, 1.0 - u.x));
+}
