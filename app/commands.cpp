@@ -111,8 +111,20 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--background", o.background, "Environment radiance R,G,B (or one value), overriding the scene's")
         ->delimiter(',')
         ->expected(1, 3);
-    cmd.add_option("--spp", o.spp, "--gi pathtrace: samples per pixel")->capture_default_str();
+    cmd.add_option("--spp", o.spp, "--gi pathtrace / ao-reference: samples per pixel")->capture_default_str();
     cmd.add_option("--max-bounces", o.maxBounces, "--gi pathtrace: indirect bounces (0 = direct light only)")
+        ->capture_default_str();
+    cmd.add_option("--ao-samples", o.aoSamples, "--gi ssao: directions in the hemisphere kernel (1-256)")
+        ->capture_default_str();
+    cmd.add_option("--ao-steps", o.aoSteps, "--gi ssao: points tested along each direction")->capture_default_str();
+    cmd.add_option("--ao-radius", o.aoRadius, "SSAO / ao-reference radius in world units (0 = 15% of the scene diagonal)")
+        ->capture_default_str();
+    cmd.add_option("--ao-bias", o.aoBias, "--gi ssao: depth bias as a fraction of the radius")->capture_default_str();
+    cmd.add_option("--ao-power", o.aoPower, "--gi ssao: AO^power")->capture_default_str();
+    cmd.add_flag("--ao-no-blur", o.aoNoBlur, "--gi ssao: skip the bilateral blur");
+    cmd.add_flag("--ao-half-res", o.aoHalfRes, "--gi ssao: compute AO at half resolution");
+    cmd.add_flag("--ao-temporal", o.aoTemporal, "--gi ssao: temporal accumulation (reprojection, per-frame noise)");
+    cmd.add_option("--view", o.view, "What to output: final, ao (the ambient occlusion term alone)")
         ->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable shadow maps");
     cmd.add_flag("--hdr32", o.hdr32, "Light into RGBA32F instead of RGBA16F");
@@ -150,6 +162,15 @@ int runRender(const RenderOptions& o) {
     }
     s.spp = o.spp;
     s.maxBounces = o.maxBounces;
+    s.aoSamples = o.aoSamples;
+    s.aoSteps = o.aoSteps;
+    s.aoRadius = o.aoRadius;
+    s.aoBias = o.aoBias;
+    s.aoPower = o.aoPower;
+    s.aoBlur = !o.aoNoBlur;
+    s.aoHalfResolution = o.aoHalfRes;
+    s.aoTemporal = o.aoTemporal;
+    s.view = parseDebugView(o.view);
     // Progressive methods add a few samples per frame so progress can be shown between frames.
     s.samplesPerFrame = 4;
     {

@@ -31,6 +31,15 @@ struct RenderOptions {
     std::vector<float> background;
     int spp = 64;
     int maxBounces = 16;
+    int aoSamples = 16;
+    int aoSteps = 4;
+    float aoRadius = 0.0f;
+    float aoBias = 0.03f;
+    float aoPower = 1.0f;
+    bool aoNoBlur = false;
+    bool aoHalfRes = false;
+    bool aoTemporal = false;
+    std::string view = "final";
     bool glDebug = false;
     bool verbose = false;
 };

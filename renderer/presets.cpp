@@ -15,6 +15,10 @@ int presetIndex(const std::string& preset) {
 // --gi none: the rasterizer's cost and accuracy knob is shadow-map resolution.
 constexpr int kShadowMap[3] = {256, 1024, 2048};
 constexpr int kShadowCube[3] = {128, 512, 1024};
+// --gi ssao: directions x points per direction, and resolution.
+constexpr int kAoSamples[3] = {8, 16, 64};
+constexpr int kAoSteps[3] = {2, 4, 8};
+constexpr bool kAoHalfRes[3] = {true, false, false};
 // --gi pathtrace at low sample counts: the reference's own speed/noise trade.
 constexpr int kPathTraceSpp[3] = {4, 16, 64};
 }  // namespace
@@ -24,7 +28,7 @@ const std::vector<std::string>& presetNames() {
     return names;
 }
 
-std::vector<std::string> benchmarkMethods() { return {"none", "pathtrace"}; }
+std::vector<std::string> benchmarkMethods() { return {"none", "ssao", "pathtrace"}; }
 
 void applyPreset(RenderSettings& s, const std::string& method, const std::string& preset) {
     checkGiMethod(method);
@@ -33,6 +37,10 @@ void applyPreset(RenderSettings& s, const std::string& method, const std::string
     if (method == "none") {
         s.shadowMapSize = kShadowMap[i];
         s.shadowCubeSize = kShadowCube[i];
+    } else if (method == "ssao") {
+        s.aoSamples = kAoSamples[i];
+        s.aoSteps = kAoSteps[i];
+        s.aoHalfResolution = kAoHalfRes[i];
     } else if (method == "pathtrace") {
         s.spp = kPathTraceSpp[i];
         s.samplesPerFrame = s.spp;
@@ -44,6 +52,9 @@ std::string describePreset(const std::string& method, const std::string& preset)
     if (method == "none")
         return "shadow maps " + std::to_string(kShadowMap[i]) + ", cubes " + std::to_string(kShadowCube[i]);
     if (method == "pathtrace") return std::to_string(kPathTraceSpp[i]) + " spp";
+    if (method == "ssao")
+        return std::to_string(kAoSamples[i]) + " directions x " + std::to_string(kAoSteps[i]) + " steps" +
+               (kAoHalfRes[i] ? ", half resolution" : "");
     return preset;
 }
 

@@ -9,6 +9,7 @@
 #include "passes/gbuffer_pass.h"
 #include "passes/lighting_pass.h"
 #include "passes/pathtrace_pass.h"
+#include "passes/ssao_pass.h"
 #include "passes/shadow_pass.h"
 
 namespace gis {
@@ -30,11 +31,17 @@ Tonemapper parseTonemapper(const std::string& s) {
     throw Error("unknown tonemapper '" + s + "' (expected aces or linear)");
 }
 
-std::string giMethodNames() { return "none, pathtrace"; }
+std::string giMethodNames() { return "none, ssao, pathtrace, ao-reference"; }
 
 void checkGiMethod(const std::string& s) {
-    if (s != "none" && s != "pathtrace")
+    if (s != "none" && s != "ssao" && s != "pathtrace" && s != "ao-reference")
         throw Error("unknown GI method '" + s + "' (available: " + giMethodNames() + ")");
+}
+
+DebugView parseDebugView(const std::string& s) {
+    if (s == "final") return DebugView::Final;
+    if (s == "ao") return DebugView::AmbientOcclusion;
+    throw Error("unknown view '" + s + "' (expected final or ao)");
 }
 
 CameraMatrices cameraMatrices(const Scene& scene, int cameraIndex, float aspect) {
@@ -95,6 +102,14 @@ void checkSettings(const RenderSettings& s) {
     range("samples per pixel", s.spp, 1, 1 << 20);
     range("samples per frame", s.samplesPerFrame, 1, 1 << 16);
     range("max bounces", s.maxBounces, 0, 1024);
+    range("AO samples", s.aoSamples, 1, 256);
+    range("AO steps", s.aoSteps, 1, 64);
+    if (!std::isfinite(s.aoRadius) || s.aoRadius < 0.0f || s.aoRadius > 1e30f)
+        throw Error("AO radius must be finite and non-negative (0 = automatic)");
+    if (!std::isfinite(s.aoBias) || s.aoBias < 0.0f || s.aoBias >= 1.0f)
+        throw Error("AO bias must be in [0, 1) (a fraction of the radius)");
+    if (!std::isfinite(s.aoPower) || s.aoPower <= 0.0f || s.aoPower > 64.0f)
+        throw Error("AO power must be in (0, 64]");
     checkGiMethod(s.gi);
 }
 }  // namespace
@@ -102,14 +117,21 @@ void checkSettings(const RenderSettings& s) {
 Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : settings_(settings) {
     checkSettings(settings_);
     camera_ = cameraMatrices(scene, settings_.camera, float(settings_.width) / float(settings_.height));
+    if (settings_.aoRadius <= 0.0f)  // sized from the scene: 15% of its diagonal
+        settings_.aoRadius = scene.bounds.empty() ? 1.0f : std::max(0.15f * glm::length(scene.bounds.extent()), 1e-6f);
     gpuScene_ = std::make_unique<GpuScene>(scene, ledger_);
     const int w = settings_.width, h = settings_.height;
     if (settings_.gi == "pathtrace") {
         passes_.push_back(std::make_unique<PathTracePass>(*gpuScene_, settings_, ledger_));
+    } else if (settings_.gi == "ao-reference") {
+        passes_.push_back(std::make_unique<AoReferencePass>(*gpuScene_, settings_, ledger_));
     } else {
+        const bool ssao = settings_.gi == "ssao";
         passes_.push_back(std::make_unique<ShadowPass>(*gpuScene_, settings_, ledger_));
         passes_.push_back(std::make_unique<GBufferPass>(w, h, ledger_));
-        passes_.push_back(std::make_unique<LightingPass>(w, h, int(scene.lights.size()), settings_.hdr32, ledger_));
+        if (ssao) passes_.push_back(std::make_unique<SsaoPass>(settings_, ledger_));
+        passes_.push_back(
+            std::make_unique<LightingPass>(w, h, int(scene.lights.size()), settings_.hdr32, ssao, ledger_));
     }
     passes_.push_back(std::make_unique<TonemapPass>(w, h, ledger_));
 
@@ -128,24 +150,29 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
 Renderer::~Renderer() = default;
 
 int Renderer::samplesDone() const {
-    for (const auto& pass : passes_)
+    for (const auto& pass : passes_) {
         if (const auto* pt = dynamic_cast<const PathTracePass*>(pass.get())) return pt->samplesDone();
+        if (const auto* ao = dynamic_cast<const AoReferencePass*>(pass.get())) return ao->samplesDone();
+    }
     return 1;
 }
 
 bool Renderer::converged() const {
-    for (const auto& pass : passes_)
+    for (const auto& pass : passes_) {
         if (const auto* pt = dynamic_cast<const PathTracePass*>(pass.get())) return pt->done();
+        if (const auto* ao = dynamic_cast<const AoReferencePass*>(pass.get())) return ao->done();
+    }
     return true;
 }
 
 void Renderer::renderFrame() {
-    Frame frame{settings_, *gpuScene_, camera_, {}, {}};
+    Frame frame{settings_, *gpuScene_, camera_, {}, {}, frameIndex_};
     for (const auto& pass : passes_) {
         pass->timer.begin();
         pass->execute(frame);
         pass->timer.end();
     }
+    ++frameIndex_;
     hdr_ = frame.texture("radiance");
     ldr_ = frame.texture("display");
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -211,7 +238,8 @@ std::vector<PassTiming> Renderer::timings(int warmup) const {
 std::vector<ProgramDesc> allPrograms() {
     std::vector<ProgramDesc> all;
     for (auto list : {ShadowPass::programs(), GBufferPass::programs(), LightingPass::programs(),
-                      TonemapPass::programs(), PathTracePass::programs()})
+                      TonemapPass::programs(), PathTracePass::programs(), SsaoPass::programs(),
+                      AoReferencePass::programs()})
         all.insert(all.end(), list.begin(), list.end());
     return all;
 }

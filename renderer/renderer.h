@@ -22,6 +22,7 @@ namespace gis {
 enum class DiffuseModel { Lambert };
 enum class SpecularModel { Ggx, None };
 enum class Tonemapper { Aces, Linear };
+enum class DebugView { Final, AmbientOcclusion };
 
 DiffuseModel parseDiffuse(const std::string& s);
 SpecularModel parseSpecular(const std::string& s);
@@ -49,7 +50,19 @@ struct RenderSettings {
     int maxBounces = 16;               // indirect bounces; 0 = direct lighting only
     int russianRouletteStart = 3;      // bounce from which Russian roulette may end a path
     uint32_t seed = 0;                 // fixed: the same settings give the same image
+    // --gi ssao (and --gi ao-reference, which uses aoRadius)
+    int aoSamples = 16;                // directions in the hemisphere kernel
+    int aoSteps = 4;                   // points tested along each direction
+    float aoRadius = 0.0f;             // world units; 0 = 15% of the scene's bounding-box diagonal
+    float aoBias = 0.03f;              // depth bias as a fraction of the radius
+    float aoPower = 1.0f;              // AO^power (contrast)
+    bool aoBlur = true;                // bilateral 4x4 blur
+    bool aoHalfResolution = false;
+    bool aoTemporal = false;           // reprojected accumulation with per-frame noise rotation
+    DebugView view = DebugView::Final;
 };
+
+DebugView parseDebugView(const std::string& s);  // final, ao
 
 struct CameraMatrices {
     glm::mat4 view{1.0f}, proj{1.0f}, viewProj{1.0f}, invViewProj{1.0f};
@@ -65,6 +78,7 @@ struct Frame {
     CameraMatrices camera;
     std::map<std::string, GLuint> textures;
     std::map<std::string, GLuint> buffers;
+    uint64_t index = 0;                 // frames rendered before this one
     GLuint texture(const std::string& name) const;
     GLuint buffer(const std::string& name) const;
 };
@@ -113,7 +127,7 @@ private:
     std::vector<std::unique_ptr<Pass>> passes_;
     CameraMatrices camera_;
     GLuint hdr_ = 0, ldr_ = 0;
-    std::vector<double> firstFrame_;
+    uint64_t frameIndex_ = 0;
 };
 
 // Every program (with its permutations) any pass can request: the shader test compiles them all.

@@ -29,6 +29,18 @@ enum UniformLocation : int {
     U_MAX_BOUNCES = 42,
     U_EMITTER_COUNT = 43,
     U_RR_START = 44,
+    // ambient occlusion (SSAO, its blur and temporal passes, the ray-traced reference)
+    U_AO_RADIUS = 50,
+    U_AO_PARAMS = 51,        // bias (fraction of radius), power, steps per direction, noise offset
+    U_PROJ = 52,
+    U_INV_PROJ = 53,
+    U_VIEW = 54,
+    U_AO_KERNEL_SIZE = 55,
+    U_FRAME_INDEX = 56,
+    U_PREV_VIEW_PROJ = 57,
+    U_TEMPORAL_PARAMS = 58,  // max frames, has history, depth tolerance
+    U_AO_KERNEL = 64,        // array of 256 vec4: locations 64..319
+    U_DEBUG_VIEW = 28,       // lighting pass: 0 final image, 1 ambient occlusion only
     // tonemap pass
     U_EXPOSURE = 30,
     U_TONEMAPPER = 31,

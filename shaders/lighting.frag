@@ -12,6 +12,7 @@ layout(binding = 3) uniform sampler2D s_gbufMaterial;
 layout(binding = 4) uniform sampler2D s_gbufEmissive;
 layout(binding = 5) uniform sampler2DArrayShadow s_shadowMaps;
 layout(binding = 6) uniform samplerCubeArrayShadow s_shadowCubes;
+layout(binding = 7) uniform sampler2D s_ao;   // r = ambient occlusion (SSAO), or a 1x1 one
 
 layout(location = U_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = U_CAMERA_POS) uniform vec3 u_cameraPos;
@@ -20,7 +21,8 @@ layout(location = U_AMBIENT) uniform vec3 u_ambient;
 layout(location = U_BACKGROUND) uniform vec3 u_background;
 layout(location = U_BRDF_MODELS) uniform ivec2 u_brdfModels;
 layout(location = U_SHADOWS_ENABLED) uniform int u_shadowsEnabled;
-layout(location = U_MAX_RADIANCE) uniform float u_maxRadiance;  // 65504 for an RGBA16F target: no Inf
+layout(location = U_MAX_RADIANCE) uniform float u_maxRadiance;
+layout(location = U_DEBUG_VIEW) uniform int u_debugView;  // 0 final, 1 ambient occlusion only  // 65504 for an RGBA16F target: no Inf
 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_radiance;
@@ -72,7 +74,13 @@ void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     float depth = texelFetch(s_depth, pixel, 0).r;
     if (depth >= 1.0) {
-        o_radiance = vec4(min(u_background, vec3(u_maxRadiance)), 1.0);
+        o_radiance = vec4(u_debugView == 1 ? vec3(0.0) : min(u_background, vec3(u_maxRadiance)), 1.0);
+        return;
+    }
+    // SSAO may be at half resolution: bilinear upsampling of the (already depth-aware blurred) term.
+    float ao = texture(s_ao, v_uv).r;
+    if (u_debugView == 1) {
+        o_radiance = vec4(vec3(ao), 1.0);
         return;
     }
     vec4 world = u_invViewProj * vec4(v_uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
@@ -106,6 +114,7 @@ void main() {
         vec3 f = evaluateBrdf(surface, N, V, L, u_brdfModels.x, u_brdfModels.y);
         radiance += f * irradiance * NoL * shadowVisibility(light, P, N, NoL);
     }
-    radiance += u_ambient * (surface.diffuseColor + surface.f0) * material.z;
+    // Ambient/indirect only: L_ind = ambient * albedo * AO (material occlusion x screen-space AO).
+    radiance += u_ambient * (surface.diffuseColor + surface.f0) * material.z * ao;
     o_radiance = vec4(min(finiteOrZero(radiance), vec3(u_maxRadiance)), 1.0);
 }

@@ -15,6 +15,7 @@
 #define U_BRDF_MODELS 25
 #define U_SHADOWS_ENABLED 26
 #define U_MAX_RADIANCE 27
+#define U_DEBUG_VIEW 28
 #define U_EXPOSURE 30
 #define U_TONEMAPPER 31
 #define U_SAMPLE_INDEX 40
@@ -22,3 +23,13 @@
 #define U_MAX_BOUNCES 42
 #define U_EMITTER_COUNT 43
 #define U_RR_START 44
+#define U_AO_RADIUS 50
+#define U_AO_PARAMS 51
+#define U_PROJ 52
+#define U_INV_PROJ 53
+#define U_VIEW 54
+#define U_AO_KERNEL_SIZE 55
+#define U_FRAME_INDEX 56
+#define U_PREV_VIEW_PROJ 57
+#define U_TEMPORAL_PARAMS 58
+#define U_AO_KERNEL 64

@@ -17,9 +17,14 @@ std::vector<ProgramDesc> LightingPass::programs() {
     return {{"lighting", {"fullscreen.vert", "lighting.frag"}, {}}};
 }
 
-LightingPass::LightingPass(int width, int height, int lightCount, bool hdr32, gl::MemoryLedger& ledger)
-    : lightCount_(lightCount) {
+LightingPass::LightingPass(int width, int height, int lightCount, bool hdr32, bool useAo, gl::MemoryLedger& ledger)
+    : lightCount_(lightCount), useAo_(useAo) {
     radiance_ = gl::createTexture2D({&ledger, name()}, hdr32 ? GL_RGBA32F : GL_RGBA16F, width, height);
+    if (!useAo_) {  // without an AO pass the ambient term is unoccluded: a 1x1 texture of ones
+        noAo_ = gl::createTexture2D({&ledger, name()}, GL_RG16F, 1, 1);
+        const float one[2] = {1.0f, 0.0f};
+        glTextureSubImage2D(noAo_.id(), 0, 0, 0, 1, 1, GL_RG, GL_FLOAT, one);
+    }
     fbo_ = gl::createFramebuffer();
     glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, radiance_.id(), 0);
     gl::checkFramebuffer(fbo_.id(), "lighting");
@@ -35,12 +40,12 @@ void LightingPass::execute(Frame& frame) {
     glDisable(GL_DEPTH_TEST);
     glUseProgram(p);
     glBindVertexArray(vao_.id());
-    const GLuint textures[7] = {frame.texture("gbuffer.depth"),    frame.texture("gbuffer.baseColor"),
+    const GLuint textures[8] = {frame.texture("gbuffer.depth"),    frame.texture("gbuffer.baseColor"),
                                 frame.texture("gbuffer.normal"),   frame.texture("gbuffer.material"),
                                 frame.texture("gbuffer.emissive"), frame.texture("shadow.maps"),
-                                frame.texture("shadow.cubes")};
-    glBindTextures(0, 7, textures);
-    glBindSamplers(0, 7, nullptr);
+                                frame.texture("shadow.cubes"),     useAo_ ? frame.texture("ao") : noAo_.id()};
+    glBindTextures(0, 8, textures);
+    glBindSamplers(0, 8, nullptr);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame.buffer("lights"));
     glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, U_CAMERA_POS, 1, &frame.camera.position[0]);
@@ -50,6 +55,7 @@ void LightingPass::execute(Frame& frame) {
     glProgramUniform3fv(p, U_BACKGROUND, 1, &background[0]);
     glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));
     glProgramUniform1i(p, U_SHADOWS_ENABLED, s.shadows ? 1 : 0);
+    glProgramUniform1i(p, U_DEBUG_VIEW, int(s.view));
     glProgramUniform1f(p, U_MAX_RADIANCE, radiance_.format == GL_RGBA16F ? kMaxHalf : kMaxFloat);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     frame.textures["radiance"] = radiance_.id();

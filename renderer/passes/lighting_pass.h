@@ -8,20 +8,24 @@ namespace gis {
 
 class LightingPass final : public Pass {
 public:
-    LightingPass(int width, int height, int lightCount, bool hdr32, gl::MemoryLedger& ledger);
+    // useAo: multiply the ambient term by the "ao" texture another pass (SSAO) wrote.
+    LightingPass(int width, int height, int lightCount, bool hdr32, bool useAo, gl::MemoryLedger& ledger);
     const char* name() const override { return "lighting"; }
     std::vector<std::string> inputs() const override {
-        return {"gbuffer.depth", "gbuffer.baseColor", "gbuffer.normal", "gbuffer.material", "gbuffer.emissive",
-                "lights", "shadow.maps", "shadow.cubes"};
+        std::vector<std::string> in{"gbuffer.depth", "gbuffer.baseColor", "gbuffer.normal", "gbuffer.material",
+                                    "gbuffer.emissive", "lights", "shadow.maps", "shadow.cubes"};
+        if (useAo_) in.push_back("ao");
+        return in;
     }
     std::vector<std::string> outputs() const override { return {"radiance"}; }
     void execute(Frame& frame) override;
     static std::vector<ProgramDesc> programs();
 
 private:
-    gl::Texture radiance_;
+    gl::Texture radiance_, noAo_;
     gl::Object fbo_, program_, vao_;
     int lightCount_;
+    bool useAo_;
 };
 
 class TonemapPass final : public Pass {

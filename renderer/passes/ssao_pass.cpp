@@ -1,0 +1,190 @@
+#include "passes/ssao_pass.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "uniforms.h"
+
+namespace gis {
+
+namespace {
+constexpr int kMaxKernel = 256;         // shaders/ssao.frag MAX_AO_KERNEL
+constexpr float kTemporalFrames = 16;   // running mean over at most this many frames
+constexpr float kTemporalDepthTolerance = 0.02f;
+
+float radicalInverse(uint32_t bits) {  // van der Corput in base 2
+    bits = (bits << 16u) | (bits >> 16u);
+    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+    bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+    bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+    return float(bits) * 2.3283064365386963e-10f;
+}
+
+void setTextureFilter(GLuint tex, GLenum filter) {
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, filter);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+gl::Object colorTarget(const gl::Texture& tex, const char* what) {
+    gl::Object fbo = gl::createFramebuffer();
+    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, tex.id(), 0);
+    gl::checkFramebuffer(fbo.id(), what);
+    return fbo;
+}
+}  // namespace
+
+std::vector<glm::vec4> SsaoPass::kernel(int count) {
+    std::vector<glm::vec4> k;
+    for (int i = 0; i < count; ++i) {
+        const float u = (i + 0.5f) / float(count), v = radicalInverse(uint32_t(i));
+        const float r = std::sqrt(u), phi = 6.28318530718f * v;
+        k.emplace_back(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u)), 0.0f);
+    }
+    return k;
+}
+
+std::vector<ProgramDesc> SsaoPass::programs() {
+    return {{"ssao", {"fullscreen.vert", "ssao.frag"}, {}},
+            {"ssao_blur", {"fullscreen.vert", "ssao_blur.frag"}, {}},
+            {"ssao_temporal", {"fullscreen.vert", "ssao_temporal.frag"}, {}}};
+}
+
+SsaoPass::SsaoPass(const RenderSettings& s, gl::MemoryLedger& ledger)
+    : width_(s.aoHalfResolution ? std::max(1, s.width / 2) : s.width),
+      height_(s.aoHalfResolution ? std::max(1, s.height / 2) : s.height),
+      kernel_(kernel(std::min(s.aoSamples, kMaxKernel))) {
+    const gl::MemoryScope scope{&ledger, name()};
+    raw_ = gl::createTexture2D(scope, GL_RG16F, width_, height_);
+    rawFbo_ = colorTarget(raw_, "SSAO");
+    if (s.aoBlur) {
+        blurred_ = gl::createTexture2D(scope, GL_RG16F, width_, height_);
+        blurFbo_ = colorTarget(blurred_, "SSAO blur");
+    }
+    if (s.aoTemporal)
+        for (int i = 0; i < 2; ++i) {
+            history_[i] = gl::createTexture2D(scope, GL_RGBA16F, width_, height_);
+            historyFbo_[i] = colorTarget(history_[i], "SSAO history");
+        }
+    for (const gl::Texture* t : {&raw_, &blurred_, &history_[0], &history_[1]})
+        if (t->id()) setTextureFilter(t->id(), GL_LINEAR);
+    // 4x4 random rotations (unit vectors in the tangent plane), fixed seed: deterministic images.
+    noise_ = gl::createTexture2D(scope, GL_RG16F, 4, 4);
+    float rotations[32];
+    uint32_t state = 12345u;
+    for (int i = 0; i < 16; ++i) {
+        state = state * 747796405u + 2891336453u;
+        const float angle = 6.28318530718f * float(state >> 8) / 16777216.0f;
+        rotations[2 * i] = std::cos(angle);
+        rotations[2 * i + 1] = std::sin(angle);
+    }
+    glTextureSubImage2D(noise_.id(), 0, 0, 0, 4, 4, GL_RG, GL_FLOAT, rotations);
+    setTextureFilter(noise_.id(), GL_NEAREST);
+    const auto progs = programs();
+    ssaoProgram_ = buildProgram(progs[0]);
+    blurProgram_ = buildProgram(progs[1]);
+    temporalProgram_ = buildProgram(progs[2]);
+    vao_ = gl::createVertexArray();
+    sampler_ = gl::createSampler();
+    glSamplerParameteri(sampler_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glSamplerParameteri(sampler_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glSamplerParameteri(sampler_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(sampler_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+void SsaoPass::execute(Frame& frame) {
+    const RenderSettings& s = frame.settings;
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(vao_.id());
+    glViewport(0, 0, width_, height_);
+    const GLuint samplers[3] = {sampler_.id(), 0, 0};  // linear depth for the sample tests
+    glBindSamplers(0, 3, samplers);
+
+    // 1. Raw AO.
+    GLuint p = ssaoProgram_.id();
+    glUseProgram(p);
+    glBindFramebuffer(GL_FRAMEBUFFER, rawFbo_.id());
+    const GLuint inputs[3] = {frame.texture("gbuffer.depth"), frame.texture("gbuffer.normal"), noise_.id()};
+    glBindTextures(0, 3, inputs);
+    const glm::mat4 invProj = glm::inverse(frame.camera.proj);
+    glProgramUniformMatrix4fv(p, U_PROJ, 1, GL_FALSE, &frame.camera.proj[0][0]);
+    glProgramUniformMatrix4fv(p, U_INV_PROJ, 1, GL_FALSE, &invProj[0][0]);
+    glProgramUniformMatrix4fv(p, U_VIEW, 1, GL_FALSE, &frame.camera.view[0][0]);
+    glProgramUniform1f(p, U_AO_RADIUS, s.aoRadius);
+    // With temporal accumulation the noise tile shifts every frame, so the running mean sees
+    // every rotation; without it the pattern stays put (no flicker on a still camera).
+    const float noiseOffset = s.aoTemporal ? float(frame.index % 16) : 0.0f;
+    glProgramUniform4f(p, U_AO_PARAMS, s.aoBias, s.aoPower, float(s.aoSteps), noiseOffset);
+    glProgramUniform1i(p, U_AO_KERNEL_SIZE, int(kernel_.size()));
+    glProgramUniform4fv(p, U_AO_KERNEL, GLsizei(kernel_.size()), &kernel_[0][0]);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    GLuint result = raw_.id();
+
+    // 2. Bilateral blur over the noise tile.
+    if (blurred_.id()) {
+        glBindSamplers(0, 3, nullptr);
+        glUseProgram(blurProgram_.id());
+        glProgramUniformMatrix4fv(blurProgram_.id(), U_INV_PROJ, 1, GL_FALSE, &invProj[0][0]);
+        glProgramUniformMatrix4fv(blurProgram_.id(), U_VIEW, 1, GL_FALSE, &frame.camera.view[0][0]);
+        glBindFramebuffer(GL_FRAMEBUFFER, blurFbo_.id());
+        const GLuint blurInputs[2] = {result, frame.texture("gbuffer.normal")};
+        glBindTextures(0, 2, blurInputs);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        result = blurred_.id();
+    }
+
+    // 3. Temporal accumulation into the history texture we did not read last frame.
+    if (history_[0].id()) {
+        const int next = 1 - current_;
+        p = temporalProgram_.id();
+        glUseProgram(p);
+        glBindFramebuffer(GL_FRAMEBUFFER, historyFbo_[next].id());
+        const GLuint temporalInputs[3] = {result, history_[current_].id(), frame.texture("gbuffer.depth")};
+        glBindTextures(0, 3, temporalInputs);
+        glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
+        glProgramUniformMatrix4fv(p, U_PREV_VIEW_PROJ, 1, GL_FALSE, &prevViewProj_[0][0]);
+        glProgramUniform4f(p, U_TEMPORAL_PARAMS, kTemporalFrames, hasHistory_ ? 1.0f : 0.0f, kTemporalDepthTolerance, 0.0f);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        current_ = next;
+        hasHistory_ = true;
+        prevViewProj_ = frame.camera.viewProj;
+        result = history_[current_].id();
+    }
+    frame.textures["ao"] = result;
+}
+
+std::vector<ProgramDesc> AoReferencePass::programs() { return {{"ao_reference", {"ao_reference.comp"}, {}}}; }
+
+AoReferencePass::AoReferencePass(const GpuScene& scene, const RenderSettings& s, gl::MemoryLedger& ledger)
+    : rays_(scene, ledger, name()), targetSamples_(s.spp), samplesPerFrame_(std::max(1, s.samplesPerFrame)) {
+    const gl::MemoryScope scope{&ledger, name()};
+    accumulation_ = gl::createTexture2D(scope, GL_RGBA32F, s.width, s.height);
+    output_ = gl::createTexture2D(scope, GL_RGBA32F, s.width, s.height);
+    program_ = buildProgram(programs()[0]);
+}
+
+void AoReferencePass::execute(Frame& frame) {
+    frame.textures["radiance"] = output_.id();
+    if (done()) return;
+    const GLuint p = program_.id();
+    glUseProgram(p);
+    rays_.bind();
+    glBindImageTexture(0, accumulation_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(1, output_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
+    glProgramUniform1ui(p, U_SEED, frame.settings.seed);
+    glProgramUniform1f(p, U_AO_RADIUS, frame.settings.aoRadius);
+    const int batch = std::min(samplesPerFrame_, targetSamples_ - samplesDone_);
+    for (int i = 0; i < batch; ++i) {
+        glProgramUniform1ui(p, U_SAMPLE_INDEX, GLuint(samplesDone_));
+        glDispatchCompute(GLuint((output_.width + 7) / 8), GLuint((output_.height + 7) / 8), 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        ++samplesDone_;
+    }
+}
+
+}  // namespace gis
