@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +30,7 @@ struct BenchRow {
     std::vector<std::pair<std::string, double>> passMs;
     int64_t bytes = 0;
     ImageMetrics error;
+    double aoRmse = -1.0;                     // SSAO only: its AO term against ray-traced AO
 };
 
 // The reference depends on the scene (and the file's size and time for glTF files), camera,
@@ -147,6 +149,25 @@ int runBench(const BenchOptions& o) {
                 writeExr(refPath, reference);
             }
         }
+        // Ray-traced AO, SSAO's own ground truth, cached the same way (only when SSAO is measured).
+        ImageF aoReference;
+        if (std::find(methods.begin(), methods.end(), "ssao") != methods.end()) {
+            RenderSettings aoSettings = base;
+            aoSettings.gi = "ao-reference";
+            aoSettings.spp = o.referenceSpp;
+            aoSettings.samplesPerFrame = 64;
+            const std::string aoPath = cacheDir + "/ao_reference_" + fileSafe(sceneName) + "_" +
+                                       referenceKey(o.scenes[si], aoSettings) + ".exr";
+            if (fs::exists(aoPath)) {
+                aoReference = readExr(aoPath);
+            } else {
+                Renderer aoRenderer(scene, aoSettings);
+                do aoRenderer.renderFrame();
+                while (!aoRenderer.converged());
+                aoReference = aoRenderer.readHdr();
+                writeExr(aoPath, aoReference);
+            }
+        }
         std::vector<std::pair<std::string, ImageU8>> tiles;
         tiles.emplace_back("reference  path traced, " + std::to_string(o.referenceSpp) + " spp", toLdrImage(reference, DisplaySettings{}));
 
@@ -164,6 +185,13 @@ int runBench(const BenchOptions& o) {
                 measure(renderer, o.frames, o.warmup, row);
                 const ImageF image = renderer.readHdr();
                 row.error = compareImages(image, reference);
+                if (methods[mi] == "ssao" && !aoReference.rgba.empty()) {
+                    RenderSettings aoView = s;
+                    aoView.view = DebugView::AmbientOcclusion;
+                    Renderer aoRenderer(scene, aoView);
+                    aoRenderer.renderFrame();
+                    row.aoRmse = rmse(aoRenderer.readHdr(), aoReference);
+                }
                 const double y = metric == ErrorMetric::Flip     ? row.error.flip
                                  : metric == ErrorMetric::Rmse   ? row.error.rmse
                                  : metric == ErrorMetric::RelMse ? row.error.relMse
@@ -174,9 +202,10 @@ int runBench(const BenchOptions& o) {
                 char caption[200];
                 std::snprintf(caption, sizeof caption, "%s  %.1f ms, %s %.4f", label, row.ms, o.metric.c_str(), y);
                 tiles.emplace_back(caption, renderer.readLdr());
-                std::fprintf(stderr, "%-14s %-10s %-8s %10.2f ms %8.2f MiB  FLIP %.4f  RMSE %.5f  SSIM %.4f\n",
+                std::fprintf(stderr, "%-14s %-10s %-8s %10.2f ms %8.2f MiB  FLIP %.4f  RMSE %.5f  SSIM %.4f%s\n",
                              sceneName.c_str(), row.method.c_str(), row.preset.c_str(), row.ms,
-                             double(row.bytes) / (1 << 20), row.error.flip, row.error.rmse, row.error.ssim);
+                             double(row.bytes) / (1 << 20), row.error.flip, row.error.rmse, row.error.ssim,
+                             row.aoRmse >= 0.0 ? ("  AO RMSE " + std::to_string(row.aoRmse)).c_str() : "");
                 rows.push_back(row);
             }
         const std::string stem = o.outDir + "/" + fileSafe(sceneName);
@@ -201,6 +230,7 @@ int runBench(const BenchOptions& o) {
                                  {"rmse", r.error.rmse}, {"relmse", r.error.relMse}, {"psnr_linear", r.error.psnrLinear},
                                  {"psnr_srgb", r.error.psnrSrgb}, {"ssim", r.error.ssim}, {"flip", r.error.flip}};
         for (const auto& [pass, ms] : r.passMs) e["pass_ms"][pass] = ms;
+        if (r.aoRmse >= 0.0) e["ao_rmse_vs_raytraced"] = r.aoRmse;
         j["results"].push_back(e);
     }
     writeAtomically(o.outDir + "/bench.json", [&](const std::string& tmp) {
@@ -210,11 +240,12 @@ int runBench(const BenchOptions& o) {
     });
     writeAtomically(o.outDir + "/bench.csv", [&](const std::string& tmp) {
         std::ofstream f(tmp);
-        f << "scene,method,preset,gpu_ms,gpu_bytes,rmse,relmse,psnr_linear,psnr_srgb,ssim,flip\n";
+        f << "scene,method,preset,gpu_ms,gpu_bytes,rmse,relmse,psnr_linear,psnr_srgb,ssim,flip,ao_rmse\n";
         for (const BenchRow& r : rows)
             f << r.scene << "," << r.method << "," << r.preset << "," << r.ms << "," << r.bytes << "," << r.error.rmse
               << "," << r.error.relMse << "," << formatMetric(r.error.psnrLinear) << ","
-              << formatMetric(r.error.psnrSrgb) << "," << r.error.ssim << "," << r.error.flip << "\n";
+              << formatMetric(r.error.psnrSrgb) << "," << r.error.ssim << "," << r.error.flip << ","
+              << (r.aoRmse >= 0.0 ? std::to_string(r.aoRmse) : std::string()) << "\n";
         if (!f) throw Error(o.outDir + "/bench.csv: cannot write");
     });
     std::printf("wrote %s/bench.json, %s/bench.csv and a grid and chart per scene\n", o.outDir.c_str(), o.outDir.c_str());

@@ -22,7 +22,7 @@ TEST(Bench, RunsEndToEndAndCachesTheReference) {
     std::ifstream jf(dir + "/bench.json");
     const nlohmann::json j = nlohmann::json::parse(jf);
     EXPECT_FALSE(j["machine"]["gl_renderer"].get<std::string>().empty());
-    ASSERT_EQ(j["results"].size(), 4u);  // {none, pathtrace} x {low, high}
+    ASSERT_EQ(j["results"].size(), 6u);  // {none, ssao, pathtrace} x {low, high}
     for (const auto& row : j["results"]) {
         EXPECT_EQ(row["scene"], "cornell");
         EXPECT_GT(row["gpu_ms"].get<double>(), 0.0) << row.dump();
@@ -31,12 +31,16 @@ TEST(Bench, RunsEndToEndAndCachesTheReference) {
         EXPECT_LE(row["flip"].get<double>(), 1.0);
         EXPECT_GE(row["rmse"].get<double>(), 0.0);
         EXPECT_TRUE(row["pass_ms"].is_object());
+        if (row["method"] == "ssao") {
+            EXPECT_GT(row["ao_rmse_vs_raytraced"].get<double>(), 0.0);
+            EXPECT_LT(row["ao_rmse_vs_raytraced"].get<double>(), 0.5);
+        }
     }
     std::ifstream cf(dir + "/bench.csv");
     std::string line;
     int lines = 0;
     while (std::getline(cf, line)) ++lines;
-    EXPECT_EQ(lines, 5);  // header + 4 rows
+    EXPECT_EQ(lines, 7);  // header + 6 rows
     const ImageU8 chart = readPng(dir + "/cornell_chart.png"), grid = readPng(dir + "/cornell_grid.png");
     EXPECT_GT(chart.width, 100);
     EXPECT_GT(grid.width, 100);
