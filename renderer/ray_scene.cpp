@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "lights.h"
+#include "uniforms.h"
 
 namespace gis {
 
@@ -161,6 +162,24 @@ void RayScene::bind() const {
     const GLuint tex = textures.id(), smp = sampler.id();
     glBindTextures(0, 1, &tex);
     glBindSamplers(0, 1, &smp);
+}
+
+SampleAccumulator::SampleAccumulator(const gl::MemoryScope& scope, int width, int height, int target_, int perFrame_)
+    : target(target_), perFrame(std::max(1, perFrame_)) {
+    sum = gl::createTexture2D(scope, GL_RGBA32F, width, height);
+    mean = gl::createTexture2D(scope, GL_RGBA32F, width, height);
+}
+
+void SampleAccumulator::runBatch(GLuint program) {
+    glBindImageTexture(0, sum.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(1, mean.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    const int batch = std::min(perFrame, target - done);
+    for (int i = 0; i < batch; ++i) {
+        glProgramUniform1ui(program, U_SAMPLE_INDEX, GLuint(done));
+        glDispatchCompute(GLuint((mean.width + 7) / 8), GLuint((mean.height + 7) / 8), 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        ++done;
+    }
 }
 
 }  // namespace gis

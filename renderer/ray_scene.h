@@ -23,4 +23,17 @@ struct RayScene {
     size_t emitterCount = 0;
 };
 
+// What the progressive ray tracers share: one sample per pixel per dispatch, summed in `sum`,
+// with `mean` (image unit 1) the image so far, until `target` samples are in.
+struct SampleAccumulator {
+    SampleAccumulator(const gl::MemoryScope& scope, int width, int height, int target, int perFrame);
+    // Binds the images (units 0 and 1) and dispatches this frame's batch of `program`, one sample
+    // each (U_SAMPLE_INDEX = samples done so far).
+    void runBatch(GLuint program);
+    bool finished() const { return done >= target; }
+
+    gl::Texture sum, mean;
+    int done = 0, target = 0, perFrame = 1;
+};
+
 }  // namespace gis

@@ -15,18 +15,17 @@ public:
     const char* name() const override { return "pathtrace"; }
     std::vector<std::string> outputs() const override { return {"radiance"}; }
     void execute(Frame& frame) override;
-    bool reusedLastFrame() const override { return done(); }
+    bool reusedLastFrame() const override { return samples_.finished(); }
     static std::vector<ProgramDesc> programs();
 
-    int samplesDone() const { return samplesDone_; }
-    bool done() const { return samplesDone_ >= targetSamples_; }
+    int samplesDone() const { return samples_.done; }
+    bool done() const { return samples_.finished(); }
     const Bvh& bvh() const { return rays_.bvh; }
 
 private:
     RayScene rays_;
-    gl::Texture accumulation_, output_;
+    SampleAccumulator samples_;
     gl::Object program_;
-    int samplesDone_ = 0, targetSamples_ = 0, samplesPerFrame_ = 1;
 };
 
 }  // namespace gis

@@ -160,31 +160,20 @@ void SsaoPass::execute(Frame& frame) {
 std::vector<ProgramDesc> AoReferencePass::programs() { return {{"ao_reference", {"ao_reference.comp"}, {}}}; }
 
 AoReferencePass::AoReferencePass(const GpuScene& scene, const RenderSettings& s, gl::MemoryLedger& ledger)
-    : rays_(scene, ledger, name()), targetSamples_(s.spp), samplesPerFrame_(std::max(1, s.samplesPerFrame)) {
-    const gl::MemoryScope scope{&ledger, name()};
-    accumulation_ = gl::createTexture2D(scope, GL_RGBA32F, s.width, s.height);
-    output_ = gl::createTexture2D(scope, GL_RGBA32F, s.width, s.height);
+    : rays_(scene, ledger, name()), samples_({&ledger, name()}, s.width, s.height, s.spp, s.samplesPerFrame) {
     program_ = buildProgram(programs()[0]);
 }
 
 void AoReferencePass::execute(Frame& frame) {
-    frame.textures["radiance"] = output_.id();
+    frame.textures["radiance"] = samples_.mean.id();
     if (done()) return;
     const GLuint p = program_.id();
     glUseProgram(p);
     rays_.bind();
-    glBindImageTexture(0, accumulation_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-    glBindImageTexture(1, output_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform1ui(p, U_SEED, frame.settings.seed);
     glProgramUniform1f(p, U_AO_RADIUS, frame.settings.aoRadius);
-    const int batch = std::min(samplesPerFrame_, targetSamples_ - samplesDone_);
-    for (int i = 0; i < batch; ++i) {
-        glProgramUniform1ui(p, U_SAMPLE_INDEX, GLuint(samplesDone_));
-        glDispatchCompute(GLuint((output_.width + 7) / 8), GLuint((output_.height + 7) / 8), 1);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-        ++samplesDone_;
-    }
+    samples_.runBatch(p);
 }
 
 }  // namespace gis
