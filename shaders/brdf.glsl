@@ -15,14 +15,17 @@ const float MIN_N_DOT_V = 1e-4;
 struct SurfaceBrdf {
     vec3 diffuseColor;   // baseColor * (1 - metallic)
     vec3 f0;             // specular reflectance at normal incidence
+    float f90;           // specular reflectance at grazing incidence
     float roughness;     // perceptual, >= MIN_ROUGHNESS
 };
 
 SurfaceBrdf makeSurfaceBrdf(vec3 baseColor, float metallic, float roughness, float specularFactor) {
     SurfaceBrdf s;
     s.diffuseColor = baseColor * (1.0 - metallic);
-    // Dielectric F0 = 0.04 (IOR 1.5) scaled by KHR_materials_specular; metals tint it.
+    // Dielectric F0 = 0.04 (IOR 1.5). KHR_materials_specular's factor scales the whole dielectric
+    // lobe, F0 and F90 alike: a factor of 0 means no specular reflection at any angle. Metals tint F0.
     s.f0 = mix(vec3(0.04 * specularFactor), baseColor, metallic);
+    s.f90 = mix(specularFactor, 1.0, metallic);
     s.roughness = clamp(roughness, MIN_ROUGHNESS, 1.0);
     return s;
 }
@@ -43,16 +46,16 @@ float visibilitySmithGgxHammon(float NoV, float NoL, float alpha) {
     return 0.5 / max(mix(2.0 * NoL * NoV, NoL + NoV, alpha), 1e-8);
 }
 
-// Schlick 1994 Fresnel.
-vec3 fresnelSchlick(vec3 f0, float VoH) {
+// Schlick 1994 Fresnel, with the grazing reflectance f90.
+vec3 fresnelSchlick(vec3 f0, float f90, float VoH) {
     float m = 1.0 - saturate(VoH);
     float m2 = m * m;
-    return f0 + (vec3(1.0) - f0) * (m2 * m2 * m);
+    return f0 + (vec3(f90) - f0) * (m2 * m2 * m);
 }
 
 vec3 specularGgx(SurfaceBrdf s, float NoV, float NoL, float NoH, float VoH) {
     float alpha = s.roughness * s.roughness;
-    return distributionGgx(NoH, alpha) * visibilitySmithGgxHammon(NoV, NoL, alpha) * fresnelSchlick(s.f0, VoH);
+    return distributionGgx(NoH, alpha) * visibilitySmithGgxHammon(NoV, NoL, alpha) * fresnelSchlick(s.f0, s.f90, VoH);
 }
 
 // f(l, v) for unit N, V, L. NoL <= 0 gives 0; NoV is floored at MIN_N_DOT_V.
