@@ -12,15 +12,21 @@
 
 namespace gis {
 
+namespace {
+const char* const kDiffuseNames[kDiffuseModelCount] = {"lambert", "wrap", "toon", "burley"};
+const char* const kSpecularNames[kSpecularModelCount] = {"ggx", "blinn", "toon", "none"};
+}  // namespace
+
 DiffuseModel parseDiffuse(const std::string& s) {
-    if (s == "lambert") return DiffuseModel::Lambert;
-    throw Error("unknown diffuse BRDF '" + s + "' (expected lambert)");
+    for (int i = 0; i < kDiffuseModelCount; ++i)
+        if (s == kDiffuseNames[i]) return DiffuseModel(i);
+    throw Error("unknown diffuse BRDF '" + s + "' (expected lambert, wrap, toon or burley)");
 }
 
 SpecularModel parseSpecular(const std::string& s) {
-    if (s == "ggx") return SpecularModel::Ggx;
-    if (s == "none") return SpecularModel::None;
-    throw Error("unknown specular BRDF '" + s + "' (expected ggx or none)");
+    for (int i = 0; i < kSpecularModelCount; ++i)
+        if (s == kSpecularNames[i]) return SpecularModel(i);
+    throw Error("unknown specular BRDF '" + s + "' (expected ggx, blinn, toon or none)");
 }
 
 Tonemapper parseTonemapper(const std::string& s) {
@@ -87,6 +93,8 @@ void checkSettings(const RenderSettings& s) {
         if (!std::isfinite(s.ambient[c]) || s.ambient[c] < 0.0f)
             throw Error("ambient radiance must be finite and non-negative");
     checkGiMethod(s.gi);
+    if (int(s.diffuse) < 0 || int(s.diffuse) >= kDiffuseModelCount) throw Error("diffuse BRDF model out of range");
+    if (int(s.specular) < 0 || int(s.specular) >= kSpecularModelCount) throw Error("specular BRDF model out of range");
 }
 }  // namespace
 
@@ -183,10 +191,13 @@ std::vector<PassTiming> Renderer::timings(int warmup) const {
     return out;
 }
 
+ProgramDesc brdfProbeProgram() { return {"brdf_probe", {"brdf_probe.comp"}, {}}; }
+
 std::vector<ProgramDesc> allPrograms() {
     std::vector<ProgramDesc> all;
     for (auto list : {ShadowPass::programs(), GBufferPass::programs(), LightingPass::programs(), TonemapPass::programs()})
         all.insert(all.end(), list.begin(), list.end());
+    all.push_back(brdfProbeProgram());
     return all;
 }
 

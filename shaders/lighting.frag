@@ -18,7 +18,7 @@ layout(location = U_CAMERA_POS) uniform vec3 u_cameraPos;
 layout(location = U_LIGHT_COUNT) uniform int u_lightCount;
 layout(location = U_AMBIENT) uniform vec3 u_ambient;
 layout(location = U_BACKGROUND) uniform vec3 u_background;
-layout(location = U_BRDF_MODELS) uniform ivec2 u_brdfModels;
+layout(location = U_BRDF_MODELS) uniform ivec2 u_brdfModels;  // diffuse, specular: --diffuse, --specular
 layout(location = U_SHADOWS_ENABLED) uniform int u_shadowsEnabled;
 layout(location = U_MAX_RADIANCE) uniform float u_maxRadiance;  // 65504 for an RGBA16F target: no Inf
 
@@ -101,10 +101,11 @@ void main() {
             if (type == LIGHT_SPOT)
                 irradiance *= spotCone(dot(-L, light.directionRange.xyz), light.cone.x, light.cone.y);
         }
-        float NoL = dot(N, L);
-        if (NoL <= 0.0 || all(equal(irradiance, vec3(0.0)))) continue;
-        vec3 f = evaluateBrdf(surface, N, V, L, u_brdfModels.x, u_brdfModels.y);
-        radiance += f * irradiance * NoL * shadowVisibility(light, P, N, NoL);
+        if (all(equal(irradiance, vec3(0.0)))) continue;
+        // f * cos(theta_l); wrap and toon diffuse also reach a little past N.L = 0.
+        vec3 response = evaluateBrdfCosine(surface, N, V, L, u_brdfModels.x, u_brdfModels.y);
+        if (all(equal(response, vec3(0.0)))) continue;
+        radiance += response * irradiance * shadowVisibility(light, P, N, dot(N, L));
     }
     radiance += u_ambient * (surface.diffuseColor + surface.f0) * material.z;
     o_radiance = vec4(min(finiteOrZero(radiance), vec3(u_maxRadiance)), 1.0);
