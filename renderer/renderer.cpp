@@ -96,10 +96,20 @@ void checkSettings(const RenderSettings& s) {
     if (int(s.diffuse) < 0 || int(s.diffuse) >= kDiffuseModelCount) throw Error("diffuse BRDF model out of range");
     if (int(s.specular) < 0 || int(s.specular) >= kSpecularModelCount) throw Error("specular BRDF model out of range");
 }
+
+// A material's BRDF override must name a model or be -1 (the render's setting).
+void checkMaterials(const Scene& scene) {
+    for (const Material& m : scene.materials)
+        if (m.diffuseModel < -1 || m.diffuseModel >= kDiffuseModelCount || m.specularModel < -1 ||
+            m.specularModel >= kSpecularModelCount)
+            throw Error("material '" + m.name + "': BRDF model override (" + std::to_string(m.diffuseModel) + ", " +
+                        std::to_string(m.specularModel) + ") is out of range");
+}
 }  // namespace
 
 Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : settings_(settings) {
     checkSettings(settings_);
+    checkMaterials(scene);
     camera_ = cameraMatrices(scene, settings_.camera, float(settings_.width) / float(settings_.height));
     gpuScene_ = std::make_unique<GpuScene>(scene, ledger_);
     const int w = settings_.width, h = settings_.height;

@@ -2,6 +2,7 @@
 // term that is the `--gi none` baseline. Output is linear radiance.
 #include "common.glsl"
 #include "brdf.glsl"
+#include "gbuffer_layout.glsl"
 #include "lights.glsl"
 #include "uniforms.glsl"
 
@@ -77,7 +78,9 @@ void main() {
     }
     vec4 world = u_invViewProj * vec4(v_uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
     vec3 P = world.xyz / world.w;
-    vec3 N = normalize(texelFetch(s_gbufNormal, pixel, 0).xyz);
+    vec4 normalAndModels = texelFetch(s_gbufNormal, pixel, 0);
+    vec3 N = normalize(normalAndModels.xyz);
+    ivec2 models = decodeBrdfOverride(normalAndModels.w, u_brdfModels);  // a material may override them
     vec3 baseColor = texelFetch(s_gbufBaseColor, pixel, 0).rgb;
     vec4 material = texelFetch(s_gbufMaterial, pixel, 0);  // metallic, roughness, occlusion, specular
     vec3 emissive = texelFetch(s_gbufEmissive, pixel, 0).rgb;
@@ -103,7 +106,7 @@ void main() {
         }
         if (all(equal(irradiance, vec3(0.0)))) continue;
         // f * cos(theta_l); wrap and toon diffuse also reach a little past N.L = 0.
-        vec3 response = evaluateBrdfCosine(surface, N, V, L, u_brdfModels.x, u_brdfModels.y);
+        vec3 response = evaluateBrdfCosine(surface, N, V, L, models.x, models.y);
         if (all(equal(response, vec3(0.0)))) continue;
         radiance += response * irradiance * shadowVisibility(light, P, N, dot(N, L));
     }
