@@ -50,7 +50,8 @@ double mib(int64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 }  // namespace
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
-    cmd.add_option("--scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME (cornell, cornell-area)")->required();
+    cmd.add_option("--scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME (cornell, cornell-area, brdf-gallery)")
+        ->required();
     cmd.add_option("--out", o.out, "Output image: .png (tonemapped sRGB 8-bit) or .exr (linear float radiance)")
         ->required();
     cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT")->capture_default_str();
