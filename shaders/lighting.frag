@@ -80,11 +80,7 @@ void main() {
     vec3 P = world.xyz / world.w;
     vec4 normalAndModels = texelFetch(s_gbufNormal, pixel, 0);
     vec3 N = normalize(normalAndModels.xyz);
-#ifdef BRDF_DIFFUSE_MODEL
-    ivec2 models = ivec2(BRDF_DIFFUSE_MODEL, BRDF_SPECULAR_MODEL);  // compiled-in permutation
-#else
     ivec2 models = decodeBrdfOverride(normalAndModels.w, u_brdfModels);  // a material may override them
-#endif
     vec3 baseColor = texelFetch(s_gbufBaseColor, pixel, 0).rgb;
     vec4 material = texelFetch(s_gbufMaterial, pixel, 0);  // metallic, roughness, occlusion, specular
     vec3 emissive = texelFetch(s_gbufEmissive, pixel, 0).rgb;

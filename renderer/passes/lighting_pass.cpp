@@ -1,7 +1,6 @@
 #include "passes/lighting_pass.h"
 
 #include <cmath>
-#include <cstdlib>
 
 #include "uniforms.h"
 
@@ -15,13 +14,7 @@ constexpr float kMaxFloat = 3.0e38f;
 }  // namespace
 
 std::vector<ProgramDesc> LightingPass::programs() {
-    std::vector<ProgramDesc> all = {{"lighting", {"fullscreen.vert", "lighting.frag"}, {}}};
-    for (int d = 0; d < kDiffuseModelCount; ++d)
-        for (int s = 0; s < kSpecularModelCount; ++s)
-            all.push_back({"lighting_d" + std::to_string(d) + "_s" + std::to_string(s),
-                           {"fullscreen.vert", "lighting.frag"},
-                           {{"BRDF_DIFFUSE_MODEL", std::to_string(d)}, {"BRDF_SPECULAR_MODEL", std::to_string(s)}}});
-    return all;
+    return {{"lighting", {"fullscreen.vert", "lighting.frag"}, {}}};
 }
 
 LightingPass::LightingPass(int width, int height, int lightCount, bool hdr32, gl::MemoryLedger& ledger)
@@ -30,21 +23,13 @@ LightingPass::LightingPass(int width, int height, int lightCount, bool hdr32, gl
     fbo_ = gl::createFramebuffer();
     glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, radiance_.id(), 0);
     gl::checkFramebuffer(fbo_.id(), "lighting");
-    const char* perm = std::getenv("GIS_BRDF_PERMUTATIONS");
-    usePermutations_ = perm && std::string(perm) == "1";
-    if (usePermutations_) {
-        const auto all = programs();
-        for (size_t i = 1; i < all.size(); ++i) permutations_.push_back(buildProgram(all[i]));
-    } else {
-        program_ = buildProgram(programs()[0]);
-    }
+    program_ = buildProgram(programs()[0]);
     vao_ = gl::createVertexArray();
 }
 
 void LightingPass::execute(Frame& frame) {
     const RenderSettings& s = frame.settings;
-    const GLuint p = usePermutations_ ? permutations_[size_t(s.diffuse) * kSpecularModelCount + size_t(s.specular)].id()
-                                      : program_.id();
+    const GLuint p = program_.id();
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
     glViewport(0, 0, radiance_.width, radiance_.height);
     glDisable(GL_DEPTH_TEST);

@@ -21,8 +21,6 @@ public:
 private:
     gl::Texture radiance_;
     gl::Object fbo_, program_, vao_;
-    std::vector<gl::Object> permutations_;  // diffuse * 4 + specular
-    bool usePermutations_ = false;
     int lightCount_;
 };
 
