@@ -86,7 +86,8 @@ private:
 }  // namespace
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
-    cmd.add_option("--scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME (cornell, cornell-area)")->required();
+    cmd.add_option("--scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME (cornell, cornell-area, brdf-gallery)")
+        ->required();
     cmd.add_option("--out", o.out, "Output image: .png (tonemapped sRGB 8-bit) or .exr (linear float radiance)")
         ->required();
     cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT")->capture_default_str();
@@ -95,8 +96,11 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--camera", o.camera, "Index of the glTF camera (a default camera frames the scene if it has none)")
         ->capture_default_str();
     cmd.add_option("--gi", o.gi, "Global illumination method: " + giMethodNames())->capture_default_str();
-    cmd.add_option("--diffuse", o.diffuse, "Diffuse BRDF: lambert")->capture_default_str();
-    cmd.add_option("--specular", o.specular, "Specular BRDF: ggx, none")->capture_default_str();
+    cmd.add_option("--diffuse", o.diffuse, "Diffuse BRDF: lambert, wrap (roughness-driven wrap), toon, burley")
+        ->capture_default_str();
+    cmd.add_option("--specular", o.specular,
+                   "Specular BRDF: ggx (Schlick-GGX), blinn (normalised Blinn-Phong), toon, none")
+        ->capture_default_str();
     cmd.add_option("--tonemap", o.tonemap, "Tone mapper for PNG output: aces (fitted), linear (clamp)")
         ->capture_default_str();
     cmd.add_option("--exposure", o.exposure, "Exposure in EV (scale 2^EV) before tone mapping")->capture_default_str();

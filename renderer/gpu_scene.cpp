@@ -111,6 +111,7 @@ void GpuScene::setDrawUniforms(GLuint program, const GpuDraw& draw) const {
     glProgramUniform4f(program, U_ALPHA_PARAMS, m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f,
                        m.normalScale, materials[draw.material].hasNormalMap ? 1.0f : 0.0f,
                        m.doubleSided ? 1.0f : 0.0f);
+    glProgramUniform2i(program, U_BRDF_OVERRIDE, m.diffuseModel, m.specularModel);
 }
 
 }  // namespace gis

@@ -14,15 +14,21 @@
 
 namespace gis {
 
+namespace {
+const char* const kDiffuseNames[kDiffuseModelCount] = {"lambert", "wrap", "toon", "burley"};
+const char* const kSpecularNames[kSpecularModelCount] = {"ggx", "blinn", "toon", "none"};
+}  // namespace
+
 DiffuseModel parseDiffuse(const std::string& s) {
-    if (s == "lambert") return DiffuseModel::Lambert;
-    throw Error("unknown diffuse BRDF '" + s + "' (expected lambert)");
+    for (int i = 0; i < kDiffuseModelCount; ++i)
+        if (s == kDiffuseNames[i]) return DiffuseModel(i);
+    throw Error("unknown diffuse BRDF '" + s + "' (expected lambert, wrap, toon or burley)");
 }
 
 SpecularModel parseSpecular(const std::string& s) {
-    if (s == "ggx") return SpecularModel::Ggx;
-    if (s == "none") return SpecularModel::None;
-    throw Error("unknown specular BRDF '" + s + "' (expected ggx or none)");
+    for (int i = 0; i < kSpecularModelCount; ++i)
+        if (s == kSpecularNames[i]) return SpecularModel(i);
+    throw Error("unknown specular BRDF '" + s + "' (expected ggx, blinn, toon or none)");
 }
 
 Tonemapper parseTonemapper(const std::string& s) {
@@ -102,6 +108,10 @@ void checkSettings(const RenderSettings& s) {
     range("samples per pixel", s.spp, 1, 1 << 20);
     range("samples per frame", s.samplesPerFrame, 1, 1 << 16);
     range("max bounces", s.maxBounces, 0, 1024);
+    if (s.gi == "pathtrace" && ((s.diffuse != DiffuseModel::Lambert && s.diffuse != DiffuseModel::Burley) ||
+                                (s.specular != SpecularModel::Ggx && s.specular != SpecularModel::None)))
+        throw Error("the path tracer takes the physically based models only: --diffuse lambert|burley, "
+                    "--specular ggx|none");
     range("AO samples", s.aoSamples, 1, 256);
     range("AO steps", s.aoSteps, 1, 64);
     if (!std::isfinite(s.aoRadius) || s.aoRadius < 0.0f || s.aoRadius > 1e30f)
@@ -111,11 +121,23 @@ void checkSettings(const RenderSettings& s) {
     if (!std::isfinite(s.aoPower) || s.aoPower <= 0.0f || s.aoPower > 64.0f)
         throw Error("AO power must be in (0, 64]");
     checkGiMethod(s.gi);
+    if (int(s.diffuse) < 0 || int(s.diffuse) >= kDiffuseModelCount) throw Error("diffuse BRDF model out of range");
+    if (int(s.specular) < 0 || int(s.specular) >= kSpecularModelCount) throw Error("specular BRDF model out of range");
+}
+
+// A material's BRDF override must name a model or be -1 (the render's setting).
+void checkMaterials(const Scene& scene) {
+    for (const Material& m : scene.materials)
+        if (m.diffuseModel < -1 || m.diffuseModel >= kDiffuseModelCount || m.specularModel < -1 ||
+            m.specularModel >= kSpecularModelCount)
+            throw Error("material '" + m.name + "': BRDF model override (" + std::to_string(m.diffuseModel) + ", " +
+                        std::to_string(m.specularModel) + ") is out of range");
 }
 }  // namespace
 
 Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : settings_(settings) {
     checkSettings(settings_);
+    checkMaterials(scene);
     camera_ = cameraMatrices(scene, settings_.camera, float(settings_.width) / float(settings_.height));
     if (settings_.aoRadius <= 0.0f)  // sized from the scene: 15% of its diagonal
         settings_.aoRadius = scene.bounds.empty() ? 1.0f : std::max(0.15f * glm::length(scene.bounds.extent()), 1e-6f);
@@ -235,12 +257,15 @@ std::vector<PassTiming> Renderer::timings(int warmup) const {
     return out;
 }
 
+ProgramDesc brdfProbeProgram() { return {"brdf_probe", {"brdf_probe.comp"}, {}}; }
+
 std::vector<ProgramDesc> allPrograms() {
     std::vector<ProgramDesc> all;
     for (auto list : {ShadowPass::programs(), GBufferPass::programs(), LightingPass::programs(),
                       TonemapPass::programs(), PathTracePass::programs(), SsaoPass::programs(),
                       AoReferencePass::programs()})
         all.insert(all.end(), list.begin(), list.end());
+    all.push_back(brdfProbeProgram());
     return all;
 }
 

@@ -19,13 +19,16 @@
 
 namespace gis {
 
-enum class DiffuseModel { Lambert };
-enum class SpecularModel { Ggx, None };
+// BRDF models (shaders/brdf.glsl): the values are the GLSL DIFFUSE_* / SPECULAR_* ids.
+enum class DiffuseModel { Lambert = 0, LambertWrap = 1, Toon = 2, Burley = 3 };
+enum class SpecularModel { Ggx = 0, BlinnPhong = 1, Toon = 2, None = 3 };
+constexpr int kDiffuseModelCount = 4;
+constexpr int kSpecularModelCount = 4;
 enum class Tonemapper { Aces, Linear };
 enum class DebugView { Final, AmbientOcclusion };
 
-DiffuseModel parseDiffuse(const std::string& s);
-SpecularModel parseSpecular(const std::string& s);
+DiffuseModel parseDiffuse(const std::string& s);    // lambert, wrap, toon, burley
+SpecularModel parseSpecular(const std::string& s);  // ggx, blinn, toon, none
 Tonemapper parseTonemapper(const std::string& s);
 std::string giMethodNames();          // "none" (others as they land)
 void checkGiMethod(const std::string& s);
@@ -129,6 +132,9 @@ private:
     GLuint hdr_ = 0, ldr_ = 0;
     uint64_t frameIndex_ = 0;
 };
+
+// shaders/brdf_probe.comp: evaluates brdf.glsl at a list of points (the BRDF tests use it).
+ProgramDesc brdfProbeProgram();
 
 // Every program (with its permutations) any pass can request: the shader test compiles them all.
 std::vector<ProgramDesc> allPrograms();

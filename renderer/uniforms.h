@@ -12,6 +12,7 @@ enum UniformLocation : int {
     U_MATERIAL_PARAMS = 4,   // metallic, roughness, specularFactor, occlusionStrength
     U_EMISSIVE = 5,
     U_ALPHA_PARAMS = 6,      // alpha cutoff (<0: opaque), normal scale, has normal map, double sided
+    U_BRDF_OVERRIDE = 7,     // the material's diffuse, specular model (-1: the render's setting)
     // shadow pass
     U_LIGHT_POS_FAR = 10,    // point light position, 1/far
     // lighting pass

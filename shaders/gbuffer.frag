@@ -1,6 +1,7 @@
 // G-buffer: base colour (sRGB target), world normal, material parameters, emitted radiance.
 #include "common.glsl"
 #include "material.glsl"
+#include "gbuffer_layout.glsl"
 
 in VertexData {
     vec3 worldPos;
@@ -11,7 +12,7 @@ in VertexData {
 } v_in;
 
 layout(location = 0) out vec4 o_baseColor;   // rgb base colour, a unused
-layout(location = 1) out vec4 o_normal;      // xyz world normal
+layout(location = 1) out vec4 o_normal;      // xyz world normal, w BRDF model override (gbuffer_layout.glsl)
 layout(location = 2) out vec4 o_material;    // metallic, roughness, occlusion, specular factor
 layout(location = 3) out vec4 o_emissive;    // rgb emitted radiance
 
@@ -40,7 +41,7 @@ void main() {
     vec4 mr = texture(s_metallicRoughness, v_in.uv);
     float occlusion = 1.0 + u_materialParams.w * (texture(s_occlusion, v_in.uv).r - 1.0);
     o_baseColor = vec4(saturate(base.rgb), 1.0);
-    o_normal = vec4(n, 0.0);
+    o_normal = vec4(n, encodeBrdfOverride(u_brdfOverride));
     o_material = vec4(saturate(u_materialParams.x * mr.b), saturate(u_materialParams.y * mr.g),
                       saturate(occlusion), saturate(u_materialParams.z));
     // Clamped to the largest half float: the target is RGBA16F.

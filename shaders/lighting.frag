@@ -2,6 +2,7 @@
 // term that is the `--gi none` baseline. Output is linear radiance.
 #include "common.glsl"
 #include "brdf.glsl"
+#include "gbuffer_layout.glsl"
 #include "lights.glsl"
 #include "uniforms.glsl"
 
@@ -19,7 +20,7 @@ layout(location = U_CAMERA_POS) uniform vec3 u_cameraPos;
 layout(location = U_LIGHT_COUNT) uniform int u_lightCount;
 layout(location = U_AMBIENT) uniform vec3 u_ambient;
 layout(location = U_BACKGROUND) uniform vec3 u_background;
-layout(location = U_BRDF_MODELS) uniform ivec2 u_brdfModels;
+layout(location = U_BRDF_MODELS) uniform ivec2 u_brdfModels;  // diffuse, specular: --diffuse, --specular
 layout(location = U_SHADOWS_ENABLED) uniform int u_shadowsEnabled;
 layout(location = U_MAX_RADIANCE) uniform float u_maxRadiance;
 layout(location = U_DEBUG_VIEW) uniform int u_debugView;  // 0 final, 1 ambient occlusion only  // 65504 for an RGBA16F target: no Inf
@@ -85,7 +86,9 @@ void main() {
     }
     vec4 world = u_invViewProj * vec4(v_uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
     vec3 P = world.xyz / world.w;
-    vec3 N = normalize(texelFetch(s_gbufNormal, pixel, 0).xyz);
+    vec4 normalAndModels = texelFetch(s_gbufNormal, pixel, 0);
+    vec3 N = normalize(normalAndModels.xyz);
+    ivec2 models = decodeBrdfOverride(normalAndModels.w, u_brdfModels);  // a material may override them
     vec3 baseColor = texelFetch(s_gbufBaseColor, pixel, 0).rgb;
     vec4 material = texelFetch(s_gbufMaterial, pixel, 0);  // metallic, roughness, occlusion, specular
     vec3 emissive = texelFetch(s_gbufEmissive, pixel, 0).rgb;
@@ -109,10 +112,11 @@ void main() {
             if (type == LIGHT_SPOT)
                 irradiance *= spotCone(dot(-L, light.directionRange.xyz), light.cone.x, light.cone.y);
         }
-        float NoL = dot(N, L);
-        if (NoL <= 0.0 || all(equal(irradiance, vec3(0.0)))) continue;
-        vec3 f = evaluateBrdf(surface, N, V, L, u_brdfModels.x, u_brdfModels.y);
-        radiance += f * irradiance * NoL * shadowVisibility(light, P, N, NoL);
+        if (all(equal(irradiance, vec3(0.0)))) continue;
+        // f * cos(theta_l); wrap and toon diffuse also reach a little past N.L = 0.
+        vec3 response = evaluateBrdfCosine(surface, N, V, L, models.x, models.y);
+        if (all(equal(response, vec3(0.0)))) continue;
+        radiance += response * irradiance * shadowVisibility(light, P, N, dot(N, L));
     }
     // Ambient/indirect only: L_ind = ambient * albedo * AO (material occlusion x screen-space AO).
     radiance += u_ambient * (surface.diffuseColor + surface.f0) * material.z * ao;

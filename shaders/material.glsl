@@ -11,6 +11,7 @@ layout(location = U_BASE_COLOR_FACTOR) uniform vec4 u_baseColorFactor;
 layout(location = U_MATERIAL_PARAMS) uniform vec4 u_materialParams;  // metallic, roughness, specular, occlusion strength
 layout(location = U_EMISSIVE) uniform vec3 u_emissive;
 layout(location = U_ALPHA_PARAMS) uniform vec4 u_alphaParams;        // cutoff (<0 opaque), normal scale, has normal map, double sided
+layout(location = U_BRDF_OVERRIDE) uniform ivec2 u_brdfOverride;      // diffuse, specular model; -1 = the render's setting
 
 vec4 materialBaseColor(vec2 uv, vec4 vertexColor) {
     return u_baseColorFactor * vertexColor * texture(s_baseColor, uv);

@@ -84,7 +84,7 @@ SurfacePoint shade(Hit hit, vec3 rayDir) {
     vec3 baseColor = saturate(m.baseColor.rgb * color.rgb * srgbToLinear(baseTex.rgb));
     vec4 mr = sampleLayer(m.textures.y, uv);
     s.brdf = makeSurfaceBrdf(baseColor, saturate(m.params.x * mr.b), saturate(m.params.y * mr.g), m.params.z);
-    s.hasSpecular = u_brdfModels.y == SPECULAR_GGX && any(greaterThan(s.brdf.f0, vec3(0.0)));
+    s.hasSpecular = u_brdfModels.y == SPECULAR_GGX && (any(greaterThan(s.brdf.f0, vec3(0.0))) || s.brdf.f90 > 0.0);
 
     bool emits = frontFace || m.emissive.w > 0.5;
     vec3 emissiveTex = m.textures.w >= 0 ? srgbToLinear(sampleLayer(m.textures.w, uv).rgb) : vec3(1.0);
@@ -98,7 +98,7 @@ float specularChoice(SurfacePoint s, float NoV) {
     if (!s.hasSpecular) return 0.0;
     float diff = luminance(s.brdf.diffuseColor);
     if (diff <= 0.0) return 1.0;  // a metal: the specular lobe is all there is
-    float spec = luminance(fresnelSchlick(s.brdf.f0, NoV));
+    float spec = luminance(fresnelSchlick(s.brdf.f0, s.brdf.f90, NoV));
     // Never below 10% either way, so neither lobe's samples become rare enough to spike.
     return clamp(spec / (spec + diff), 0.1, 0.9);
 }
@@ -109,10 +109,10 @@ float bsdfPdf(SurfacePoint s, vec3 V, vec3 L, float pSpecular) {
     if (NoL <= 0.0) return 0.0;
     float pdf = (1.0 - pSpecular) * NoL * INV_PI;
     if (pSpecular > 0.0) {
-        float NoV = max(dot(s.normal, V), MIN_N_DOT_V);
-        vec3 H = normalize(V + L);
+        // The BRDF's own GGX term and geometry (brdf.glsl), so the density matches what is evaluated.
+        BrdfGeometry g = brdfGeometry(s.normal, V, L);
         float alpha = s.brdf.roughness * s.brdf.roughness;
-        pdf += pSpecular * smithG1(NoV, alpha) * distributionGgx(saturate(dot(s.normal, H)), alpha) / (4.0 * NoV);
+        pdf += pSpecular * smithG1(g.NoV, alpha) * distributionGgx(g, alpha) / (4.0 * g.NoV);
     }
     return pdf;
 }

@@ -6,6 +6,7 @@
 #define U_MATERIAL_PARAMS 4
 #define U_EMISSIVE 5
 #define U_ALPHA_PARAMS 6
+#define U_BRDF_OVERRIDE 7
 #define U_LIGHT_POS_FAR 10
 #define U_INV_VIEW_PROJ 20
 #define U_CAMERA_POS 21

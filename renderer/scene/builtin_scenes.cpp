@@ -1,9 +1,12 @@
-// Built-in scenes, built procedurally. They reproduce shared/assets/reference/scenes/ exactly
-// (same meshes, vertex order, winding, materials, node transforms, camera and light), so a
-// renderer can be compared with the Cycles references without loading a file.
+// Built-in scenes, built procedurally. The Cornell scenes reproduce shared/assets/reference/scenes/
+// exactly (same meshes, vertex order, winding, materials, node transforms, camera and light), so a
+// renderer can be compared with the Cycles references without loading a file. brdf-gallery is the
+// BRDF chart: spheres of every roughness, dielectric and metal, one row per BRDF combination.
 #include <cmath>
 #include <string>
 #include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/scene.h"
 #include "scene/scene_internal.h"
@@ -126,13 +129,143 @@ Scene makeCornell(bool areaLight) {
     return s;
 }
 
+// ---- brdf-gallery ------------------------------------------------------------------------------
+
+// BRDF model ids as in gis::DiffuseModel / SpecularModel (renderer.h; this library has no GL).
+enum GalleryDiffuse { kLambert = 0, kWrap = 1, kToonDiffuse = 2, kBurley = 3 };
+enum GallerySpecular { kGgx = 0, kBlinnPhong = 1, kToonSpecular = 2, kNoSpecular = 3 };
+
+// UV sphere of radius r centred at the origin: `segments` around +Y, `rings` from pole to pole,
+// outward normals, CCW seen from outside, tangents along +phi.
+Primitive uvSphere(float r, int segments, int rings, int material) {
+    Primitive p;
+    p.material = material;
+    const float pi = 3.14159265358979f;
+    for (int i = 0; i <= rings; ++i) {
+        const float theta = pi * float(i) / float(rings);  // from +Y down
+        for (int j = 0; j <= segments; ++j) {
+            const float phi = 2.0f * pi * float(j) / float(segments);
+            const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
+            Vertex v;
+            v.position = r * n;
+            v.normal = n;
+            v.tangent = glm::vec4(-std::sin(phi), 0.0f, -std::cos(phi), 1.0f);
+            v.uv = glm::vec2(float(j) / float(segments), float(i) / float(rings));
+            p.vertices.push_back(v);
+        }
+    }
+    const uint32_t row = uint32_t(segments) + 1;
+    for (uint32_t i = 0; i < uint32_t(rings); ++i)
+        for (uint32_t j = 0; j < uint32_t(segments); ++j) {
+            const uint32_t a = i * row + j, b = a + row;  // b is one ring further down
+            if (i != 0) for (uint32_t k : {a, b, a + 1}) p.indices.push_back(k);
+            if (i + 1 != uint32_t(rings)) for (uint32_t k : {a + 1, b, b + 1}) p.indices.push_back(k);
+        }
+    return p;
+}
+
+Scene makeBrdfGallery() {
+    Scene s;
+    s.name = "brdf-gallery";
+    s.background = glm::vec3(0.02f, 0.025f, 0.03f);
+
+    // Rows, top of the image (far) to bottom (near): every diffuse and every specular model appears.
+    struct Row { const char* name; int diffuse, specular; };
+    const Row rows[] = {{"lambert+ggx", kLambert, kGgx},      {"burley+ggx", kBurley, kGgx},
+                        {"wrap+ggx", kWrap, kGgx},            {"lambert+blinn", kLambert, kBlinnPhong},
+                        {"toon+toon", kToonDiffuse, kToonSpecular}, {"burley+none", kBurley, kNoSpecular}};
+    const int rowCount = int(sizeof(rows) / sizeof(rows[0]));
+    // Columns, left to right: roughness 0 .. 1 dielectric, then the same for metal.
+    const float roughness[5] = {0.0f, 0.25f, 0.5f, 0.75f, 1.0f};
+    const glm::vec3 dielectricColor(0.80f, 0.12f, 0.08f);  // red plastic
+    const glm::vec3 metalColor(0.95f, 0.72f, 0.38f);       // gold
+    const float radius = 0.4f, spacingX = 1.0f, spacingZ = 1.4f, groupGap = 0.5f;
+
+    const Primitive sphere = uvSphere(radius, 48, 24, 0);
+    for (int r = 0; r < rowCount; ++r) {
+        const float z = spacingZ * (float(r) - 0.5f * float(rowCount - 1));
+        for (int c = 0; c < 10; ++c) {
+            const bool metal = c >= 5;
+            Material m;
+            m.name = std::string(rows[r].name) + (metal ? " metal r" : " dielectric r") +
+                     std::to_string(roughness[c % 5]).substr(0, 4);
+            m.baseColorFactor = glm::vec4(metal ? metalColor : dielectricColor, 1.0f);
+            m.metallicFactor = metal ? 1.0f : 0.0f;
+            m.roughnessFactor = roughness[c % 5];
+            m.specularFactor = 1.0f;
+            m.diffuseModel = rows[r].diffuse;
+            m.specularModel = rows[r].specular;
+            s.materials.push_back(m);
+            Primitive p = sphere;
+            p.material = int(s.materials.size()) - 1;
+            s.primitives.push_back(p);
+            const float x = spacingX * (float(c) - 4.5f) + (metal ? 0.5f : -0.5f) * groupGap;
+            s.draws.push_back({int(s.primitives.size()) - 1,
+                               glm::translate(glm::mat4(1.0f), glm::vec3(x, radius, z))});
+        }
+    }
+
+    // Checkered floor of 0.5 m squares: two Lambert materials, whatever the render's BRDF flags.
+    const glm::vec3 checkColor[2] = {glm::vec3(0.45f), glm::vec3(0.18f)};
+    Primitive checks[2];
+    for (int k = 0; k < 2; ++k) {
+        Material m;
+        m.name = k == 0 ? "floor light" : "floor dark";
+        m.baseColorFactor = glm::vec4(checkColor[k], 1.0f);
+        m.metallicFactor = 0.0f;
+        m.roughnessFactor = 1.0f;
+        m.specularFactor = 0.0f;
+        m.diffuseModel = kLambert;
+        m.specularModel = kNoSpecular;
+        s.materials.push_back(m);
+        checks[k].material = int(s.materials.size()) - 1;
+    }
+    const float check = 0.5f;
+    const int nx = 36, nzFar = 36, nzNear = 16;  // x in [-9, 9], z in [-18, 8]
+    for (int i = -nx / 2; i < nx / 2; ++i)
+        for (int k = -nzFar; k < nzNear; ++k) {
+            const float x0 = check * float(i), z0 = check * float(k), x1 = x0 + check, z1 = z0 + check;
+            addQuad(checks[(i + k) & 1], {{x0, 0, z0}, {x0, 0, z1}, {x1, 0, z1}, {x1, 0, z0}}, {0, 1, 0});
+        }
+    for (Primitive& p : checks) {
+        s.primitives.push_back(p);
+        s.draws.push_back({int(s.primitives.size()) - 1, glm::mat4(1.0f)});
+    }
+
+    // Key light from the upper left, on the camera's side: highlights face the viewer and the
+    // shadows fall back and to the right, between the rows.
+    Light key;
+    key.name = "Key";
+    key.type = LightType::Directional;
+    key.intensity = 3.0f;  // W/m^2 at normal incidence
+    key.direction = glm::normalize(glm::vec3(0.55f, -1.0f, -0.45f));
+    s.lights.push_back(key);
+
+    // Looking down 50 degrees with a long lens, so near and far rows differ little in size. Framed
+    // for 4:3 (e.g. --size 1024x768); wider images show more floor, narrower ones crop the sides.
+    Camera cam;
+    cam.name = "Gallery";
+    const glm::vec3 target(0.0f, 0.35f, 0.3f);
+    const float elevation = glm::radians(50.0f), distance = 24.0f;
+    const glm::vec3 eye = target + distance * glm::vec3(0.0f, std::sin(elevation), std::cos(elevation));
+    cam.cameraToWorld = glm::inverse(glm::lookAt(eye, target, glm::vec3(0.0f, 1.0f, 0.0f)));
+    cam.yfov = glm::radians(22.0f);
+    cam.znear = 5.0f;
+    cam.zfar = 60.0f;
+    s.cameras.push_back(cam);
+
+    finalizeScene(s);
+    return s;
+}
+
 }  // namespace
 
-std::vector<std::string> builtinSceneNames() { return {"cornell", "cornell-area"}; }
+std::vector<std::string> builtinSceneNames() { return {"cornell", "cornell-area", "brdf-gallery"}; }
 
 Scene makeBuiltinScene(const std::string& name) {
     if (name == "cornell") return makeCornell(false);
     if (name == "cornell-area") return makeCornell(true);
+    if (name == "brdf-gallery") return makeBrdfGallery();
     std::string list;
     for (const std::string& n : builtinSceneNames()) list += (list.empty() ? "" : ", ") + n;
     throw Error("unknown built-in scene '" + detail::oneLine(name, 80) + "' (available: " + list +

@@ -56,6 +56,11 @@ struct Material {
     int normalTexture = -1;
     int emissiveTexture = -1;
     int occlusionTexture = -1;
+    // Per-material BRDF models (values of gis::DiffuseModel / SpecularModel; -1 = the render's
+    // --diffuse / --specular setting). Not read from glTF; built-in scenes such as brdf-gallery set
+    // them to show several models in one image. Carried to the lighting pass in the G-buffer.
+    int diffuseModel = -1;
+    int specularModel = -1;
 };
 
 struct Vertex {

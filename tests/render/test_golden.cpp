@@ -46,6 +46,8 @@ struct GoldenCase {
     const char* scene;
     const char* backend;
     Tolerance tolerance;
+    const char* size = "128x128";
+    const char* golden = "128";  // tests/golden/SCENE_GOLDEN.png
 };
 
 void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.scene << " via " << c.backend; }
@@ -56,10 +58,10 @@ TEST_P(Golden, MatchesCommittedImage) {
     const GoldenCase& c = GetParam();
     const std::string dir = tempDir(std::string("golden_") + c.scene + "_" + c.backend);
     const std::string out = dir + "/render.png";
-    CliResult r = runCli(std::string("render --scene builtin:") + c.scene + " --size 128x128 --backend " + c.backend +
-                         " --out " + out);
+    CliResult r = runCli(std::string("render --scene builtin:") + c.scene + " --size " + c.size + " --backend " +
+                         c.backend + " --out " + out);
     ASSERT_EQ(r.status, 0) << r.err;
-    const std::string golden = std::string(GIS_SOURCE_DIR) + "/tests/golden/" + c.scene + "_128.png";
+    const std::string golden = std::string(GIS_SOURCE_DIR) + "/tests/golden/" + c.scene + "_" + c.golden + ".png";
     const char* update = std::getenv("GIS_UPDATE_GOLDEN");
     if (update && std::string(update) == "1" && std::string(c.backend) == "osmesa") {
         std::filesystem::copy_file(out, golden, std::filesystem::copy_options::overwrite_existing);
@@ -84,7 +86,10 @@ INSTANTIATE_TEST_SUITE_P(BuiltinScenes, Golden,
                          ::testing::Values(GoldenCase{"cornell", "osmesa", kLlvmpipe},
                                            GoldenCase{"cornell", "egl", kLlvmpipe},
                                            GoldenCase{"cornell-area", "osmesa", kLlvmpipe},
-                                           GoldenCase{"cornell-area", "egl", kLlvmpipe}),
+                                           GoldenCase{"cornell-area", "egl", kLlvmpipe},
+                                           // Every BRDF model, one row each (README, BRDF section).
+                                           GoldenCase{"brdf-gallery", "osmesa", kLlvmpipe, "192x128", "192x128"},
+                                           GoldenCase{"brdf-gallery", "egl", kLlvmpipe, "192x128", "192x128"}),
                          [](const auto& info) {
                              std::string n = std::string(info.param.scene) + "_" + info.param.backend;
                              for (char& ch : n) if (ch == '-') ch = '_';

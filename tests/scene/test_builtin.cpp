@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
 
 #include "test_util.h"
 
@@ -130,7 +131,44 @@ void compareWithReference(const std::string& builtin, const std::string& ref) {
 }  // namespace
 
 TEST(Builtin, Names) {
-    EXPECT_EQ(gis::builtinSceneNames(), (std::vector<std::string>{"cornell", "cornell-area"}));
+    EXPECT_EQ(gis::builtinSceneNames(), (std::vector<std::string>{"cornell", "cornell-area", "brdf-gallery"}));
+}
+
+// The BRDF chart: 6 rows x 10 spheres, each row one BRDF combination (per-material override), the
+// columns roughness 0..1 dielectric then metal, on a Lambert floor, one directional light.
+TEST(Builtin, BrdfGalleryLayout) {
+    const gis::Scene s = gis::makeBuiltinScene("brdf-gallery");
+    ASSERT_EQ(s.lights.size(), 1u);
+    EXPECT_EQ(s.lights[0].type, gis::LightType::Directional);
+    ASSERT_EQ(s.cameras.size(), 1u);
+    ASSERT_EQ(s.materials.size(), 62u);
+    std::set<int> diffuse, specular;
+    for (int i = 0; i < 60; ++i) {
+        const gis::Material& m = s.materials[i];
+        EXPECT_EQ(m.roughnessFactor, 0.25f * float(i % 5)) << m.name;
+        EXPECT_EQ(m.metallicFactor, (i % 10) >= 5 ? 1.0f : 0.0f) << m.name;
+        EXPECT_EQ(m.diffuseModel, s.materials[(i / 10) * 10].diffuseModel) << "one combination per row";
+        EXPECT_EQ(m.specularModel, s.materials[(i / 10) * 10].specularModel) << "one combination per row";
+        diffuse.insert(m.diffuseModel);
+        specular.insert(m.specularModel);
+    }
+    EXPECT_EQ(diffuse, (std::set<int>{0, 1, 2, 3})) << "every diffuse model appears";
+    EXPECT_EQ(specular, (std::set<int>{0, 1, 2, 3})) << "every specular model appears";
+    for (int i = 60; i < 62; ++i) EXPECT_EQ(s.materials[i].specularModel, 3) << "the floor has no specular";
+    // Spheres: unit normals pointing away from the centre, winding that agrees with them.
+    for (const auto& p : s.primitives) {
+        if (p.material >= 60) continue;
+        for (const auto& v : p.vertices) {
+            EXPECT_NEAR(glm::length(v.normal), 1.0f, 1e-5f);
+            EXPECT_GT(glm::dot(v.normal, v.position), 0.0f);
+        }
+        for (size_t i = 0; i + 2 < p.indices.size(); i += 3) {
+            const auto& a = p.vertices[p.indices[i]];
+            const glm::vec3 n = glm::cross(p.vertices[p.indices[i + 1]].position - a.position,
+                                           p.vertices[p.indices[i + 2]].position - a.position);
+            EXPECT_GT(glm::dot(n, a.position), 0.0f);
+        }
+    }
 }
 
 TEST(Builtin, CornellMatchesCornellPointReference) {
