@@ -20,6 +20,7 @@ public:
 
     int samplesDone() const { return samplesDone_; }
     bool done() const { return samplesDone_ >= targetSamples_; }
+    void restart() { samplesDone_ = 0; }  // the next frame overwrites the accumulation
     const Bvh& bvh() const { return bvh_; }
     size_t emitterCount() const { return emitterCount_; }
 
