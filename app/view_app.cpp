@@ -218,7 +218,12 @@ int ViewApp::run() {
     co.height = height;
     co.debug = options_.glDebug;
     co.title = "gisandbox";
-    ctx_ = createContext(co);
+    try {
+        ctx_ = createContext(co);
+    } catch (const Error& e) {
+        throw Error(std::string(e.what()) +
+                    " (the sandbox needs a display: run it under `xvfb-run -a`, or render headless with `gisandbox render`)");
+    }
     window_ = ctx_->window();
     if (options_.verbose)
         std::fprintf(stderr, "backend: glfw (%s)\nGL_RENDERER: %s\nGL_VERSION: %s\n", ctx_->detail.c_str(),
