@@ -186,18 +186,18 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
             p.shown = 0;
             return;
         }
-        PaneView fresh;
+        p = PaneView{};  // the old renderer goes first: never two of one pane in GPU memory
         try {
-            fresh.renderer = std::make_unique<Renderer>(*scene_, want);
+            p.renderer = std::make_unique<Renderer>(*scene_, want);
             ++rebuilds_;
-            fresh.builtKey = key;
+            p.builtKey = key;
         } catch (const std::exception& e) {
-            fresh.failedKey = key;
-            fresh.status = describe(e);
-            lastError_ = "pane " + std::to_string(index) + ": " + fresh.status;
+            p.renderer.reset();
+            p.failedKey = key;
+            p.status = describe(e);
+            lastError_ = "pane " + std::to_string(index) + ": " + p.status;
+            return;
         }
-        p = std::move(fresh);  // the old renderer is freed here
-        if (!p.renderer) return;
     }
     Renderer& r = *p.renderer;
     try {
@@ -209,7 +209,9 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
         }
         r.renderFrame();
         collectTimings(p);
-        p.status = r.converged() ? "" : std::to_string(r.samplesDone()) + "/" + std::to_string(want.spp) + " spp";
+        p.status = want.gi != "pathtrace" ? ""
+                   : r.converged()        ? std::to_string(want.spp) + " spp"
+                                          : std::to_string(r.samplesDone()) + "/" + std::to_string(want.spp) + " spp";
         const PaneDisplay display = state.panes[index].display;
         p.heatmapWanted = display == PaneDisplay::Heatmap;
         if (isGBufferDisplay(display)) {
