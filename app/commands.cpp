@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <chrono>
 #include <regex>
 #include <unistd.h>
@@ -13,6 +14,8 @@
 #include "bvh.h"
 #include "gl/shader.h"
 #include "image.h"
+#include "settings_io.h"
+#include "view_state.h"
 
 namespace gis {
 
@@ -86,8 +89,9 @@ private:
 }  // namespace
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
-    cmd.add_option("--scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME (cornell, cornell-area, brdf-gallery)")
-        ->required();
+    cmd.add_option("--scene", o.scene,
+                   "glTF file (.gltf/.glb) or builtin:NAME (cornell, cornell-area, brdf-gallery); required unless "
+                   "--settings names one");
     cmd.add_option("--out", o.out, "Output image: .png (tonemapped sRGB 8-bit) or .exr (linear float radiance)")
         ->required();
     cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT")->capture_default_str();
@@ -137,44 +141,67 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--warmup", o.warmup, "Frames left out of the --timings median")->capture_default_str();
     cmd.add_flag("--gl-debug", o.glDebug, "Debug context; print KHR_debug messages (always on in Debug builds)");
     cmd.add_flag("-v,--verbose", o.verbose, "Print the backend, GL_RENDERER and GL_VERSION");
+    cmd.add_option("--settings", o.settings,
+                   "A `gisandbox view` settings file (or screenshot sidecar): render its pane as the view does; "
+                   "flags given here override it");
+    cmd.add_option("--pane", o.pane, "With --settings: which pane (0 = single/left/top-left)")->capture_default_str();
+    o.given = [&cmd](const std::string& flag) { return cmd.count(flag) > 0; };
 }
 
 int runRender(const RenderOptions& o) {
     RenderSettings s;
-    parseRenderSize(o.size, s.width, s.height);
+    // With --settings the file gives every setting and only flags given explicitly override it.
+    std::optional<view::ViewState> viewSettings;
+    std::string sceneSpec = o.scene;
+    auto use = [&](const char* flag) { return !viewSettings || (o.given && o.given(flag)); };
+    if (!o.settings.empty()) {
+        viewSettings = view::loadViewSettings(o.settings);
+        const int panes = view::paneCount(viewSettings->mode);
+        if (o.pane < 0 || o.pane >= panes)
+            throw Error("--pane " + std::to_string(o.pane) + ": the settings' " + view::viewModeName(viewSettings->mode) +
+                        " view has " + std::to_string(panes) + " pane(s)");
+        const glm::ivec2 size = view::paneRenderSize(*viewSettings, viewSettings->viewWidth, viewSettings->viewHeight);
+        s = view::paneSettings(*viewSettings, o.pane, size);
+        if (!use("--scene")) sceneSpec = viewSettings->scene;
+    } else if (o.given && o.given("--pane")) {
+        throw Error("--pane needs --settings");
+    }
+    if (sceneSpec.empty()) throw Error("--scene is required (or --settings FILE)");
+    if (use("--size")) parseRenderSize(o.size, s.width, s.height);
     const bool exr = endsWith(o.out, ".exr");
     if (!exr && !endsWith(o.out, ".png")) throw Error("--out '" + o.out + "' must end in .png or .exr");
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
     if (o.warmup < 0 || o.warmup >= o.frames) throw Error("--warmup must be in [0, --frames)");
     if (o.ambient.size() != 1 && o.ambient.size() != 3) throw Error("--ambient takes one value or R,G,B");
-    s.camera = o.camera;
-    s.gi = o.gi;
+    if (use("--camera")) s.camera = o.camera;
+    if (use("--gi")) s.gi = o.gi;
     checkGiMethod(s.gi);
-    s.diffuse = parseDiffuse(o.diffuse);
-    s.specular = parseSpecular(o.specular);
-    s.tonemap = parseTonemapper(o.tonemap);
-    s.exposureEV = o.exposure;
-    s.ambient = o.ambient.size() == 3 ? glm::vec3(o.ambient[0], o.ambient[1], o.ambient[2]) : glm::vec3(o.ambient[0]);
-    s.shadowMapSize = o.shadowSize;
-    s.shadowCubeSize = o.shadowCubeSize;
-    s.shadows = !o.noShadows;
-    s.hdr32 = o.hdr32;
+    if (use("--diffuse")) s.diffuse = parseDiffuse(o.diffuse);
+    if (use("--specular")) s.specular = parseSpecular(o.specular);
+    if (use("--tonemap")) s.tonemap = parseTonemapper(o.tonemap);
+    if (use("--exposure")) s.exposureEV = o.exposure;
+    if (use("--ambient"))
+        s.ambient = o.ambient.size() == 3 ? glm::vec3(o.ambient[0], o.ambient[1], o.ambient[2]) : glm::vec3(o.ambient[0]);
+    if (use("--shadow-size")) s.shadowMapSize = o.shadowSize;
+    if (use("--shadow-cube-size")) s.shadowCubeSize = o.shadowCubeSize;
+    if (use("--no-shadows")) s.shadows = !o.noShadows;
+    if (use("--hdr32")) s.hdr32 = o.hdr32;
     if (!o.background.empty()) {
         if (o.background.size() != 1 && o.background.size() != 3) throw Error("--background takes one value or R,G,B");
         s.background = o.background.size() == 3 ? glm::vec3(o.background[0], o.background[1], o.background[2])
                                                 : glm::vec3(o.background[0]);
     }
-    s.spp = o.spp;
-    s.maxBounces = o.maxBounces;
-    s.aoSamples = o.aoSamples;
-    s.aoSteps = o.aoSteps;
-    s.aoRadius = o.aoRadius;
-    s.aoBias = o.aoBias;
-    s.aoPower = o.aoPower;
-    s.aoBlur = !o.aoNoBlur;
-    s.aoHalfResolution = o.aoHalfRes;
-    s.aoTemporal = o.aoTemporal;
-    s.view = parseDebugView(o.view);
+    if (use("--spp")) s.spp = o.spp;
+    if (use("--max-bounces")) s.maxBounces = o.maxBounces;
+    if (use("--ao-samples")) s.aoSamples = o.aoSamples;
+    if (use("--ao-steps")) s.aoSteps = o.aoSteps;
+    if (use("--ao-radius")) s.aoRadius = o.aoRadius;
+    if (use("--ao-bias")) s.aoBias = o.aoBias;
+    if (use("--ao-power")) s.aoPower = o.aoPower;
+    if (use("--ao-no-blur")) s.aoBlur = !o.aoNoBlur;
+    if (use("--ao-half-res")) s.aoHalfResolution = o.aoHalfRes;
+    if (use("--ao-temporal")) s.aoTemporal = o.aoTemporal;
+    if (use("--view")) s.view = parseDebugView(o.view);
     // Progressive methods add a few samples per frame so progress can be shown between frames.
     s.samplesPerFrame = 4;
     {
@@ -183,8 +210,9 @@ int runRender(const RenderOptions& o) {
         if (!dir.empty() && !fs::is_directory(dir)) throw Error("--out: directory '" + dir.string() + "' does not exist");
     }
 
-    Scene scene = loadScene(o.scene);
+    Scene scene = loadScene(sceneSpec);
     printWarnings(scene);
+    if (viewSettings) scene.lights = view::effectiveLights(*viewSettings, scene.lights);  // the panel's edits
     std::unique_ptr<GlContext> ctx;
     if (parseBackend(o.backend) == Backend::Glfw) {
         ContextOptions co;
@@ -198,6 +226,9 @@ int runRender(const RenderOptions& o) {
         ctx = headlessContext(o.backend, o.glDebug, o.verbose);
     }
     Renderer renderer(scene, s);
+    if (viewSettings && viewSettings->camera.free && !use("--camera")) {  // the view's free camera
+        renderer.setCamera(view::viewCameraMatrices(*viewSettings, scene, float(s.width) / float(s.height)));
+    }
     const int frames = o.timings ? o.frames : 1;
     for (int i = 0; i < frames; ++i) renderer.renderFrame();
     if (!renderer.converged()) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "gl/context.h"
@@ -42,6 +43,11 @@ struct RenderOptions {
     std::string view = "final";
     bool glDebug = false;
     bool verbose = false;
+    // --settings FILE (a `gisandbox view` settings file): pane --pane of it, rendered as the view
+    // renders it; flags given on the command line override what the file says.
+    std::string settings;
+    int pane = 0;
+    std::function<bool(const std::string& flag)> given;  // was the flag on the command line?
 };
 
 struct InfoOptions {
@@ -88,6 +94,21 @@ struct DiffOptions {  // app/diff_command.cpp
     bool colorBar = false;
     bool json = false;
 };
+
+// gisandbox view: the interactive sandbox (app/view_app.cpp).
+struct ViewOptions {
+    std::string scene = "builtin:cornell";
+    std::string settings;
+    std::string size = "1280x720";       // window
+    std::string script;
+    std::string screenshotDir = "screenshots";
+    int camera = 0;
+    bool glDebug = false;
+    bool verbose = false;
+    std::function<bool(const std::string& flag)> given;
+};
+void addViewOptions(CLI::App& cmd, ViewOptions& o);
+int runView(const ViewOptions& o);
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o);
 void addInfoOptions(CLI::App& cmd, InfoOptions& o);

@@ -32,6 +32,9 @@ int main(int argc, char** argv) {
     gis::BenchOptions bench;
     CLI::App* benchCmd = app.add_subcommand("bench", "Measure every GI method and preset: GPU ms, memory, error vs a path-traced reference");
     gis::addBenchOptions(*benchCmd, bench);
+    gis::ViewOptions view;
+    CLI::App* viewCmd = app.add_subcommand("view", "Open the interactive sandbox: a window with the GI methods side by side and a panel");
+    gis::addViewOptions(*viewCmd, view);
     gis::DiffOptions diff;
     CLI::App* diffCmd = app.add_subcommand("diff", "Compare an image with a reference: RMSE, relMSE, PSNR, SSIM, FLIP");
     gis::addDiffOptions(*diffCmd, diff);
@@ -47,6 +50,7 @@ int main(int argc, char** argv) {
         if (shadersCmd->parsed()) return gis::runShaderDump(dump);
         if (benchCmd->parsed()) return gis::runBench(bench);
         if (diffCmd->parsed()) return gis::runDiff(diff);
+        if (viewCmd->parsed()) return gis::runView(view);
     } catch (const gis::Error& e) {
         std::fprintf(stderr, "gisandbox: error: %s\n", e.what());
         return 1;

@@ -6,6 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "debug_view.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/lighting_pass.h"
 #include "passes/pathtrace_pass.h"
@@ -197,9 +198,38 @@ void Renderer::renderFrame() {
     ++frameIndex_;
     hdr_ = frame.texture("radiance");
     ldr_ = frame.texture("display");
+    frameTextures_ = frame.textures;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     for (const auto& pass : passes_) pass->timer.collect(false);
     gl::checkOutOfMemory("rendering a frame");
+}
+
+void Renderer::setCamera(const CameraMatrices& camera) {
+    camera_ = camera;
+    restartAccumulation();
+}
+
+void Renderer::setLiveSettings(DiffuseModel diffuse, SpecularModel specular, Tonemapper tonemap, float exposureEV) {
+    const bool brdfChanged = diffuse != settings_.diffuse || specular != settings_.specular;
+    settings_.diffuse = diffuse;
+    settings_.specular = specular;
+    settings_.tonemap = tonemap;
+    settings_.exposureEV = exposureEV;
+    checkSettings(settings_);
+    if (brdfChanged) restartAccumulation();
+}
+
+void Renderer::restartAccumulation() {
+    for (const auto& pass : passes_)
+    {
+        if (auto* pt = dynamic_cast<PathTracePass*>(pass.get())) pt->restart();
+        if (auto* ao = dynamic_cast<AoReferencePass*>(pass.get())) ao->restart();
+    }
+}
+
+GLuint Renderer::frameTexture(const std::string& name) const {
+    auto it = frameTextures_.find(name);
+    return it == frameTextures_.end() ? 0 : it->second;
 }
 
 namespace {
@@ -263,7 +293,7 @@ std::vector<ProgramDesc> allPrograms() {
     std::vector<ProgramDesc> all;
     for (auto list : {ShadowPass::programs(), GBufferPass::programs(), LightingPass::programs(),
                       TonemapPass::programs(), PathTracePass::programs(), SsaoPass::programs(),
-                      AoReferencePass::programs()})
+                      AoReferencePass::programs(), GBufferVisualizer::programs()})
         all.insert(all.end(), list.begin(), list.end());
     all.push_back(brdfProbeProgram());
     return all;

@@ -123,6 +123,19 @@ public:
     int samplesDone() const;
     bool converged() const;
 
+    // Interactive use (`gisandbox view`), additive to the batch interface above.
+    // Replaces the camera (settings.camera's until now); progressive passes start over.
+    void setCamera(const CameraMatrices& camera);
+    const CameraMatrices& camera() const { return camera_; }
+    // Changes the settings that passes read only in execute(), never when they are built: the BRDF
+    // models, tone mapper and exposure. Progressive passes start over when the BRDFs change.
+    // (A pass that bakes any of these into its resources must not: the view relies on it.)
+    void setLiveSettings(DiffuseModel diffuse, SpecularModel specular, Tonemapper tonemap, float exposureEV);
+    // Progressive passes (the path tracer) discard their samples and start again.
+    void restartAccumulation();
+    // A named texture the last frame produced ("gbuffer.normal", "radiance", "display", ...); 0 if none.
+    GLuint frameTexture(const std::string& name) const;
+
 private:
     RenderSettings settings_;
     gl::MemoryLedger ledger_;
@@ -131,6 +144,7 @@ private:
     CameraMatrices camera_;
     GLuint hdr_ = 0, ldr_ = 0;
     uint64_t frameIndex_ = 0;
+    std::map<std::string, GLuint> frameTextures_;  // the last frame's named textures
 };
 
 // shaders/brdf_probe.comp: evaluates brdf.glsl at a list of points (the BRDF tests use it).

@@ -20,6 +20,7 @@ public:
 
     int samplesDone() const { return samples_.done; }
     bool done() const { return samples_.finished(); }
+    void restart() { samples_.done = 0; }  // the next frame overwrites the accumulation
     const Bvh& bvh() const { return rays_.bvh; }
 
 private:

@@ -42,6 +42,7 @@ public:
     static std::vector<ProgramDesc> programs();
     int samplesDone() const { return samples_.done; }
     bool done() const { return samples_.finished(); }
+    void restart() { samples_.done = 0; }  // the next frame overwrites the accumulation
 
 private:
     RayScene rays_;

@@ -1,0 +1,473 @@
+#include "panel.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "brdf_cpu.h"
+#include "presets.h"
+
+namespace gis::view {
+
+namespace {
+
+constexpr float kDegrees = 57.29577951308232f;
+
+std::vector<std::string> methodNames() {
+    std::vector<std::string> names;
+    std::stringstream in(giMethodNames());
+    for (std::string n; std::getline(in, n, ',');) {
+        n.erase(0, n.find_first_not_of(' '));
+        n.erase(n.find_last_not_of(' ') + 1);
+        if (!n.empty()) names.push_back(n);
+    }
+    return names;
+}
+
+// A combo over names; calls `choose` with the one picked.
+template <typename F>
+void combo(const char* label, const std::string& current, const std::vector<std::string>& names, F choose) {
+    if (ImGui::BeginCombo(label, current.c_str())) {
+        for (const std::string& n : names) {
+            const bool selected = n == current;
+            if (ImGui::Selectable(n.c_str(), selected)) choose(n);
+            if (selected) ImGui::SetItemDefaultFocus();
+        }
+        ImGui::EndCombo();
+    }
+}
+
+const char* paneTitle(ViewMode mode, int i) {
+    static const char* const split[] = {"Left pane", "Right pane"};
+    static const char* const grid[] = {"Top-left pane", "Top-right pane", "Bottom-left pane", "Bottom-right pane"};
+    if (mode == ViewMode::Single) return "Pane";
+    return mode == ViewMode::Split ? split[i] : grid[i];
+}
+
+double mib(int64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
+
+void paneControls(PanelContext& ctx, int i) {
+    ViewState& s = ctx.state;
+    const PaneState& p = s.panes[i];
+    ImGui::PushID(i);
+    combo("GI method", p.gi, methodNames(), [&](const std::string& n) { act(ctx, PanelAction::method(i, n)); });
+    combo("Preset", p.preset, presetNames(), [&](const std::string& n) { act(ctx, PanelAction::preset(i, n)); });
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", describePreset(p.gi, p.preset).c_str());
+    std::vector<std::string> diffuse, specular;
+    for (const DiffuseModelInfo& m : diffuseModels()) diffuse.push_back(m.name);
+    for (const SpecularModelInfo& m : specularModels()) specular.push_back(m.name);
+    combo("Diffuse BRDF", diffuseModelName(p.diffuse), diffuse,
+          [&](const std::string& n) { act(ctx, PanelAction::diffuse(i, n)); });
+    combo("Specular BRDF", specularModelName(p.specular), specular,
+          [&](const std::string& n) { act(ctx, PanelAction::specular(i, n)); });
+    std::vector<std::string> displays;
+    for (PaneDisplay d : allPaneDisplays()) displays.push_back(paneDisplayName(d));
+    combo("Display", paneDisplayName(p.display), displays,
+          [&](const std::string& n) { act(ctx, PanelAction::display(i, parsePaneDisplay(n))); });
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("lit image, error heatmap against the path-traced reference, or a G-buffer channel");
+    bool direct = p.directOnly;
+    if (ImGui::Checkbox("Direct light only", &direct)) act(ctx, PanelAction::directOnly(i, direct));
+    const PaneView& pv = ctx.session.pane(i);
+    if (!pv.status.empty()) ImGui::TextDisabled("%s", pv.status.c_str());
+    if (pv.heatmapReady) ImGui::Text("%s vs reference: %s", pv.metricName.c_str(), formatMetric(pv.metricValue, 4).c_str());
+    ImGui::PopID();
+}
+
+void lightControls(PanelContext& ctx) {
+    ViewState& s = ctx.state;
+    static const char* const types[] = {"directional", "point", "spot"};
+    for (int i = 0; i < int(s.lights.size()); ++i) {
+        const LightState l = s.lights[i];
+        ImGui::PushID(1000 + i);
+        bool on = l.enabled;
+        if (ImGui::Checkbox("##on", &on)) {
+            PanelAction a;
+            a.kind = PanelAction::SetLightEnabled;
+            a.index = i;
+            a.flag = on;
+            act(ctx, a);
+        }
+        ImGui::SameLine();
+        const std::string title = std::to_string(i) + ": " + types[int(l.light.type)] + " " + l.light.name;
+        if (ImGui::TreeNode("light", "%s", title.c_str())) {
+            float intensity = l.light.intensity;
+            if (ImGui::DragFloat("Intensity", &intensity, 0.01f * std::max(intensity, 0.1f), 0.0f, 1e6f, "%.3f")) {
+                PanelAction a;
+                a.kind = PanelAction::SetLightIntensity;
+                a.index = i;
+                a.value = std::max(intensity, 0.0f);
+                act(ctx, a);
+            }
+            glm::vec3 color = l.light.color;
+            if (ImGui::ColorEdit3("Colour", &color[0], ImGuiColorEditFlags_Float)) {
+                PanelAction a;
+                a.kind = PanelAction::SetLightColor;
+                a.index = i;
+                a.vec = glm::max(color, glm::vec3(0.0f));
+                act(ctx, a);
+            }
+            if (l.light.type != LightType::Directional) {
+                glm::vec3 pos = l.light.position;
+                if (ImGui::DragFloat3("Position", &pos[0], 0.01f * std::max(ctx.state.camera.speed, 1e-3f))) {
+                    PanelAction a;
+                    a.kind = PanelAction::SetLightPosition;
+                    a.index = i;
+                    a.vec = pos;
+                    act(ctx, a);
+                }
+            }
+            if (l.light.type != LightType::Point) {
+                glm::vec3 dir = l.light.direction;
+                if (ImGui::DragFloat3("Direction", &dir[0], 0.01f, -1.0f, 1.0f) && glm::length(dir) > 1e-4f) {
+                    PanelAction a;
+                    a.kind = PanelAction::SetLightDirection;
+                    a.index = i;
+                    a.vec = dir;
+                    act(ctx, a);
+                }
+            }
+            if (ImGui::Button("Remove")) {
+                PanelAction a;
+                a.kind = PanelAction::RemoveLight;
+                a.index = i;
+                act(ctx, a);
+            }
+            ImGui::TreePop();
+        }
+        ImGui::PopID();
+    }
+    for (const char* type : {"point", "spot", "directional"}) {
+        const std::string label = std::string("Add ") + type;
+        if (ImGui::Button(label.c_str())) {
+            PanelAction a;
+            a.kind = PanelAction::AddLight;
+            a.text = type;
+            act(ctx, a);
+        }
+        ImGui::SameLine();
+    }
+    if (ImGui::Button("Reset")) {
+        PanelAction a;
+        a.kind = PanelAction::ResetLights;
+        act(ctx, a);
+    }
+    if (s.lightsEdited) ImGui::TextDisabled("edited: saved in settings files");
+}
+
+void timingControls(PanelContext& ctx) {
+    const ViewSession& session = ctx.session;
+    ImGui::Text("CPU frame %.1f ms on %s", ctx.cpuFrameMs, ctx.glRenderer.c_str());
+    ImGui::Text("GPU memory, all panes and references: %.2f MiB", mib(session.gpuBytes()));
+    for (int i = 0; i < session.visiblePanes(); ++i) {
+        const PaneView& p = session.pane(i);
+        ImGui::PushID(2000 + i);
+        ImGui::Separator();
+        ImGui::Text("%s: %s", paneTitle(ctx.state.mode, i), paneLabel(ctx.state, i).c_str());
+        std::vector<float> total(p.totalMs.begin(), p.totalMs.end());
+        float peak = 0.0f;
+        for (float v : total) peak = std::max(peak, v);
+        char overlay[64];
+        std::snprintf(overlay, sizeof overlay, "GPU %.2f ms", total.empty() ? 0.0f : total.back());
+        ImGui::PlotLines("##gpu", total.data(), int(total.size()), 0, overlay, 0.0f, std::max(peak * 1.15f, 0.1f),
+                         ImVec2(ImGui::GetContentRegionAvail().x, 56.0f));
+        if (ImGui::BeginTable("passes", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+            ImGui::TableSetupColumn("pass");
+            ImGui::TableSetupColumn("ms (last)");
+            ImGui::TableSetupColumn("ms (median)");
+            ImGui::TableSetupColumn("MiB");
+            ImGui::TableHeadersRow();
+            int64_t bytes = 0;
+            for (const PassHistory& h : p.passes) {
+                std::deque<float> sorted = h.ms;
+                std::sort(sorted.begin(), sorted.end());
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                ImGui::Text("%s%s", h.pass.c_str(), h.cached ? " (cached)" : "");
+                ImGui::TableNextColumn();
+                ImGui::Text("%.3f", h.ms.empty() ? 0.0f : h.ms.back());
+                ImGui::TableNextColumn();
+                ImGui::Text("%.3f", sorted.empty() ? 0.0f : sorted[sorted.size() / 2]);
+                ImGui::TableNextColumn();
+                ImGui::Text("%.2f", mib(h.bytes));
+                bytes += h.bytes;
+            }
+            if (p.renderer) {
+                const auto& owners = p.renderer->memory().bytesByOwner;
+                auto it = owners.find("scene");
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted("scene");
+                ImGui::TableNextColumn();
+                ImGui::TableNextColumn();
+                ImGui::TableNextColumn();
+                ImGui::Text("%.2f", mib(it == owners.end() ? 0 : it->second));
+            }
+            ImGui::EndTable();
+        }
+        ImGui::PopID();
+    }
+}
+
+// The BRDF of the chosen pane in the plane of incidence, as the CPU table evaluates it.
+void lobePlot(PanelContext& ctx) {
+    ViewState& s = ctx.state;
+    if (s.mode != ViewMode::Single) {
+        int pane = std::min(s.plotPane, paneCount(s.mode) - 1);
+        if (ImGui::SliderInt("Pane", &pane, 0, paneCount(s.mode) - 1)) {
+            PanelAction a;
+            a.kind = PanelAction::SetPlotPane;
+            a.index = pane;
+            act(ctx, a);
+        }
+    }
+    const int pane = s.mode == ViewMode::Single ? 0 : std::min(s.plotPane, paneCount(s.mode) - 1);
+    const PaneState& p = s.panes[pane];
+    glm::vec3 base = s.plotBaseColor;
+    glm::vec4 params(s.plotMetallic, s.plotRoughness, s.plotSpecular, 0.0f);
+    bool changed = ImGui::ColorEdit3("Base colour", &base[0]);
+    changed |= ImGui::SliderFloat("Metallic", &params.x, 0.0f, 1.0f);
+    changed |= ImGui::SliderFloat("Roughness", &params.y, 0.0f, 1.0f);
+    changed |= ImGui::SliderFloat("Specular", &params.z, 0.0f, 1.0f);
+    if (changed) {
+        PanelAction a;
+        a.kind = PanelAction::SetPlotMaterial;
+        a.vec = base;
+        a.vec4 = params;
+        act(ctx, a);
+    }
+    float view = s.plotViewAngle * kDegrees;
+    if (ImGui::SliderFloat("View angle", &view, 0.0f, 89.0f, "%.0f deg")) {
+        PanelAction a;
+        a.kind = PanelAction::SetPlotViewAngle;
+        a.value = view / kDegrees;
+        act(ctx, a);
+    }
+    bool logScale = s.plotLog;
+    if (ImGui::Checkbox("Log scale (3 decades)", &logScale)) {
+        PanelAction a;
+        a.kind = PanelAction::SetPlotLog;
+        a.flag = logScale;
+        act(ctx, a);
+    }
+
+    const CpuSurfaceBrdf surface = makeCpuSurfaceBrdf(s.plotBaseColor, s.plotMetallic, s.plotRoughness, s.plotSpecular);
+    const std::vector<LobeSample> lobe = brdfLobe(surface, s.plotViewAngle, p.diffuse, p.specular);
+    auto lum = [](glm::vec3 c) { return (c.r + c.g + c.b) / 3.0f; };
+    float peak = 0.0f;
+    for (const LobeSample& l : lobe) peak = std::max(peak, lum(l.diffuse + l.specular));
+    const float width = ImGui::GetContentRegionAvail().x, height = std::min(width * 0.55f, 220.0f);
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    ImGui::InvisibleButton("lobe", ImVec2(width, height));
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 centre(origin.x + width * 0.5f, origin.y + height - 16.0f);
+    const float radius = std::min(width * 0.5f, height - 20.0f) - 4.0f;
+    dl->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + height), IM_COL32(20, 20, 24, 255));
+    for (float f : {1.0f, 0.5f}) dl->PathArcTo(centre, radius * f, -3.14159265f, 0.0f, 48), dl->PathStroke(IM_COL32(70, 70, 80, 255), 0, 1.0f);
+    dl->AddLine(ImVec2(centre.x - radius, centre.y), ImVec2(centre.x + radius, centre.y), IM_COL32(110, 110, 120, 255));
+    dl->AddLine(centre, ImVec2(centre.x, centre.y - radius), IM_COL32(110, 110, 120, 255));  // N
+    const float va = s.plotViewAngle;
+    dl->AddLine(centre, ImVec2(centre.x - radius * std::sin(va), centre.y - radius * std::cos(va)),
+                IM_COL32(120, 220, 120, 255), 2.0f);  // towards the viewer
+    auto toRadius = [&](float v) {
+        if (peak <= 0.0f) return 0.0f;
+        if (!s.plotLog) return radius * v / peak;
+        const float lo = peak * 1e-3f;
+        return v <= lo ? 0.0f : radius * std::log10(v / lo) / 3.0f;
+    };
+    auto curve = [&](auto value, ImU32 colour, float thickness) {
+        std::vector<ImVec2> pts;
+        for (const LobeSample& l : lobe) {
+            const float r = toRadius(value(l));
+            pts.emplace_back(centre.x + r * std::sin(l.angle), centre.y - r * std::cos(l.angle));
+        }
+        dl->AddPolyline(pts.data(), int(pts.size()), colour, 0, thickness);
+    };
+    curve([&](const LobeSample& l) { return lum(l.diffuse); }, IM_COL32(90, 160, 255, 255), 1.5f);
+    curve([&](const LobeSample& l) { return lum(l.specular); }, IM_COL32(255, 160, 60, 255), 1.5f);
+    curve([&](const LobeSample& l) { return lum(l.diffuse + l.specular); }, IM_COL32(240, 240, 240, 255), 2.0f);
+    dl->AddText(ImVec2(origin.x + 4, origin.y + 2), IM_COL32(200, 200, 200, 255),
+                (std::string(diffuseModelName(p.diffuse)) + " + " + specularModelName(p.specular)).c_str());
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "peak f*cos %.3g /sr", peak);
+    dl->AddText(ImVec2(origin.x + 4, origin.y + 18), IM_COL32(200, 200, 200, 255), buf);
+    ImGui::TextDisabled("white: total, blue: diffuse, orange: specular; green: view");
+}
+
+}  // namespace
+
+void act(PanelContext& ctx, const PanelAction& action) {
+    try {
+        applyPanelAction(ctx.state, action);
+    } catch (const Error& e) {
+        ctx.message = e.what();
+    }
+}
+
+void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
+    ViewState& s = ctx.state;
+    ImGui::SetNextWindowPos(ImVec2(x, y));
+    ImGui::SetNextWindowSize(ImVec2(width, height));
+    ImGui::Begin("gisandbox", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                     ImGuiWindowFlags_NoSavedSettings);
+    ImGui::PushItemWidth(-130.0f);
+
+    if (!ctx.session.lastError().empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 110, 100, 255));
+        ImGui::TextWrapped("%s", ctx.session.lastError().c_str());
+        ImGui::PopStyleColor();
+        if (ImGui::SmallButton("Dismiss")) ctx.session.clearError();
+    }
+    if (!ctx.message.empty()) ImGui::TextWrapped("%s", ctx.message.c_str());
+
+    if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) {
+        const Scene& scene = ctx.session.scene();
+        ImGui::Text("%s: %zu triangles, %zu lights", s.scene.c_str(), scene.triangleCount(), scene.lights.size());
+        ImGui::InputText("##scene", &ctx.scenePath);
+        ImGui::SameLine();
+        if (ImGui::Button("Open")) {
+            if (ctx.session.openScene(s, ctx.scenePath)) ctx.message = "opened " + ctx.scenePath;
+        }
+        ImGui::TextDisabled("or drop a .gltf/.glb on the window");
+    }
+
+    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+        int mode = int(s.mode);
+        bool changed = ImGui::RadioButton("Single", &mode, 0);
+        ImGui::SameLine();
+        changed |= ImGui::RadioButton("Split", &mode, 1);
+        ImGui::SameLine();
+        changed |= ImGui::RadioButton("2x2 grid", &mode, 2);
+        if (changed) act(ctx, PanelAction::viewMode(ViewMode(mode)));
+        if (s.mode == ViewMode::Split) {
+            float divider = s.divider;
+            if (ImGui::SliderFloat("Divider", &divider, 0.02f, 0.98f)) act(ctx, PanelAction::dividerAt(divider));
+        }
+        float scale = s.renderScale;
+        if (ImGui::SliderFloat("Render scale", &scale, 0.125f, 1.0f, "%.3f")) {
+            PanelAction a;
+            a.kind = PanelAction::SetRenderScale;
+            a.value = scale;
+            act(ctx, a);
+        }
+        int cam = int(s.camera.mode);
+        bool camChanged = ImGui::RadioButton("Orbit", &cam, 0);
+        ImGui::SameLine();
+        camChanged |= ImGui::RadioButton("Fly", &cam, 1);
+        if (camChanged) {
+            PanelAction a;
+            a.kind = PanelAction::SetCameraMode;
+            a.text = cam == 0 ? "orbit" : "fly";
+            act(ctx, a);
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Reset camera")) {
+            PanelAction a;
+            a.kind = PanelAction::ResetCamera;
+            act(ctx, a);
+        }
+        ImGui::TextDisabled(s.camera.mode == CameraMode::Orbit
+                                ? "left drag: orbit, right/middle drag: pan, wheel: zoom"
+                                : "WASD/QE: move (shift: x4), drag: look, wheel: speed");
+        ImGui::TextDisabled("F: orbit/fly, R: reset, 1/2/3: single/split/grid, F12: screenshot");
+    }
+
+    for (int i = 0; i < paneCount(s.mode); ++i)
+        if (ImGui::CollapsingHeader(paneTitle(s.mode, i), ImGuiTreeNodeFlags_DefaultOpen)) paneControls(ctx, i);
+
+    if (ImGui::CollapsingHeader("Display and lighting", ImGuiTreeNodeFlags_DefaultOpen)) {
+        combo("Tone mapper", s.tonemap == Tonemapper::Aces ? "aces" : "linear", {"aces", "linear"},
+              [&](const std::string& n) { act(ctx, PanelAction::tonemapper(n)); });
+        float ev = s.exposureEV;
+        if (ImGui::SliderFloat("Exposure (EV)", &ev, -10.0f, 10.0f, "%.2f")) act(ctx, PanelAction::exposure(ev));
+        glm::vec3 ambient = s.ambient;
+        if (ImGui::ColorEdit3("Ambient (none)", &ambient[0], ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
+            PanelAction a;
+            a.kind = PanelAction::SetAmbient;
+            a.vec = glm::max(ambient, glm::vec3(0.0f));
+            act(ctx, a);
+        }
+        bool shadows = s.shadows;
+        if (ImGui::Checkbox("Shadows", &shadows)) {
+            PanelAction a;
+            a.kind = PanelAction::SetShadows;
+            a.flag = shadows;
+            act(ctx, a);
+        }
+        int bounces = s.maxBounces;
+        if (ImGui::SliderInt("Max bounces (pathtrace)", &bounces, 0, 64)) {
+            PanelAction a;
+            a.kind = PanelAction::SetMaxBounces;
+            a.value = float(bounces);
+            act(ctx, a);
+        }
+        combo("Heatmap metric", errorMetricName(s.heatmapMetric), {"flip", "rmse", "relmse", "ssim"},
+              [&](const std::string& n) {
+                  PanelAction a;
+                  a.kind = PanelAction::SetHeatmapMetric;
+                  a.text = n;
+                  act(ctx, a);
+              });
+        int spp = s.referenceSpp;
+        if (ImGui::InputInt("Reference spp", &spp, 16, 64, ImGuiInputTextFlags_EnterReturnsTrue)) {
+            PanelAction a;
+            a.kind = PanelAction::SetReferenceSpp;
+            a.value = float(std::clamp(spp, 1, 65536));
+            act(ctx, a);
+        }
+    }
+
+    if (ImGui::CollapsingHeader("Lights")) lightControls(ctx);
+    if (ImGui::CollapsingHeader("Timings and memory", ImGuiTreeNodeFlags_DefaultOpen)) timingControls(ctx);
+    if (ImGui::CollapsingHeader("BRDF lobe", ImGuiTreeNodeFlags_DefaultOpen)) lobePlot(ctx);
+
+    if (ImGui::CollapsingHeader("Settings and screenshots", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::InputText("##settings", &ctx.settingsPath);
+        ImGui::SameLine();
+        if (ImGui::Button("Save")) {
+            if (ctx.session.saveSettings(s, ctx.settingsPath)) ctx.message = "saved " + ctx.settingsPath;
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Load")) {
+            if (ctx.session.loadSettings(s, ctx.settingsPath)) ctx.message = "loaded " + ctx.settingsPath;
+        }
+        if (ImGui::Button("Screenshot (F12)")) ctx.screenshotRequested = true;
+    }
+    ImGui::PopItemWidth();
+    ImGui::End();
+}
+
+void drawViewOverlay(const ViewState& state, const ViewSession& session, float x, float y, float w, float h) {
+    ImDrawList* dl = ImGui::GetBackgroundDrawList();
+    auto label = [&](int pane, float lx, float ly, bool alignRight) {
+        std::string text = paneLabel(state, pane);
+        const PaneView& p = session.pane(pane);
+        if (!p.status.empty()) text += "  " + p.status;
+        if (p.heatmapReady) text += "  " + p.metricName + " " + formatMetric(p.metricValue, 4);
+        const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+        const float x0 = alignRight ? lx - size.x - 8.0f : lx;
+        dl->AddRectFilled(ImVec2(x0, ly), ImVec2(x0 + size.x + 8.0f, ly + size.y + 4.0f), IM_COL32(0, 0, 0, 170));
+        dl->AddText(ImVec2(x0 + 4.0f, ly + 2.0f), IM_COL32(255, 255, 255, 255), text.c_str());
+    };
+    const int count = session.visiblePanes();
+    if (count == 0) return;
+    if (state.mode == ViewMode::Split && count == 2) {
+        const float dx = x + std::round(state.divider * w);
+        dl->AddLine(ImVec2(dx, y), ImVec2(dx, y + h), IM_COL32(255, 255, 255, 230), 2.0f);
+        dl->AddCircleFilled(ImVec2(dx, y + h * 0.5f), 7.0f, IM_COL32(255, 255, 255, 230));
+        label(0, x, y, false);
+        label(1, x + w, y, true);
+    } else if (state.mode == ViewMode::Grid) {
+        const std::vector<PaneRect> rects = paneRects(ViewMode::Grid, int(w), int(h));
+        for (int i = 0; i < count; ++i) label(i, x + rects[i].x, y + rects[i].y, false);
+    } else {
+        label(0, x, y, false);
+    }
+}
+
+}  // namespace gis::view

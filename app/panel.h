@@ -1,0 +1,33 @@
+// The ImGui side of `gisandbox view`: the panel docked at the window's right side and the labels
+// drawn over the 3D view. Widgets only read the ViewState and call applyPanelAction (or the
+// session's open/load/save), so everything they do is what the tests exercise headless.
+#pragma once
+
+#include <string>
+
+#include "view_session.h"
+#include "view_state.h"
+
+namespace gis::view {
+
+struct PanelContext {
+    ViewState& state;
+    ViewSession& session;
+    std::string& message;          // the last status or error line, shown at the top
+    std::string& scenePath;        // text fields
+    std::string& settingsPath;
+    std::string glRenderer;
+    float cpuFrameMs = 0.0f;
+    bool screenshotRequested = false;  // set by the button
+};
+
+// Applies an action, turning a gis::Error into the panel's message.
+void act(PanelContext& ctx, const PanelAction& action);
+
+// The panel at (x, y, width, height) in ImGui (window) coordinates.
+void drawPanel(PanelContext& ctx, float x, float y, float width, float height);
+
+// Pane labels, progress and metric, and the split divider, over the 3D view at (x, y, w, h).
+void drawViewOverlay(const ViewState& state, const ViewSession& session, float x, float y, float w, float h);
+
+}  // namespace gis::view

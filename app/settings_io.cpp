@@ -1,0 +1,377 @@
+#include "settings_io.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "brdf_cpu.h"
+#include "image.h"
+
+namespace gis::view {
+
+namespace {
+
+using nlohmann::json;
+using ojson = nlohmann::ordered_json;
+
+ojson vec(glm::vec3 v) { return ojson::array({v.x, v.y, v.z}); }
+
+float number(const json& j, const std::string& key) {
+    if (!j.is_number()) throw Error("'" + key + "' must be a number");
+    const double v = j.get<double>();
+    if (!std::isfinite(v) || std::abs(v) > 3.0e38) throw Error("'" + key + "' must be a finite number");
+    return float(v);
+}
+
+glm::vec3 vec3(const json& j, const std::string& key) {
+    if (!j.is_array() || j.size() != 3) throw Error("'" + key + "' must be an array of 3 numbers");
+    return glm::vec3(number(j[0], key), number(j[1], key), number(j[2], key));
+}
+
+std::string text(const json& j, const std::string& key) {
+    if (!j.is_string()) throw Error("'" + key + "' must be a string");
+    return j.get<std::string>();
+}
+
+bool boolean(const json& j, const std::string& key) {
+    if (!j.is_boolean()) throw Error("'" + key + "' must be true or false");
+    return j.get<bool>();
+}
+
+int integer(const json& j, const std::string& key) {
+    if (!j.is_number_integer()) throw Error("'" + key + "' must be a whole number");
+    const int64_t v = j.get<int64_t>();
+    if (v < -(int64_t(1) << 30) || v > (int64_t(1) << 30)) throw Error("'" + key + "' is out of range");
+    return int(v);
+}
+
+const char* lightTypeName(LightType t) {
+    switch (t) {
+        case LightType::Directional: return "directional";
+        case LightType::Point: return "point";
+        case LightType::Spot: return "spot";
+    }
+    return "?";
+}
+
+}  // namespace
+
+ojson lightToJson(const Light& l) {
+    return ojson{{"name", l.name},
+                 {"type", lightTypeName(l.type)},
+                 {"color", vec(l.color)},
+                 {"intensity", l.intensity},
+                 {"range", l.range},
+                 {"inner_cone", l.innerConeAngle},
+                 {"outer_cone", l.outerConeAngle},
+                 {"position", vec(l.position)},
+                 {"direction", vec(l.direction)}};
+}
+
+Light lightFromJson(const json& j) {
+    if (!j.is_object()) throw Error("a light must be an object");
+    Light l;
+    for (const auto& [key, v] : j.items()) {
+        if (key == "name") l.name = text(v, key);
+        else if (key == "type") {
+            const std::string t = text(v, key);
+            if (t == "directional") l.type = LightType::Directional;
+            else if (t == "point") l.type = LightType::Point;
+            else if (t == "spot") l.type = LightType::Spot;
+            else throw Error("unknown light type '" + t + "'");
+        } else if (key == "color") l.color = vec3(v, key);
+        else if (key == "intensity") l.intensity = number(v, key);
+        else if (key == "range") l.range = number(v, key);
+        else if (key == "inner_cone") l.innerConeAngle = number(v, key);
+        else if (key == "outer_cone") l.outerConeAngle = number(v, key);
+        else if (key == "position") l.position = vec3(v, key);
+        else if (key == "direction") l.direction = vec3(v, key);
+        else if (key != "enabled") throw Error("unknown light key '" + key + "'");
+    }
+    if (l.intensity < 0.0f || glm::any(glm::lessThan(l.color, glm::vec3(0.0f))) || l.range < 0.0f)
+        throw Error("light '" + l.name + "': intensity, colour and range must be non-negative");
+    if (!(glm::length(l.direction) > 1e-6f)) throw Error("light '" + l.name + "': direction must not be zero");
+    return l;  // (the direction is normalised where it is used: makeGpuLights)
+}
+
+ojson viewStateToJson(const ViewState& s) {
+    ojson j;
+    j["gisandbox_view_settings"] = kSettingsVersion;
+    j["scene"] = s.scene;
+    j["view_size"] = {s.viewWidth, s.viewHeight};
+    j["mode"] = viewModeName(s.mode);
+    j["divider"] = s.divider;
+    for (const PaneState& p : s.panes)
+        j["panes"].push_back(ojson{{"gi", p.gi},
+                                   {"preset", p.preset},
+                                   {"diffuse", diffuseModelName(p.diffuse)},
+                                   {"specular", specularModelName(p.specular)},
+                                   {"display", paneDisplayName(p.display)},
+                                   {"direct_only", p.directOnly}});
+    j["tonemap"] = s.tonemap == Tonemapper::Aces ? "aces" : "linear";
+    j["exposure"] = s.exposureEV;
+    j["ambient"] = vec(s.ambient);
+    j["shadows"] = s.shadows;
+    j["background"] = s.background ? vec(*s.background) : ojson(nullptr);
+    j["max_bounces"] = s.maxBounces;
+    j["render_scale"] = s.renderScale;
+    j["heatmap_metric"] = errorMetricName(s.heatmapMetric);
+    j["reference_spp"] = s.referenceSpp;
+    const ViewCamera& c = s.camera;
+    j["camera"] = ojson{{"scene_camera", c.sceneCamera},
+                        {"free", c.free},
+                        {"mode", c.mode == CameraMode::Orbit ? "orbit" : "fly"},
+                        {"position", vec(c.position)},
+                        {"yaw", c.yaw},
+                        {"pitch", c.pitch},
+                        {"distance", c.distance},
+                        {"yfov", c.yfov},
+                        {"znear", c.znear},
+                        {"zfar", c.zfar},
+                        {"speed", c.speed}};
+    if (s.lightsEdited) {
+        j["lights"] = ojson::array();
+        for (const LightState& l : s.lights) {
+            ojson e = lightToJson(l.light);
+            e["enabled"] = l.enabled;
+            j["lights"].push_back(e);
+        }
+    } else {
+        j["lights"] = nullptr;  // the scene's own
+    }
+    j["brdf_plot"] = ojson{{"pane", s.plotPane},
+                           {"base_color", vec(s.plotBaseColor)},
+                           {"metallic", s.plotMetallic},
+                           {"roughness", s.plotRoughness},
+                           {"specular", s.plotSpecular},
+                           {"view_angle", s.plotViewAngle},
+                           {"log", s.plotLog}};
+    return j;
+}
+
+void viewStateFromJson(const json& j, ViewState& state) {
+    if (!j.is_object()) throw Error("settings must be a JSON object");
+    ViewState s = state;
+    std::string key;
+    try {
+        auto apply = [&](PanelAction a) { applyPanelAction(s, a); };
+        for (const auto& [k, v] : j.items()) {
+            key = k;
+            if (k == "gisandbox_view_settings") {
+                if (integer(v, k) != kSettingsVersion)
+                    throw Error("version " + v.dump() + " is not supported (expected " +
+                                std::to_string(kSettingsVersion) + ")");
+            } else if (k == "scene") {
+                s.scene = text(v, k);
+            } else if (k == "view_size") {
+                if (!v.is_array() || v.size() != 2) throw Error("'view_size' must be [width, height]");
+                s.viewWidth = integer(v[0], k);
+                s.viewHeight = integer(v[1], k);
+                if (s.viewWidth < 1 || s.viewHeight < 1 || s.viewWidth > 16384 || s.viewHeight > 16384)
+                    throw Error("'view_size' is out of range (1..16384)");
+            } else if (k == "mode") {
+                PanelAction a;
+                a.kind = PanelAction::SetMode;
+                a.text = text(v, k);
+                apply(a);
+            } else if (k == "divider") {
+                apply(PanelAction::dividerAt(number(v, k)));
+            } else if (k == "panes") {
+                if (!v.is_array() || v.size() > size_t(kMaxPanes)) throw Error("'panes' must be an array of up to 4");
+                for (size_t i = 0; i < v.size(); ++i) {
+                    const int p = int(i);
+                    for (const auto& [pk, pv] : v[i].items()) {
+                        key = "panes[" + std::to_string(i) + "]." + pk;
+                        if (pk == "gi") apply(PanelAction::method(p, text(pv, key)));
+                        else if (pk == "preset") apply(PanelAction::preset(p, text(pv, key)));
+                        else if (pk == "diffuse") apply(PanelAction::diffuse(p, text(pv, key)));
+                        else if (pk == "specular") apply(PanelAction::specular(p, text(pv, key)));
+                        else if (pk == "display") apply(PanelAction::display(p, parsePaneDisplay(text(pv, key))));
+                        else if (pk == "direct_only") apply(PanelAction::directOnly(p, boolean(pv, key)));
+                        else throw Error("unknown key");
+                    }
+                }
+            } else if (k == "tonemap") {
+                apply(PanelAction::tonemapper(text(v, k)));
+            } else if (k == "exposure") {
+                apply(PanelAction::exposure(number(v, k)));
+            } else if (k == "ambient") {
+                PanelAction a;
+                a.kind = PanelAction::SetAmbient;
+                a.vec = vec3(v, k);
+                apply(a);
+            } else if (k == "shadows") {
+                PanelAction a;
+                a.kind = PanelAction::SetShadows;
+                a.flag = boolean(v, k);
+                apply(a);
+            } else if (k == "background") {
+                PanelAction a;
+                a.kind = PanelAction::SetBackground;
+                a.flag = !v.is_null();
+                if (a.flag) a.vec = vec3(v, k);
+                apply(a);
+            } else if (k == "max_bounces" || k == "render_scale" || k == "reference_spp") {
+                PanelAction a;
+                a.kind = k == "max_bounces"    ? PanelAction::SetMaxBounces
+                         : k == "render_scale" ? PanelAction::SetRenderScale
+                                               : PanelAction::SetReferenceSpp;
+                a.value = number(v, k);
+                apply(a);
+            } else if (k == "heatmap_metric") {
+                PanelAction a;
+                a.kind = PanelAction::SetHeatmapMetric;
+                a.text = text(v, k);
+                apply(a);
+            } else if (k == "camera") {
+                if (!v.is_object()) throw Error("must be an object");
+                ViewCamera& c = s.camera;
+                for (const auto& [ck, cv] : v.items()) {
+                    key = "camera." + ck;
+                    if (ck == "scene_camera") c.sceneCamera = integer(cv, key);
+                    else if (ck == "free") c.free = boolean(cv, key);
+                    else if (ck == "mode") {
+                        PanelAction a;
+                        a.kind = PanelAction::SetCameraMode;
+                        a.text = text(cv, key);
+                        apply(a);
+                    } else if (ck == "position") c.position = vec3(cv, key);
+                    else if (ck == "yaw") c.yaw = number(cv, key);
+                    else if (ck == "pitch") c.pitch = number(cv, key);
+                    else if (ck == "distance") c.distance = number(cv, key);
+                    else if (ck == "yfov") c.yfov = number(cv, key);
+                    else if (ck == "znear") c.znear = number(cv, key);
+                    else if (ck == "zfar") c.zfar = number(cv, key);
+                    else if (ck == "speed") c.speed = number(cv, key);
+                    else throw Error("unknown key");
+                }
+                if (c.sceneCamera < 0) throw Error("scene_camera must be >= 0");
+                if (!(c.distance > 0.0f) || !(c.yfov > 0.0f && c.yfov < 3.13f) || !(c.znear > 0.0f) ||
+                    (c.zfar != 0.0f && !(c.zfar > c.znear)) || std::abs(c.pitch) > 1.5708f)
+                    throw Error("distance, yfov (0, pi), znear > 0, zfar (0 or > znear) or pitch out of range");
+            } else if (k == "lights") {
+                if (v.is_null()) {
+                    s.lightsEdited = false;
+                    continue;
+                }
+                if (!v.is_array()) throw Error("must be an array or null");
+                s.lights.clear();
+                for (size_t i = 0; i < v.size(); ++i) {
+                    key = "lights[" + std::to_string(i) + "]";
+                    LightState l{lightFromJson(v[i]), true};
+                    if (v[i].contains("enabled")) l.enabled = boolean(v[i]["enabled"], key + ".enabled");
+                    s.lights.push_back(l);
+                }
+                s.lightsEdited = true;
+            } else if (k == "brdf_plot") {
+                if (!v.is_object()) throw Error("must be an object");
+                glm::vec3 base = s.plotBaseColor;
+                glm::vec4 params(s.plotMetallic, s.plotRoughness, s.plotSpecular, 0.0f);
+                for (const auto& [pk, pv] : v.items()) {
+                    key = "brdf_plot." + pk;
+                    if (pk == "pane") {
+                        PanelAction a;
+                        a.kind = PanelAction::SetPlotPane;
+                        a.index = integer(pv, key);
+                        apply(a);
+                    } else if (pk == "base_color") base = vec3(pv, key);
+                    else if (pk == "metallic") params.x = number(pv, key);
+                    else if (pk == "roughness") params.y = number(pv, key);
+                    else if (pk == "specular") params.z = number(pv, key);
+                    else if (pk == "view_angle") {
+                        PanelAction a;
+                        a.kind = PanelAction::SetPlotViewAngle;
+                        a.value = number(pv, key);
+                        apply(a);
+                    } else if (pk == "log") {
+                        PanelAction a;
+                        a.kind = PanelAction::SetPlotLog;
+                        a.flag = boolean(pv, key);
+                        apply(a);
+                    } else throw Error("unknown key");
+                }
+                PanelAction a;
+                a.kind = PanelAction::SetPlotMaterial;
+                a.vec = base;
+                a.vec4 = params;
+                apply(a);
+            } else {
+                throw Error("unknown key");
+            }
+        }
+    } catch (const Error& e) {
+        throw Error("settings key '" + key + "': " + e.what());
+    }
+    state = std::move(s);
+}
+
+void saveViewSettings(const std::string& path, const ViewState& state) {
+    const std::string text = viewStateToJson(state).dump(2) + "\n";
+    writeAtomically(path, [&](const std::string& tmp) {
+        std::ofstream f(tmp, std::ios::binary);
+        f << text;
+        f.close();
+        if (!f) throw Error(path + ": cannot write");
+    });
+}
+
+ViewState loadViewSettings(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw Error(path + ": cannot open settings file");
+    std::stringstream buf;
+    buf << f.rdbuf();
+    json j;
+    try {
+        j = json::parse(buf.str());
+    } catch (const json::exception& e) {
+        throw Error(path + ": not valid JSON (" + std::string(e.what()) + ")");
+    }
+    // A screenshot's sidecar holds the settings under "settings", beside timings and the like.
+    if (j.is_object() && !j.contains("gisandbox_view_settings") && j.contains("settings")) j = j["settings"];
+    ViewState s;
+    try {
+        viewStateFromJson(j, s);
+    } catch (const Error& e) {
+        throw Error(path + ": " + e.what());
+    }
+    return s;
+}
+
+// A trip-wire: the view rebuilds a pane's renderer when renderSettingsToJson's output changes, so a
+// RenderSettings field missing there would be silently ignored by the view. When RenderSettings
+// gains a field, add it to renderSettingsToJson below, then update this size (x86-64).
+static_assert(sizeof(RenderSettings) == 152,
+              "RenderSettings changed: add the new field to renderSettingsToJson (app/settings_io.cpp)");
+
+ojson renderSettingsToJson(const RenderSettings& s) {
+    return ojson{{"width", s.width},
+                 {"height", s.height},
+                 {"camera", s.camera},
+                 {"gi", s.gi},
+                 {"diffuse", diffuseModelName(s.diffuse)},
+                 {"specular", specularModelName(s.specular)},
+                 {"tonemap", s.tonemap == Tonemapper::Aces ? "aces" : "linear"},
+                 {"exposure", s.exposureEV},
+                 {"ambient", vec(s.ambient)},
+                 {"shadow_map_size", s.shadowMapSize},
+                 {"shadow_cube_size", s.shadowCubeSize},
+                 {"shadows", s.shadows},
+                 {"hdr32", s.hdr32},
+                 {"background", s.background ? vec(*s.background) : ojson(nullptr)},
+                 {"spp", s.spp},
+                 {"samples_per_frame", s.samplesPerFrame},
+                 {"max_bounces", s.maxBounces},
+                 {"russian_roulette_start", s.russianRouletteStart},
+                 {"seed", s.seed},
+                 {"ao_samples", s.aoSamples},
+                 {"ao_steps", s.aoSteps},
+                 {"ao_radius", s.aoRadius},
+                 {"ao_bias", s.aoBias},
+                 {"ao_power", s.aoPower},
+                 {"ao_blur", s.aoBlur},
+                 {"ao_half_resolution", s.aoHalfResolution},
+                 {"ao_temporal", s.aoTemporal},
+                 {"view", s.view == DebugView::AmbientOcclusion ? "ao" : "final"}};
+}
+
+}  // namespace gis::view

@@ -1,0 +1,349 @@
+// gisandbox view: the window, its input and the frame loop. What the panel and keys do goes
+// through applyPanelAction (view_state.h); rendering is the ViewSession (view_session.h).
+#include <CLI/CLI.hpp>
+
+#include "gl/gl.h"  // glad before GLFW
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "commands.h"
+#include "image.h"
+#include "panel.h"
+#include "settings_io.h"
+#include "view_script.h"
+#include "view_session.h"
+
+namespace gis {
+
+namespace {
+
+using namespace gis::view;
+
+constexpr float kPanelWidth = 420.0f;  // window pixels; less on narrow windows
+
+class ViewApp final : public ScriptHost {
+public:
+    explicit ViewApp(const ViewOptions& o) : options_(o), start_(std::chrono::steady_clock::now()) {}
+    ~ViewApp() override;
+    int run();
+
+    // ScriptHost
+    void apply(const PanelAction& a) override { applyPanelAction(state_, a); }
+    void openScene(const std::string& spec) override {
+        if (!session_->openScene(state_, spec))
+            std::fprintf(stderr, "gisandbox: warning: %s\n", session_->lastError().c_str());
+    }
+    void loadSettings(const std::string& path) override {
+        if (!session_->loadSettings(state_, path)) throw Error(session_->lastError());
+    }
+    void saveSettings(const std::string& path) override { saveViewSettings(path, state_); }
+    void requestScreenshot() override { screenshot_ = true; }
+    void requestCapture(const std::string& path) override { capturePath_ = path; }
+    void resize(int w, int h) override {
+        if (w == 0 || h == 0) glfwIconifyWindow(window_);
+        else {
+            glfwRestoreWindow(window_);
+            glfwSetWindowSize(window_, w, h);
+        }
+    }
+    void quit() override { quit_ = true; }
+    bool settled() const override { return session_->settled(); }
+    double seconds() const override {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+
+private:
+    void handleInput(float viewW, float viewH, float dt);
+    bool keyPressed(int key);
+    void takeScreenshot();
+    void captureWindow(const std::string& path, int width, int height);
+
+    ViewOptions options_;
+    std::chrono::steady_clock::time_point start_;
+    std::unique_ptr<GlContext> ctx_;
+    GLFWwindow* window_ = nullptr;
+    ViewState state_;
+    std::unique_ptr<ViewSession> session_;
+    ScriptRunner script_;
+    bool imgui_ = false;
+    bool quit_ = false, screenshot_ = false;
+    std::string capturePath_;
+    std::string message_, scenePath_, settingsPath_ = "gisandbox_view.json";
+    std::string droppedPath_;
+    double scroll_ = 0.0;
+    bool keyWasDown_[GLFW_KEY_LAST + 1] = {};
+    enum class Drag { None, Orbit, Pan, Look, Divider } drag_ = Drag::None;
+    double lastX_ = 0.0, lastY_ = 0.0;
+};
+
+ViewApp::~ViewApp() {
+    session_.reset();  // GL objects go while the context lives
+    if (imgui_) {
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
+}
+
+bool ViewApp::keyPressed(int key) {
+    const bool down = glfwGetKey(window_, key) == GLFW_PRESS;
+    const bool pressed = down && !keyWasDown_[key];
+    keyWasDown_[key] = down;
+    return pressed;
+}
+
+void ViewApp::handleInput(float viewW, float viewH, float dt) {
+    const ImGuiIO& io = ImGui::GetIO();
+    double mx = 0.0, my = 0.0;
+    glfwGetCursorPos(window_, &mx, &my);
+    const double dx = mx - lastX_, dy = my - lastY_;
+    lastX_ = mx;
+    lastY_ = my;
+    const bool left = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    const bool right = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
+                       glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    const bool inView = mx >= 0.0 && mx < viewW && my >= 0.0 && my < viewH;
+    ViewCamera& cam = state_.camera;
+    const bool fly = cam.mode == CameraMode::Fly;
+
+    if (!left && !right) drag_ = Drag::None;
+    if (drag_ == Drag::None && inView && !io.WantCaptureMouse && (left || right)) {
+        const float divider = state_.divider * viewW;
+        if (left && state_.mode == ViewMode::Split && std::abs(mx - divider) < 8.0) drag_ = Drag::Divider;
+        else if (fly) drag_ = Drag::Look;
+        else drag_ = left ? Drag::Orbit : Drag::Pan;
+    }
+    const float turn = 0.005f;  // radians per pixel
+    switch (drag_) {
+        case Drag::Divider: applyPanelAction(state_, PanelAction::dividerAt(float(mx / viewW))); break;
+        case Drag::Orbit:
+            if (dx != 0.0 || dy != 0.0) applyPanelAction(state_, PanelAction::orbit(-float(dx) * turn, float(dy) * turn));
+            break;
+        case Drag::Look:
+            if (dx != 0.0 || dy != 0.0) applyPanelAction(state_, PanelAction::look(float(dx) * turn, -float(dy) * turn));
+            break;
+        case Drag::Pan:
+            if (dx != 0.0 || dy != 0.0) {
+                const float perPixel = 2.0f * std::tan(0.5f * cam.yfov) / std::max(viewH, 1.0f);
+                applyPanelAction(state_, PanelAction::pan(-float(dx) * perPixel, float(dy) * perPixel));
+            }
+            break;
+        case Drag::None: break;
+    }
+    if (scroll_ != 0.0 && inView && !io.WantCaptureMouse) {
+        if (fly) cam.speed = std::clamp(cam.speed * std::pow(1.2f, float(scroll_)), 1e-6f, 1e7f);
+        else applyPanelAction(state_, PanelAction::zoom(std::pow(0.9f, float(scroll_))));
+    }
+    scroll_ = 0.0;
+
+    if (io.WantCaptureKeyboard) {
+        for (int k : {GLFW_KEY_F12, GLFW_KEY_F, GLFW_KEY_R, GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3})
+            keyWasDown_[k] = glfwGetKey(window_, k) == GLFW_PRESS;
+        return;
+    }
+    if (keyPressed(GLFW_KEY_F12)) screenshot_ = true;
+    if (keyPressed(GLFW_KEY_F)) {
+        PanelAction a;
+        a.kind = PanelAction::SetCameraMode;
+        a.text = fly ? "orbit" : "fly";
+        applyPanelAction(state_, a);
+    }
+    if (keyPressed(GLFW_KEY_R)) {
+        PanelAction a;
+        a.kind = PanelAction::ResetCamera;
+        applyPanelAction(state_, a);
+    }
+    if (keyPressed(GLFW_KEY_1)) applyPanelAction(state_, PanelAction::viewMode(ViewMode::Single));
+    if (keyPressed(GLFW_KEY_2)) applyPanelAction(state_, PanelAction::viewMode(ViewMode::Split));
+    if (keyPressed(GLFW_KEY_3)) applyPanelAction(state_, PanelAction::viewMode(ViewMode::Grid));
+    if (fly) {
+        auto down = [&](int k) { return glfwGetKey(window_, k) == GLFW_PRESS ? 1.0f : 0.0f; };
+        const glm::vec3 dir(down(GLFW_KEY_D) - down(GLFW_KEY_A), down(GLFW_KEY_E) - down(GLFW_KEY_Q),
+                            down(GLFW_KEY_W) - down(GLFW_KEY_S));
+        if (dir != glm::vec3(0.0f)) {
+            const float boost = glfwGetKey(window_, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ? 4.0f : 1.0f;
+            applyPanelAction(state_, PanelAction::move(dir * cam.speed * boost * std::min(dt, 0.25f)));
+        }
+    }
+}
+
+void ViewApp::takeScreenshot() {
+    try {
+        const std::string path = session_->writeScreenshot(state_, options_.screenshotDir, ctx_->renderer);
+        message_ = "wrote " + path;
+        std::printf("wrote %s\n", path.c_str());
+        std::fflush(stdout);
+    } catch (const Error& e) {
+        message_ = e.what();
+        if (script_.active()) throw;
+    }
+}
+
+void ViewApp::captureWindow(const std::string& path, int width, int height) {
+    ImageU8 img;
+    img.width = width;
+    img.height = height;
+    img.rgba.resize(size_t(width) * height * 4);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
+    const size_t row = size_t(width) * 4;
+    for (int y = 0; y < height / 2; ++y)
+        std::swap_ranges(img.rgba.begin() + y * row, img.rgba.begin() + (y + 1) * row,
+                         img.rgba.begin() + (height - 1 - y) * row);
+    for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
+    writePng(path, img);
+    std::printf("wrote %s\n", path.c_str());
+    std::fflush(stdout);
+}
+
+int ViewApp::run() {
+    int width = 0, height = 0;
+    parseRenderSize(options_.size, width, height);
+    if (!options_.script.empty()) script_ = ScriptRunner(loadScript(options_.script), options_.script);
+
+    ContextOptions co;
+    co.backend = Backend::Glfw;
+    co.window = true;
+    co.visible = true;
+    co.width = width;
+    co.height = height;
+    co.debug = options_.glDebug;
+    co.title = "gisandbox";
+    try {
+        ctx_ = createContext(co);
+    } catch (const Error& e) {
+        throw Error(std::string(e.what()) +
+                    " (the sandbox needs a display: run it under `xvfb-run -a`, or render headless with `gisandbox render`)");
+    }
+    window_ = ctx_->window();
+    if (options_.verbose)
+        std::fprintf(stderr, "backend: glfw (%s)\nGL_RENDERER: %s\nGL_VERSION: %s\n", ctx_->detail.c_str(),
+                     ctx_->renderer.c_str(), ctx_->version.c_str());
+    glfwSwapInterval(1);
+    glfwSetWindowUserPointer(window_, this);
+    // Before ImGui installs its callbacks, which chain to these.
+    glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double y) {
+        static_cast<ViewApp*>(glfwGetWindowUserPointer(w))->scroll_ += y;
+    });
+    glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
+        if (count > 0) static_cast<ViewApp*>(glfwGetWindowUserPointer(w))->droppedPath_ = paths[0];
+    });
+
+    session_ = std::make_unique<ViewSession>();
+    state_.viewWidth = std::max(1, width - int(kPanelWidth));
+    state_.viewHeight = height;
+    if (!options_.settings.empty()) {
+        if (!session_->loadSettings(state_, options_.settings)) throw Error(session_->lastError());
+        if (options_.given && options_.given("--scene") && !session_->openScene(state_, options_.scene))
+            throw Error(session_->lastError());
+    } else if (!session_->openScene(state_, options_.scene, options_.camera)) {
+        throw Error(session_->lastError());
+    }
+    scenePath_ = state_.scene;
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the working directory
+    ImGui::StyleColorsDark();
+    if (!ImGui_ImplGlfw_InitForOpenGL(window_, true) || !ImGui_ImplOpenGL3_Init("#version 450"))
+        throw Error("cannot initialise the ImGui GLFW/OpenGL3 backends");
+    imgui_ = true;
+
+    auto last = std::chrono::steady_clock::now();
+    float cpuMs = 0.0f;
+    while (!quit_ && !glfwWindowShouldClose(window_)) {
+        // Nothing moving and nothing accumulating: wait for input instead of spinning.
+        if (!script_.active() && drag_ == Drag::None && state_.camera.mode == CameraMode::Orbit && session_->settled())
+            glfwWaitEventsTimeout(0.1);
+        else
+            glfwPollEvents();
+        int fbw = 0, fbh = 0, ww = 0, wh = 0;
+        glfwGetFramebufferSize(window_, &fbw, &fbh);
+        glfwGetWindowSize(window_, &ww, &wh);
+        if (fbw <= 0 || fbh <= 0 || ww <= 0 || wh <= 0) {  // minimised: nothing to draw into
+            if (script_.active()) script_.frame(*this);
+            glfwWaitEventsTimeout(0.1);
+            continue;
+        }
+        const auto now = std::chrono::steady_clock::now();
+        const float dt = std::chrono::duration<float>(now - last).count();
+        last = now;
+
+        if (!droppedPath_.empty()) {
+            const std::string path = std::exchange(droppedPath_, std::string());
+            if (session_->openScene(state_, path)) {
+                message_ = "opened " + path;
+                scenePath_ = path;
+            }
+        }
+        if (script_.active()) script_.frame(*this);
+
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        // Window coordinates for ImGui and the mouse; framebuffer pixels for GL (HiDPI).
+        const float panelW = std::min(kPanelWidth, 0.5f * float(ww));
+        const float viewW = std::max(1.0f, float(ww) - panelW), viewH = float(wh);
+        const float sx = float(fbw) / float(ww);
+        handleInput(viewW, viewH, dt);
+        view::PanelContext panel{state_, *session_, message_, scenePath_, settingsPath_, ctx_->renderer, cpuMs};
+        drawPanel(panel, viewW, 0.0f, float(ww) - viewW, viewH);
+        if (panel.screenshotRequested) screenshot_ = true;
+
+        const int viewPixelsW = std::max(1, int(std::lround(viewW * sx))), viewPixelsH = fbh;
+        state_.viewWidth = viewPixelsW;
+        state_.viewHeight = viewPixelsH;
+        session_->renderFrame(state_, viewPixelsW, viewPixelsH);
+        drawViewOverlay(state_, *session_, 0.0f, 0.0f, viewW, viewH);
+        ImGui::Render();
+
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glViewport(0, 0, fbw, fbh);
+        glDisable(GL_SCISSOR_TEST);
+        glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        session_->drawToFramebuffer(state_, 0, 0, viewPixelsW, viewPixelsH);
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+        if (screenshot_) {
+            screenshot_ = false;
+            takeScreenshot();
+        }
+        if (!capturePath_.empty()) captureWindow(std::exchange(capturePath_, std::string()), fbw, fbh);
+        glfwSwapBuffers(window_);
+        cpuMs = 0.9f * cpuMs + 0.1f * 1000.0f *
+                                   std::chrono::duration<float>(std::chrono::steady_clock::now() - now).count();
+    }
+    return 0;
+}
+
+}  // namespace
+
+void addViewOptions(CLI::App& cmd, ViewOptions& o) {
+    cmd.add_option("--scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME to open")->capture_default_str();
+    cmd.add_option("--settings", o.settings, "Start from a settings file (saved by the panel, or a screenshot's .json)");
+    cmd.add_option("--size", o.size, "Window size WIDTHxHEIGHT (the panel takes 420 pixels of it)")
+        ->capture_default_str();
+    cmd.add_option("--camera", o.camera, "Index of the glTF camera to start from")->capture_default_str();
+    cmd.add_option("--script", o.script, "Run timed actions from FILE (see README, Interactive sandbox)");
+    cmd.add_option("--screenshot-dir", o.screenshotDir, "Where screenshots (F12) go")->capture_default_str();
+    cmd.add_flag("--gl-debug", o.glDebug, "Debug context; print KHR_debug messages");
+    cmd.add_flag("-v,--verbose", o.verbose, "Print the backend, GL_RENDERER and GL_VERSION");
+    o.given = [&cmd](const std::string& flag) { return cmd.count(flag) > 0; };
+}
+
+int runView(const ViewOptions& o) {
+    ViewApp app(o);
+    return app.run();
+}
+
+}  // namespace gis

@@ -1,0 +1,166 @@
+#include "view_script.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace gis::view {
+
+namespace {
+constexpr double kConvergeTimeout = 300.0;
+
+double parseNumber(const std::string& w) {
+    size_t used = 0;
+    double v = 0.0;
+    try {
+        v = std::stod(w, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != w.size() || !std::isfinite(v)) throw Error("'" + w + "' is not a number");
+    return v;
+}
+}  // namespace
+
+std::vector<ScriptStep> parseScript(const std::string& text, const std::string& name) {
+    std::vector<ScriptStep> steps;
+    std::istringstream in(text);
+    int lineNo = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++lineNo;
+        const std::vector<std::string> w = splitWords(line);
+        if (w.empty()) continue;
+        ScriptStep s;
+        s.line = lineNo;
+        try {
+            auto need = [&](size_t n, const char* usage) {
+                if (w.size() != n) throw Error(std::string("usage: ") + usage);
+            };
+            const std::string& cmd = w[0];
+            if (cmd == "wait") {
+                need(2, "wait FRAMES");
+                const double n = parseNumber(w[1]);
+                if (n < 0 || n > 1e7 || n != std::floor(n)) throw Error("wait takes a whole number of frames");
+                s.kind = ScriptStep::Wait;
+                s.frames = int(n);
+            } else if (cmd == "sleep") {
+                need(2, "sleep SECONDS");
+                s.kind = ScriptStep::Sleep;
+                s.seconds = parseNumber(w[1]);
+                if (s.seconds < 0 || s.seconds > 3600) throw Error("sleep takes 0 to 3600 seconds");
+            } else if (cmd == "converge") {
+                need(1, "converge");
+                s.kind = ScriptStep::Converge;
+            } else if (cmd == "screenshot") {
+                need(1, "screenshot");
+                s.kind = ScriptStep::Screenshot;
+            } else if (cmd == "capture") {
+                need(2, "capture PATH.png");
+                s.kind = ScriptStep::Capture;
+                s.path = w[1];
+            } else if (cmd == "scene") {
+                need(2, "scene PATH|builtin:NAME");
+                s.kind = ScriptStep::OpenScene;
+                s.path = w[1];
+            } else if (cmd == "settings") {
+                need(2, "settings FILE");
+                s.kind = ScriptStep::LoadSettings;
+                s.path = w[1];
+            } else if (cmd == "save-settings") {
+                need(2, "save-settings FILE");
+                s.kind = ScriptStep::SaveSettings;
+                s.path = w[1];
+            } else if (cmd == "resize") {
+                need(3, "resize WIDTH HEIGHT");
+                const double a = parseNumber(w[1]), b = parseNumber(w[2]);
+                if (a < 0 || b < 0 || a > 16384 || b > 16384 || a != std::floor(a) || b != std::floor(b))
+                    throw Error("resize takes whole numbers in [0, 16384]");
+                s.kind = ScriptStep::Resize;
+                s.width = int(a);
+                s.height = int(b);
+            } else if (cmd == "quit") {
+                need(1, "quit");
+                s.kind = ScriptStep::Quit;
+            } else {
+                s.kind = ScriptStep::Action;
+                s.action = parsePanelAction(w);
+                // Names and ranges are checked now, so a typo fails before any window opens;
+                // light edits depend on the scene's lights and are checked when they run.
+                const PanelAction::Kind k = s.action.kind;
+                const bool dependsOnScene = k == PanelAction::SetLightEnabled || k == PanelAction::SetLightIntensity ||
+                                            k == PanelAction::SetLightColor || k == PanelAction::SetLightPosition ||
+                                            k == PanelAction::SetLightDirection || k == PanelAction::RemoveLight;
+                ViewState scratch;
+                if (!dependsOnScene) applyPanelAction(scratch, s.action);
+            }
+        } catch (const Error& e) {
+            throw Error(name + ":" + std::to_string(lineNo) + ": " + e.what());
+        }
+        steps.push_back(std::move(s));
+    }
+    return steps;
+}
+
+std::vector<ScriptStep> loadScript(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw Error(path + ": cannot open script");
+    std::stringstream buf;
+    buf << f.rdbuf();
+    return parseScript(buf.str(), path);
+}
+
+void ScriptRunner::frame(ScriptHost& host) {
+    while (next_ < steps_.size()) {
+        const ScriptStep& s = steps_[next_];
+        try {
+            switch (s.kind) {
+                case ScriptStep::Wait:
+                    if (framesLeft_ < 0) framesLeft_ = s.frames;
+                    if (framesLeft_-- > 0) return;
+                    framesLeft_ = -1;
+                    break;
+                case ScriptStep::Sleep:
+                    if (until_ < 0) until_ = host.seconds() + s.seconds;
+                    if (host.seconds() < until_) return;
+                    until_ = -1.0;
+                    break;
+                case ScriptStep::Converge:
+                    if (until_ < 0) {
+                        until_ = host.seconds() + kConvergeTimeout;
+                        return;  // at least one frame with the current state
+                    }
+                    if (!host.settled()) {
+                        if (host.seconds() > until_) throw Error("did not converge within 300 s");
+                        return;
+                    }
+                    until_ = -1.0;
+                    break;
+                case ScriptStep::Action: host.apply(s.action); break;
+                case ScriptStep::OpenScene: host.openScene(s.path); break;
+                case ScriptStep::LoadSettings: host.loadSettings(s.path); break;
+                case ScriptStep::SaveSettings: host.saveSettings(s.path); break;
+                case ScriptStep::Screenshot:
+                    host.requestScreenshot();
+                    ++next_;
+                    return;  // taken once this frame is drawn
+                case ScriptStep::Capture:
+                    host.requestCapture(s.path);
+                    ++next_;
+                    return;
+                case ScriptStep::Resize:
+                    host.resize(s.width, s.height);
+                    ++next_;
+                    return;
+                case ScriptStep::Quit:
+                    host.quit();
+                    ++next_;
+                    return;
+            }
+        } catch (const Error& e) {
+            throw Error(name_ + ":" + std::to_string(s.line) + ": " + e.what());
+        }
+        ++next_;
+    }
+}
+
+}  // namespace gis::view

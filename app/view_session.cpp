@@ -1,0 +1,518 @@
+#include "view_session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+
+#include "metrics.h"
+#include "plot.h"
+#include "settings_io.h"
+
+namespace gis::view {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+bool sameCamera(const CameraMatrices& a, const CameraMatrices& b) {
+    return a.viewProj == b.viewProj && a.position == b.position;
+}
+
+GBufferChannel channelOf(PaneDisplay d) {
+    switch (d) {
+        case PaneDisplay::Depth: return GBufferChannel::Depth;
+        case PaneDisplay::Normal: return GBufferChannel::Normal;
+        case PaneDisplay::BaseColor: return GBufferChannel::BaseColor;
+        case PaneDisplay::Material: return GBufferChannel::Material;
+        default: return GBufferChannel::Emissive;
+    }
+}
+
+std::string lightsKey(const std::vector<Light>& lights) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::array();
+    for (const Light& l : lights) j.push_back(lightToJson(l));
+    return j.dump();
+}
+
+std::string fileSafe(std::string s) {
+    for (char& c : s)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+    return s.empty() ? std::string("scene") : s;
+}
+
+float median(std::deque<float> v) {
+    if (v.empty()) return 0.0f;
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+}
+
+template <typename T>
+void push(std::deque<T>& d, T v) {
+    d.push_back(v);
+    while (d.size() > size_t(kHistoryFrames)) d.pop_front();
+}
+
+std::string describe(const std::exception& e) {
+    return dynamic_cast<const std::bad_alloc*>(&e) ? std::string("out of memory") : std::string(e.what());
+}
+
+}  // namespace
+
+std::string structuralKey(const RenderSettings& settings) {
+    nlohmann::ordered_json j = renderSettingsToJson(settings);
+    for (const char* live : {"diffuse", "specular", "tonemap", "exposure"}) j.erase(live);
+    return j.dump();
+}
+
+ViewSession::ViewSession() {
+    visualizer_ = std::make_unique<GBufferVisualizer>();
+    readFbo_ = gl::createFramebuffer();
+}
+
+ViewSession::~ViewSession() { releaseRenderers(); }
+
+bool ViewSession::openScene(ViewState& state, const std::string& spec, int camera) {
+    try {
+        auto scene = std::make_unique<Scene>(loadScene(spec));
+        ViewState s = state;
+        s.scene = spec;
+        resetCamera(s, *scene, camera);
+        resetLights(s, *scene);
+        releaseRenderers();
+        scene_ = std::move(scene);
+        sceneLights_ = scene_->lights;
+        lightsKey_ = lightsKey(sceneLights_);
+        state = std::move(s);
+        lastError_.clear();
+        return true;
+    } catch (const std::exception& e) {
+        lastError_ = "cannot open " + spec + ": " + describe(e);
+        return false;
+    }
+}
+
+bool ViewSession::loadSettings(ViewState& state, const std::string& path) {
+    try {
+        const ViewState loaded = loadViewSettings(path);
+        ViewState s = loaded;
+        if (!openScene(s, loaded.scene, loaded.camera.sceneCamera)) return false;  // lastError_ is set
+        // openScene reset camera and lights from the scene (and set what "reset" returns to):
+        // now the file's own.
+        s.camera = loaded.camera;
+        if (loaded.lightsEdited) {
+            s.lights = loaded.lights;
+            s.lightsEdited = true;
+        }
+        state = std::move(s);
+        return true;
+    } catch (const std::exception& e) {
+        lastError_ = describe(e);
+        return false;
+    }
+}
+
+bool ViewSession::saveSettings(const ViewState& state, const std::string& path) {
+    try {
+        saveViewSettings(path, state);
+        return true;
+    } catch (const std::exception& e) {
+        lastError_ = describe(e);
+        return false;
+    }
+}
+
+void ViewSession::releaseRenderers() {
+    for (PaneView& p : panes_) p = PaneView{};
+    references_.clear();
+    visible_ = 0;
+}
+
+void ViewSession::syncLights(const ViewState& state) {
+    const std::vector<Light> lights = effectiveLights(state, sceneLights_);
+    const std::string key = lightsKey(lights);
+    if (key == lightsKey_) return;
+    releaseRenderers();  // every pass that reads lights bakes them in
+    scene_->lights = lights;
+    lightsKey_ = key;
+}
+
+float ViewSession::maxDistance(const CameraMatrices& camera) const {
+    const Aabb& b = scene_->bounds;
+    if (b.empty()) return 1.0f;
+    float d = 0.0f;
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 c(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z);
+        d = std::max(d, glm::length(c - camera.position));
+    }
+    return std::max(d, 1e-6f);
+}
+
+void ViewSession::renderFrame(const ViewState& state, int viewWidth, int viewHeight) {
+    if (!scene_) return;
+    ++frame_;
+    syncLights(state);
+    const int count = paneCount(state.mode);
+    for (int i = count; i < kMaxPanes; ++i) panes_[i] = PaneView{};  // hidden panes hold nothing
+    visible_ = count;
+    paneSize_ = paneRenderSize(state, viewWidth, viewHeight);
+    CameraMatrices camera;
+    try {
+        camera = viewCameraMatrices(state, *scene_, float(paneSize_.x) / float(paneSize_.y));
+    } catch (const std::exception& e) {
+        lastError_ = describe(e);
+        for (int i = 0; i < count; ++i) panes_[i].shown = 0;
+        return;
+    }
+    for (int i = 0; i < count; ++i) renderPane(state, i, camera);
+    // References: the ones in use stay; at most four others are kept for coming back to.
+    while (references_.size() > size_t(kMaxPanes)) {
+        auto oldest = references_.begin();
+        for (auto it = references_.begin(); it != references_.end(); ++it)
+            if (it->second.lastUsed < oldest->second.lastUsed) oldest = it;
+        if (oldest->second.lastUsed == frame_) break;
+        references_.erase(oldest);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void ViewSession::renderPane(const ViewState& state, int index, const CameraMatrices& camera) {
+    PaneView& p = panes_[index];
+    const RenderSettings want = paneSettings(state, index, paneSize_);
+    const std::string key = structuralKey(want);
+    if (!p.renderer || key != p.builtKey) {
+        if (key == p.failedKey) {
+            p.shown = 0;
+            return;
+        }
+        p = PaneView{};  // the old renderer goes first: never two of one pane in GPU memory
+        try {
+            p.renderer = std::make_unique<Renderer>(*scene_, want);
+            ++rebuilds_;
+            p.builtKey = key;
+        } catch (const std::exception& e) {
+            p.renderer.reset();
+            p.failedKey = key;
+            p.status = describe(e);
+            lastError_ = "pane " + std::to_string(index) + ": " + p.status;
+            return;
+        }
+    }
+    Renderer& r = *p.renderer;
+    try {
+        r.setLiveSettings(want.diffuse, want.specular, want.tonemap, want.exposureEV);
+        if (!p.cameraSet || !sameCamera(p.camera, camera)) {
+            r.setCamera(camera);
+            p.camera = camera;
+            p.cameraSet = true;
+        }
+        r.renderFrame();
+        collectTimings(p);
+        p.status = want.gi != "pathtrace" ? ""
+                   : r.converged()        ? std::to_string(want.spp) + " spp"
+                                          : std::to_string(r.samplesDone()) + "/" + std::to_string(want.spp) + " spp";
+        const PaneDisplay display = state.panes[index].display;
+        p.heatmapWanted = display == PaneDisplay::Heatmap;
+        if (isGBufferDisplay(display)) {
+            visualizer_->draw(r, channelOf(display), maxDistance(camera), ensureDisplay(p));
+            p.shown = p.display.id();
+        } else if (display == PaneDisplay::Heatmap) {
+            updateHeatmap(state, index, camera);
+        } else {
+            p.shown = r.frameTexture("display");
+        }
+    } catch (const std::exception& e) {
+        PaneView failed;
+        failed.failedKey = key;
+        failed.status = describe(e);
+        lastError_ = "pane " + std::to_string(index) + ": " + failed.status;
+        p = std::move(failed);
+    }
+}
+
+void ViewSession::collectTimings(PaneView& p) {
+    const auto& passes = p.renderer->passes();
+    if (p.passes.size() != passes.size()) {
+        p.passes.assign(passes.size(), PassHistory{});
+        for (size_t k = 0; k < passes.size(); ++k) p.passes[k].pass = passes[k]->name();
+    }
+    bool fresh = false;
+    float total = 0.0f;
+    const auto& owners = p.renderer->memory().bytesByOwner;
+    for (size_t k = 0; k < passes.size(); ++k) {
+        std::vector<double>& samples = passes[k]->timer.samples;  // read and cleared: bounded memory
+        for (double ms : samples) push(p.passes[k].ms, float(ms));
+        fresh = fresh || !samples.empty();
+        samples.clear();
+        if (!p.passes[k].ms.empty()) total += p.passes[k].ms.back();
+        auto it = owners.find(p.passes[k].pass);
+        p.passes[k].bytes = it == owners.end() ? 0 : it->second;
+        p.passes[k].cached = passes[k]->reusedLastFrame();
+    }
+    if (fresh) push(p.totalMs, total);
+}
+
+GLuint ViewSession::ensureDisplay(PaneView& p) {
+    if (!p.display.id() || p.display.width != paneSize_.x || p.display.height != paneSize_.y)
+        p.display = gl::createTexture2D({nullptr, "view"}, GL_RGBA8, paneSize_.x, paneSize_.y);
+    return p.display.id();
+}
+
+ViewSession::Reference* ViewSession::reference(const ViewState& state, int index, const CameraMatrices& camera) {
+    const RenderSettings rs = referenceSettings(state, index, paneSize_);
+    const std::string key = structuralKey(rs) + "|" + std::to_string(int(rs.diffuse)) + "|" +
+                            std::to_string(int(rs.specular));
+    auto it = references_.find(key);
+    if (it == references_.end()) {
+        Reference ref;
+        ref.renderer = std::make_unique<Renderer>(*scene_, rs);
+        ++rebuilds_;
+        ref.renderer->setCamera(camera);
+        ref.camera = camera;
+        it = references_.emplace(key, std::move(ref)).first;
+    }
+    Reference& ref = it->second;
+    if (!sameCamera(ref.camera, camera)) {
+        ref.renderer->setCamera(camera);
+        ref.camera = camera;
+        ref.image = ImageF{};
+    }
+    if (ref.image.rgba.empty() && ref.lastUsed != frame_) {  // a sample per frame, however many panes use it
+        ref.renderer->renderFrame();
+        for (const auto& pass : ref.renderer->passes()) pass->timer.samples.clear();
+        if (ref.renderer->converged()) ref.image = ref.renderer->readHdr();
+    }
+    ref.lastUsed = frame_;
+    return &ref;
+}
+
+void ViewSession::updateHeatmap(const ViewState& state, int index, const CameraMatrices& camera) {
+    PaneView& p = panes_[index];
+    Renderer& r = *p.renderer;
+    p.shown = r.frameTexture("display");  // until the heatmap exists
+    Reference* ref = reference(state, index, camera);
+    if (ref->image.rgba.empty()) {
+        p.status = "reference " + std::to_string(ref->renderer->samplesDone()) + "/" +
+                   std::to_string(state.referenceSpp) + " spp";
+        p.heatmapReady = false;
+        return;
+    }
+    if (!r.converged()) {
+        p.heatmapReady = false;
+        return;  // status says how far the pane is
+    }
+    char cam[64];
+    std::snprintf(cam, sizeof cam, "%a,%a,%a", camera.position.x, camera.position.y, camera.position.z);
+    const std::string key = p.builtKey + "|" + std::to_string(int(state.panes[index].diffuse)) + "|" +
+                            std::to_string(int(state.panes[index].specular)) + "|" + std::to_string(int(state.tonemap)) +
+                            "|" + std::to_string(state.exposureEV) + "|" + errorMetricName(state.heatmapMetric) + "|" +
+                            cam + "|" + std::to_string(reinterpret_cast<uintptr_t>(ref));
+    if (key != p.heatmapKey) {
+        const ImageF test = r.readHdr();
+        MetricOptions options;
+        options.display = DisplaySettings{state.tonemap, state.exposureEV};
+        const ErrorMap map = errorMap(test, ref->image, state.heatmapMetric, options);
+        double sum = 0.0, sumSquares = 0.0;
+        float largest = 0.0f;
+        for (float v : map.values) {
+            sum += v;
+            sumSquares += double(v) * v;
+            largest = std::max(largest, v);
+        }
+        const double n = double(std::max<size_t>(map.values.size(), 1));
+        switch (state.heatmapMetric) {
+            case ErrorMetric::Flip: p.metricValue = sum / n; p.metricName = "FLIP"; break;
+            case ErrorMetric::Rmse: p.metricValue = std::sqrt(sumSquares / n); p.metricName = "RMSE"; break;
+            case ErrorMetric::RelMse: p.metricValue = sum / n; p.metricName = "relMSE"; break;
+            case ErrorMetric::Ssim: p.metricValue = 1.0 - sum / n; p.metricName = "SSIM"; break;
+        }
+        const bool unitRange = state.heatmapMetric == ErrorMetric::Flip || state.heatmapMetric == ErrorMetric::Ssim;
+        const ImageU8 heat = heatmapImage(map, unitRange ? 1.0f : std::max(largest, 1e-12f));
+        const GLuint tex = ensureDisplay(p);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        const size_t row = size_t(heat.width) * 4;
+        for (int y = 0; y < heat.height; ++y)  // rows top to bottom -> GL's bottom-up
+            glTextureSubImage2D(tex, 0, 0, heat.height - 1 - y, heat.width, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                                heat.rgba.data() + row * y);
+        p.heatmapKey = key;
+        p.heatmapReady = true;
+    }
+    p.shown = p.display.id();
+}
+
+void ViewSession::drawToFramebuffer(const ViewState& state, int x, int y, int w, int h) const {
+    if (visible_ == 0 || w <= 0 || h <= 0) return;
+    const int sw = paneSize_.x, sh = paneSize_.y;
+    auto blit = [&](GLuint tex, int sx0, int sy0, int sx1, int sy1, int dx0, int dy0, int dx1, int dy1) {
+        if (!tex || sx1 <= sx0 || dx1 <= dx0) return;
+        glNamedFramebufferTexture(readFbo_.id(), GL_COLOR_ATTACHMENT0, tex, 0);
+        glBlitNamedFramebuffer(readFbo_.id(), 0, sx0, sy0, sx1, sy1, dx0, dy0, dx1, dy1, GL_COLOR_BUFFER_BIT,
+                               GL_LINEAR);
+    };
+    glDisable(GL_SCISSOR_TEST);
+    if (state.mode == ViewMode::Single || visible_ == 1) {
+        blit(panes_[0].shown, 0, 0, sw, sh, x, y, x + w, y + h);
+    } else if (state.mode == ViewMode::Split) {
+        const int sx = int(std::lround(state.divider * sw)), dx = int(std::lround(state.divider * w));
+        blit(panes_[0].shown, 0, 0, sx, sh, x, y, x + dx, y + h);
+        blit(panes_[1].shown, sx, 0, sw, sh, x + dx, y, x + w, y + h);
+    } else {
+        const std::vector<PaneRect> rects = paneRects(ViewMode::Grid, w, h);
+        for (int i = 0; i < visible_ && i < int(rects.size()); ++i) {
+            const PaneRect& r = rects[i];
+            const int y0 = y + (h - r.y - r.h);
+            blit(panes_[i].shown, 0, 0, sw, sh, x + r.x, y0, x + r.x + r.w, y0 + r.h);
+        }
+    }
+    glNamedFramebufferTexture(readFbo_.id(), GL_COLOR_ATTACHMENT0, 0, 0);
+}
+
+bool ViewSession::settled() const {
+    for (int i = 0; i < visible_; ++i) {
+        const PaneView& p = panes_[i];
+        if (!p.renderer) continue;  // failed: nothing more will happen
+        if (!p.renderer->converged() || (p.heatmapWanted && !p.heatmapReady)) return false;
+    }
+    return true;
+}
+
+ImageU8 ViewSession::readPane(int index) const {
+    ImageU8 img;
+    img.width = paneSize_.x;
+    img.height = paneSize_.y;
+    img.rgba.assign(size_t(img.width) * img.height * 4, 0);
+    for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
+    const GLuint tex = index < visible_ ? panes_[index].shown : 0;
+    if (!tex) return img;
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(tex, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(img.rgba.size()), img.rgba.data());
+    const size_t row = size_t(img.width) * 4;
+    for (int y = 0; y < img.height / 2; ++y)
+        std::swap_ranges(img.rgba.begin() + y * row, img.rgba.begin() + (y + 1) * row,
+                         img.rgba.begin() + (img.height - 1 - y) * row);
+    return img;
+}
+
+ImageU8 ViewSession::composite(const ViewState& state, bool labels) const {
+    const int w = paneSize_.x, h = paneSize_.y;
+    auto label = [&](Canvas& c, int pane, int x, int y, bool alignRight) {
+        if (!labels) return;
+        std::string text = paneLabel(state, pane);
+        const PaneView& p = panes_[pane];
+        if (p.heatmapReady) text += "  " + p.metricName + " " + formatMetric(p.metricValue, 4);
+        // Twice the font size where it fits in the pane's share of the width.
+        const int room = state.mode == ViewMode::Split ? w / 2 : w;
+        const int scale = Canvas::textWidth(text, 2) + 8 <= room ? 2 : 1;
+        const int tw = Canvas::textWidth(text, scale) + 8, th = 8 * scale + 6;
+        const int x0 = alignRight ? x - tw : x;
+        c.fillRect(x0, y, x0 + tw, y + th, Rgba{0, 0, 0, 255});
+        c.text(x0 + 4, y + 3, text, Rgba{255, 255, 255, 255}, scale);
+    };
+    if (state.mode == ViewMode::Single || visible_ <= 1) {
+        Canvas c(w, h, Rgba{0, 0, 0, 255});
+        c.blit(readPane(0), 0, 0);
+        label(c, 0, 0, 0, false);
+        return c.image;
+    }
+    if (state.mode == ViewMode::Split) {
+        Canvas c(w, h, Rgba{0, 0, 0, 255});
+        const ImageU8 left = readPane(0), right = readPane(1);
+        const int split = int(std::lround(state.divider * w));
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const ImageU8& src = x < split ? left : right;
+                std::copy_n(&src.rgba[(size_t(y) * w + x) * 4], 4, &c.image.rgba[(size_t(y) * w + x) * 4]);
+            }
+        c.fillRect(split - 1, 0, split + 1, h, Rgba{255, 255, 255, 255});
+        label(c, 0, 0, 0, false);
+        label(c, 1, w, 0, true);
+        return c.image;
+    }
+    Canvas c(2 * w, 2 * h, Rgba{0, 0, 0, 255});
+    for (int i = 0; i < visible_; ++i) {
+        const int x = (i % 2) * w, y = (i / 2) * h;
+        c.blit(readPane(i), x, y);
+        label(c, i, x, y, false);
+    }
+    return c.image;
+}
+
+nlohmann::ordered_json ViewSession::timingsJson() const {
+    nlohmann::ordered_json panes = nlohmann::ordered_json::array();
+    for (int i = 0; i < visible_; ++i) {
+        const PaneView& p = panes_[i];
+        nlohmann::ordered_json j;
+        j["status"] = p.status;
+        if (p.renderer) {
+            j["samples"] = p.renderer->samplesDone();
+            j["converged"] = p.renderer->converged();
+            j["gpu_bytes_total"] = p.renderer->memory().total();
+        }
+        j["gpu_ms_median"] = median(p.totalMs);
+        for (const PassHistory& h : p.passes)
+            j["passes"].push_back({{"pass", h.pass},
+                                   {"gpu_ms_last", h.ms.empty() ? 0.0f : h.ms.back()},
+                                   {"gpu_ms_median", median(h.ms)},
+                                   {"frames", h.ms.size()},
+                                   {"gpu_bytes", h.bytes},
+                                   {"cached", h.cached}});
+        if (p.heatmapReady) j["error_vs_reference"] = {{"metric", p.metricName}, {"value", p.metricValue}};
+        panes.push_back(j);
+    }
+    return panes;
+}
+
+std::string ViewSession::writeScreenshot(const ViewState& state, const std::string& dir,
+                                         const std::string& glRenderer) const {
+    if (!scene_ || visible_ == 0) throw Error("screenshot: nothing rendered yet");
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (!fs::is_directory(dir)) throw Error("screenshot: cannot create directory '" + dir + "'");
+    const std::time_t now = std::time(nullptr);
+    std::tm local{};
+    localtime_r(&now, &local);
+    char stamp[32];
+    std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &local);
+    std::string method = state.panes[0].gi;
+    if (state.mode == ViewMode::Split) method += "-vs-" + state.panes[1].gi;
+    if (state.mode == ViewMode::Grid) method = "grid";
+    const std::string sceneName = fileSafe(scene_->name.empty() ? state.scene : scene_->name);
+    std::string stem = (fs::path(dir) / (sceneName + "_" + fileSafe(method) + "_" + stamp)).string();
+    for (int n = 2; fs::exists(stem + ".png") || fs::exists(stem + ".json"); ++n)
+        stem = (fs::path(dir) / (sceneName + "_" + fileSafe(method) + "_" + stamp + "_" + std::to_string(n))).string();
+
+    const ImageU8 image = composite(state, state.mode != ViewMode::Single);
+    nlohmann::ordered_json side;
+    side["image"] = fs::path(stem + ".png").filename().string();
+    side["gl_renderer"] = glRenderer;
+    side["render_size"] = {paneSize_.x, paneSize_.y};
+    side["settings"] = viewStateToJson(state);  // loadable: gisandbox view/render --settings
+    nlohmann::ordered_json panes = timingsJson();
+    for (int i = 0; i < visible_; ++i) {
+        panes[i]["label"] = paneLabel(state, i);
+        panes[i]["render_settings"] = renderSettingsToJson(paneSettings(state, i, paneSize_));
+    }
+    side["panes"] = panes;
+    writePng(stem + ".png", image);
+    const std::string text = side.dump(2) + "\n";
+    writeAtomically(stem + ".json", [&](const std::string& tmp) {
+        std::ofstream f(tmp, std::ios::binary);
+        f << text;
+        f.close();
+        if (!f) throw Error(stem + ".json: cannot write");
+    });
+    return stem + ".png";
+}
+
+int64_t ViewSession::gpuBytes() const {
+    int64_t sum = 0;
+    for (const PaneView& p : panes_) {
+        if (p.renderer) sum += p.renderer->memory().total();
+        if (p.display.id()) sum += int64_t(p.display.width) * p.display.height * 4;
+    }
+    for (const auto& [key, ref] : references_) sum += ref.renderer->memory().total();
+    return sum;
+}
+
+}  // namespace gis::view

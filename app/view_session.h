@@ -1,0 +1,135 @@
+// The GL side of `gisandbox view`, without a window: the scene, a Renderer per visible pane, the
+// path-traced references of the error heatmaps, debug displays, timings, screenshots. It needs a
+// current GL context (any backend), so the tests drive it headless exactly as the window does.
+//
+// Rebuild policy: a pane's Renderer is re-created when anything it bakes into its resources
+// changes (method, preset, size, shadows, ambient/background/bounces, the lights, the scene) and
+// kept otherwise. BRDF models, tone mapper and exposure are uniforms read every frame
+// (Renderer::setLiveSettings): switching them costs nothing, and the path tracer restarts its
+// accumulation. A camera move never rebuilds either (Renderer::setCamera). A rebuild costs what
+// `gisandbox render` pays before its first frame: the scene upload, shader compilation and, for the
+// path tracer, the BVH build (README, "Interactive sandbox", has llvmpipe numbers).
+#pragma once
+
+#include <deque>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "debug_view.h"
+#include "image.h"
+#include "renderer.h"
+#include "view_state.h"
+
+namespace gis::view {
+
+constexpr int kHistoryFrames = 240;  // frames of GPU timings kept for the live graph
+
+struct PassHistory {
+    std::string pass;
+    std::deque<float> ms;     // GPU ms per frame, oldest first
+    int64_t bytes = 0;        // GPU memory the pass holds
+    bool cached = false;      // the last frame reused its results
+};
+
+// One visible pane: its renderer and what it shows.
+struct PaneView {
+    std::unique_ptr<Renderer> renderer;
+    std::string builtKey;             // the settings it was built with (live ones left out)
+    std::string failedKey;            // settings whose build failed (not retried until they change)
+    CameraMatrices camera;
+    bool cameraSet = false;
+    gl::Texture display;              // RGBA8: debug and heatmap displays
+    GLuint shown = 0;                 // the texture this pane shows this frame
+    std::vector<PassHistory> passes;
+    std::deque<float> totalMs;
+    std::string status;               // "12/64 spp", "reference 5/64 spp", errors
+    // Heatmap against the reference, when the pane shows one.
+    bool heatmapWanted = false;
+    std::string heatmapKey;
+    bool heatmapReady = false;
+    double metricValue = 0.0;
+    std::string metricName;
+};
+
+class ViewSession {
+public:
+    ViewSession();   // needs a current GL 4.5 context
+    ~ViewSession();
+    ViewSession(const ViewSession&) = delete;
+    ViewSession& operator=(const ViewSession&) = delete;
+
+    // Loads a scene and makes it the current one: resets `state`'s camera (to scene camera
+    // `camera`) and light list. On failure keeps the previous scene and state, sets lastError()
+    // and returns false.
+    bool openScene(ViewState& state, const std::string& spec, int camera = 0);
+    // Loads a settings file: its scene, then everything else over it. On failure keeps the
+    // previous scene and state, sets lastError() and returns false.
+    bool loadSettings(ViewState& state, const std::string& path);
+    bool saveSettings(const ViewState& state, const std::string& path);
+    const std::string& lastError() const { return lastError_; }
+    void clearError() { lastError_.clear(); }
+    bool hasScene() const { return scene_ != nullptr; }
+    const Scene& scene() const { return *scene_; }
+    const std::vector<Light>& sceneLights() const { return sceneLights_; }
+
+    // One frame of every visible pane for a 3D view of viewWidth x viewHeight window pixels.
+    void renderFrame(const ViewState& state, int viewWidth, int viewHeight);
+    // Blits the panes into the current draw framebuffer's rectangle (x, y from the bottom-left, GL
+    // convention), as the view shows them: split panes cut at the divider.
+    void drawToFramebuffer(const ViewState& state, int x, int y, int width, int height) const;
+
+    int visiblePanes() const { return visible_; }
+    const PaneView& pane(int i) const { return panes_[i]; }
+    glm::ivec2 paneSize() const { return paneSize_; }
+    // Every visible pane finished (progressive methods converged, heatmaps computed).
+    bool settled() const;
+    ImageU8 readPane(int pane) const;             // what the pane shows, rows top to bottom
+    // What the 3D view shows, composed on the CPU at render size: the pane (single), the two
+    // halves at the divider (split) or 2x2 panes (grid), each labelled when `labels`.
+    ImageU8 composite(const ViewState& state, bool labels) const;
+    // Writes DIR/<scene>_<method>_<time>.png and its .json sidecar (every setting, the per-pane
+    // render settings, timings and heatmap metric), atomically. Returns the PNG's path.
+    std::string writeScreenshot(const ViewState& state, const std::string& dir, const std::string& glRenderer) const;
+    nlohmann::ordered_json timingsJson() const;
+
+    int rebuilds() const { return rebuilds_; }    // renderers built so far (panes and references)
+    int64_t gpuBytes() const;                      // everything the panes and references hold
+    void releaseRenderers();                       // frees every renderer and display texture
+
+private:
+    struct Reference {
+        std::unique_ptr<Renderer> renderer;
+        CameraMatrices camera;
+        ImageF image;            // once converged
+        uint64_t lastUsed = 0;
+    };
+    void syncLights(const ViewState& state);
+    void renderPane(const ViewState& state, int index, const CameraMatrices& camera);
+    void updateHeatmap(const ViewState& state, int index, const CameraMatrices& camera);
+    Reference* reference(const ViewState& state, int index, const CameraMatrices& camera);
+    void collectTimings(PaneView& pane);
+    GLuint ensureDisplay(PaneView& pane);
+    float maxDistance(const CameraMatrices& camera) const;
+
+    std::unique_ptr<Scene> scene_;
+    std::vector<Light> sceneLights_;     // as loaded
+    std::string lightsKey_;              // the lights scene_ holds now
+    PaneView panes_[kMaxPanes];
+    std::map<std::string, Reference> references_;
+    std::unique_ptr<GBufferVisualizer> visualizer_;
+    gl::Object readFbo_;
+    glm::ivec2 paneSize_{1, 1};
+    int visible_ = 0;
+    int rebuilds_ = 0;
+    uint64_t frame_ = 0;
+    std::string lastError_;
+};
+
+// Key of the settings a Renderer bakes in (renderSettingsToJson without the live ones).
+std::string structuralKey(const RenderSettings& settings);
+
+}  // namespace gis::view

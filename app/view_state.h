@@ -1,0 +1,183 @@
+// The interactive sandbox's state and the only ways to change it. The ImGui panel, keyboard and
+// mouse handling, the input script (--script) and the tests all go through applyPanelAction(), so
+// what the widgets do is testable without a window. No GL here.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "metrics.h"
+#include "renderer.h"
+#include "scene/scene.h"
+
+namespace gis::view {
+
+enum class ViewMode { Single, Split, Grid };          // 1 pane; 2 panes with a divider; 2x2 panes
+enum class PaneDisplay { Lit, Heatmap, Depth, Normal, BaseColor, Material, Emissive };
+enum class CameraMode { Orbit, Fly };
+
+constexpr int kMaxPanes = 4;
+int paneCount(ViewMode mode);
+
+const char* viewModeName(ViewMode m);
+ViewMode parseViewMode(const std::string& s);        // single, split, grid
+const char* paneDisplayName(PaneDisplay d);
+PaneDisplay parsePaneDisplay(const std::string& s);  // lit, heatmap, depth, normal, basecolor, material, emissive
+const std::vector<PaneDisplay>& allPaneDisplays();
+bool isGBufferDisplay(PaneDisplay d);                // depth .. emissive
+
+// What one pane shows: its own GI method (with a quality preset) and BRDFs; everything else is shared.
+struct PaneState {
+    std::string gi = "none";
+    std::string preset = "medium";
+    DiffuseModel diffuse = DiffuseModel::Lambert;
+    SpecularModel specular = SpecularModel::Ggx;
+    PaneDisplay display = PaneDisplay::Lit;
+    bool directOnly = false;   // none: no ambient term; pathtrace: no indirect bounce
+};
+
+// The free camera: a position and a look direction (yaw about +Y, pitch up), with an orbit target
+// `distance` ahead. While `free` is false the scene's camera `sceneCamera` is used unchanged, so
+// an untouched view renders exactly what `gisandbox render --camera N` does.
+struct ViewCamera {
+    int sceneCamera = 0;
+    bool free = false;
+    CameraMode mode = CameraMode::Orbit;
+    glm::vec3 position{0.0f, 0.0f, 1.0f};
+    float yaw = 0.0f, pitch = 0.0f;     // radians; yaw 0 looks along -Z
+    float distance = 1.0f;              // to the orbit target
+    float yfov = 0.6981317f;            // full vertical angle, radians
+    float znear = 0.01f, zfar = 100.0f; // zfar 0: infinite
+    float speed = 1.0f;                 // fly speed, scene units per second
+};
+
+// A light in the panel's list: the scene's lights, edited, plus any added. Disabled lights are
+// left out of the scene the renderers see.
+struct LightState {
+    Light light;
+    bool enabled = true;
+};
+
+struct ViewState {
+    std::string scene = "builtin:cornell";
+    ViewMode mode = ViewMode::Single;
+    std::array<PaneState, kMaxPanes> panes;
+    float divider = 0.5f;                 // split: left pane's share of the view width, [0.02, 0.98]
+
+    // Shared by every pane.
+    Tonemapper tonemap = Tonemapper::Aces;
+    float exposureEV = 0.0f;
+    glm::vec3 ambient{0.03f};
+    bool shadows = true;
+    std::optional<glm::vec3> background;
+    int maxBounces = 16;                  // path tracer
+    float renderScale = 1.0f;             // render at this fraction of the view's pixels, [0.125, 1]
+
+    // Error heatmap against the path-traced reference at the current camera.
+    ErrorMetric heatmapMetric = ErrorMetric::Flip;
+    int referenceSpp = 64;
+
+    ViewCamera camera;
+    std::vector<LightState> lights;       // what the panel lists; used when lightsEdited
+    bool lightsEdited = false;            // else the scene's own lights
+
+    // Set from the scene by resetCamera / resetLights (not saved): what "reset" returns to.
+    ViewCamera homeCamera;
+    std::vector<Light> sceneLights;
+
+    // BRDF lobe plot: the material it is drawn for.
+    int plotPane = 0;
+    glm::vec3 plotBaseColor{0.8f};
+    float plotMetallic = 0.0f, plotRoughness = 0.3f, plotSpecular = 1.0f;
+    float plotViewAngle = 0.7853982f;     // radians
+    bool plotLog = false;
+
+    int viewWidth = 960, viewHeight = 720;  // the 3D view's size in window pixels (for --settings)
+};
+
+// --- Actions: every change to a ViewState. The panel's widgets, the keys, the mouse and script
+// lines build one and call applyPanelAction.
+struct PanelAction {
+    enum Kind {
+        SetMethod, SetPreset, SetDiffuse, SetSpecular, SetDisplay, SetDirectOnly,  // pane, text / flag
+        SetMode, SetDivider,
+        SetExposure, SetTonemap, SetAmbient, SetShadows, SetBackground, SetMaxBounces, SetRenderScale,
+        SetHeatmapMetric, SetReferenceSpp,
+        SetCameraMode, OrbitCamera, PanCamera, ZoomCamera, MoveCamera, LookCamera, ResetCamera,
+        SetLightEnabled, SetLightIntensity, SetLightColor, SetLightPosition, SetLightDirection, AddLight,
+        RemoveLight, ResetLights,
+        SetPlotPane, SetPlotMaterial, SetPlotViewAngle, SetPlotLog,
+    };
+    Kind kind = SetMethod;
+    int index = 0;            // pane or light
+    std::string text;
+    bool flag = false;
+    float value = 0.0f;
+    glm::vec3 vec{0.0f};
+    glm::vec4 vec4{0.0f};
+
+    static PanelAction method(int pane, std::string gi);
+    static PanelAction preset(int pane, std::string name);
+    static PanelAction diffuse(int pane, std::string name);
+    static PanelAction specular(int pane, std::string name);
+    static PanelAction display(int pane, PaneDisplay d);
+    static PanelAction directOnly(int pane, bool on);
+    static PanelAction viewMode(ViewMode m);
+    static PanelAction dividerAt(float fraction);
+    static PanelAction exposure(float ev);
+    static PanelAction tonemapper(std::string name);
+    static PanelAction orbit(float dyaw, float dpitch);       // radians
+    static PanelAction pan(float dx, float dy);               // in units of the orbit distance
+    static PanelAction zoom(float factor);                    // distance *= factor
+    static PanelAction move(glm::vec3 local);                 // fly: right, up, forward, scene units
+    static PanelAction look(float dyaw, float dpitch);        // fly: turn in place
+};
+
+// Validates and applies. Throws gis::Error (one line) for unknown names or out-of-range values and
+// leaves `state` unchanged then.
+void applyPanelAction(ViewState& state, const PanelAction& action);
+
+// A script line / command in words, e.g. "method 1 pathtrace", "camera orbit 10 0" (degrees),
+// "light 0 intensity 2". Throws gis::Error naming the problem. See README "Interactive sandbox".
+PanelAction parsePanelAction(const std::vector<std::string>& words);
+std::vector<std::string> splitWords(const std::string& line);
+
+// --- From state to renderer settings.
+
+// Scene-dependent initial state: the camera from scene camera `cameraIndex` (or the default one),
+// the light list from the scene's lights, fly speed from its size.
+void resetCamera(ViewState& state, const Scene& scene, int cameraIndex);
+void resetLights(ViewState& state, const Scene& scene);
+// The lights the renderers should see: the edited list's enabled lights, or `sceneLights` (the
+// scene's own, as loaded).
+std::vector<Light> effectiveLights(const ViewState& state, const std::vector<Light>& sceneLights);
+
+// Pane rectangles in the 3D view (x, y from the top-left, w, h) and the size each pane renders at.
+// Split: both panes cover the whole view (the divider picks which part of each is shown).
+struct PaneRect {
+    int x = 0, y = 0, w = 1, h = 1;
+};
+std::vector<PaneRect> paneRects(ViewMode mode, int viewWidth, int viewHeight);
+glm::ivec2 paneRenderSize(const ViewState& state, int viewWidth, int viewHeight);
+
+// Everything a Renderer needs for pane `pane` at `size`: the shared settings, the pane's method,
+// preset, BRDFs and debug options. G-buffer displays render with the rasterizer (gi none), which
+// is where a G-buffer exists. In the view the path tracer adds one sample per frame.
+RenderSettings paneSettings(const ViewState& state, int pane, glm::ivec2 size);
+// The path-traced reference the heatmap of `pane` compares against: the same scene, camera and
+// BRDFs, full global illumination at referenceSpp.
+RenderSettings referenceSettings(const ViewState& state, int pane, glm::ivec2 size);
+
+// The camera for an image of the given aspect: the scene camera while the view camera is not
+// free, else a perspective camera at the free camera's pose.
+CameraMatrices viewCameraMatrices(const ViewState& state, const Scene& scene, float aspect);
+glm::vec3 cameraForward(const ViewCamera& camera);
+
+// A label for a pane: "none/medium lambert+ggx", "pathtrace/high ... [heatmap]".
+std::string paneLabel(const ViewState& state, int pane);
+
+}  // namespace gis::view

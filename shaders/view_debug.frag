@@ -1,0 +1,47 @@
+// `gisandbox view` debug displays: one G-buffer channel made visible, into an RGBA8 display image
+// (values as shown on screen, i.e. already sRGB-encoded where they are colours).
+#include "common.glsl"
+
+// Locations are this program's own (renderer/debug_view.cpp uses the same numbers).
+#define CHANNEL_DEPTH 0
+#define CHANNEL_NORMAL 1
+#define CHANNEL_BASE_COLOR 2
+#define CHANNEL_MATERIAL 3
+#define CHANNEL_EMISSIVE 4
+
+layout(binding = 0) uniform sampler2D s_source;
+layout(binding = 1) uniform sampler2D s_depth;
+layout(location = 0) uniform int u_channel;
+layout(location = 1) uniform mat4 u_invViewProj;
+layout(location = 2) uniform vec3 u_cameraPos;
+layout(location = 3) uniform float u_maxDistance;
+
+in vec2 v_uv;
+layout(location = 0) out vec4 o_color;
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(s_depth, pixel, 0).r;
+    if (depth >= 1.0) {  // nothing drawn: a dark grey that no channel produces on geometry
+        o_color = vec4(0.1, 0.1, 0.12, 1.0);
+        return;
+    }
+    vec4 t = texelFetch(s_source, pixel, 0);
+    vec3 c;
+    if (u_channel == CHANNEL_DEPTH) {
+        // Distance from the camera, near = white, u_maxDistance (the far side of the scene) = black.
+        vec4 world = u_invViewProj * vec4(v_uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+        float d = length(world.xyz / world.w - u_cameraPos);
+        c = vec3(1.0 - saturate(d / max(u_maxDistance, 1e-20)));
+    } else if (u_channel == CHANNEL_NORMAL) {
+        c = normalize(t.xyz) * 0.5 + 0.5;             // world space, the usual colour coding
+    } else if (u_channel == CHANNEL_BASE_COLOR) {
+        c = linearToSrgb(t.rgb);                      // the sRGB target reads back linear
+    } else if (u_channel == CHANNEL_MATERIAL) {
+        c = saturate(t.rgb);                          // metallic, roughness, occlusion as R, G, B
+    } else {
+        vec3 e = max(finiteOrZero(t.rgb), vec3(0.0));
+        c = linearToSrgb(e / (1.0 + e));              // emitted radiance, Reinhard-compressed
+    }
+    o_color = vec4(c, 1.0);
+}

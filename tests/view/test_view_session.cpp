@@ -1,0 +1,395 @@
+// The sandbox's GL side headless (EGL or OSMesa): the panel's actions change what the panes show
+// through the same ViewSession the window uses; split/grid composites; heatmaps against the
+// reference; debug displays; light edits; screenshots; resizing; no GL objects leaked over 1000
+// switches; and the CPU BRDF table against the lighting pass.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "brdf_cpu.h"
+#include "cli_util.h"
+#include "settings_io.h"
+#include "view_session.h"
+#include "view_test_util.h"
+
+namespace gis::test {
+namespace {
+
+using namespace gis::view;
+namespace fs = std::filesystem;
+
+struct Sandbox {
+    ViewState state;
+    std::unique_ptr<ViewSession> session;
+    explicit Sandbox(const std::string& scene = "builtin:cornell") {
+        viewContext();
+        session = std::make_unique<ViewSession>();
+        EXPECT_TRUE(session->openScene(state, scene)) << session->lastError();
+    }
+    void act(const std::string& line) { applyPanelAction(state, parsePanelAction(splitWords(line))); }
+    // Frames until every pane has converged (progressive methods, heatmaps).
+    void settle(int w, int h, int maxFrames = 400) {
+        for (int i = 0; i < maxFrames; ++i) {
+            session->renderFrame(state, w, h);
+            if (session->settled()) return;
+        }
+        ADD_FAILURE() << "did not settle in " << maxFrames << " frames";
+    }
+    ImageU8 view(int w, int h) {
+        settle(w, h);
+        return session->composite(state, false);
+    }
+};
+
+TEST(Session, PanelActionsChangeTheRenderedImage) {
+    Sandbox s;
+    const ImageU8 base = s.view(48, 48);
+    EXPECT_TRUE(s.session->lastError().empty()) << s.session->lastError();
+    const int builds = s.session->rebuilds();
+
+    // The pane shows exactly what a Renderer with the pane's settings renders.
+    {
+        Renderer r(s.session->scene(), paneSettings(s.state, 0, {48, 48}));
+        r.renderFrame();
+        EXPECT_EQ(meanAbsDiff(r.readLdr(), base), 0.0);
+    }
+
+    s.act("exposure 1");
+    EXPECT_GT(meanAbsDiff(s.view(48, 48), base), 1.0);
+    s.act("exposure 0");
+    s.act("tonemap linear");
+    EXPECT_GT(meanAbsDiff(s.view(48, 48), base), 0.5);
+    s.act("tonemap aces");
+    EXPECT_EQ(s.session->rebuilds(), builds) << "display settings are live too";
+
+    s.act("method 0 pathtrace");
+    s.act("preset 0 low");
+    const ImageU8 traced = s.view(48, 48);
+    EXPECT_GT(s.session->rebuilds(), builds) << "a method switch rebuilds";
+    EXPECT_GT(meanAbsDiff(traced, base), 2.0) << "the path tracer looks like the rasterizer";
+    EXPECT_TRUE(s.session->pane(0).renderer->converged());
+    EXPECT_EQ(s.session->pane(0).renderer->samplesDone(), 4);
+
+    // A camera move restarts the accumulation, without a rebuild.
+    const int tracedBuilds = s.session->rebuilds();
+    s.act("camera orbit 15 5");
+    s.session->renderFrame(s.state, 48, 48);
+    EXPECT_EQ(s.session->pane(0).renderer->samplesDone(), 1) << "restarted";
+    EXPECT_EQ(s.session->rebuilds(), tracedBuilds);
+    const ImageU8 moved = s.view(48, 48);
+    EXPECT_GT(meanAbsDiff(moved, traced), 2.0);
+    // So does a BRDF switch.
+    s.act("specular 0 none");
+    s.session->renderFrame(s.state, 48, 48);
+    EXPECT_EQ(s.session->pane(0).renderer->samplesDone(), 1);
+}
+
+// The Cornell box is ideal Lambert (specular factor 0): the BRDF switch is tried on a glossy red
+// box lit by a directional light added through the panel.
+TEST(Session, BrdfSwitchChangesTheImageWithoutARebuild) {
+    Sandbox s(std::string(GIS_SHARED_DIR) + "/assets/gltf/Box/glTF-Binary/Box.glb");
+    s.act("light add directional");
+    s.act("camera orbit 30 -20");
+    const ImageU8 base = s.view(48, 48);
+    ASSERT_TRUE(s.session->lastError().empty()) << s.session->lastError();
+    const int builds = s.session->rebuilds();
+    s.act("specular 0 none");
+    const ImageU8 noSpecular = s.view(48, 48);
+    EXPECT_GT(meanAbsDiff(noSpecular, base), 0.05) << "the specular BRDF switch changed nothing";
+    EXPECT_EQ(s.session->rebuilds(), builds) << "a BRDF switch must not rebuild the renderer";
+    {
+        Renderer r(s.session->scene(), paneSettings(s.state, 0, {48, 48}));
+        r.setCamera(viewCameraMatrices(s.state, s.session->scene(), 1.0f));
+        r.renderFrame();
+        EXPECT_EQ(meanAbsDiff(r.readLdr(), noSpecular), 0.0) << "the pane is what a Renderer gives";
+    }
+    s.act("specular 0 ggx");
+    EXPECT_EQ(meanAbsDiff(s.view(48, 48), base), 0.0) << "switching back gives the same image";
+    s.act("diffuse 0 lambert");
+    EXPECT_EQ(meanAbsDiff(s.view(48, 48), base), 0.0);
+}
+
+TEST(Session, SplitAndGridComposeThePanes) {
+    Sandbox s;
+    s.act("mode split");
+    s.act("method 1 pathtrace");
+    s.act("preset 1 low");
+    s.act("divider 0.25");
+    s.settle(64, 40);
+    ASSERT_EQ(s.session->visiblePanes(), 2);
+    const ImageU8 left = s.session->readPane(0), right = s.session->readPane(1);
+    const ImageU8 split = s.session->composite(s.state, false);
+    ASSERT_EQ(split.width, 64);
+    auto px = [](const ImageU8& img, int x, int y) { return &img.rgba[(size_t(y) * img.width + x) * 4]; };
+    int fromLeft = 0, fromRight = 0;
+    for (int y = 0; y < 40; ++y) {
+        fromLeft += std::equal(px(split, 5, y), px(split, 5, y) + 3, px(left, 5, y));
+        fromRight += std::equal(px(split, 40, y), px(split, 40, y) + 3, px(right, 40, y));
+    }
+    EXPECT_EQ(fromLeft, 40) << "left of the divider is the left pane";
+    EXPECT_EQ(fromRight, 40) << "right of it, the right pane";
+    EXPECT_GT(meanAbsDiff(left, right), 2.0);
+
+    s.act("mode grid");
+    s.act("specular 2 none");
+    s.act("display 3 normal");
+    s.settle(64, 40);
+    ASSERT_EQ(s.session->visiblePanes(), 4);
+    EXPECT_EQ(s.session->paneSize(), glm::ivec2(32, 20));
+    const ImageU8 grid = s.session->composite(s.state, true);
+    EXPECT_EQ(grid.width, 64);
+    EXPECT_EQ(grid.height, 40);
+    EXPECT_GT(meanAbsDiff(s.session->readPane(3), s.session->readPane(0)), 5.0);
+}
+
+TEST(Session, GBufferDisplaysShowTheirChannels) {
+    Sandbox s;
+    const ImageU8 lit = s.view(40, 40);
+    std::vector<ImageU8> images;
+    for (const char* d : {"depth", "normal", "basecolor", "material", "emissive"}) {
+        s.act(std::string("display 0 ") + d);
+        images.push_back(s.view(40, 40));
+        EXPECT_GT(meanAbsDiff(images.back(), lit), 1.0) << d;
+    }
+    for (size_t i = 0; i < images.size(); ++i)
+        for (size_t j = i + 1; j < images.size(); ++j) EXPECT_GT(meanAbsDiff(images[i], images[j]), 1.0) << i << " " << j;
+    // The base colour display shows the Cornell walls' albedo: red on the left, green on the right.
+    const ImageU8& base = images[2];
+    const uint8_t* leftWall = &base.rgba[(20 * 40 + 3) * 4];
+    const uint8_t* rightWall = &base.rgba[(20 * 40 + 36) * 4];
+    EXPECT_GT(leftWall[0], leftWall[1] + 50);
+    EXPECT_GT(rightWall[1], rightWall[0] + 50);
+    // Direct only removes the ambient term of --gi none.
+    s.act("display 0 lit");
+    s.act("direct-only 0 on");
+    const ImageU8 direct = s.view(40, 40);
+    double litSum = 0, directSum = 0;
+    for (size_t i = 0; i < lit.rgba.size(); i += 4) litSum += lit.rgba[i + 1], directSum += direct.rgba[i + 1];
+    EXPECT_LT(directSum, litSum);
+}
+
+TEST(Session, HeatmapAgainstTheReference) {
+    Sandbox s;
+    s.act("reference-spp 8");
+    s.act("mode split");
+    s.act("display 0 heatmap");
+    // The right pane path-traces with the reference's own samples: no error at all.
+    s.act("method 1 pathtrace");
+    s.act("preset 1 low");
+    s.act("display 1 heatmap");
+    s.act("reference-spp 4");
+    s.settle(32, 32);
+    const PaneView& raster = s.session->pane(0);
+    const PaneView& traced = s.session->pane(1);
+    ASSERT_TRUE(raster.heatmapReady);
+    ASSERT_TRUE(traced.heatmapReady);
+    EXPECT_EQ(traced.metricName, "FLIP");
+    EXPECT_EQ(traced.metricValue, 0.0) << "same samples, same seed: identical to the reference";
+    EXPECT_GT(raster.metricValue, 0.05) << "--gi none misses all indirect light";
+    const ImageU8 heat = s.session->readPane(0);
+    const ImageU8 zero = s.session->readPane(1);
+    EXPECT_GT(meanAbsDiff(heat, zero), 5.0);
+    // The reference is cached: switching the metric recomputes the map, not the reference.
+    const int builds = s.session->rebuilds();
+    s.act("metric rmse");
+    s.settle(32, 32);
+    EXPECT_EQ(s.session->rebuilds(), builds);
+    EXPECT_EQ(s.session->pane(0).metricName, "RMSE");
+    EXPECT_GT(s.session->pane(0).metricValue, 0.0);
+    // A camera move invalidates it.
+    s.act("camera orbit 5 0");
+    s.session->renderFrame(s.state, 32, 32);
+    EXPECT_FALSE(s.session->pane(0).heatmapReady);
+    s.settle(32, 32);
+    EXPECT_TRUE(s.session->pane(0).heatmapReady);
+}
+
+TEST(Session, LightEditsChangeTheImage) {
+    Sandbox s;
+    const ImageU8 base = s.view(32, 32);
+    s.act("light 0 intensity 0");
+    const ImageU8 dark = s.view(32, 32);
+    EXPECT_GT(meanAbsDiff(base, dark), 5.0);
+    s.act("light 0 off");
+    s.act("light 0 intensity 1");
+    EXPECT_EQ(meanAbsDiff(s.view(32, 32), dark), 0.0) << "a disabled light lights nothing";
+    s.act("lights reset");
+    EXPECT_EQ(meanAbsDiff(s.view(32, 32), base), 0.0);
+}
+
+TEST(Session, OpeningABadSceneKeepsThePreviousOne) {
+    Sandbox s;
+    const ImageU8 base = s.view(32, 32);
+    const std::string dir = tempDir("view_bad_scene");
+    { std::ofstream(dir + "/broken.gltf") << "{\"asset\": "; }
+    for (const std::string& bad : {dir + "/broken.gltf", dir + "/missing.glb", std::string("builtin:nothing")}) {
+        EXPECT_FALSE(s.session->openScene(s.state, bad));
+        EXPECT_NE(s.session->lastError().find(bad.substr(bad.find_last_of("/:") + 1)), std::string::npos)
+            << s.session->lastError();
+        EXPECT_EQ(s.state.scene, "builtin:cornell");
+        EXPECT_EQ(meanAbsDiff(s.view(32, 32), base), 0.0);
+    }
+    EXPECT_TRUE(s.session->openScene(s.state, "builtin:cornell-area"));
+    EXPECT_GT(meanAbsDiff(s.view(32, 32), base), 1.0);
+}
+
+TEST(Session, ScreenshotWritesPngAndSidecarAtomically) {
+    Sandbox s;
+    s.act("mode split");
+    s.act("specular 1 none");
+    s.settle(64, 48);
+    const std::string dir = tempDir("view_screenshot");
+    const std::string png = s.session->writeScreenshot(s.state, dir, "test GL");
+    EXPECT_EQ(fs::path(png).filename().string().rfind("cornell_none-vs-none_", 0), 0u) << png;
+    const std::string json = png.substr(0, png.size() - 4) + ".json";
+    ASSERT_TRUE(fs::exists(png));
+    ASSERT_TRUE(fs::exists(json));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2) << "temporary files left";
+    const ImageU8 img = readPng(png);
+    EXPECT_EQ(img.width, 64);
+    EXPECT_EQ(img.height, 48);
+    // The sidecar is a settings file: loading it gives the same state back.
+    const ViewState loaded = loadViewSettings(json);
+    EXPECT_EQ(viewStateToJson(loaded).dump(), viewStateToJson(s.state).dump());
+    std::ifstream f(json);
+    const auto side = nlohmann::json::parse(f);
+    ASSERT_EQ(side["panes"].size(), 2u);
+    EXPECT_EQ(side["panes"][1]["render_settings"]["specular"], "none");
+    EXPECT_FALSE(side["panes"][0]["passes"].empty());
+    EXPECT_EQ(side["gl_renderer"], "test GL");
+    // A second one in the same second gets its own name.
+    const std::string png2 = s.session->writeScreenshot(s.state, dir, "test GL");
+    EXPECT_NE(png2, png);
+}
+
+TEST(Session, ResizeRecreatesSizeDependentResources) {
+    Sandbox s;
+    s.act("display 0 normal");
+    for (glm::ivec2 size : {glm::ivec2(40, 30), glm::ivec2(17, 61), glm::ivec2(1, 1), glm::ivec2(40, 30)}) {
+        s.session->renderFrame(s.state, size.x, size.y);
+        EXPECT_EQ(s.session->paneSize(), size);
+        const ImageU8 img = s.session->readPane(0);
+        EXPECT_EQ(img.width, size.x);
+        EXPECT_EQ(s.session->pane(0).renderer->settings().width, size.x);
+    }
+    s.act("render-scale 0.5");
+    s.session->renderFrame(s.state, 40, 30);
+    EXPECT_EQ(s.session->paneSize(), glm::ivec2(20, 15));
+}
+
+// 1000 switches of method, preset, BRDFs, view mode and display (heatmaps included) through the
+// panel's actions: every GL object the panes, references and displays made is gone again.
+TEST(Session, NoGlObjectsLeakOver1000Switches) {
+    Sandbox s;
+    s.act("reference-spp 2");
+    const GlObjectCounts empty = countGlObjects();
+    // Mostly low presets: a rebuild renders the shadow maps, and high ones cost llvmpipe ~100 ms.
+    const char* cycle[] = {"method 0 pathtrace", "specular 0 none",   "mode split",        "method 1 pathtrace",
+                           "preset 0 low",       "display 1 heatmap", "mode grid",         "display 2 depth",
+                           "diffuse 3 lambert",  "specular 0 ggx",    "method 0 none",     "preset 1 low",
+                           "mode single",        "display 1 lit",     "display 2 lit",     "method 1 none",
+                           "preset 0 medium",    "display 0 normal",  "display 0 heatmap", "preset 0 low",
+                           "display 0 lit",      "tonemap linear",    "exposure 1",        "tonemap aces",
+                           "exposure 0"};
+    const int n = int(sizeof cycle / sizeof cycle[0]);
+    auto runCycle = [&] {
+        for (int i = 0; i < n; ++i) {
+            s.act(cycle[i]);
+            s.session->renderFrame(s.state, 24, 16);
+            ASSERT_TRUE(s.session->lastError().empty()) << cycle[i] << ": " << s.session->lastError();
+        }
+    };
+    // Twice first: what is kept between frames (references for coming back to, display textures,
+    // each pass's ring of 4 timer queries) reaches its steady state.
+    runCycle();
+    runCycle();
+    const GlObjectCounts steady = countGlObjects();
+    const int64_t steadyBytes = s.session->gpuBytes();
+    const int buildsBefore = s.session->rebuilds();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < 1000 / n; ++k) runCycle();  // 40 cycles of 25
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const GlObjectCounts after = countGlObjects();
+    std::printf("1000 switches in %.1f s (%d renderers built); live GL objects: %s\n", seconds,
+                s.session->rebuilds() - buildsBefore, describe(after).c_str());
+    EXPECT_GE(s.session->rebuilds() - buildsBefore, 400);
+    EXPECT_EQ(describe(after), describe(steady));
+    EXPECT_EQ(s.session->gpuBytes(), steadyBytes);
+    s.session->releaseRenderers();
+    EXPECT_EQ(describe(countGlObjects()), describe(empty)) << "released: back to the session's own objects";
+    s.session.reset();
+    const GlObjectCounts none = countGlObjects();
+    EXPECT_EQ(none.total(), 0) << describe(none);
+}
+
+// The lobe plot's CPU BRDF table against the lighting pass (shaders/brdf.glsl): a floor under a
+// directional light, seen by an orthographic camera, has one (N, V, L) at every pixel, so its
+// radiance is f(L, V) E N.L exactly.
+TEST(BrdfTable, MatchesTheLightingPass) {
+    viewContext();
+    struct Case {
+        float lightDeg, viewDeg, roughness;
+        SpecularModel specular;
+    };
+    const Case cases[] = {{30, 30, 102 / 255.0f, SpecularModel::Ggx},  // mirror: the specular peak
+                          {60, 20, 153 / 255.0f, SpecularModel::Ggx},
+                          {10, 70, 51 / 255.0f, SpecularModel::Ggx},
+                          {45, 45, 102 / 255.0f, SpecularModel::None}};
+    for (const Case& c : cases) {
+        Scene scene;
+        Material m;
+        m.baseColorFactor = glm::vec4(1.0f);
+        m.metallicFactor = 0.0f;
+        m.roughnessFactor = c.roughness;
+        scene.materials.push_back(m);
+        Primitive p;
+        for (glm::vec2 q : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
+            Vertex v;
+            v.position = glm::vec3(q.x, 0.0f, q.y);
+            v.normal = glm::vec3(0, 1, 0);
+            p.vertices.push_back(v);
+        }
+        p.indices = {0, 2, 1, 0, 3, 2};
+        p.material = 0;
+        scene.primitives.push_back(p);
+        scene.draws.push_back({0, glm::mat4(1.0f)});
+        const float tl = glm::radians(c.lightDeg), tv = glm::radians(c.viewDeg);
+        const glm::vec3 L(std::sin(tl), std::cos(tl), 0.0f), V(-std::sin(tv), std::cos(tv), 0.0f), N(0, 1, 0);
+        Light light;
+        light.type = LightType::Directional;
+        light.intensity = 2.0f;
+        light.direction = -L;
+        scene.lights.push_back(light);
+        Camera cam;
+        cam.orthographic = true;
+        cam.xmag = cam.ymag = 0.2f;
+        cam.znear = 0.01f;
+        cam.zfar = 10.0f;
+        cam.cameraToWorld = glm::inverse(glm::lookAt(V * 3.0f, glm::vec3(0.0f), glm::vec3(0, 0, -1)));
+        scene.cameras.push_back(cam);
+        finalizeScene(scene);
+        RenderSettings rs;
+        rs.width = rs.height = 8;
+        rs.hdr32 = true;
+        rs.shadows = false;
+        rs.ambient = glm::vec3(0.0f);
+        rs.specular = c.specular;
+        Renderer r(scene, rs);
+        r.renderFrame();
+        const ImageF img = r.readHdr();
+        const CpuSurfaceBrdf surface = makeCpuSurfaceBrdf(glm::vec3(1.0f), 0.0f, c.roughness, 1.0f);
+        const glm::vec3 expected = evaluateCpuBrdf(surface, N, V, L, DiffuseModel::Lambert, c.specular) *
+                                   light.intensity * glm::dot(N, L);
+        const float got = img.at(4, 4)[0];
+        EXPECT_NEAR(got, expected.r, 2e-3f * expected.r)
+            << "light " << c.lightDeg << " view " << c.viewDeg << " roughness " << c.roughness;
+    }
+}
+
+}  // namespace
+}  // namespace gis::test

@@ -1,0 +1,329 @@
+// The sandbox's panel logic without GL: actions (what the widgets, keys and scripts call),
+// settings for the renderers, the camera, settings files, scripts and the CPU BRDF table.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "brdf_cpu.h"
+#include "cli_util.h"
+#include "settings_io.h"
+#include "view_script.h"
+#include "view_state.h"
+
+namespace gis::test {
+namespace {
+
+using namespace gis::view;
+
+ViewState stateFor(const Scene& scene) {
+    ViewState s;
+    resetCamera(s, scene, 0);
+    resetLights(s, scene);
+    return s;
+}
+
+// A state with every group of settings away from its default.
+ViewState unusualState(const Scene& scene) {
+    ViewState s = stateFor(scene);
+    for (const char* line :
+         {"mode grid", "method 1 pathtrace", "preset 1 high", "specular 2 none", "display 3 normal", "direct-only 0 on",
+          "divider 0.3", "exposure -1.5", "tonemap linear", "ambient 0.1 0.2 0.3", "shadows off", "background 0.5 0.25 1",
+          "max-bounces 3", "render-scale 0.5", "metric ssim", "reference-spp 32", "camera orbit 20 -10",
+          "camera zoom 0.8", "camera mode fly", "light 0 intensity 2.5", "light 0 color 1 0.5 0.25",
+          "light add spot", "light 1 direction 0 -1 0.1", "light 0 off", "plot material 0.2 0.4 0.6 0.5 0.7 0.9",
+          "plot view-angle 30", "plot log on", "plot pane 2"})
+        applyPanelAction(s, parsePanelAction(splitWords(line)));
+    return s;
+}
+
+TEST(PanelActions, ChangeOnlyWhatTheySay) {
+    const Scene scene = makeBuiltinScene("cornell");
+    ViewState s = stateFor(scene);
+    applyPanelAction(s, PanelAction::method(1, "pathtrace"));
+    EXPECT_EQ(s.panes[1].gi, "pathtrace");
+    EXPECT_EQ(s.panes[0].gi, "none");
+    applyPanelAction(s, PanelAction::specular(0, "none"));
+    EXPECT_EQ(s.panes[0].specular, SpecularModel::None);
+    EXPECT_EQ(s.panes[1].specular, SpecularModel::Ggx);
+    applyPanelAction(s, PanelAction::viewMode(ViewMode::Split));
+    EXPECT_EQ(s.mode, ViewMode::Split);
+    applyPanelAction(s, PanelAction::dividerAt(5.0f));
+    EXPECT_FLOAT_EQ(s.divider, 0.98f) << "dragging past the edge clamps";
+}
+
+TEST(PanelActions, BadValuesThrowAndLeaveTheStateAlone) {
+    const Scene scene = makeBuiltinScene("cornell");
+    ViewState s = stateFor(scene);
+    const std::string before = viewStateToJson(s).dump();
+    const char* bad[] = {"method 0 magic",  "method 4 none",     "preset 0 ultra",    "diffuse 0 velvet",
+                         "specular 0 x",    "display 0 albedo",  "mode quad",         "exposure 1e9",
+                         "tonemap filmic",  "ambient -1",        "render-scale 2",    "metric psnr",
+                         "reference-spp 0", "max-bounces 1.5",   "camera zoom 0",     "camera mode walk",
+                         "light 7 off",     "light 0 direction 0 0 0", "light add area", "shadows maybe",
+                         "exposure abc",    "method 0",          "frobnicate"};
+    for (const char* line : bad) {
+        EXPECT_THROW(applyPanelAction(s, parsePanelAction(splitWords(line))), Error) << line;
+        EXPECT_EQ(viewStateToJson(s).dump(), before) << line;
+    }
+}
+
+TEST(PaneSettings, CombineSharedPaneAndDebugOptions) {
+    const Scene scene = makeBuiltinScene("cornell");
+    ViewState s = stateFor(scene);
+    applyPanelAction(s, parsePanelAction(splitWords("exposure 1.25")));
+    applyPanelAction(s, parsePanelAction(splitWords("method 0 pathtrace")));
+    applyPanelAction(s, parsePanelAction(splitWords("preset 0 low")));
+    RenderSettings r = paneSettings(s, 0, {64, 32});
+    EXPECT_EQ(r.gi, "pathtrace");
+    EXPECT_EQ(r.spp, 4) << "pathtrace/low is 4 spp (presets.cpp)";
+    EXPECT_EQ(r.samplesPerFrame, 1) << "the view adds a sample per frame";
+    EXPECT_EQ(r.width, 64);
+    EXPECT_EQ(r.height, 32);
+    EXPECT_FLOAT_EQ(r.exposureEV, 1.25f);
+    applyPanelAction(s, PanelAction::directOnly(0, true));
+    EXPECT_EQ(paneSettings(s, 0, {8, 8}).maxBounces, 0);
+    applyPanelAction(s, PanelAction::method(0, "none"));
+    EXPECT_EQ(paneSettings(s, 0, {8, 8}).ambient, glm::vec3(0.0f)) << "direct only: no ambient term";
+    applyPanelAction(s, PanelAction::preset(0, "high"));
+    EXPECT_EQ(paneSettings(s, 0, {8, 8}).shadowMapSize, 2048);
+    // A G-buffer display renders with the rasterizer whatever the method.
+    applyPanelAction(s, PanelAction::method(0, "pathtrace"));
+    applyPanelAction(s, PanelAction::display(0, PaneDisplay::Normal));
+    EXPECT_EQ(paneSettings(s, 0, {8, 8}).gi, "none");
+    // The reference: full GI at reference-spp, the pane's BRDFs.
+    applyPanelAction(s, PanelAction::specular(0, "none"));
+    const RenderSettings ref = referenceSettings(s, 0, {8, 8});
+    EXPECT_EQ(ref.gi, "pathtrace");
+    EXPECT_EQ(ref.spp, s.referenceSpp);
+    EXPECT_EQ(ref.maxBounces, s.maxBounces);
+    EXPECT_EQ(ref.specular, SpecularModel::None);
+}
+
+TEST(PaneSettings, RectsAndRenderSizes) {
+    ViewState s;
+    EXPECT_EQ(paneRects(ViewMode::Single, 200, 100).size(), 1u);
+    const auto split = paneRects(ViewMode::Split, 200, 100);
+    ASSERT_EQ(split.size(), 2u);
+    EXPECT_EQ(split[1].w, 200) << "split panes both cover the view; the divider picks what shows";
+    const auto grid = paneRects(ViewMode::Grid, 201, 101);
+    ASSERT_EQ(grid.size(), 4u);
+    EXPECT_EQ(grid[3].x + grid[3].w, 201);
+    EXPECT_EQ(grid[3].y + grid[3].h, 101);
+    s.mode = ViewMode::Grid;
+    s.renderScale = 0.5f;
+    EXPECT_EQ(paneRenderSize(s, 200, 100), glm::ivec2(50, 25));
+    EXPECT_EQ(paneRenderSize(s, 0, 0), glm::ivec2(1, 1)) << "a minimised window still gives a valid size";
+}
+
+TEST(Camera, StartsAtTheSceneCameraAndOrbitsItsTarget) {
+    const Scene scene = makeBuiltinScene("cornell");
+    ViewState s = stateFor(scene);
+    EXPECT_FALSE(s.camera.free);
+    const CameraMatrices scenes = cameraMatrices(scene, 0, 1.0f);
+    EXPECT_EQ(viewCameraMatrices(s, scene, 1.0f).viewProj, scenes.viewProj) << "untouched: exactly the scene camera";
+    // The free camera's pose is the scene camera's.
+    s.camera.free = true;
+    const CameraMatrices free = viewCameraMatrices(s, scene, 1.0f);
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) EXPECT_NEAR(free.view[c][r], scenes.view[c][r], 1e-5f);
+    s.camera.free = false;
+
+    const glm::vec3 target = s.camera.position + cameraForward(s.camera) * s.camera.distance;
+    applyPanelAction(s, PanelAction::orbit(0.7f, 0.3f));
+    EXPECT_TRUE(s.camera.free);
+    const glm::vec3 target2 = s.camera.position + cameraForward(s.camera) * s.camera.distance;
+    EXPECT_NEAR(glm::length(target2 - target), 0.0f, 1e-4f) << "orbiting keeps the target";
+    EXPECT_NEAR(glm::length(s.camera.position - target), s.camera.distance, 1e-4f);
+    applyPanelAction(s, PanelAction::orbit(0.0f, 10.0f));
+    EXPECT_LT(s.camera.pitch, 1.56f) << "pitch stops short of straight up";
+    applyPanelAction(s, PanelAction::zoom(0.5f));
+    const glm::vec3 target3 = s.camera.position + cameraForward(s.camera) * s.camera.distance;
+    EXPECT_NEAR(glm::length(target3 - target), 0.0f, 1e-4f);
+    const glm::vec3 before = s.camera.position;
+    applyPanelAction(s, PanelAction::move(glm::vec3(0.0f, 0.0f, 1.0f)));
+    EXPECT_NEAR(glm::length(s.camera.position - before - cameraForward(s.camera)), 0.0f, 1e-5f) << "fly forward";
+    PanelAction reset;
+    reset.kind = PanelAction::ResetCamera;
+    applyPanelAction(s, reset);
+    EXPECT_FALSE(s.camera.free);
+    EXPECT_EQ(viewCameraMatrices(s, scene, 1.0f).viewProj, scenes.viewProj);
+}
+
+TEST(Lights, EditsReplaceTheScenesLightsAndReset) {
+    const Scene scene = makeBuiltinScene("cornell");
+    ViewState s = stateFor(scene);
+    EXPECT_EQ(effectiveLights(s, scene.lights).size(), scene.lights.size());
+    applyPanelAction(s, parsePanelAction(splitWords("light 0 intensity 3")));
+    applyPanelAction(s, parsePanelAction(splitWords("light add point")));
+    ASSERT_EQ(effectiveLights(s, scene.lights).size(), 2u);
+    EXPECT_FLOAT_EQ(effectiveLights(s, scene.lights)[0].intensity, 3.0f);
+    applyPanelAction(s, parsePanelAction(splitWords("light 1 off")));
+    EXPECT_EQ(effectiveLights(s, scene.lights).size(), 1u);
+    applyPanelAction(s, parsePanelAction(splitWords("light remove 0")));
+    EXPECT_EQ(effectiveLights(s, scene.lights).size(), 0u) << "the only enabled light was removed";
+    applyPanelAction(s, parsePanelAction(splitWords("lights reset")));
+    EXPECT_FALSE(s.lightsEdited);
+    EXPECT_FLOAT_EQ(effectiveLights(s, scene.lights)[0].intensity, scene.lights[0].intensity);
+}
+
+TEST(SettingsFile, RoundTripIsIdentical) {
+    const Scene scene = makeBuiltinScene("cornell");
+    const ViewState s = unusualState(scene);
+    const std::string dir = tempDir("view_settings_roundtrip");
+    saveViewSettings(dir + "/a.json", s);
+    const ViewState loaded = loadViewSettings(dir + "/a.json");
+    EXPECT_EQ(viewStateToJson(loaded).dump(), viewStateToJson(s).dump());
+    // What the renderers get is identical too, pane by pane, and the camera.
+    for (int i = 0; i < kMaxPanes; ++i)
+        EXPECT_EQ(renderSettingsToJson(paneSettings(loaded, i, {64, 48})).dump(),
+                  renderSettingsToJson(paneSettings(s, i, {64, 48})).dump());
+    EXPECT_EQ(viewCameraMatrices(loaded, scene, 1.5f).viewProj, viewCameraMatrices(s, scene, 1.5f).viewProj);
+    ASSERT_EQ(effectiveLights(loaded, scene.lights).size(), effectiveLights(s, scene.lights).size());
+    EXPECT_EQ(lightToJson(effectiveLights(loaded, scene.lights)[0]).dump(),
+              lightToJson(effectiveLights(s, scene.lights)[0]).dump());
+    // Saved twice, byte for byte the same file.
+    saveViewSettings(dir + "/b.json", loaded);
+    std::ifstream a(dir + "/a.json"), b(dir + "/b.json");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(a), {}), std::string(std::istreambuf_iterator<char>(b), {}));
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 2)
+        << "a temporary file was left behind";
+}
+
+TEST(SettingsFile, BadFilesNameTheProblem) {
+    const std::string dir = tempDir("view_settings_bad");
+    struct Case {
+        const char* json;
+        const char* mention;
+    };
+    const Case cases[] = {
+        {"{\"exposure\": \"bright\"}", "exposure"},
+        {"{\"panes\": [{\"gi\": \"magic\"}]}", "panes[0].gi"},
+        {"{\"camera\": {\"yfov\": 0}}", "camera"},
+        {"{\"lights\": [{\"type\": \"area\"}]}", "lights[0]"},
+        {"{\"gisandbox_view_settings\": 99}", "version"},
+        {"{\"colour\": 1}", "colour"},
+        {"[1, 2]", "object"},
+        {"{\"mode\": ", "not valid JSON"},
+    };
+    for (const Case& c : cases) {
+        {
+            std::ofstream(dir + "/bad.json") << c.json;
+        }
+        try {
+            loadViewSettings(dir + "/bad.json");
+            ADD_FAILURE() << c.json << " loaded";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(c.mention), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_THROW(loadViewSettings(dir + "/missing.json"), Error);
+}
+
+TEST(Script, ParsesTimedActionsAndNamesBadLines) {
+    const auto steps = parseScript(
+        "# a comment\nwait 3\nmode split\n\nmethod 1 pathtrace  # trailing comment\nconverge\nsleep 0.5\n"
+        "screenshot\ncapture out.png\nresize 640 480\nscene builtin:cornell-area\nquit\n",
+        "t.txt");
+    ASSERT_EQ(steps.size(), 10u);
+    EXPECT_EQ(steps[0].kind, ScriptStep::Wait);
+    EXPECT_EQ(steps[0].frames, 3);
+    EXPECT_EQ(steps[1].kind, ScriptStep::Action);
+    EXPECT_EQ(steps[2].action.kind, PanelAction::SetMethod);
+    EXPECT_EQ(steps[2].line, 5);
+    EXPECT_EQ(steps[3].kind, ScriptStep::Converge);
+    EXPECT_DOUBLE_EQ(steps[4].seconds, 0.5);
+    EXPECT_EQ(steps[6].path, "out.png");
+    EXPECT_EQ(steps[7].width, 640);
+    EXPECT_EQ(steps[9].kind, ScriptStep::Quit);
+    for (const char* bad : {"wait x", "wait -1", "capture", "resize 10", "method 1", "fly away"}) {
+        try {
+            parseScript(std::string("wait 1\n") + bad + "\n", "s.txt");
+            ADD_FAILURE() << bad;
+        } catch (const Error& e) {
+            EXPECT_EQ(std::string(e.what()).rfind("s.txt:2: ", 0), 0u) << e.what();
+        }
+    }
+}
+
+// A host that records what the runner asks for.
+struct FakeHost : ScriptHost {
+    ViewState state;
+    std::vector<std::string> log;
+    bool isSettled = false;
+    double clock = 0.0;
+    void apply(const PanelAction& a) override { applyPanelAction(state, a); log.push_back("apply"); }
+    void openScene(const std::string& s) override { log.push_back("scene " + s); }
+    void loadSettings(const std::string& p) override { log.push_back("load " + p); }
+    void saveSettings(const std::string& p) override { log.push_back("save " + p); }
+    void requestScreenshot() override { log.push_back("screenshot"); }
+    void requestCapture(const std::string& p) override { log.push_back("capture " + p); }
+    void resize(int w, int h) override { log.push_back("resize " + std::to_string(w) + "x" + std::to_string(h)); }
+    void quit() override { log.push_back("quit"); }
+    bool settled() const override { return isSettled; }
+    double seconds() const override { return clock; }
+};
+
+TEST(Script, RunnerWaitsFramesSecondsAndConvergence) {
+    ScriptRunner runner(parseScript("wait 2\nmode grid\nsleep 1\nconverge\nscreenshot\nquit\n", "r.txt"), "r.txt");
+    FakeHost host;
+    runner.frame(host);  // wait: frame 1
+    runner.frame(host);  // frame 2
+    EXPECT_TRUE(host.log.empty());
+    runner.frame(host);  // mode grid, then the sleep starts
+    EXPECT_EQ(host.state.mode, ViewMode::Grid);
+    runner.frame(host);
+    EXPECT_EQ(host.log.size(), 1u) << "still sleeping";
+    host.clock = 1.5;
+    runner.frame(host);  // sleep over; converge needs one frame, then settled
+    runner.frame(host);
+    EXPECT_EQ(host.log.size(), 1u) << "not settled";
+    host.isSettled = true;
+    runner.frame(host);
+    ASSERT_EQ(host.log.size(), 2u);
+    EXPECT_EQ(host.log[1], "screenshot") << "one request per frame: taken after it is drawn";
+    runner.frame(host);
+    EXPECT_EQ(host.log.back(), "quit");
+    EXPECT_TRUE(runner.finished());
+}
+
+TEST(BrdfTable, EveryModelHasAnEntryAndTheShapesAreRight) {
+    std::set<std::string> names;
+    for (const DiffuseModelInfo& m : diffuseModels()) {
+        EXPECT_TRUE(names.insert(std::string("d:") + m.name).second) << m.name;
+        EXPECT_STREQ(diffuseModelName(m.model), m.name);
+        EXPECT_EQ(parseDiffuse(m.name), m.model) << "the renderer knows the name";
+        ASSERT_NE(m.evaluate, nullptr);
+    }
+    for (const SpecularModelInfo& m : specularModels()) {
+        EXPECT_TRUE(names.insert(std::string("s:") + m.name).second) << m.name;
+        EXPECT_STREQ(specularModelName(m.model), m.name);
+        EXPECT_EQ(parseSpecular(m.name), m.model);
+    }
+    const CpuSurfaceBrdf s = makeCpuSurfaceBrdf(glm::vec3(0.5f), 0.0f, 0.2f, 1.0f);
+    // Lambert alone: f cos = albedo/pi cos, zero below the horizon.
+    const auto lambertOnly = brdfLobe(s, 0.5f, DiffuseModel::Lambert, SpecularModel::None, 181);
+    for (const LobeSample& l : lambertOnly) {
+        EXPECT_NEAR(l.diffuse.r, std::max(0.0f, std::cos(l.angle)) * 0.5f / 3.14159265f, 1e-6f);
+        EXPECT_EQ(l.specular, glm::vec3(0.0f));
+    }
+    // GGX at low roughness peaks at the mirror direction.
+    const float view = 0.6f;
+    const auto ggx = brdfLobe(s, view, DiffuseModel::Lambert, SpecularModel::Ggx, 361);
+    const LobeSample* peak = &ggx[0];
+    for (const LobeSample& l : ggx)
+        if (l.specular.r > peak->specular.r) peak = &l;
+    EXPECT_NEAR(peak->angle, view, 0.05f);
+    // f is symmetric in L and V.
+    const glm::vec3 N(0, 0, 1), V = glm::normalize(glm::vec3(-0.3f, 0.1f, 0.9f)), L = glm::normalize(glm::vec3(0.5f, -0.2f, 0.7f));
+    const glm::vec3 a = evaluateCpuBrdf(s, N, V, L, DiffuseModel::Lambert, SpecularModel::Ggx);
+    const glm::vec3 b = evaluateCpuBrdf(s, N, L, V, DiffuseModel::Lambert, SpecularModel::Ggx);
+    EXPECT_NEAR(a.r, b.r, 1e-5f * a.r);
+    EXPECT_EQ(evaluateCpuBrdf(s, N, V, -L, DiffuseModel::Lambert, SpecularModel::Ggx), glm::vec3(0.0f));
+}
+
+}  // namespace
+}  // namespace gis::test
