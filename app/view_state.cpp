@@ -81,7 +81,7 @@ ViewMode parseViewMode(const std::string& s) {
 const std::vector<PaneDisplay>& allPaneDisplays() {
     static const std::vector<PaneDisplay> all{PaneDisplay::Lit,    PaneDisplay::Heatmap,   PaneDisplay::Depth,
                                               PaneDisplay::Normal, PaneDisplay::BaseColor, PaneDisplay::Material,
-                                              PaneDisplay::Emissive};
+                                              PaneDisplay::Emissive, PaneDisplay::Ao};
     return all;
 }
 
@@ -94,6 +94,7 @@ const char* paneDisplayName(PaneDisplay d) {
         case PaneDisplay::BaseColor: return "basecolor";
         case PaneDisplay::Material: return "material";
         case PaneDisplay::Emissive: return "emissive";
+        case PaneDisplay::Ao: return "ao";
     }
     return "?";
 }
@@ -101,10 +102,12 @@ const char* paneDisplayName(PaneDisplay d) {
 PaneDisplay parsePaneDisplay(const std::string& s) {
     for (PaneDisplay d : allPaneDisplays())
         if (s == paneDisplayName(d)) return d;
-    throw Error("unknown display '" + s + "' (expected lit, heatmap, depth, normal, basecolor, material or emissive)");
+    throw Error("unknown display '" + s + "' (expected lit, heatmap, depth, normal, basecolor, material, emissive or ao)");
 }
 
-bool isGBufferDisplay(PaneDisplay d) { return d != PaneDisplay::Lit && d != PaneDisplay::Heatmap; }
+bool isGBufferDisplay(PaneDisplay d) {
+    return d != PaneDisplay::Lit && d != PaneDisplay::Heatmap && d != PaneDisplay::Ao;
+}
 
 // --- Action constructors.
 
@@ -730,6 +733,7 @@ RenderSettings paneSettings(const ViewState& state, int pane, glm::ivec2 size) {
     s.samplesPerFrame = 1;  // progressive: a sample per displayed frame
     s.diffuse = p.diffuse;
     s.specular = p.specular;
+    if (p.display == PaneDisplay::Ao) s.view = DebugView::AmbientOcclusion;
     if (p.directOnly) {
         if (s.gi == "none") s.ambient = glm::vec3(0.0f);
         if (s.gi == "pathtrace") s.maxBounces = 0;

@@ -17,7 +17,8 @@
 namespace gis::view {
 
 enum class ViewMode { Single, Split, Grid };          // 1 pane; 2 panes with a divider; 2x2 panes
-enum class PaneDisplay { Lit, Heatmap, Depth, Normal, BaseColor, Material, Emissive };
+// Ao: the ambient occlusion term alone (SSAO for --gi ssao, the image itself for ao-reference).
+enum class PaneDisplay { Lit, Heatmap, Depth, Normal, BaseColor, Material, Emissive, Ao };
 enum class CameraMode { Orbit, Fly };
 
 constexpr int kMaxPanes = 4;
@@ -26,7 +27,7 @@ int paneCount(ViewMode mode);
 const char* viewModeName(ViewMode m);
 ViewMode parseViewMode(const std::string& s);        // single, split, grid
 const char* paneDisplayName(PaneDisplay d);
-PaneDisplay parsePaneDisplay(const std::string& s);  // lit, heatmap, depth, normal, basecolor, material, emissive
+PaneDisplay parsePaneDisplay(const std::string& s);  // lit, heatmap, depth, normal, basecolor, material, emissive, ao
 const std::vector<PaneDisplay>& allPaneDisplays();
 bool isGBufferDisplay(PaneDisplay d);                // depth .. emissive
 

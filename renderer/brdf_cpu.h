@@ -18,13 +18,20 @@ namespace gis {
 struct CpuSurfaceBrdf {
     glm::vec3 diffuseColor{0.0f};
     glm::vec3 f0{0.04f};
+    float f90 = 1.0f;
     float roughness = 0.5f;
 };
 CpuSurfaceBrdf makeCpuSurfaceBrdf(glm::vec3 baseColor, float metallic, float roughness, float specularFactor);
 
-// What one model needs about (N, V, L): the cosines brdf.glsl's evaluateBrdf computes.
+// What one model needs about (N, V, L): brdf.glsl's BrdfGeometry, with the same guards.
 struct BrdfAngles {
-    float NoL = 0.0f, NoV = 0.0f, NoH = 0.0f, VoH = 0.0f;
+    float NoL = 0.0f;      // signed
+    float NoV = 0.0f;      // >= MIN_N_DOT_V
+    float NoH = 0.0f;
+    float sinNH2 = 1.0f;   // 1 - N.H^2 as |N x H|^2
+    float LoH = 0.0f;      // = V.H
+    float RoV = 0.0f;      // reflect(-L, N) . V
+    bool hasHalf = false;  // false when L = -V
 };
 BrdfAngles brdfAngles(glm::vec3 N, glm::vec3 V, glm::vec3 L);
 
