@@ -118,19 +118,17 @@ float bsdfPdf(SurfacePoint s, vec3 V, vec3 L, float pSpecular) {
 }
 
 bool sampleBsdf(SurfacePoint s, vec3 V, float pSpecular, inout Rng rng, out vec3 L) {
-    vec3 t, b;
-    orthonormalBasis(s.normal, t, b);
     vec2 u = nextFloat2(rng);
     if (nextFloat(rng) < pSpecular) {
+        vec3 t, b;
+        orthonormalBasis(s.normal, t, b);
         vec3 vLocal = vec3(dot(V, t), dot(V, b), max(dot(V, s.normal), MIN_N_DOT_V));
         float alpha = s.brdf.roughness * s.brdf.roughness;
         vec3 h = sampleGgxVisibleNormal(normalize(vLocal), alpha, u);
         vec3 H = t * h.x + b * h.y + s.normal * h.z;
         L = reflect(-V, H);
     } else {
-        // Cosine-weighted hemisphere (Malley's method).
-        float r = sqrt(u.x), phi = 2.0 * PI * u.y;
-        L = t * (r * cos(phi)) + b * (r * sin(phi)) + s.normal * sqrt(max(0.0, 1.0 - u.x));
+        L = cosineDirection(s.normal, u);
     }
     return dot(L, s.normal) > 0.0 && dot(L, s.geometricNormal) > 0.0;
 }

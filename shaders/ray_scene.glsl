@@ -31,9 +31,6 @@ layout(std430, binding = 4) readonly buffer Materials { RayMaterial u_materials[
 layout(std430, binding = 5) readonly buffer Emitters { Emitter u_emitters[]; };
 layout(binding = 0) uniform sampler2DArray s_textures;
 
-vec3 srgbToLinear(vec3 c) {
-    return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
-}
 
 vec4 sampleLayer(int layer, vec2 uv) {
     return layer < 0 ? vec4(1.0) : textureLod(s_textures, vec3(uv, float(layer)), 0.0);
