@@ -195,10 +195,7 @@ void ViewApp::captureWindow(const std::string& path, int width, int height) {
     glReadBuffer(GL_BACK);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
-    const size_t row = size_t(width) * 4;
-    for (int y = 0; y < height / 2; ++y)
-        std::swap_ranges(img.rgba.begin() + y * row, img.rgba.begin() + (y + 1) * row,
-                         img.rgba.begin() + (height - 1 - y) * row);
+    flipVertically(img);
     for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
     writePng(path, img);
     std::printf("wrote %s\n", path.c_str());

@@ -378,19 +378,13 @@ bool ViewSession::settled() const {
 }
 
 ImageU8 ViewSession::readPane(int index) const {
-    ImageU8 img;
+    const GLuint tex = index < visible_ ? panes_[index].shown : 0;
+    if (tex) return readTextureBytes(tex, paneSize_.x, paneSize_.y);
+    ImageU8 img;  // a pane with nothing shown yet: opaque black
     img.width = paneSize_.x;
     img.height = paneSize_.y;
     img.rgba.assign(size_t(img.width) * img.height * 4, 0);
     for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
-    const GLuint tex = index < visible_ ? panes_[index].shown : 0;
-    if (!tex) return img;
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(tex, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(img.rgba.size()), img.rgba.data());
-    const size_t row = size_t(img.width) * 4;
-    for (int y = 0; y < img.height / 2; ++y)
-        std::swap_ranges(img.rgba.begin() + y * row, img.rgba.begin() + (y + 1) * row,
-                         img.rgba.begin() + (img.height - 1 - y) * row);
     return img;
 }
 

@@ -5,12 +5,25 @@
 #include <tinyexr.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
 #include "scene/scene.h"
 
 namespace gis {
+
+namespace {
+template <typename T>
+void flipRows(std::vector<T>& data, int width, int height) {
+    const size_t row = size_t(width) * 4;
+    for (int y = 0; y < height / 2; ++y)
+        std::swap_ranges(data.begin() + y * row, data.begin() + (y + 1) * row, data.begin() + (height - 1 - y) * row);
+}
+}  // namespace
+
+void flipVertically(ImageU8& image) { flipRows(image.rgba, image.width, image.height); }
+void flipVertically(ImageF& image) { flipRows(image.rgba, image.width, image.height); }
 
 void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write) {
     namespace fs = std::filesystem;

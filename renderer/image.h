@@ -21,6 +21,10 @@ struct ImageU8 {  // RGBA 8-bit, rows top to bottom
     std::vector<uint8_t> rgba;
 };
 
+// GL stores the bottom row first; images here are top to bottom. Flips in place.
+void flipVertically(ImageU8& image);
+void flipVertically(ImageF& image);
+
 // Throw gis::Error naming the file on failure; leave no partial file behind.
 void writePng(const std::string& path, const ImageU8& image);
 void writeExr(const std::string& path, const ImageF& image);  // RGB float32, ZIP

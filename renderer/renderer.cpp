@@ -232,37 +232,36 @@ GLuint Renderer::frameTexture(const std::string& name) const {
     return it == frameTextures_.end() ? 0 : it->second;
 }
 
-namespace {
-template <typename T>
-void flipRows(std::vector<T>& data, int width, int height) {
-    const size_t row = size_t(width) * 4;
-    for (int y = 0; y < height / 2; ++y)
-        std::swap_ranges(data.begin() + y * row, data.begin() + (y + 1) * row, data.begin() + (height - 1 - y) * row);
+ImageF readTextureFloat(GLuint texture, int width, int height) {
+    ImageF img;
+    img.width = width;
+    img.height = height;
+    img.rgba.resize(size_t(width) * height * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(img.rgba.size() * sizeof(float)), img.rgba.data());
+    flipVertically(img);
+    return img;
 }
-}  // namespace
+
+ImageU8 readTextureBytes(GLuint texture, int width, int height) {
+    ImageU8 img;
+    img.width = width;
+    img.height = height;
+    img.rgba.resize(size_t(width) * height * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(texture, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(img.rgba.size()), img.rgba.data());
+    flipVertically(img);
+    return img;
+}
 
 ImageF Renderer::readHdr() const {
     if (!hdr_) throw Error("internal: readHdr before renderFrame");
-    ImageF img;
-    img.width = settings_.width;
-    img.height = settings_.height;
-    img.rgba.resize(size_t(img.width) * img.height * 4);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(hdr_, 0, GL_RGBA, GL_FLOAT, GLsizei(img.rgba.size() * sizeof(float)), img.rgba.data());
-    flipRows(img.rgba, img.width, img.height);  // GL's first row is the bottom one
-    return img;
+    return readTextureFloat(hdr_, settings_.width, settings_.height);
 }
 
 ImageU8 Renderer::readLdr() const {
     if (!ldr_) throw Error("internal: readLdr before renderFrame");
-    ImageU8 img;
-    img.width = settings_.width;
-    img.height = settings_.height;
-    img.rgba.resize(size_t(img.width) * img.height * 4);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(ldr_, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(img.rgba.size()), img.rgba.data());
-    flipRows(img.rgba, img.width, img.height);
-    return img;
+    return readTextureBytes(ldr_, settings_.width, settings_.height);
 }
 
 std::vector<PassTiming> Renderer::timings(int warmup) const {

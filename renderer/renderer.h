@@ -150,6 +150,10 @@ private:
 // shaders/brdf_probe.comp: evaluates brdf.glsl at a list of points (the BRDF tests use it).
 ProgramDesc brdfProbeProgram();
 
+// Level 0 of an RGBA texture as an image, rows top to bottom.
+ImageF readTextureFloat(GLuint texture, int width, int height);
+ImageU8 readTextureBytes(GLuint texture, int width, int height);
+
 // Every program (with its permutations) any pass can request: the shader test compiles them all.
 std::vector<ProgramDesc> allPrograms();
 

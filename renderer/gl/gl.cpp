@@ -166,6 +166,13 @@ void checkFramebuffer(GLuint fbo, const char* what) {
     }
 }
 
+Object createColorTarget(const Texture& color, const char* what) {
+    Object fbo = createFramebuffer();
+    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, color.id(), 0);
+    checkFramebuffer(fbo.id(), what);
+    return fbo;
+}
+
 Object createVertexArray() {
     GLuint id = 0;
     glCreateVertexArrays(1, &id);

@@ -75,6 +75,8 @@ Buffer createBuffer(const MemoryScope& scope, int64_t size, const void* data, GL
 Object createFramebuffer();
 // Throws gis::Error naming `what` when the framebuffer is not complete.
 void checkFramebuffer(GLuint fbo, const char* what);
+// A framebuffer rendering into level 0 of `color` (attachment 0), checked complete.
+Object createColorTarget(const Texture& color, const char* what);
 Object createVertexArray();
 Object createSampler();
 

@@ -25,9 +25,7 @@ LightingPass::LightingPass(int width, int height, int lightCount, bool hdr32, bo
         const float one[2] = {1.0f, 0.0f};
         glTextureSubImage2D(noAo_.id(), 0, 0, 0, 1, 1, GL_RG, GL_FLOAT, one);
     }
-    fbo_ = gl::createFramebuffer();
-    glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, radiance_.id(), 0);
-    gl::checkFramebuffer(fbo_.id(), "lighting");
+    fbo_ = gl::createColorTarget(radiance_, "lighting");
     program_ = buildProgram(programs()[0]);
     vao_ = gl::createVertexArray();
 }
@@ -67,9 +65,7 @@ std::vector<ProgramDesc> TonemapPass::programs() {
 
 TonemapPass::TonemapPass(int width, int height, gl::MemoryLedger& ledger) {
     display_ = gl::createTexture2D({&ledger, name()}, GL_RGBA8, width, height);
-    fbo_ = gl::createFramebuffer();
-    glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, display_.id(), 0);
-    gl::checkFramebuffer(fbo_.id(), "tonemap");
+    fbo_ = gl::createColorTarget(display_, "tonemap");
     program_ = buildProgram(programs()[0]);
     vao_ = gl::createVertexArray();
 }

@@ -30,12 +30,6 @@ void setTextureFilter(GLuint tex, GLenum filter) {
     glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
-gl::Object colorTarget(const gl::Texture& tex, const char* what) {
-    gl::Object fbo = gl::createFramebuffer();
-    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, tex.id(), 0);
-    gl::checkFramebuffer(fbo.id(), what);
-    return fbo;
-}
 }  // namespace
 
 std::vector<glm::vec4> SsaoPass::kernel(int count) {
@@ -60,15 +54,15 @@ SsaoPass::SsaoPass(const RenderSettings& s, gl::MemoryLedger& ledger)
       kernel_(kernel(std::min(s.aoSamples, kMaxKernel))) {
     const gl::MemoryScope scope{&ledger, name()};
     raw_ = gl::createTexture2D(scope, GL_RG16F, width_, height_);
-    rawFbo_ = colorTarget(raw_, "SSAO");
+    rawFbo_ = gl::createColorTarget(raw_, "SSAO");
     if (s.aoBlur) {
         blurred_ = gl::createTexture2D(scope, GL_RG16F, width_, height_);
-        blurFbo_ = colorTarget(blurred_, "SSAO blur");
+        blurFbo_ = gl::createColorTarget(blurred_, "SSAO blur");
     }
     if (s.aoTemporal)
         for (int i = 0; i < 2; ++i) {
             history_[i] = gl::createTexture2D(scope, GL_RGBA16F, width_, height_);
-            historyFbo_[i] = colorTarget(history_[i], "SSAO history");
+            historyFbo_[i] = gl::createColorTarget(history_[i], "SSAO history");
         }
     for (const gl::Texture* t : {&raw_, &blurred_, &history_[0], &history_[1]})
         if (t->id()) setTextureFilter(t->id(), GL_LINEAR);
