@@ -173,18 +173,14 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
 Renderer::~Renderer() = default;
 
 int Renderer::samplesDone() const {
-    for (const auto& pass : passes_) {
-        if (const auto* pt = dynamic_cast<const PathTracePass*>(pass.get())) return pt->samplesDone();
-        if (const auto* ao = dynamic_cast<const AoReferencePass*>(pass.get())) return ao->samplesDone();
-    }
+    for (const auto& pass : passes_)
+        if (pass->progress().target > 0) return pass->progress().done;
     return 1;
 }
 
 bool Renderer::converged() const {
-    for (const auto& pass : passes_) {
-        if (const auto* pt = dynamic_cast<const PathTracePass*>(pass.get())) return pt->done();
-        if (const auto* ao = dynamic_cast<const AoReferencePass*>(pass.get())) return ao->done();
-    }
+    for (const auto& pass : passes_)
+        if (pass->progress().done < pass->progress().target) return false;
     return true;
 }
 
@@ -220,11 +216,7 @@ void Renderer::setLiveSettings(DiffuseModel diffuse, SpecularModel specular, Ton
 }
 
 void Renderer::restartAccumulation() {
-    for (const auto& pass : passes_)
-    {
-        if (auto* pt = dynamic_cast<PathTracePass*>(pass.get())) pt->restart();
-        if (auto* ao = dynamic_cast<AoReferencePass*>(pass.get())) ao->restart();
-    }
+    for (const auto& pass : passes_) pass->restart();
 }
 
 GLuint Renderer::frameTexture(const std::string& name) const {

@@ -95,6 +95,13 @@ public:
     virtual void execute(Frame& frame) = 0;
     // True when the last execute() reused cached results (e.g. static shadow maps).
     virtual bool reusedLastFrame() const { return false; }
+    // Progressive passes accumulate samples over frames: how many are in and how many are wanted
+    // ({0, 0} for the others), and a restart when what they accumulate changed.
+    struct Progress {
+        int done = 0, target = 0;
+    };
+    virtual Progress progress() const { return {}; }
+    virtual void restart() {}
     gl::GpuTimer timer;
 };
 

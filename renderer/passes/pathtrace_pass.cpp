@@ -16,7 +16,7 @@ PathTracePass::PathTracePass(const GpuScene& gpuScene, const RenderSettings& set
 
 void PathTracePass::execute(Frame& frame) {
     frame.textures["radiance"] = samples_.mean.id();
-    if (done()) return;  // converged to the requested sample count: nothing changes
+    if (samples_.finished()) return;  // converged to the requested sample count: nothing changes
     const RenderSettings& s = frame.settings;
     const GLuint p = program_.id();
     glUseProgram(p);

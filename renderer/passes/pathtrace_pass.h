@@ -18,9 +18,8 @@ public:
     bool reusedLastFrame() const override { return samples_.finished(); }
     static std::vector<ProgramDesc> programs();
 
-    int samplesDone() const { return samples_.done; }
-    bool done() const { return samples_.finished(); }
-    void restart() { samples_.done = 0; }  // the next frame overwrites the accumulation
+    Progress progress() const override { return {samples_.done, samples_.target}; }
+    void restart() override { samples_.done = 0; }  // the next frame overwrites the accumulation
     const Bvh& bvh() const { return rays_.bvh; }
 
 private:

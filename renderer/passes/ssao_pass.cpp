@@ -160,7 +160,7 @@ AoReferencePass::AoReferencePass(const GpuScene& scene, const RenderSettings& s,
 
 void AoReferencePass::execute(Frame& frame) {
     frame.textures["radiance"] = samples_.mean.id();
-    if (done()) return;
+    if (samples_.finished()) return;
     const GLuint p = program_.id();
     glUseProgram(p);
     rays_.bind();

@@ -40,9 +40,8 @@ public:
     void execute(Frame& frame) override;
     bool reusedLastFrame() const override { return samples_.finished(); }
     static std::vector<ProgramDesc> programs();
-    int samplesDone() const { return samples_.done; }
-    bool done() const { return samples_.finished(); }
-    void restart() { samples_.done = 0; }  // the next frame overwrites the accumulation
+    Progress progress() const override { return {samples_.done, samples_.target}; }
+    void restart() override { samples_.done = 0; }  // the next frame overwrites the accumulation
 
 private:
     RayScene rays_;
