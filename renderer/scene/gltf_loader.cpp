@@ -9,7 +9,9 @@
 //   * allow at most one GLB buffer without a uri (each would copy the whole BIN chunk),
 // and give it our own file callbacks (regular files only, size-capped) and image callback
 // (keeps the encoded bytes; we decode with stb_image ourselves, with size limits).
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -107,15 +109,24 @@ bool allowedPath(const std::string& path, const FsState* st) {
 // Reads a regular file of at most kMaxFileBytes. On failure returns false with a reason.
 bool readRegularFile(const std::string& path, std::vector<unsigned char>& out, std::string& why,
                      FsState* state) {
-    FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) {
+    // O_NONBLOCK: opening a FIFO for reading blocks until a writer appears, so the
+    // regular-file check must come before a blocking open. Checking the descriptor we opened
+    // (not a stat of the path beforehand) leaves no window to swap the file.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
         why = std::strerror(errno);
         return false;
     }
     struct stat st {};
-    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        std::fclose(f);
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        ::close(fd);
         why = "not a regular file";
+        return false;
+    }
+    FILE* f = ::fdopen(fd, "rb");
+    if (!f) {
+        why = std::strerror(errno);
+        ::close(fd);
         return false;
     }
     const uint64_t size = static_cast<uint64_t>(st.st_size);
@@ -182,7 +193,6 @@ bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string
 }
 
 // --- Pre-validation with nlohmann::json ----------------------------------------------------
-struct TooDeep {};
 
 bool asUnsigned(const nlohmann::json& obj, const char* key, uint64_t& out, bool required) {
     auto it = obj.find(key);
@@ -234,20 +244,43 @@ private:
     std::map<std::pair<int, int>, int> primitiveIndex_;  // (mesh, primitive) -> scene primitive
     std::vector<int> imageIndex_;                         // glTF image -> scene image, -1 failed
     uint64_t totalVertices_ = 0, totalIndices_ = 0, totalPixels_ = 0;
+    // Spec violations seen in the JSON, refused when a node uses the camera/light.
+    std::map<int, std::string> badCameras_, badLights_;
 };
 
+// Deepest nesting of arrays/objects in `json`, stopping early past `limit`. One linear scan:
+// nlohmann 3.11's callback parser (the obvious way to limit depth) rescans the parent container
+// after every element, which made 10^5 nodes take seconds and 10^6 nodes minutes. Malformed JSON
+// (unbalanced brackets, unterminated strings) is left to the real parser to report.
+int jsonNestingDepth(const char* json, size_t len, int limit) {
+    int depth = 0, deepest = 0;
+    bool inString = false;
+    for (size_t i = 0; i < len; ++i) {
+        const char c = json[i];
+        if (inString) {
+            if (c == '\\')
+                ++i;  // the escaped character cannot end the string
+            else if (c == '"')
+                inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+            if (deepest > limit) return deepest;
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
 void Loader::prevalidate(const char* json, size_t len, bool binary) {
+    // tinygltf recurses on extras/extensions: bound the nesting before anything parses it.
+    if (jsonNestingDepth(json, len, kMaxJsonDepth) > kMaxJsonDepth)
+        fail("JSON is nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
     nlohmann::json doc;
     try {
-        doc = nlohmann::json::parse(
-            json, json + len,
-            [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-                if (depth > kMaxJsonDepth) throw TooDeep{};
-                return true;
-            },
-            true);
-    } catch (const TooDeep&) {
-        fail("JSON is nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+        doc = nlohmann::json::parse(json, json + len, nullptr, true);
     } catch (const std::exception& e) {
         fail(std::string("invalid JSON: ") + e.what());
     }
@@ -270,6 +303,55 @@ void Loader::prevalidate(const char* json, size_t len, bool binary) {
         if (noUri > 1)
             fail("binary glTF has " + str(noUri) +
                  " buffers without a uri; only one may refer to the BIN chunk");
+    }
+
+    // Values tinygltf reads as "absent" although the spec forbids them: without a look at the
+    // JSON a byteStride of -12 becomes tightly packed data, and a range or aspectRatio of 0 the
+    // same as none given (infinite range, the viewport's aspect).
+    if (views) {
+        for (size_t i = 0; i < views->size(); ++i) {
+            const auto& view = (*views)[i];
+            auto it = view.is_object() ? view.find("byteStride") : view.end();
+            if (!view.is_object() || it == view.end()) continue;
+            const std::string what = "bufferViews[" + str(i) + "].byteStride";
+            if (!it->is_number_unsigned() || it->get<uint64_t>() > 252 ||
+                it->get<uint64_t>() % 4 != 0)
+                fail(what + " is " + oneLine(it->dump(), 40) +
+                     "; it must be a multiple of 4 from 4 to 252 (spec)");
+            if (it->get<uint64_t>() == 0)
+                warn(what + " is 0, below the spec's minimum 4 (read as tightly packed)");
+        }
+    }
+    auto positiveIfPresent = [](const nlohmann::json& obj, const char* key) {
+        if (!obj.is_object()) return true;
+        auto it = obj.find(key);
+        return it == obj.end() || (it->is_number() && it->get<double>() > 0.0);
+    };
+    if (const nlohmann::json* cameras = arrayOf("cameras")) {
+        for (size_t i = 0; i < cameras->size(); ++i) {
+            const auto& cam = (*cameras)[i];
+            if (!cam.is_object()) continue;
+            auto p = cam.find("perspective");
+            if (p != cam.end() && !positiveIfPresent(*p, "aspectRatio"))
+                badCameras_[int(i)] = "cameras[" + str(i) + "].perspective.aspectRatio is " +
+                                      oneLine((*p)["aspectRatio"].dump(), 40) +
+                                      "; it must be > 0 when given (spec)";
+        }
+    }
+    auto ext = doc.find("extensions");
+    if (ext != doc.end() && ext->is_object()) {
+        auto lp = ext->find("KHR_lights_punctual");
+        if (lp != ext->end() && lp->is_object()) {
+            auto lights = lp->find("lights");
+            if (lights != lp->end() && lights->is_array()) {
+                for (size_t i = 0; i < lights->size(); ++i) {
+                    if (!positiveIfPresent((*lights)[i], "range"))
+                        badLights_[int(i)] = "KHR_lights_punctual.lights[" + str(i) + "].range is " +
+                                             oneLine((*lights)[i]["range"].dump(), 40) +
+                                             "; it must be > 0 when given (absent = infinite)";
+                }
+            }
+        }
     }
 
     // tinygltf hands &buffer.data[view.byteOffset] for images in bufferViews to the image
@@ -1064,6 +1146,8 @@ void Loader::addNodeContent(int n, const glm::mat4& world) {
                  str(model_.cameras.size()) + " cameras)");
         const tinygltf::Camera& src = model_.cameras[size_t(node.camera)];
         const std::string cw = "camera " + std::to_string(node.camera) + quoted(src.name);
+        auto bad = badCameras_.find(node.camera);
+        if (bad != badCameras_.end()) fail(bad->second);
         Camera cam;
         cam.name = src.name;
         cam.cameraToWorld = orthonormalFrame(world);
@@ -1106,6 +1190,8 @@ void Loader::addNodeContent(int n, const glm::mat4& world) {
                  str(model_.lights.size()) + " lights)");
         const tinygltf::Light& src = model_.lights[size_t(li)];
         const std::string lw = "light " + std::to_string(li) + quoted(src.name);
+        auto bad = badLights_.find(li);
+        if (bad != badLights_.end()) fail(bad->second);
         Light l;
         l.name = src.name;
         if (src.type == "directional")
