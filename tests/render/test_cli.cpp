@@ -1,6 +1,10 @@
 // The command line as a user meets it: help, successful renders, and bad input that must end with
 // one clear line on stderr, a non-zero exit status and no output file left behind.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -104,7 +108,72 @@ TEST(Cli, BadInputFailsCleanly) {
         EXPECT_NE(r.status, 0) << c.name;
         EXPECT_EQ(countLines(r.err), 1) << c.name << ": " << r.err;
         EXPECT_NE(r.err.find(c.mustMention), std::string::npos) << c.name << ": " << r.err;
-        EXPECT_FALSE(fileExists(out)) << c.name;
+        // The file this case asked for (not always out.png: the extension and directory cases
+        // name their own), and nothing else in the directory (no temporary file either).
+        const size_t at = c.args.find("--out ");
+        const std::string asked = at == std::string::npos ? out : c.args.substr(at + 6, c.args.find(' ', at + 6) - at - 6);
+        EXPECT_FALSE(fileExists(asked)) << c.name << ": " << asked;
+        for (const auto& e : fs::directory_iterator(dir))
+            EXPECT_EQ(e.path().filename(), "truncated.gltf") << c.name << " left " << e.path();
+    }
+}
+
+std::string slurpBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+size_t entriesIn(const std::string& dir) {
+    return size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+}
+
+// A write that runs out of room (here: the file size limit, as on a full disk) is an error that
+// names the OS's reason; the existing file stays as it was and no temporary file is left. With
+// SIGXFSZ ignored (trap), write() fails with EFBIG: stb used to ignore that, rename the short
+// file over the old one and report success. With the default SIGXFSZ the process was killed,
+// leaving the temporary file. Mesa's shader cache is off so that only our file meets the limit.
+TEST(Cli, WriteBeyondFileSizeLimitFailsAndKeepsExistingFile) {
+    const std::string dir = tempDir("cli_fsize");
+    const std::string render = "render --scene builtin:cornell --size 64x48 --out ";
+    for (const char* ext : {".png", ".exr"}) {
+        const std::string out = dir + "/a" + ext;
+        CliResult r = runCli(render + out);
+        ASSERT_EQ(r.status, 0) << r.err;
+        const std::string before = slurpBytes(out);
+        ASSERT_GT(before.size(), 1024u) << "the limit below must be smaller than the image";
+        for (const char* trap : {"trap '' XFSZ;", ""}) {
+            r = runCli(render + out + " --exposure 1",
+                       std::string(trap) + " ulimit -f 2; MESA_SHADER_CACHE_DISABLE=true");
+            EXPECT_NE(r.status, 0) << ext << " trap='" << trap << "'";
+            EXPECT_EQ(countLines(r.err), 1) << r.err;
+            EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+            EXPECT_NE(r.err.find(out), std::string::npos) << r.err;
+            EXPECT_EQ(r.out.find("wrote"), std::string::npos) << r.out;
+            EXPECT_TRUE(slurpBytes(out) == before) << ext << ": the existing file was replaced";
+            EXPECT_EQ(entriesIn(dir), ext[1] == 'p' ? 1u : 2u) << "a temporary file was left behind";
+        }
+    }
+}
+
+// SIGINT/SIGTERM while the temporary file exists remove it, then end the process as the signal
+// would have. (SIGKILL cannot be caught; it leaves the temporary file, never a partial target.)
+TEST(Cli, SignalDuringWriteRemovesTemporaryFile) {
+    for (int sig : {SIGTERM, SIGINT}) {
+        const std::string dir = tempDir("cli_signal");
+        const std::string target = dir + "/x.png";
+        const pid_t child = ::fork();
+        ASSERT_GE(child, 0);
+        if (child == 0) {
+            gis::writeAtomically(target, [&](const std::string& tmp) {
+                std::ofstream(tmp) << "partial";
+                ::raise(sig);
+            });
+            ::_exit(0);  // not reached when the signal ends the process
+        }
+        int status = 0;
+        ASSERT_EQ(::waitpid(child, &status, 0), child);
+        EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "status " << status;
+        EXPECT_EQ(entriesIn(dir), 0u) << "signal " << sig << " left a file behind";
     }
 }
 
