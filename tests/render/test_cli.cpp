@@ -1,6 +1,7 @@
 // The command line as a user meets it: help, successful renders, and bad input that must end with
 // one clear line on stderr, a non-zero exit status and no output file left behind.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -175,6 +176,19 @@ TEST(Cli, SignalDuringWriteRemovesTemporaryFile) {
         EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "status " << status;
         EXPECT_EQ(entriesIn(dir), 0u) << "signal " << sig << " left a file behind";
     }
+}
+
+// `--scene` naming a FIFO used to block forever in fopen (waiting for a writer); `timeout`
+// turns a regression into status 124 instead of a hung suite.
+TEST(Cli, FifoAsSceneIsRefusedAtOnce) {
+    const std::string dir = tempDir("cli_fifo");
+    const std::string fifo = dir + "/f.gltf";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    CliResult r = runCli("info --no-gpu --scene " + fifo, "timeout 20");
+    EXPECT_NE(r.status, 124) << "blocked on the FIFO";
+    EXPECT_NE(r.status, 0);
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(fifo + ": cannot read file (not a regular file)"), std::string::npos) << r.err;
 }
 
 // A shader that fails to compile is reported with its own file name and line, and no image is written.
