@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -1213,6 +1214,15 @@ void Loader::addNodeContent(int n, const glm::mat4& world) {
         if (!std::isfinite(src.intensity) || src.intensity < 0.0 || src.intensity > 3.0e38)
             fail(lw + ": intensity must be a finite non-negative number");
         l.intensity = static_cast<float>(src.intensity);
+        // The renderers use color x intensity in float: refuse a product that would be Inf.
+        for (int c = 0; c < 3; ++c) {
+            const double product = double(l.color[c]) * double(l.intensity);
+            if (!(product <= double(std::numeric_limits<float>::max()))) {
+                char text[32];
+                std::snprintf(text, sizeof text, "%.3g", product);
+                fail(lw + ": color x intensity = " + text + " overflows a float (max 3.4e38)");
+            }
+        }
         if (!std::isfinite(src.range) || src.range < 0.0 || src.range > 3.0e38)
             fail(lw + ": range must be a finite positive number");
         l.range = static_cast<float>(src.range);

@@ -130,3 +130,17 @@ TEST(Hardening, ZeroCameraAspectRatioRefusedWhenUsed) {
     b.j["cameras"][0]["perspective"]["aspectRatio"] = 1.5;
     EXPECT_EQ(b.load().cameras.size(), 1u);
 }
+
+// color x intensity is what the renderers use, in float: a product past FLT_MAX would be Inf.
+TEST(Hardening, LightColorTimesIntensityOverflowRefused) {
+    GltfBuilder b;
+    b.j["extensionsUsed"] = {"KHR_lights_punctual"};
+    b.j["extensions"]["KHR_lights_punctual"]["lights"] = {
+        {{"type", "point"}, {"color", {1.0, 2.0, 1.0}}, {"intensity", 3e38}}};
+    b.addNode({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    b.j["scenes"][0]["nodes"] = {0};
+    const std::string err = errorOf([&] { b.load(); });
+    EXPECT_NE(err.find("light 0: color x intensity = 6e+38 overflows a float"), std::string::npos) << err;
+    b.j["extensions"]["KHR_lights_punctual"]["lights"][0]["color"] = {1.0, 1.0, 1.0};
+    EXPECT_EQ(b.load().lights.size(), 1u);  // 3e38 itself is finite
+}
