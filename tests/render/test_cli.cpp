@@ -304,6 +304,38 @@ TEST(Cli, PathTracerStaysFiniteAtHugeRadiance) {
     }
 }
 
+// 342 point lights need 2052 cube-map layers, past GL_MAX_ARRAY_TEXTURE_LAYERS (2048 here): this
+// used to fail with "framebuffer for shadow map is incomplete (status 0x8cd6)". Now one line
+// names the limit and the way around it, before anything is allocated; 341 still render.
+TEST(Cli, TooManyShadowedPointLightsAreRefusedNamingTheLimit) {
+    const std::string dir = tempDir("cli_lights");
+    for (int count : {341, 342}) {
+        const std::string name = "lights" + std::to_string(count);
+        const std::string path = writeQuadScene(dir, name, {1, 1, 1}, true);
+        nlohmann::json j = nlohmann::json::parse(std::ifstream(path));
+        for (int i = 2; i < count; ++i) {  // the scene has two point-light nodes already
+            j["nodes"].push_back({{"translation", {0.01 * i, 0, 2}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+            j["scenes"][0]["nodes"].push_back(j["nodes"].size() - 1);
+        }
+        std::ofstream(path) << j.dump();
+        const std::string out = dir + "/" + name + ".png";
+        // 16-texel cubes: 341 lights at the default 512 would hold 2 GiB of shadow maps.
+        CliResult r = runCli("render --scene " + path + " --size 16x16 --shadow-cube-size 16 --out " + out);
+        if (count == 341) {
+            EXPECT_EQ(r.status, 0) << r.err;
+            continue;
+        }
+        EXPECT_NE(r.status, 0);
+        EXPECT_EQ(countLines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find("342 point lights"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("at most 341"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("--no-shadows"), std::string::npos) << r.err;
+        EXPECT_FALSE(fileExists(out));
+        r = runCli("render --scene " + path + " --size 16x16 --no-shadows --out " + out);
+        EXPECT_EQ(r.status, 0) << r.err;
+    }
+}
+
 // A shader that fails to compile is reported with its own file name and line, and no image is written.
 TEST(Cli, ShaderCompileErrorNamesFileAndLine) {
     const std::string dir = tempDir("cli_shader_error");
