@@ -203,6 +203,75 @@ bool asUnsigned(const nlohmann::json& obj, const char* key, uint64_t& out, bool 
     return true;
 }
 
+// The data: URI headers tinygltf 2.7 decodes (IsDataURI); anything else it treats as a path.
+const char* const kDataUriHeaders[] = {
+    "data:application/octet-stream;base64,", "data:application/gltf-buffer;base64,",
+    "data:image/jpeg;base64,", "data:image/png;base64,", "data:image/bmp;base64,",
+    "data:image/gif;base64,", "data:text/plain;base64,"};
+
+// Bytes tinygltf's base64_decode yields: it stops at the first '=' or non-alphabet character.
+uint64_t base64DecodedSize(const std::string& s, size_t from) {
+    uint64_t n = 0;
+    for (size_t i = from; i < s.size(); ++i) {
+        const char c = s[i];
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '/')) break;
+        ++n;
+    }
+    return n / 4 * 3 + (n % 4 ? n % 4 - 1 : 0);
+}
+
+// Percent-decoding as tinygltf applies it to buffer URIs ('+' is a space there too).
+std::string urlDecode(const std::string& s) {
+    auto hex = [](char c) -> int {
+        if (c >= '0' && c <= '9') return c - '0';
+        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+        return 0;
+    };
+    std::string out;
+    for (size_t i = 0; i < s.size(); ++i) {
+        if (s[i] == '+') {
+            out += ' ';
+        } else if (s[i] == '%' && i + 2 < s.size()) {
+            out += static_cast<char>((hex(s[i + 1]) << 4) | hex(s[i + 2]));
+            i += 2;
+        } else {
+            out += s[i];
+        }
+    }
+    return out;
+}
+
+// A URI short enough to quote in a one-line message.
+std::string shortUri(const std::string& uri) {
+    if (uri.size() <= 60) return oneLine(uri, 60);
+    return oneLine(uri.substr(0, 40), 40) + "...(" + str(uri.size()) + " chars)";
+}
+
+// tinygltf's error text as one short line: its lines deduplicated (it reports some twice), long
+// URIs shortened, at most 200 characters.
+std::string tinygltfReason(const std::string& err) {
+    std::vector<std::string> lines;
+    size_t start = 0;
+    while (start < err.size()) {
+        size_t end = err.find('\n', start);
+        if (end == std::string::npos) end = err.size();
+        std::string line = oneLine(err.substr(start, end - start), 1000);
+        start = end + 1;
+        for (const char* scheme : {"data:", "http://", "https://"}) {
+            const size_t at = line.find(scheme);
+            if (at == std::string::npos) continue;
+            size_t stop = line.find_first_of(" '\"", at);
+            if (stop == std::string::npos) stop = line.size();
+            line = line.substr(0, at) + shortUri(line.substr(at, stop - at)) + line.substr(stop);
+        }
+        if (!line.empty() && std::find(lines.begin(), lines.end(), line) == lines.end()) lines.push_back(line);
+    }
+    std::string joined;
+    for (const std::string& l : lines) joined += (joined.empty() ? "" : "; ") + l;
+    return oneLine(joined, 200);
+}
+
 class Loader {
 public:
     explicit Loader(std::string label) : label_(std::move(label)) {}
@@ -219,6 +288,7 @@ private:
     }
 
     void prevalidate(const char* json, size_t len, bool binary);
+    void checkBufferUri(const std::string& what, const std::string& uri, const nlohmann::json& buffer);
     void checkExtensions();
     void buildNodes();
     void convertMaterials();
@@ -239,6 +309,7 @@ private:
     std::vector<uint8_t> bufferViewBytes(int bv, const std::string& what);
 
     std::string label_;
+    std::string baseDir_;
     Scene scene_;
     tinygltf::Model model_;
     std::set<std::string> warned_;
@@ -275,6 +346,40 @@ int jsonNestingDepth(const char* json, size_t len, int limit) {
     return deepest;
 }
 
+void Loader::checkBufferUri(const std::string& what, const std::string& uri, const nlohmann::json& buffer) {
+    if (uri.compare(0, 5, "data:") == 0) {
+        const char* header = nullptr;
+        for (const char* h : kDataUriHeaders)
+            if (uri.compare(0, std::strlen(h), h) == 0) header = h;
+        if (!header)
+            fail(what + ".uri: data URI '" + shortUri(uri) +
+                 "' is not supported (base64 with media type application/octet-stream or application/gltf-buffer)");
+        const uint64_t bytes = base64DecodedSize(uri, std::strlen(header));
+        uint64_t byteLength = 0;
+        if (asUnsigned(buffer, "byteLength", byteLength, true) && bytes != byteLength)
+            fail(what + ": byteLength is " + str(byteLength) + " but its data: URI decodes to " + str(bytes) +
+                 " bytes");
+        return;
+    }
+    const size_t colon = uri.find(':'), slash = uri.find('/');
+    if (colon != std::string::npos && (slash == std::string::npos || colon < slash))
+        fail(what + ".uri '" + shortUri(uri) + "' is not a relative file path (network and absolute URIs are not read)");
+    if (uri.empty()) fail(what + ".uri is empty");
+    // The file as tinygltf will look for it (percent-decoded, joined to the base directory),
+    // so that a missing .bin is reported with its buffer instead of as "File not found : x".
+    const std::string decoded = urlDecode(uri);
+    const std::string path = baseDir_.empty() ? decoded
+                             : baseDir_.back() == '/' ? baseDir_ + decoded : baseDir_ + "/" + decoded;
+    FsState st;
+    st.baseDir = baseDir_;
+    if (!allowedPath(path, &st))
+        fail(what + ".uri '" + shortUri(uri) + "' lies outside the glTF's directory (absolute or '..')");
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0)
+        fail(what + ".uri '" + shortUri(uri) + "': " + std::strerror(errno));
+    if (!S_ISREG(info.st_mode)) fail(what + ".uri '" + shortUri(uri) + "' is not a regular file");
+}
+
 void Loader::prevalidate(const char* json, size_t len, bool binary) {
     // tinygltf recurses on extras/extensions: bound the nesting before anything parses it.
     if (jsonNestingDepth(json, len, kMaxJsonDepth) > kMaxJsonDepth)
@@ -283,7 +388,11 @@ void Loader::prevalidate(const char* json, size_t len, bool binary) {
     try {
         doc = nlohmann::json::parse(json, json + len, nullptr, true);
     } catch (const std::exception& e) {
-        fail(std::string("invalid JSON: ") + e.what());
+        // "[json.exception.parse_error.101] parse error at ..." without the library's tag.
+        std::string what = e.what();
+        if (what.rfind("[json.exception.", 0) == 0 && what.find("] ") != std::string::npos)
+            what = what.substr(what.find("] ") + 2);
+        fail("invalid JSON: " + what);
     }
     if (!doc.is_object()) fail("invalid glTF: the JSON root is not an object");
 
@@ -296,6 +405,42 @@ void Loader::prevalidate(const char* json, size_t len, bool binary) {
     const nlohmann::json* buffers = arrayOf("buffers");
     const nlohmann::json* views = arrayOf("bufferViews");
     const nlohmann::json* images = arrayOf("images");
+
+    // What tinygltf reports badly: "JSON string too short." for {}, "File not found :" with no
+    // name for a buffer without uri, "File not found" for data: URIs it cannot decode and for
+    // http:// URIs, "Failed to decode 'uri'" plus the whole URI for a byteLength mismatch, and
+    // nothing at all for a skin without joints. Each gets a message naming the element here.
+    {
+        auto asset = doc.find("asset");
+        if (asset == doc.end() || !asset->is_object())
+            fail("asset: missing or not an object (a glTF needs \"asset\": {\"version\": \"2.0\"})");
+    }
+    if (buffers) {
+        for (size_t i = 0; i < buffers->size(); ++i) {
+            const auto& b = (*buffers)[i];
+            if (!b.is_object()) continue;  // tinygltf names the type error
+            const std::string what = "buffers[" + str(i) + "]";
+            auto u = b.find("uri");
+            if (u == b.end()) {
+                if (!binary) fail(what + ": no uri (only a .glb's buffer may omit it, for the BIN chunk)");
+                continue;
+            }
+            if (!u->is_string()) continue;
+            checkBufferUri(what, u->get_ref<const std::string&>(), b);
+        }
+    }
+    if (const nlohmann::json* skins = arrayOf("skins")) {
+        for (size_t i = 0; i < skins->size(); ++i) {
+            const auto& sk = (*skins)[i];
+            if (!sk.is_object()) continue;
+            auto j = sk.find("joints");
+            if (j == sk.end()) fail("skins[" + str(i) + "]: 'joints' is missing (required)");
+            if (!j->is_array()) fail("skins[" + str(i) + "].joints is not an array of node indices");
+            for (const auto& n : *j)
+                if (!n.is_number_unsigned())
+                    fail("skins[" + str(i) + "].joints holds " + oneLine(n.dump(), 30) + ", not a node index");
+        }
+    }
 
     if (binary && buffers) {
         size_t noUri = 0;
@@ -385,6 +530,7 @@ void Loader::prevalidate(const char* json, size_t len, bool binary) {
 }
 
 Scene Loader::load(const uint8_t* data, size_t size, const std::string& baseDir) {
+    baseDir_ = baseDir;
     if (!data && size) fail("no data");
     if (size > kMaxInputBytes) fail("file is too large (" + str(size) + " bytes)");
     if (size == 0) fail("file is empty");
@@ -486,7 +632,10 @@ Scene Loader::load(const uint8_t* data, size_t size, const std::string& baseDir)
     } catch (const std::exception& e) {
         fail(std::string("invalid glTF: ") + e.what());
     }
-    if (!ok) fail("invalid glTF: " + (err.empty() ? std::string("tinygltf failed") : err));
+    if (!ok)
+        fail("invalid glTF: " + (err.empty() ? std::string("tinygltf rejected it without a reason (a required "
+                                                            "property may be missing or of the wrong type)")
+                                             : tinygltfReason(err)));
     for (const std::string* text : {&err, &twarn}) {
         size_t start = 0;
         while (start < text->size()) {
@@ -812,9 +961,15 @@ int Loader::decodeImage(int imageIndex) {
         return slot;
     }
     const uint64_t pixels = uint64_t(w) * uint64_t(h);
-    if (pixels > kMaxImagePixels || totalPixels_ + pixels > kMaxTotalImagePixels) {
-        warn(what + " is too large (" + std::to_string(w) + "x" + std::to_string(h) +
-             "); textures using it are ignored");
+    if (pixels > kMaxImagePixels) {
+        warn(what + " is too large (" + std::to_string(w) + "x" + std::to_string(h) + ", limit " +
+             str(kMaxImagePixels) + " pixels per image); textures using it are ignored");
+        return slot;
+    }
+    if (totalPixels_ + pixels > kMaxTotalImagePixels) {  // the image alone would fit: say what ran out
+        warn(what + " (" + std::to_string(w) + "x" + std::to_string(h) + ") exceeds the scene's image budget (" +
+             str(totalPixels_) + " of " + str(kMaxTotalImagePixels) +
+             " pixels already used); textures using it are ignored");
         return slot;
     }
     Image out;

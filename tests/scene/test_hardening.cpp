@@ -144,3 +144,33 @@ TEST(Hardening, LightColorTimesIntensityOverflowRefused) {
     b.j["extensions"]["KHR_lights_punctual"]["lights"][0]["color"] = {1.0, 1.0, 1.0};
     EXPECT_EQ(b.load().lights.size(), 1u);  // 3e38 itself is finite
 }
+
+// Messages that used to name nothing (issue #16, item 12): each names the element and the
+// problem in one short line.
+TEST(Hardening, BufferAndSchemaMessagesNameTheElement) {
+    struct Case {
+        const char* json;
+        const char* expected;
+    } cases[] = {
+        {R"({})", "asset: missing"},
+        {R"({"asset":{"version":"2.0"},"skins":[{}]})", "skins[0]: 'joints' is missing"},
+        {R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":4}]})", "buffers[0]: no uri"},
+        {R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"http://example.com/a.bin"}]})",
+         "buffers[0].uri 'http://example.com/a.bin' is not a relative file path"},
+        {R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"data:application/x;base64,AAAA"}]})",
+         "buffers[0].uri: data URI 'data:application/x;base64,AAAA' is not supported"},
+        {R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"missing.bin"}]})",
+         "buffers[0].uri 'missing.bin': No such file or directory"},
+    };
+    for (const Case& c : cases) {
+        const std::string err = errorOf([&] { loadString(c.json); });
+        EXPECT_NE(err.find(c.expected), std::string::npos) << c.json << " -> " << err;
+        EXPECT_LE(err.size(), 200u) << err;
+    }
+    // A byteLength mismatch used to print the whole data: URI (700 characters of it).
+    std::string big = R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":17,"uri":"data:application/octet-stream;base64,)";
+    big += std::string(4000, 'A') + "\"}]}";
+    const std::string err = errorOf([&] { loadString(big); });
+    EXPECT_NE(err.find("buffers[0]: byteLength is 17 but its data: URI decodes to 3000 bytes"), std::string::npos) << err;
+    EXPECT_LE(err.size(), 200u) << err;
+}
