@@ -182,3 +182,30 @@ TEST(Hardening, BufferAndSchemaMessagesNameTheElement) {
     EXPECT_NE(err.find("buffers[0]: byteLength is 17 but its data: URI decodes to 3000 bytes"), std::string::npos) << err;
     EXPECT_LE(err.size(), 200u) << err;
 }
+
+// znear far below the scene's depth used to render black (1e-7) or wrong (1e-6: mean 0.011
+// against 0.056 at 0.01) without a word. Refused below 1e-6 of the depth, warned below 1e-4.
+TEST(Hardening, TinyZnearRefusedOrWarnedRelativeToSceneDepth) {
+    for (double znear : {0.01, 1e-5, 1e-6, 1e-8}) {
+        GltfBuilder b;
+        const int pos = b.addVec3({{-2, -2, 0}, {2, -2, 0}, {0, 2, 0}});
+        b.addMeshNode(b.addMesh({{"attributes", {{"POSITION", pos}}}}));
+        b.j["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", znear}}}}};
+        b.addNode({{"camera", 0}, {"translation", {0, 0, 5}}});
+        b.j["scenes"][0]["nodes"].push_back(1);
+        gis::Scene s;
+        const std::string err = errorOf([&] { s = b.load(); });
+        std::string warnings;
+        for (const std::string& w : s.warnings) warnings += w + "\n";
+        if (znear >= 0.01) {
+            EXPECT_EQ(err, "");
+            EXPECT_EQ(warnings.find("znear"), std::string::npos) << warnings;
+        } else if (znear >= 1e-5) {
+            EXPECT_EQ(err, "");
+            EXPECT_NE(warnings.find("camera 0: znear 1e-05"), std::string::npos) << warnings;
+        } else {
+            EXPECT_NE(err.find("camera 0: znear"), std::string::npos) << err;
+            EXPECT_NE(err.find("the depth buffer cannot resolve that"), std::string::npos) << err;
+        }
+    }
+}
