@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "debug_view.h"
+#include "memory_budget.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/lighting_pass.h"
 #include "passes/pathtrace_pass.h"
@@ -139,6 +140,7 @@ void checkMaterials(const Scene& scene) {
 Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : settings_(settings) {
     checkSettings(settings_);
     checkMaterials(scene);
+    checkMemoryBudget(scene, settings_);  // before any allocation: refuse what cannot fit
     camera_ = cameraMatrices(scene, settings_.camera, float(settings_.width) / float(settings_.height));
     if (settings_.aoRadius <= 0.0f)  // sized from the scene: 15% of its diagonal
         settings_.aoRadius = scene.bounds.empty() ? 1.0f : std::max(0.15f * glm::length(scene.bounds.extent()), 1e-6f);

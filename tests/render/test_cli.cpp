@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <nlohmann/json.hpp>
@@ -334,6 +335,30 @@ TEST(Cli, TooManyShadowedPointLightsAreRefusedNamingTheLimit) {
         r = runCli("render --scene " + path + " --size 16x16 --no-shadows --out " + out);
         EXPECT_EQ(r.status, 0) << r.err;
     }
+}
+
+// A render that cannot fit is refused before anything is allocated, with the estimate (16384^2
+// took 12.8 GB and 83 s before and succeeded). The budget is forced small here so that the test
+// needs no large machine; the default is the GPU's available memory or half the RAM.
+TEST(Cli, RenderThatCannotFitIsRefusedBeforeAllocating) {
+    const std::string dir = tempDir("cli_budget");
+    const auto start = std::chrono::steady_clock::now();
+    CliResult r = runCli("render --scene builtin:cornell --size 4096x4096 --out " + dir + "/big.png",
+                         "GIS_MEMORY_BUDGET_MB=256");
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_NE(r.status, 0);
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    // 4096^2 x (28 G-buffer + 8 lighting + 4 tonemap) bytes = 640 MiB, plus shadows and the scene.
+    EXPECT_NE(r.err.find("4096x4096 needs about 6"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("256 MiB budget: GIS_MEMORY_BUDGET_MB"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
+    EXPECT_LT(seconds, 10.0) << "refused only after allocating?";
+    EXPECT_FALSE(fileExists(dir + "/big.png"));
+    r = runCli("info --scene builtin:cornell --size 4096x4096", "GIS_MEMORY_BUDGET_MB=256");
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("needs about"), std::string::npos) << r.err;
+    r = runCli("render --scene builtin:cornell --size 64x64 --out " + dir + "/small.png", "GIS_MEMORY_BUDGET_MB=256");
+    EXPECT_EQ(r.status, 0) << r.err;
 }
 
 // A shader that fails to compile is reported with its own file name and line, and no image is written.
