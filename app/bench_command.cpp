@@ -35,8 +35,16 @@ struct BenchRow {
 
 // The reference depends on the scene (and the file's size and time for glTF files), camera,
 // size, sample count, bounces and seed: all of them are in the cache key.
-std::string referenceKey(const std::string& sceneSpec, const RenderSettings& s) {
+std::string referenceKey(const std::string& sceneSpec, const Scene& scene, const RenderSettings& s) {
     std::ostringstream key;
+    // What --camera/--lighting/--background made of the scene: the camera used, lights, environment.
+    const glm::mat4& cam = scene.cameras.at(size_t(s.camera)).cameraToWorld;
+    for (int c = 0; c < 16; ++c) key << cam[c / 4][c % 4] << ",";
+    for (const Light& l : scene.lights)
+        key << "|L" << int(l.type) << l.intensity << l.color.r << l.color.g << l.color.b << l.position.x << l.position.y
+            << l.position.z << l.direction.x << l.direction.y << l.direction.z;
+    const glm::vec3 env = s.background.value_or(scene.background);
+    key << "|env" << env.r << "," << env.g << "," << env.b << "|";
     key << sceneSpec << "|" << s.width << "x" << s.height << "|cam" << s.camera << "|" << s.gi << "|seed" << s.seed;
     for (const auto& [name, value] : s.params) key << "|" << name << "=" << formatParamValue(findParam(name), value);
     std::error_code ec;
@@ -94,13 +102,47 @@ void addBenchOptions(CLI::App& cmd, BenchOptions& o) {
     cmd.add_option("--out-dir", o.outDir, "Where bench.json, bench.csv and the PNGs go")->capture_default_str();
     cmd.add_option("--cache-dir", o.cacheDir, "Where references are cached (default: OUT_DIR/cache)");
     cmd.add_option("--backend", o.backend, "OpenGL context: auto, egl, osmesa")->capture_default_str();
+    addSceneSetupOptions(cmd, o.setup);
+    cmd.add_option("--ambient", o.ambient, "Constant ambient radiance: one value or R,G,B")->delimiter(',')->expected(1, 3);
+    cmd.add_option("--background", o.background, "Environment radiance R,G,B (or one value), overriding the scene's")
+        ->delimiter(',')
+        ->expected(1, 3);
 }
+
+namespace {
+glm::vec3 colourFlag(const std::vector<float>& v, const char* flag) {
+    if (v.size() != 1 && v.size() != 3) throw Error(std::string(flag) + " takes one value or R,G,B");
+    for (float x : v)
+        if (!std::isfinite(x) || x < 0.0f) throw Error(std::string(flag) + " must be finite and non-negative");
+    return v.size() == 3 ? glm::vec3(v[0], v[1], v[2]) : glm::vec3(v[0]);
+}
+
+// Results are named by the scene's file stem (or builtin name), made unique within the run: two
+// files whose glTF scene is called "Scene" no longer overwrite each other's chart and rows.
+std::vector<std::string> uniqueSceneNames(const std::vector<std::string>& specs) {
+    std::vector<std::string> names;
+    for (const std::string& spec : specs) {
+        std::string base = spec.rfind("builtin:", 0) == 0 ? spec.substr(8) : fs::path(spec).stem().string();
+        if (base.empty()) base = "scene";
+        std::string name = base;
+        for (int k = 2; std::find(names.begin(), names.end(), name) != names.end(); ++k) name = base + "-" + std::to_string(k);
+        names.push_back(name);
+    }
+    return names;
+}
+}  // namespace
 
 int runBench(const BenchOptions& o) {
     RenderSettings base;
     parseRenderSize(o.size, base.width, base.height);
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
-    if (o.warmup < 0 || o.warmup >= o.frames) throw Error("--warmup must be in [0, --frames)");
+    if (o.warmup < 0 || o.warmup >= o.frames)
+        throw Error("--warmup " + std::to_string(o.warmup) + " must be in [0, --frames " + std::to_string(o.frames) +
+                    ") (the default warm-up is 5 frames: with fewer --frames, lower --warmup too)");
+    if (!o.ambient.empty()) base.ambient = colourFlag(o.ambient, "--ambient");
+    if (!o.background.empty()) base.background = colourFlag(o.background, "--background");
+    cameraRequest(o.setup);            // validates the camera flags before any work
+    parseLightingMode(o.setup.lighting);
     if (o.referenceSpp < 1 || o.referenceSpp > (1 << 20)) throw Error("--reference-spp must be in [1, 1048576]");
     const ErrorMetric metric = parseErrorMetric(o.metric);
     std::vector<std::string> methods = o.methods;
@@ -116,7 +158,14 @@ int runBench(const BenchOptions& o) {
     }
     if (o.scenes.empty()) throw Error("--scenes needs at least one scene");
     std::vector<Scene> scenes;
-    for (const std::string& spec : o.scenes) scenes.push_back(loadScene(spec));  // fail early on bad input
+    std::vector<RenderSettings> sceneBases;  // per scene: its camera, and the sky as ambient where added
+    const std::vector<std::string> sceneNames = uniqueSceneNames(o.scenes);
+    for (const std::string& spec : o.scenes) {  // fail early on bad input
+        scenes.push_back(loadScene(spec));
+        sceneBases.push_back(base);
+        sceneBases.back().camera = prepareScene(scenes.back(), o.setup, float(base.width) / float(base.height),
+                                                &sceneBases.back(), !o.ambient.empty());
+    }
     std::error_code ec;
     const std::string cacheDir = o.cacheDir.empty() ? o.outDir + "/cache" : o.cacheDir;
     fs::create_directories(cacheDir, ec);
@@ -132,14 +181,15 @@ int runBench(const BenchOptions& o) {
     std::vector<BenchRow> rows;
     for (size_t si = 0; si < scenes.size(); ++si) {
         const Scene& scene = scenes[si];
-        const std::string sceneName = scene.name.empty() ? o.scenes[si] : scene.name;
-        RenderSettings refSettings = base;
+        const std::string& sceneName = sceneNames[si];
+        const RenderSettings& sceneBase = sceneBases[si];
+        RenderSettings refSettings = sceneBase;
         refSettings.gi = "pathtrace";
         setParam(refSettings, "pathtrace.spp", std::to_string(o.referenceSpp));
         setParam(refSettings, "pathtrace.bounces", "64");
         refSettings.samplesPerFrame = 16;
         const std::string refPath = cacheDir + "/reference_" + fileSafe(sceneName) + "_" +
-                                    referenceKey(o.scenes[si], refSettings) + ".exr";
+                                    referenceKey(o.scenes[si], scene, refSettings) + ".exr";
         ImageF reference;
         ImageU8 referenceLdr;
         {
@@ -159,12 +209,12 @@ int runBench(const BenchOptions& o) {
         // Ray-traced AO, SSAO's own ground truth, cached the same way (only when SSAO is measured).
         ImageF aoReference;
         if (std::find(methods.begin(), methods.end(), "ssao") != methods.end()) {
-            RenderSettings aoSettings = base;
+            RenderSettings aoSettings = sceneBase;
             aoSettings.gi = "ao-reference";
             setParam(aoSettings, "ao-reference.spp", std::to_string(o.referenceSpp));
             aoSettings.samplesPerFrame = 64;
             const std::string aoPath = cacheDir + "/ao_reference_" + fileSafe(sceneName) + "_" +
-                                       referenceKey(o.scenes[si], aoSettings) + ".exr";
+                                       referenceKey(o.scenes[si], scene, aoSettings) + ".exr";
             if (fs::exists(aoPath)) {
                 aoReference = readExr(aoPath);
             } else {
@@ -187,7 +237,7 @@ int runBench(const BenchOptions& o) {
                 row.preset = preset;
                 const GiMethod& method = giMethod(methods[mi]);
                 row.description = method.preset(preset).description;
-                RenderSettings s = base;
+                RenderSettings s = sceneBase;
                 applyPreset(s, methods[mi], preset);
                 Renderer renderer(scene, s);
                 measure(renderer, method, o.frames, o.warmup, row);

@@ -123,8 +123,7 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT")->capture_default_str();
     cmd.add_option("--backend", o.backend, "OpenGL context: auto (EGL, else OSMesa), egl, osmesa, glfw (hidden window)")
         ->capture_default_str();
-    cmd.add_option("--camera", o.camera, "Index of the glTF camera (a default camera frames the scene if it has none)")
-        ->capture_default_str();
+    addSceneSetupOptions(cmd, o.setup);
     cmd.add_option("--gi", o.gi, "Global illumination method: " + giMethodNames())->capture_default_str();
     cmd.add_option("--diffuse", o.diffuse, "Diffuse BRDF: lambert, wrap (roughness-driven wrap), toon, burley")
         ->capture_default_str();
@@ -210,7 +209,6 @@ int runRender(const RenderOptions& o) {
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
     if (o.warmup < 0 || o.warmup >= o.frames) throw Error("--warmup must be in [0, --frames)");
     if (o.ambient.size() != 1 && o.ambient.size() != 3) throw Error("--ambient takes one value or R,G,B");
-    if (use("--camera")) s.camera = o.camera;
     if (use("--gi")) s.gi = o.gi;
     giMethod(s.gi);  // throws for an unknown method
     if (use("--diffuse")) s.diffuse = parseDiffuse(o.diffuse);
@@ -249,7 +247,15 @@ int runRender(const RenderOptions& o) {
 
     Scene scene = loadScene(sceneSpec);
     printWarnings(scene);
-    if (viewSettings) scene.lights = view::effectiveLights(*viewSettings, scene.lights);  // the panel's edits
+    {
+        SceneSetupOptions setup = o.setup;
+        if (viewSettings && !use("--lighting")) setup.lighting = viewSettings->lighting;
+        // With --settings the file's ambient stands: the view applied the same rule when it opened the scene.
+        const bool ambientFixed = viewSettings.has_value() || (o.given && o.given("--ambient"));
+        const int camera = prepareScene(scene, setup, float(s.width) / float(s.height), &s, ambientFixed);
+        if (viewSettings) scene.lights = view::effectiveLights(*viewSettings, scene.lights);  // the panel's edits
+        if (!viewSettings || use("--camera") || use("--camera-pos")) s.camera = camera;
+    }
     std::unique_ptr<GlContext> ctx;
     if (parseBackend(o.backend) == Backend::Glfw) {
         ContextOptions co;
@@ -269,7 +275,7 @@ int runRender(const RenderOptions& o) {
         return 0;
     }
     Renderer renderer(scene, s);
-    if (viewSettings && viewSettings->camera.free && !use("--camera")) {  // the view's free camera
+    if (viewSettings && viewSettings->camera.free && !use("--camera") && !use("--camera-pos")) {  // the free camera
         renderer.setCamera(view::viewCameraMatrices(*viewSettings, scene, float(s.width) / float(s.height)));
     }
     const int frames = o.timings ? o.frames : 1;
