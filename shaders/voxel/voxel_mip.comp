@@ -1,0 +1,38 @@
+// One level of the radiance mip chain from the level below (premultiplied radiance, occupancy).
+// ISOTROPIC: the mean of the 2x2x2 children. Otherwise DIRECTION (0..5 = +X -X +Y -Y +Z -Z, the
+// way a cone travels): along that axis the two children are composited front to back (what a cone
+// sees passing through), and the four composited pairs are averaged, so a thin wall stays opaque
+// for cones that cross it instead of averaging to half-transparent.
+#include "voxel/voxel_uniforms.glsl"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(binding = 0) uniform sampler3D s_source;  // the level below, read with texelFetch
+layout(rgba16f, binding = 0) uniform writeonly image3D i_target;
+layout(location = UV_MIP_LEVEL) uniform int u_sourceLevel;
+layout(location = UV_DIRECTION) uniform int u_direction;  // -1: isotropic
+
+void main() {
+    ivec3 v = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(v, imageSize(i_target)))) return;
+    ivec3 base = v * 2;
+    vec4 sum = vec4(0.0);
+    if (u_direction < 0) {
+        for (int i = 0; i < 8; ++i) sum += texelFetch(s_source, base + ivec3(i & 1, (i >> 1) & 1, i >> 2), u_sourceLevel);
+    } else {
+        int axis = u_direction / 2;
+        bool positive = (u_direction & 1) == 0;
+        ivec3 along = ivec3(0);
+        along[axis] = 1;
+        ivec3 u = ivec3(0), w = ivec3(0);
+        u[(axis + 1) % 3] = 1;
+        w[(axis + 2) % 3] = 1;
+        for (int i = 0; i < 4; ++i) {
+            ivec3 lo = base + u * (i & 1) + w * (i >> 1);
+            vec4 a = texelFetch(s_source, lo, u_sourceLevel), b = texelFetch(s_source, lo + along, u_sourceLevel);
+            vec4 front = positive ? a : b, back = positive ? b : a;
+            sum += front + (1.0 - front.a) * back;
+        }
+        sum *= 2.0;  // four pairs, each standing for two voxels' worth of the eight
+    }
+    imageStore(i_target, v, sum * 0.125);
+}
