@@ -18,9 +18,10 @@ int levelsFor(int n) {
 void setVolumeSampling(const gl::Texture& t) {
     glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    // Outside the volume is empty: border (0,0,0,0), so cones fade out instead of smearing the edge.
+    // Clamp to the edge, not to a transparent border: cones stop at the volume's boundary, and a
+    // border would fade the surfaces that lie in the outermost texels of every coarse level.
     for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-        glTextureParameteri(t.id(), wrap, GL_CLAMP_TO_BORDER);
+        glTextureParameteri(t.id(), wrap, GL_CLAMP_TO_EDGE);
 }
 
 void dispatch3D(int w, int h, int d) { glDispatchCompute(GLuint((w + 3) / 4), GLuint((h + 3) / 4), GLuint((d + 3) / 4)); }
@@ -86,24 +87,26 @@ void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
 }
 
 void VoxelRadiance::downsample(const gl::Texture& source, int sourceLevel, const gl::Texture& target, int targetLevel,
-                               int direction) {
+                               int direction, GLuint normals) {
     const GLuint p = mipProgram_.id();
     glProgramUniform1i(p, UV_MIP_LEVEL, sourceLevel);
     glProgramUniform1i(p, UV_DIRECTION, direction);
+    glProgramUniform1i(p, UV_NORMAL_WEIGHT, normals ? 1 : 0);
     glBindTextureUnit(0, source.id());
+    glBindTextureUnit(1, normals ? normals : source.id());
     glBindImageTexture(0, target.id(), targetLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     const int size = std::max(target.width >> targetLevel, 1);
     dispatch3D(size, size, size);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-void VoxelRadiance::buildMips() {
+void VoxelRadiance::buildMips(const VoxelGrid& grid) {
     glUseProgram(mipProgram_.id());
-    glBindSampler(0, 0);
+    glBindSamplers(0, 2, nullptr);
     for (int level = 1; level < radiance_.levels; ++level) downsample(radiance_, level - 1, radiance_, level, -1);
     if (!anisotropic_) return;
     for (int d = 0; d < 6; ++d) {
-        downsample(radiance_, 0, directional_[d], 0, d);
+        downsample(radiance_, 0, directional_[d], 0, d, grid.normal.id());
         for (int level = 1; level < directional_[d].levels; ++level)
             downsample(directional_[d], level - 1, directional_[d], level, d);
     }
@@ -131,7 +134,7 @@ void VoxelRadiance::bounce(const VoxelGrid& grid, const ConeSettings& cones, glm
         dispatch3D(n, n, n);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         glCopyImageSubData(next.id(), GL_TEXTURE_3D, 0, 0, 0, 0, radiance_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
-        buildMips();
+        buildMips(grid);
     }
 }
 

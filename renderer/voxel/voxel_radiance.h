@@ -28,8 +28,9 @@ public:
     };
     // Direct light + emission into level 0.
     void inject(const VoxelGrid& grid, const Lights& lights);
-    // The mip chains from level 0 (and the directional chains when anisotropic).
-    void buildMips();
+    // The mip chains from level 0 (and the directional chains when anisotropic, which read the
+    // grid's normals).
+    void buildMips(const VoxelGrid& grid);
     // bounces - 1 more bounces, each followed by new mips. Needs inject() and buildMips() first.
     void bounce(const VoxelGrid& grid, const ConeSettings& cones, glm::vec3 environment);
     // Seven consecutive texture units from `unit` (shaders/voxel/cone_trace.glsl's layout).
@@ -40,7 +41,8 @@ public:
     static std::vector<ProgramDesc> programs();
 
 private:
-    void downsample(const gl::Texture& source, int sourceLevel, const gl::Texture& target, int targetLevel, int direction);
+    void downsample(const gl::Texture& source, int sourceLevel, const gl::Texture& target, int targetLevel, int direction,
+                    GLuint normals = 0);
     gl::Texture radiance_, direct_;
     gl::Texture directional_[6];
     gl::Object injectProgram_, mipProgram_, bounceProgram_;

@@ -22,5 +22,6 @@ enum VoxelUniform : int {
     UV_INTENSITY = 116,
     UV_DEBUG_PARAMS = 117,     // channel, mip level, slice axis, slice position
     UV_BOUNCE = 118,
+    UV_NORMAL_WEIGHT = 119,    // directional mip from level 0: weigh voxels by |normal . axis|
 };
 }  // namespace gis::voxel

@@ -10,7 +10,7 @@ namespace gis {
 using namespace voxel;
 
 namespace {
-constexpr int kChannels = 10;  // shaders/voxel/voxel_sums.glsl: VOXEL_CHANNELS
+constexpr int kChannels = 11;  // shaders/voxel/voxel_sums.glsl: VOXEL_CHANNELS
 
 bool hasExtension(const char* name) {
     GLint n = 0;

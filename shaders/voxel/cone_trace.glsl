@@ -32,20 +32,25 @@ vec4 sampleVoxels(ConeTracer t, vec3 p, vec3 dir, float lod) {
 }
 
 // Front-to-back accumulation along a cone from `origin` (voxel units) with tan(half aperture)
-// `tanHalf`, starting `start` voxels out. Returns premultiplied radiance and opacity; `escaped`
-// says the cone left the volume (the caller adds the environment for what is left); a cone that
-// runs out of distance inside the volume adds nothing more (indoors, the environment would leak).
-vec4 traceCone(ConeTracer t, vec3 origin, vec3 dir, float tanHalf, float start, out bool escaped) {
+// `tanHalf`, starting `start` voxels out. `surfaceNormal` (unit, or 0 for none) is the normal of
+// the surface the cone leaves: each sample is lifted along it until the sample's footprint (about
+// one diameter around its centre, what a trilinear mip lookup blends) clears the surface's
+// tangent plane, so a wide cone never filters in the surface's own voxels (a lit floor lighting
+// itself). Returns premultiplied radiance and opacity; `escaped` says the cone left the volume
+// (the caller adds the environment for what is left); a cone that runs out of distance inside the
+// volume adds nothing more (indoors, the environment would leak).
+vec4 traceCone(ConeTracer t, vec3 origin, vec3 dir, float tanHalf, float start, vec3 surfaceNormal, out bool escaped) {
     vec4 acc = vec4(0.0);
     float dist = start;
     escaped = false;
     for (int i = 0; i < 4096 && dist < t.maxDistance && acc.a < 0.99; ++i) {
-        vec3 p = origin + dir * dist;
-        if (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(t.resolution)))) {
-            escaped = true;
-            break;
-        }
         float diameter = max(1.0, 2.0 * tanHalf * dist);
+        float height = dot(dir, surfaceNormal) * dist;
+        vec3 p = origin + dir * dist + surfaceNormal * max(diameter - height, 0.0);
+        // Leaving the volume: one last sample at its boundary, so a surface in the outermost
+        // voxels (the scene's bounds are fitted tightly) is not stepped over.
+        bool leaving = any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(t.resolution)));
+        if (leaving) p = clamp(p, vec3(0.5), vec3(t.resolution - 0.5));
         float stepLength = max(diameter * t.stepFactor, 0.05);
         vec4 s = sampleVoxels(t, p, dir, log2(diameter));
         // A mip's opacity is for a path one diameter long; this step covers stepLength.
@@ -54,6 +59,10 @@ vec4 traceCone(ConeTracer t, vec3 origin, vec3 dir, float tanHalf, float start, 
         acc.rgb += (1.0 - acc.a) * alpha * radiance;
         acc.a += (1.0 - acc.a) * alpha;
         dist += stepLength;
+        if (leaving) {
+            escaped = true;
+            break;
+        }
     }
     return acc;
 }
@@ -83,23 +92,30 @@ void diffuseCone(int coneSet, int i, out vec3 dirTangent, out float tanHalf, out
     weight = 0.25;
 }
 
-// An orthonormal basis around n (any tangent: the cone sets are symmetric enough).
+// An orthonormal basis around n whose first tangent points as far up (+Y) as the surface allows.
+// Five or four cones cannot be symmetric under every rotation: tied to "up", mirror-image
+// surfaces (the two side walls of a room) get mirror-image cones and so the same light.
 mat3 tangentFrame(vec3 n) {
-    vec3 t = normalize(abs(n.y) < 0.99 ? cross(n, vec3(0.0, 1.0, 0.0)) : cross(n, vec3(1.0, 0.0, 0.0)));
+    vec3 up = abs(n.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(0.0, 0.0, -1.0);
+    vec3 t = normalize(up - n * dot(n, up));
     return mat3(t, cross(n, t), n);
 }
 
 // Cosine-weighted mean incoming radiance (E / pi) at a surface point with normal n, and the
-// occlusion (mean opacity) of the cones. Cones that leave the volume see `environment`.
-vec4 traceDiffuse(ConeTracer t, vec3 origin, vec3 n, int coneSet, float start, vec3 environment) {
+// occlusion (mean opacity) of the cones. Cones that leave the volume see `environment`. The cone
+// set is turned about n by `rotation` (a fraction of a full turn; for methods that vary it over
+// pixels or frames and filter, which a fixed set of a few cones otherwise aliases).
+vec4 traceDiffuse(ConeTracer t, vec3 origin, vec3 n, int coneSet, float start, vec3 environment, float rotation) {
     mat3 frame = tangentFrame(n);
+    float angle = rotation * 6.2831853;
+    frame = mat3(frame[0] * cos(angle) + frame[1] * sin(angle), -frame[0] * sin(angle) + frame[1] * cos(angle), frame[2]);
     vec4 sum = vec4(0.0);
     for (int i = 0; i < diffuseConeCount(coneSet); ++i) {
         vec3 d;
         float tanHalf, weight;
         diffuseCone(coneSet, i, d, tanHalf, weight);
         bool escaped;
-        vec4 c = traceCone(t, origin, frame * d, tanHalf, start, escaped);
+        vec4 c = traceCone(t, origin, frame * d, tanHalf, start, n, escaped);
         if (escaped) c.rgb += (1.0 - c.a) * environment;
         sum += weight * c;
     }

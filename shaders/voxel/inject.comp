@@ -57,7 +57,9 @@ void main() {
     vec3 irradiance = vec3(0.0);
     for (int i = 0; i < u_lightCount; ++i) {
         vec3 L;
-        vec3 e = lightIrradiance(u_lights[i], Ps, L);
+        // Irradiance at the centre (the surface is within a voxel of it; the shadow lookup point is
+        // not, and near a light the inverse-square law would overshoot there).
+        vec3 e = lightIrradiance(u_lights[i], P, L);
         float cosine = oriented ? max(dot(N, L), 0.0) : 0.5;
         if (cosine <= 0.0 || all(equal(e, vec3(0.0)))) continue;
         irradiance += e * cosine * shadowVisibility(u_lights[i], Ps, N, cosine);

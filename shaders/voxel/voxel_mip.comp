@@ -2,14 +2,32 @@
 // ISOTROPIC: the mean of the 2x2x2 children. Otherwise DIRECTION (0..5 = +X -X +Y -Y +Z -Z, the
 // way a cone travels): along that axis the two children are composited front to back (what a cone
 // sees passing through), and the four composited pairs are averaged, so a thin wall stays opaque
-// for cones that cross it instead of averaging to half-transparent.
+// for cones that cross it instead of averaging to half-transparent. The first directional level
+// also weighs each surface voxel by how squarely its mean normal faces the axis (|n.axis|): a
+// plane seen edge-on covers nothing, but its one-voxel-thick voxelization would cover 1/D of every
+// coarse cell beside it, so a bright ceiling would glow into every cone running along it.
 #include "voxel/voxel_uniforms.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0) uniform sampler3D s_source;  // the level below, read with texelFetch
+layout(binding = 1) uniform sampler3D s_normal;  // the voxel grid's mean normals (level 0 only)
 layout(rgba16f, binding = 0) uniform writeonly image3D i_target;
 layout(location = UV_MIP_LEVEL) uniform int u_sourceLevel;
 layout(location = UV_DIRECTION) uniform int u_direction;  // -1: isotropic
+layout(location = UV_NORMAL_WEIGHT) uniform int u_weightByNormal;
+
+// A child voxel as seen by a cone travelling along `axis` (sign: +1 or -1): its opacity scaled by
+// |n.axis|, its light only if it faces the cone (surfaces are one-sided emitters: a lamp facing
+// down does not light the ceiling it hangs under, the lit side of a wall does not shine through).
+vec4 child(ivec3 c, int axis, float sign) {
+    vec4 v = texelFetch(s_source, c, u_sourceLevel);
+    if (u_weightByNormal == 0) return v;
+    vec3 n = texelFetch(s_normal, c, 0).xyz * 2.0 - 1.0;
+    float len = length(n);
+    if (len <= 0.3) return v;
+    float facing = -sign * n[axis] / len;
+    return vec4(v.rgb * max(facing, 0.0), v.a * abs(facing));
+}
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
@@ -28,7 +46,8 @@ void main() {
         w[(axis + 2) % 3] = 1;
         for (int i = 0; i < 4; ++i) {
             ivec3 lo = base + u * (i & 1) + w * (i >> 1);
-            vec4 a = texelFetch(s_source, lo, u_sourceLevel), b = texelFetch(s_source, lo + along, u_sourceLevel);
+            float sign = positive ? 1.0 : -1.0;
+            vec4 a = child(lo, axis, sign), b = child(lo + along, axis, sign);
             vec4 front = positive ? a : b, back = positive ? b : a;
             sum += front + (1.0 - front.a) * back;
         }

@@ -24,7 +24,10 @@ void main() {
     }
     float norm = 1.0 / (count * VOXEL_FIXED_ONE);
     vec3 albedo = vec3(sumOf(v, 1), sumOf(v, 2), sumOf(v, 3)) * norm;
-    vec3 emission = vec3(sumOf(v, 4), sumOf(v, 5), sumOf(v, 6)) * norm / u_emissionScale;
+    // Emission is averaged over the emissive samples only: a lamp 1 mm under the ceiling shares
+    // its voxels with the ceiling, and seen from below the voxel shows the lamp, not half of it.
+    float emissive = max(sumOf(v, 10), 1.0);
+    vec3 emission = vec3(sumOf(v, 4), sumOf(v, 5), sumOf(v, 6)) / (emissive * VOXEL_FIXED_ONE) / u_emissionScale;
     vec3 normal = vec3(sumOf(v, 7), sumOf(v, 8), sumOf(v, 9)) * norm * 2.0 - 1.0;
     imageStore(i_albedo, v, vec4(albedo, 1.0));
     imageStore(i_normal, v, vec4(normal * 0.5 + 0.5, 1.0));

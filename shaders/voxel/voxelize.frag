@@ -44,7 +44,7 @@ void main() {
     uint values[VOXEL_CHANNELS] = uint[VOXEL_CHANNELS](
         1u, fixedPoint(base.r), fixedPoint(base.g), fixedPoint(base.b), fixedPoint(emission.r),
         fixedPoint(emission.g), fixedPoint(emission.b), fixedPoint(n.x * 0.5 + 0.5), fixedPoint(n.y * 0.5 + 0.5),
-        fixedPoint(n.z * 0.5 + 0.5));
+        fixedPoint(n.z * 0.5 + 0.5), any(greaterThan(emission, vec3(0.0))) ? 1u : 0u);
     for (int k = k0; k <= k1; ++k) {
         ivec3 voxel = unswizzleFromAxis(ivec3(ivec2(c), k), g_axis);
         if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(u_resolution)))) continue;
