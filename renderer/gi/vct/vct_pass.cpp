@@ -11,6 +11,7 @@ using namespace voxel;
 std::vector<ProgramDesc> VctPass::programs() {
     std::vector<ProgramDesc> all = Voxelizer::programs();
     for (const ProgramDesc& p : VoxelRadiance::programs()) all.push_back(p);
+    all.push_back({"vct_debug", {"gi/vct/vct_debug.comp"}, {}});
     all.push_back({"vct_trace", {"gi/vct/vct_trace.comp"}, {}});
     return all;
 }
@@ -33,7 +34,10 @@ VctPass::VctPass(const GpuScene& scene, const VctSettings& settings, int width, 
     diffuse_ = gl::createTexture2D(trace, GL_RGBA16F, width, height);
     specular_ = gl::createTexture2D(trace, GL_RGBA16F, width, height);
     ao_ = gl::createTexture2D(trace, GL_R16F, width, height);
-    traceProgram_ = buildProgram(programs().back());
+    debug_ = gl::createTexture2D(trace, GL_RGBA16F, width, height);
+    const auto all = programs();
+    traceProgram_ = buildProgram(all.back());
+    debugProgram_ = buildProgram(all[all.size() - 2]);
 }
 
 void VctPass::setLiveSettings(const VctSettings& s) {
@@ -44,6 +48,11 @@ void VctPass::setLiveSettings(const VctSettings& s) {
     next.offset = s.offset;
     next.intensity = s.intensity;
     next.specular = s.specular;
+    next.debugView = s.debugView;
+    next.debugChannel = s.debugChannel;
+    next.debugLevel = s.debugLevel;
+    next.sliceAxis = s.sliceAxis;
+    next.slicePosition = s.slicePosition;
     checkVctSettings(next);
     settings_ = next;
 }
@@ -106,6 +115,27 @@ void VctPass::trace(const Frame& frame) {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
+void VctPass::debugView(Frame& frame) {
+    const GLuint p = debugProgram_.id();
+    const VolumeFit& fit = voxelizer_->grid().fit;
+    const glm::mat4 worldToVoxel = fit.worldToVoxelMatrix();
+    glUseProgram(p);
+    glProgramUniformMatrix4fv(p, UV_WORLD_TO_VOXEL, 1, GL_FALSE, &worldToVoxel[0][0]);
+    glProgramUniform1i(p, UV_RESOLUTION, fit.resolution);
+    glProgramUniformMatrix4fv(p, UV_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
+    const bool slice = settings_.debugView == VctSettings::DebugView::Slice;
+    glProgramUniform4f(p, UV_DEBUG_PARAMS, float(settings_.debugChannel), float(settings_.debugLevel),
+                       slice ? float(settings_.sliceAxis) : -1.0f, settings_.slicePosition);
+    const GLuint textures[3] = {voxelizer_->grid().albedo.id(), voxelizer_->grid().emission.id(),
+                                radiance_->radiance().id()};
+    glBindTextures(0, 3, textures);
+    glBindSamplers(0, 3, nullptr);
+    glBindImageTexture(0, debug_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(GLuint((debug_.width + 7) / 8), GLuint((debug_.height + 7) / 8), 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    frame.textures[slice ? "vct.slice" : "vct.voxels"] = debug_.id();
+}
+
 void VctPass::execute(Frame& frame) {
     reused_ = valid_;
     if (!valid_) rebuildVoxels(frame);
@@ -116,6 +146,7 @@ void VctPass::execute(Frame& frame) {
     frame.textures["indirect.diffuse"] = diffuse_.id();
     frame.textures["indirect.specular"] = specular_.id();
     frame.textures["ao"] = ao_.id();
+    if (settings_.debugView != VctSettings::DebugView::None) debugView(frame);
 }
 
 }  // namespace gis

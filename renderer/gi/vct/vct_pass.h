@@ -20,12 +20,15 @@ public:
     std::vector<std::string> inputs() const override {
         return {"gbuffer.depth", "gbuffer.normal", "gbuffer.material", "lights", "shadow.maps", "shadow.cubes"};
     }
-    std::vector<std::string> outputs() const override { return {"indirect.diffuse", "indirect.specular", "ao"}; }
+    std::vector<std::string> outputs() const override {
+        return {"indirect.diffuse", "indirect.specular", "ao", "vct.voxels", "vct.slice"};
+    }
     void execute(Frame& frame) override;
     bool reusedLastFrame() const override { return reused_; }
     // Geometry, materials or lights changed: voxelize and inject again on the next frame.
     void invalidate() { valid_ = false; }
-    // Parameters read only when tracing (cone set, step, distance, offset, intensity, specular).
+    // Parameters read only when tracing (cone set, step, distance, offset, intensity, specular,
+    // debug view).
     void setLiveSettings(const VctSettings& s);
     static std::vector<ProgramDesc> programs();
 
@@ -40,11 +43,12 @@ public:
 private:
     void rebuildVoxels(const Frame& frame);
     void trace(const Frame& frame);
+    void debugView(Frame& frame);
     VctSettings settings_;
     std::unique_ptr<Voxelizer> voxelizer_;
     std::unique_ptr<VoxelRadiance> radiance_;
-    gl::Texture diffuse_, specular_, ao_;
-    gl::Object traceProgram_;
+    gl::Texture diffuse_, specular_, ao_, debug_;
+    gl::Object traceProgram_, debugProgram_;
     gl::GpuTimer stepTimers_[StepCount];
     bool valid_ = false, reused_ = false;
 };

@@ -23,6 +23,12 @@ void checkVctSettings(const VctSettings& s) {
     checkRange("vct.max_distance", s.maxDistance, 0.0f, 2.0f, true);
     checkRange("vct.offset", s.offset, 0.0f, 8.0f, false);
     checkRange("vct.intensity", s.intensity, 0.0f, 16.0f, false);
+    if (s.debugChannel < 0 || s.debugChannel > 3)
+        throw Error("vct.debug_channel " + std::to_string(s.debugChannel) + " is out of range [0, 3]");
+    if (s.debugLevel < 0 || s.debugLevel > 9)
+        throw Error("vct.debug_level " + std::to_string(s.debugLevel) + " is out of range [0, 9]");
+    if (s.sliceAxis < 0 || s.sliceAxis > 2) throw Error("vct.slice_axis " + std::to_string(s.sliceAxis) + " is out of range [0, 2]");
+    checkRange("vct.slice_position", s.slicePosition, 0.0f, 1.0f, false);
 }
 
 VctSettings vctPreset(const std::string& name) {

@@ -20,6 +20,13 @@ struct VctSettings {
     float offset = 1.5f;                 // vct.offset: self-occlusion offset along the normal, voxels, [0, 8] (live)
     float intensity = 1.0f;              // vct.intensity: scales the indirect terms, [0, 16] (live)
     bool specular = true;                // vct.specular: trace the specular cone (live)
+    // Debug views (live): "vct.voxels" ray-marches the grid, "vct.slice" shows one slice.
+    enum class DebugView { None, Voxels, Slice };
+    DebugView debugView = DebugView::None;
+    int debugChannel = 0;                // vct.debug_channel: 0 albedo, 1 emission, 2 radiance, 3 occupancy
+    int debugLevel = 0;                  // vct.debug_level: mip level (radiance and occupancy)
+    int sliceAxis = 2;                   // vct.slice_axis: 0 x, 1 y, 2 z
+    float slicePosition = 0.5f;          // vct.slice_position: 0..1 across the volume
 };
 
 // Throws gis::Error naming the parameter and its range.

@@ -298,6 +298,35 @@ TEST(Vct, Extremes) {
     }
 }
 
+// The debug views show the grid: ray-marched albedo sees the white back wall in the middle and
+// the red wall on the left; a slice across the room has red at its left end, green at its right.
+TEST(Vct, DebugViewsShowTheGrid) {
+    VctSettings s = vct64();
+    s.debugView = VctSettings::DebugView::Voxels;
+    const VctImages voxels = renderVct(makeBuiltinScene("cornell"), baseSettings("vct"), s);
+    ASSERT_EQ(voxels.debug.width, kSize);
+    const float* centre = voxels.debug.at(kSize / 2, kSize / 4);
+    EXPECT_NEAR(centre[0], 0.73f, 0.02f);
+    EXPECT_NEAR(centre[1], 0.73f, 0.02f);
+    const float* left = voxels.debug.at(kSize / 16, kSize / 2);
+    EXPECT_GT(left[0], 4.0f * left[1]) << "the red wall";
+    s.debugView = VctSettings::DebugView::Slice;
+    s.sliceAxis = 2;
+    s.slicePosition = 0.5f;
+    const VctImages slice = renderVct(makeBuiltinScene("cornell"), baseSettings("vct"), s);
+    int reddest = -1, greenest = -1;
+    float bestRed = 0.0f, bestGreen = 0.0f;
+    for (int x = 0; x < kSize; ++x) {
+        const float* p = slice.debug.at(x, kSize / 2);
+        if (p[0] - p[1] > bestRed) bestRed = p[0] - p[1], reddest = x;
+        if (p[1] - p[0] > bestGreen) bestGreen = p[1] - p[0], greenest = x;
+    }
+    EXPECT_GE(reddest, 0);
+    EXPECT_GT(greenest, reddest);
+    EXPECT_LT(reddest, kSize / 8);
+    EXPECT_GT(greenest, kSize * 7 / 8);
+}
+
 TEST(Vct, BadParametersAreOneClearError) {
     VctSettings s;
     s.resolution = 48;

@@ -50,6 +50,8 @@ VctImages renderVct(const Scene& scene, const RenderSettings& settingsIn, const 
     out.diffuse = readTextureFloat(frame.texture("indirect.diffuse"), w, h);
     out.specular = readTextureFloat(frame.texture("indirect.specular"), w, h);
     out.ao = readTextureFloat(frame.texture("ao"), w, h);
+    for (const char* view : {"vct.voxels", "vct.slice"})
+        if (frame.textures.count(view)) out.debug = readTextureFloat(frame.textures.at(view), w, h);
     const ImageF base = readTextureFloat(frame.texture("gbuffer.baseColor"), w, h);
     const ImageF material = readTextureFloat(frame.texture("gbuffer.material"), w, h);
     out.indirect = out.diffuse;

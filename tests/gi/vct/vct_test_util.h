@@ -14,6 +14,7 @@ struct VctImages {
     ImageF specular;   // indirect.specular
     ImageF ao;         // r = ao
     ImageF indirect;   // diffuse albedo * indirect.diffuse: the outgoing indirect radiance (Lambert)
+    ImageF debug;      // "vct.voxels" or "vct.slice" when the settings ask for one
     double stepMs[VctPass::StepCount] = {};  // median GPU ms of each sub-step over the frames that ran it
     bool cachedSecondFrame = false;          // the second frame reused voxels and injection
     int resolution = 0;
