@@ -117,6 +117,7 @@ VctSettings vct64() {
     VctSettings v;
     v.resolution = 64;
     if (const char* e = std::getenv("VCT_RES")) v.resolution = std::atoi(e);  // for tuning by hand
+    if (const char* e = std::getenv("VCT_BOUNCES")) v.bounces = std::atoi(e);
     return v;
 }
 
@@ -138,6 +139,9 @@ TEST(Vct, CornellIndirectEnergyPerWallAgainstPathTracer) {
     for (const auto& [name, region] : kRegions) {
         const double ours = regionMean(v.indirect, ref, region), theirs = regionMean(pt, ref, region);
         const double ratio = ours / theirs;
+        const double multi = regionMean(subtract(ref.ptFull, ref.ptDirect), ref, region);
+        std::printf("VCT-TABLE energy cornell 64^3 %-10s vs 16-bounce indirect %.5f: %.0f%%\n", name.c_str(), multi,
+                    100.0 * ours / multi);
         const bool inBand = ratio >= 0.8 && ratio <= 1.2;
         std::printf("VCT-TABLE energy cornell 64^3 %-10s vct %.5f pathtrace %.5f ratio %.0f%% %s\n", name.c_str(), ours,
                     theirs, 100.0 * ratio, inBand ? "(in 80-120%)" : "(OUTSIDE 80-120%)");
