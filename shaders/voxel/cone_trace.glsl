@@ -25,9 +25,18 @@ vec4 sampleVoxels(ConeTracer t, vec3 p, vec3 dir, float lod) {
     // The directional chains start one level up; blend in from the shared finest level.
     float dlod = max(lod - 1.0, 0.0);
     vec3 w = dir * dir;
-    vec4 s = w.x * (dir.x > 0.0 ? textureLod(s_voxelPosX, uvw, dlod) : textureLod(s_voxelNegX, uvw, dlod)) +
-             w.y * (dir.y > 0.0 ? textureLod(s_voxelPosY, uvw, dlod) : textureLod(s_voxelNegY, uvw, dlod)) +
-             w.z * (dir.z > 0.0 ? textureLod(s_voxelPosZ, uvw, dlod) : textureLod(s_voxelNegZ, uvw, dlod));
+    vec4 sx = dir.x > 0.0 ? textureLod(s_voxelPosX, uvw, dlod) : textureLod(s_voxelNegX, uvw, dlod);
+    vec4 sy = dir.y > 0.0 ? textureLod(s_voxelPosY, uvw, dlod) : textureLod(s_voxelNegY, uvw, dlod);
+    vec4 sz = dir.z > 0.0 ? textureLod(s_voxelPosZ, uvw, dlod) : textureLod(s_voxelNegZ, uvw, dlod);
+    // Opacities combine as transmittances, (1 - a) = prod (1 - a_axis)^w_axis: a cone crossing a
+    // surface obliquely is stopped by it as long as the chain along the surface's normal sees it;
+    // a weighted mean would let (1 - w_normal) of the cone through the surface. Radiance is the
+    // opacity-weighted mean of the three chains.
+    vec3 a = clamp(vec3(sx.a, sy.a, sz.a), 0.0, 0.9999);
+    float alpha = 1.0 - exp(dot(w, log(1.0 - a)));
+    float weight = dot(w, a);
+    vec3 radiance = weight > 1e-6 ? (w.x * sx.rgb + w.y * sy.rgb + w.z * sz.rgb) / weight : vec3(0.0);
+    vec4 s = vec4(radiance * alpha, alpha);
     return lod < 1.0 ? mix(textureLod(s_voxelRadiance, uvw, 0.0), s, lod) : s;
 }
 
