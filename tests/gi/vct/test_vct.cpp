@@ -216,7 +216,7 @@ TEST(Vct, ColourBleedsFromTheWallsOntoTheFloor) {
 }
 
 // Issue 11 asks that the error fall from 32^3 to 64^3. Measured on llvmpipe it does not (indirect
-// RMSE 0.0314 at 32^3, 0.0332 at 64^3, see the README): the remaining error is the cones' bias
+// RMSE 0.0302 at 32^3, 0.0318 at 64^3, see the README): the remaining error is the cones' bias
 // (the back wall gets about half its light at both sizes), not resolution. Disabled rather than
 // weakened; run it with --gtest_also_run_disabled_tests.
 TEST(Vct, DISABLED_ErrorFallsWithResolution) {
