@@ -16,17 +16,15 @@ layout(location = UV_MIP_LEVEL) uniform int u_sourceLevel;
 layout(location = UV_DIRECTION) uniform int u_direction;  // -1: isotropic
 layout(location = UV_NORMAL_WEIGHT) uniform int u_weightByNormal;
 
-// A child voxel as seen by a cone travelling along `axis` (sign: +1 or -1): its opacity scaled by
-// |n.axis|, its light only if it faces the cone (surfaces are one-sided emitters: a lamp facing
-// down does not light the ceiling it hangs under, the lit side of a wall does not shine through).
-vec4 child(ivec3 c, int axis, float sign) {
+// A child voxel as seen by a cone travelling along `axis`: scaled by |n.axis|, how much of the
+// voxel's surface a cone along that axis sees. (Showing a voxel's light only to cones that face
+// its front was tried too: it darkened every wall to half of the path tracer's light.)
+vec4 child(ivec3 c, int axis) {
     vec4 v = texelFetch(s_source, c, u_sourceLevel);
     if (u_weightByNormal == 0) return v;
     vec3 n = texelFetch(s_normal, c, 0).xyz * 2.0 - 1.0;
     float len = length(n);
-    if (len <= 0.3) return v;
-    float facing = -sign * n[axis] / len;
-    return vec4(v.rgb * max(facing, 0.0), v.a * abs(facing));
+    return len > 0.3 ? v * (abs(n[axis]) / len) : v;
 }
 
 void main() {
@@ -46,8 +44,7 @@ void main() {
         w[(axis + 2) % 3] = 1;
         for (int i = 0; i < 4; ++i) {
             ivec3 lo = base + u * (i & 1) + w * (i >> 1);
-            float sign = positive ? 1.0 : -1.0;
-            vec4 a = child(lo, axis, sign), b = child(lo + along, axis, sign);
+            vec4 a = child(lo, axis), b = child(lo + along, axis);
             vec4 front = positive ? a : b, back = positive ? b : a;
             sum += front + (1.0 - front.a) * back;
         }

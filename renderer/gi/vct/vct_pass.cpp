@@ -2,11 +2,26 @@
 
 #include <cmath>
 
+#include "debug_view.h"
+#include "gi/method.h"
+#include "services/scene_services.h"
 #include "voxel/voxel_uniforms.h"
 
 namespace gis {
 
 using namespace voxel;
+
+namespace {
+ConeSettings coneSettingsOf(const VctSettings& s) {
+    return {s.coneSet, s.stepFactor, s.maxDistance * float(s.resolution), s.offset};
+}
+
+ParamValue choiceValue(const char* name) {
+    ParamValue v;
+    v.text = name;
+    return v;
+}
+}  // namespace
 
 std::vector<ProgramDesc> VctPass::programs() {
     std::vector<ProgramDesc> all = Voxelizer::programs();
@@ -16,78 +31,56 @@ std::vector<ProgramDesc> VctPass::programs() {
     return all;
 }
 
-const char* VctPass::stepName(int step) {
-    static const char* const names[StepCount] = {"voxelize", "inject", "mips", "trace"};
-    return step >= 0 && step < StepCount ? names[step] : "?";
-}
-
-VctPass::VctPass(const GpuScene& scene, const VctSettings& settings, int width, int height, gl::MemoryLedger& ledger)
-    : settings_(settings) {
-    checkVctSettings(settings_);
+VctPass::VctPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger)
+    : built_(vctParams().read("vct", settings.params)), live_(built_) {
+    checkVctSettings(built_);
     const gl::MemoryScope voxels{&ledger, "vct.voxels"}, radiance{&ledger, "vct.radiance"}, trace{&ledger, name()};
-    const int n = settings_.resolution;
+    const int n = built_.resolution;
     // Refuse before allocating anything: the whole method's voxel memory at once.
-    checkVoxelBudget(n, voxelGridBytes(n) + voxelRadianceBytes(n, settings_.anisotropic, settings_.bounces),
+    checkVoxelBudget(n, voxelGridBytes(n) + voxelRadianceBytes(n, built_.anisotropic, built_.bounces),
                      "vct.resolution");
-    voxelizer_ = std::make_unique<Voxelizer>(fitVolume(scene.cpu.bounds, n), settings_.conservative, voxels);
-    radiance_ = std::make_unique<VoxelRadiance>(n, settings_.anisotropic, settings_.bounces, radiance);
-    diffuse_ = gl::createTexture2D(trace, GL_RGBA16F, width, height);
-    specular_ = gl::createTexture2D(trace, GL_RGBA16F, width, height);
-    ao_ = gl::createTexture2D(trace, GL_R16F, width, height);
-    debug_ = gl::createTexture2D(trace, GL_RGBA16F, width, height);
+    // Two and a half voxels of margin: the bounds (a room's walls) then lie mid-voxel instead of on
+    // a voxel boundary, where float rounding at another scene scale would flip them between one
+    // and two voxel layers (and change the light by a few percent).
+    voxelizer_ = std::make_unique<Voxelizer>(fitVolume(scene.cpu.bounds, n, 2.5f), built_.conservativeMode(), voxels);
+    radiance_ = std::make_unique<VoxelRadiance>(n, built_.anisotropic, built_.bounces, radiance);
+    diffuse_ = gl::createTexture2D(trace, GL_RGBA16F, settings.width, settings.height);
+    specular_ = gl::createTexture2D(trace, GL_RGBA16F, settings.width, settings.height);
+    ao_ = gl::createTexture2D(trace, GL_R16F, settings.width, settings.height);
     const auto all = programs();
     traceProgram_ = buildProgram(all.back());
     debugProgram_ = buildProgram(all[all.size() - 2]);
 }
 
-void VctPass::setLiveSettings(const VctSettings& s) {
-    VctSettings next = settings_;
-    next.coneSet = s.coneSet;
-    next.stepFactor = s.stepFactor;
-    next.maxDistance = s.maxDistance;
-    next.offset = s.offset;
-    next.intensity = s.intensity;
-    next.specular = s.specular;
-    next.debugView = s.debugView;
-    next.debugChannel = s.debugChannel;
-    next.debugLevel = s.debugLevel;
-    next.sliceAxis = s.sliceAxis;
-    next.slicePosition = s.slicePosition;
-    checkVctSettings(next);
-    settings_ = next;
-}
-
-static ConeSettings coneSettingsOf(const VctSettings& s) {
-    return {s.coneSet, s.stepFactor, s.maxDistance * float(s.resolution), s.offset};
-}
-
-void VctPass::rebuildVoxels(const Frame& frame) {
-    stepTimers_[Voxelize].begin();
-    voxelizer_->voxelize(frame.scene);
-    stepTimers_[Voxelize].end();
-
-    stepTimers_[Inject].begin();
+void VctPass::rebuildVoxels(Frame& frame) {
+    {
+        auto t = frame.step("voxelize");
+        voxelizer_->voxelize(frame.scene);
+    }
     VoxelRadiance::Lights lights;
     lights.buffer = frame.buffer("lights");
     lights.shadowMaps = frame.texture("shadow.maps");
     lights.shadowCubes = frame.texture("shadow.cubes");
     lights.count = int(frame.scene.cpu.lights.size());
     lights.shadows = frame.settings.shadows;
-    radiance_->inject(voxelizer_->grid(), lights);
-    stepTimers_[Inject].end();
-
-    stepTimers_[Mips].begin();
-    radiance_->buildMips(voxelizer_->grid());
-    stepTimers_[Mips].end();
-    if (settings_.bounces > 1) {  // further bounces count as injection: they re-light the voxels
-        stepTimers_[Inject].begin();
-        radiance_->bounce(voxelizer_->grid(), coneSettingsOf(settings_),
+    {
+        auto t = frame.step("inject");
+        radiance_->inject(voxelizer_->grid(), lights);
+    }
+    {
+        auto t = frame.step("mips");
+        radiance_->buildMips(voxelizer_->grid());
+    }
+    if (built_.bounces > 1) {  // further bounces re-light the voxels: timed as their own step
+        auto t = frame.step("bounce");
+        VctSettings cones = live_;
+        cones.resolution = built_.resolution;
+        radiance_->bounce(voxelizer_->grid(), coneSettingsOf(cones),
                           frame.settings.background.value_or(frame.scene.cpu.background));
-        stepTimers_[Inject].end();
     }
 }
 
-void VctPass::trace(const Frame& frame) {
+void VctPass::trace(const Frame& frame, const VctSettings& s) {
     const GLuint p = traceProgram_.id();
     const VolumeFit& fit = voxelizer_->grid().fit;
     const glm::mat4 worldToVoxel = fit.worldToVoxelMatrix();
@@ -97,12 +90,12 @@ void VctPass::trace(const Frame& frame) {
     glProgramUniform1i(p, UV_RESOLUTION, fit.resolution);
     glProgramUniformMatrix4fv(p, UV_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UV_CAMERA_POS, 1, &frame.camera.position[0]);
-    glProgramUniform1i(p, UV_CONE_SET, settings_.coneSet);
-    glProgramUniform4f(p, UV_TRACE_PARAMS, settings_.stepFactor, settings_.maxDistance * float(fit.resolution),
-                       settings_.offset, settings_.specular ? 1.0f : 0.0f);
+    glProgramUniform1i(p, UV_CONE_SET, s.coneSet);
+    glProgramUniform4f(p, UV_TRACE_PARAMS, s.stepFactor, s.maxDistance * float(fit.resolution), s.offset,
+                       s.specular ? 1.0f : 0.0f);
     glProgramUniform3fv(p, UV_ENVIRONMENT, 1, &environment[0]);
     glProgramUniform1i(p, UV_ANISOTROPIC, radiance_->anisotropic() ? 1 : 0);
-    glProgramUniform1f(p, UV_INTENSITY, settings_.intensity);
+    glProgramUniform1f(p, UV_INTENSITY, s.intensity);
     const GLuint gbuffer[3] = {frame.texture("gbuffer.depth"), frame.texture("gbuffer.normal"),
                                frame.texture("gbuffer.material")};
     glBindTextures(0, 3, gbuffer);
@@ -115,7 +108,18 @@ void VctPass::trace(const Frame& frame) {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-void VctPass::debugView(Frame& frame) {
+std::vector<DebugViewDesc> VctPass::debugViews() const {
+    return {{"vct.voxels", "the voxel grid ray-marched from the camera (vct.debug-channel, vct.debug-level)"},
+            {"vct.slice", "one slice of the voxel grid (vct.slice-axis, vct.slice-position, vct.debug-channel)"},
+            {"vct.ao", "the diffuse cones' occlusion (1 = open), already part of indirect.diffuse"}};
+}
+
+void VctPass::drawDebugView(const std::string& view, const Frame& frame, GLuint target) {
+    if (view == "vct.ao") {
+        drawChannel(DisplayChannel::Grey, ao_.id(), frame, target);
+        return;
+    }
+    const VctSettings live = vctParams().read("vct", frame.settings.params);
     const GLuint p = debugProgram_.id();
     const VolumeFit& fit = voxelizer_->grid().fit;
     const glm::mat4 worldToVoxel = fit.worldToVoxelMatrix();
@@ -123,30 +127,52 @@ void VctPass::debugView(Frame& frame) {
     glProgramUniformMatrix4fv(p, UV_WORLD_TO_VOXEL, 1, GL_FALSE, &worldToVoxel[0][0]);
     glProgramUniform1i(p, UV_RESOLUTION, fit.resolution);
     glProgramUniformMatrix4fv(p, UV_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
-    const bool slice = settings_.debugView == VctSettings::DebugView::Slice;
-    glProgramUniform4f(p, UV_DEBUG_PARAMS, float(settings_.debugChannel), float(settings_.debugLevel),
-                       slice ? float(settings_.sliceAxis) : -1.0f, settings_.slicePosition);
+    const bool slice = view == "vct.slice";
+    glProgramUniform4f(p, UV_DEBUG_PARAMS, float(live.debugChannel), float(live.debugLevel),
+                       slice ? float(live.sliceAxis) : -1.0f, live.slicePosition);
     const GLuint textures[3] = {voxelizer_->grid().albedo.id(), voxelizer_->grid().emission.id(),
                                 radiance_->radiance().id()};
     glBindTextures(0, 3, textures);
     glBindSamplers(0, 3, nullptr);
-    glBindImageTexture(0, debug_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(GLuint((debug_.width + 7) / 8), GLuint((debug_.height + 7) / 8), 1);
+    glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(GLuint((diffuse_.width + 7) / 8), GLuint((diffuse_.height + 7) / 8), 1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    frame.textures[slice ? "vct.slice" : "vct.voxels"] = debug_.id();
 }
 
 void VctPass::execute(Frame& frame) {
+    live_ = vctParams().read("vct", frame.settings.params);
     reused_ = valid_;
     if (!valid_) rebuildVoxels(frame);
     valid_ = true;
-    stepTimers_[Trace].begin();
-    trace(frame);
-    stepTimers_[Trace].end();
-    frame.textures["indirect.diffuse"] = diffuse_.id();
-    frame.textures["indirect.specular"] = specular_.id();
-    frame.textures["ao"] = ao_.id();
-    if (settings_.debugView != VctSettings::DebugView::None) debugView(frame);
+    {
+        auto t = frame.step("trace");
+        trace(frame, live_);
+    }
+    frame.put("indirect.diffuse", diffuse_);
+    frame.put("indirect.specular", specular_);
+    frame.put("voxel.radiance", radiance_->radiance());
+}
+
+GiMethod vctMethod() {
+    GiMethod m;
+    m.name = "vct";
+    m.summary = "voxel cone tracing: conservative voxelization, shadow-mapped light injection, cone-traced indirect";
+    m.params = vctParams().rows;
+    m.presets = {
+        {"low", "32^3, isotropic mips, four cones, step 1, no specular cone",
+         {{"vct.resolution", {32.0}},
+          {"vct.anisotropic", {0.0}},
+          {"vct.step", {1.0}},
+          {"vct.specular", {0.0}},
+          {"vct.cones", choiceValue("four")}}},
+        {"medium", "64^3, directional mips, six cones", {}},
+        {"high", "128^3, directional mips, two bounces, step 0.33",
+         {{"vct.resolution", {128.0}}, {"vct.bounces", {2.0}}, {"vct.step", {0.33}}}},
+    };
+    m.programs = &VctPass::programs;
+    m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<VctPass>(b.services.scene, b.settings, b.ledger)); };
+    m.framesToConverge = [](const RenderSettings&) { return 1; };
+    return m;
 }
 
 }  // namespace gis

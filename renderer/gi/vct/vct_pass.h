@@ -1,8 +1,10 @@
 // Voxel cone tracing (`--gi vct`): voxelize the scene (renderer/voxel), inject direct light and
 // emission, build the mip chains, then trace cones per pixel into the lighting contract's
-// "indirect.diffuse", "indirect.specular" and "ao". Voxels, injection and mips are view
-// independent: they are rebuilt only after invalidate() (geometry, materials or lights changed),
-// so a camera move costs the trace alone.
+// "indirect.diffuse" and "indirect.specular". Voxels, injection and mips are view independent:
+// they are rebuilt only after invalidate() with geometry, materials or lights, so a camera move
+// costs the trace alone. The cones' occlusion is already in indirect.diffuse, so the pass does
+// not write "ao" (the lighting pass would multiply it in a second time); it is the debug view
+// "vct.ao".
 #pragma once
 
 #include <memory>
@@ -15,41 +17,38 @@ namespace gis {
 
 class VctPass final : public Pass {
 public:
-    VctPass(const GpuScene& scene, const VctSettings& settings, int width, int height, gl::MemoryLedger& ledger);
+    // Rebuild parameters come from settings.params ("vct.*").
+    VctPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger);
     const char* name() const override { return "vct"; }
     std::vector<std::string> inputs() const override {
         return {"gbuffer.depth", "gbuffer.normal", "gbuffer.material", "lights", "shadow.maps", "shadow.cubes"};
     }
     std::vector<std::string> outputs() const override {
-        return {"indirect.diffuse", "indirect.specular", "ao", "vct.voxels", "vct.slice"};
+        return {"indirect.diffuse", "indirect.specular", "voxel.radiance"};
     }
     void execute(Frame& frame) override;
     bool reusedLastFrame() const override { return reused_; }
-    // Geometry, materials or lights changed: voxelize and inject again on the next frame.
-    void invalidate() { valid_ = false; }
-    // Parameters read only when tracing (cone set, step, distance, offset, intensity, specular,
-    // debug view).
-    void setLiveSettings(const VctSettings& s);
+    void invalidate(Changes c) override {
+        if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) valid_ = false;
+    }
+    bool writesImagesOrBuffers() const override { return true; }
+    std::vector<DebugViewDesc> debugViews() const override;
+    void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     static std::vector<ProgramDesc> programs();
 
-    // Sub-steps, timed separately: voxelize, inject (with further bounces), mips, trace.
-    enum Step { Voxelize, Inject, Mips, Trace, StepCount };
-    static const char* stepName(int step);
-    gl::GpuTimer& stepTimer(int step) { return stepTimers_[step]; }
     const Voxelizer& voxelizer() const { return *voxelizer_; }
     const VoxelRadiance& voxelRadiance() const { return *radiance_; }
-    const VctSettings& settings() const { return settings_; }
+    const VctSettings& rebuildSettings() const { return built_; }
 
 private:
-    void rebuildVoxels(const Frame& frame);
-    void trace(const Frame& frame);
-    void debugView(Frame& frame);
-    VctSettings settings_;
+    void rebuildVoxels(Frame& frame);
+    void trace(const Frame& frame, const VctSettings& live);
+    VctSettings built_;    // the rebuild parameters this pass was made with
+    VctSettings live_;     // the live parameters of the last frame
     std::unique_ptr<Voxelizer> voxelizer_;
     std::unique_ptr<VoxelRadiance> radiance_;
-    gl::Texture diffuse_, specular_, ao_, debug_;
+    gl::Texture diffuse_, specular_, ao_;
     gl::Object traceProgram_, debugProgram_;
-    gl::GpuTimer stepTimers_[StepCount];
     bool valid_ = false, reused_ = false;
 };
 

@@ -1,37 +1,36 @@
-// Voxel cone tracing's parameters (issue 11's names: vct.resolution, vct.conservative,
-// vct.anisotropic, vct.bounces, ...), their defaults and the low/medium/high presets. A plain
-// struct until the method registry lands; then each field becomes one row of its parameter table.
+// Voxel cone tracing's parameters: one row each in vctParams() (issue 11's names: vct.resolution,
+// vct.conservative, vct.anisotropic, vct.bounces, ...), defaults in the initialisers below.
 #pragma once
 
 #include <string>
 
+#include "gi/params.h"
 #include "voxel/voxelizer.h"
 
 namespace gis {
 
 struct VctSettings {
-    int resolution = 64;                 // vct.resolution: voxels per edge, power of two in [8, 512] (rebuild)
-    ConservativeMode conservative = ConservativeMode::Hardware;  // vct.conservative (rebuild)
-    bool anisotropic = true;             // vct.anisotropic: six directional mip chains (rebuild)
-    int bounces = 1;                     // vct.bounces: 1 = direct light re-emitted once; 2+ = more (rebuild)
-    int coneSet = 0;                     // vct.cones: 0 = six 60-degree cones (Godot), 1 = four 90-degree (live)
-    float stepFactor = 0.5f;             // vct.step: step as a fraction of the cone diameter, (0, 2] (live)
-    float maxDistance = 1.0f;            // vct.max_distance: fraction of the volume's edge, (0, 2] (live)
-    float offset = 1.5f;                 // vct.offset: self-occlusion offset along the normal, voxels, [0, 8] (live)
-    float intensity = 1.0f;              // vct.intensity: scales the indirect terms, [0, 16] (live)
-    bool specular = true;                // vct.specular: trace the specular cone (live)
-    // Debug views (live): "vct.voxels" ray-marches the grid, "vct.slice" shows one slice.
-    enum class DebugView { None, Voxels, Slice };
-    DebugView debugView = DebugView::None;
-    int debugChannel = 0;                // vct.debug_channel: 0 albedo, 1 emission, 2 radiance, 3 occupancy
-    int debugLevel = 0;                  // vct.debug_level: mip level (radiance and occupancy)
-    int sliceAxis = 2;                   // vct.slice_axis: 0 x, 1 y, 2 z
-    float slicePosition = 0.5f;          // vct.slice_position: 0..1 across the volume
+    int resolution = 64;       // vct.resolution: voxels per edge, a power of two (rebuild)
+    int conservative = 0;      // vct.conservative: hardware | geometry | off (ConservativeMode order; rebuild)
+    bool anisotropic = true;   // vct.anisotropic: six directional mip chains (rebuild)
+    int bounces = 1;           // vct.bounces: 1 = direct light re-emitted once; more gather again (rebuild)
+    int coneSet = 0;           // vct.cones: six (60-degree, Godot's) | four (90-degree) (live)
+    float stepFactor = 0.5f;   // vct.step: step as a fraction of the cone diameter (live)
+    float maxDistance = 1.0f;  // vct.max-distance: fraction of the volume's edge (live)
+    float offset = 1.5f;       // vct.offset: self-occlusion offset along the normal, voxels (live)
+    float intensity = 1.0f;    // vct.intensity: scales the indirect terms (live)
+    bool specular = true;      // vct.specular: trace the specular cone (live)
+    // What the debug views vct.voxels and vct.slice show (live).
+    int debugChannel = 0;      // vct.debug-channel: albedo | emission | radiance | occupancy
+    int debugLevel = 0;        // vct.debug-level: mip level (radiance and occupancy)
+    int sliceAxis = 2;         // vct.slice-axis: x | y | z
+    float slicePosition = 0.5f;  // vct.slice-position: 0..1 across the volume
+
+    ConservativeMode conservativeMode() const { return ConservativeMode(conservative); }
 };
 
-// Throws gis::Error naming the parameter and its range.
+const ParamTable<VctSettings>& vctParams();
+// What the table's ranges cannot say (a power-of-two resolution); throws gis::Error naming the key.
 void checkVctSettings(const VctSettings& s);
-// low / medium / high (the benchmark's rows); throws on any other name.
-VctSettings vctPreset(const std::string& name);
 
 }  // namespace gis

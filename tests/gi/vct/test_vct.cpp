@@ -11,6 +11,7 @@
 
 #include "metrics.h"
 #include "tonemap.h"
+#include "gi/method.h"
 #include "render_test_util.h"
 #include "vct_test_util.h"
 
@@ -20,12 +21,17 @@ namespace {
 constexpr int kSize = 128;
 constexpr int kSpp = 64;
 
+RenderSettings pt16(RenderSettings pt) {
+    setParam(pt, "pathtrace.bounces", "16");
+    return pt;
+}
+
 RenderSettings baseSettings(const std::string& gi) {
     RenderSettings r;
     r.width = r.height = kSize;
     r.gi = gi;
     r.ambient = glm::vec3(0.0f);  // direct light only: the indirect term comes from VCT
-    r.spp = kSpp;
+    if (gi == "pathtrace") setParam(r, "pathtrace.spp", std::to_string(kSpp));
     return r;
 }
 
@@ -34,7 +40,7 @@ struct Reference {
     ImageF direct;        // --gi none, no ambient: the rasterizer's direct light (and emission)
     ImageF ptDirect;      // path tracer, 0 bounces
     ImageF ptOneBounce;   // path tracer, 1 bounce
-    ImageF ptFull;        // path tracer, 16 bounces
+    ImageF ptFull;        // path tracer, 16 bounces (only with GIS_VCT_MEASURE: it is the slow one)
     std::vector<PixelHit> hits;
     std::vector<bool> interior;
     ImageF ptIndirect() const { return subtract(ptOneBounce, ptDirect); }
@@ -60,12 +66,11 @@ const Reference& reference(const std::string& name) {
     };
     r.direct = render("direct", baseSettings("none"));
     RenderSettings pt = baseSettings("pathtrace");
-    pt.maxBounces = 0;
+    setParam(pt, "pathtrace.bounces", "0");
     r.ptDirect = render("pt0", pt);
-    pt.maxBounces = 1;
+    setParam(pt, "pathtrace.bounces", "1");
     r.ptOneBounce = render("pt1", pt);
-    pt.maxBounces = 16;
-    r.ptFull = render("pt16", pt);
+    if (std::getenv("GIS_VCT_MEASURE")) r.ptFull = render("pt16", pt16(pt));
     r.hits = castPixels(s, 0, kSize, kSize, nullptr);
     r.interior = interiorPixels(r.hits, kSize, kSize, 2, 0);
     return cache.emplace(name, std::move(r)).first->second;
@@ -113,51 +118,54 @@ double imageMax(const ImageF& img) {
     return m;
 }
 
-VctSettings vct64() {
-    VctSettings v;
-    v.resolution = 64;
-    if (const char* e = std::getenv("VCT_RES")) v.resolution = std::atoi(e);  // for tuning by hand
-    if (const char* e = std::getenv("VCT_BOUNCES")) v.bounces = std::atoi(e);
-    return v;
+// --gi vct at the defaults (64^3), VCT_RES / VCT_BOUNCES overriding for measurements by hand.
+RenderSettings vctSettings() {
+    RenderSettings r = baseSettings("vct");
+    if (const char* e = std::getenv("VCT_RES")) setVct(r, "resolution", e);
+    if (const char* e = std::getenv("VCT_BOUNCES")) setVct(r, "bounces", e);
+    return r;
 }
 
 TEST(Vct, CornellIndirectEnergyPerWallAgainstPathTracer) {
     const Reference& ref = reference("cornell");
     const ImageF pt = ref.ptIndirect();
-    const VctImages v = renderVct(makeBuiltinScene("cornell"), baseSettings("vct"), vct64());
-    ASSERT_TRUE(allFinite(v.indirect));
+    const VctImages v = renderVct(makeBuiltinScene("cornell"), vctSettings());
+    // The indirect term as the issue defines it: the VCT frame (lighting pass, contract) minus the
+    // `--gi none` frame without ambient, i.e. direct light alone.
+    const ImageF indirect = subtract(v.frame, ref.direct);
+    ASSERT_TRUE(allFinite(indirect));
     if (const char* dir = std::getenv("VCT_DUMP")) {  // for looking at the two side by side
         DisplaySettings d;
         d.exposureEV = 3.0f;
-        writePng(std::string(dir) + "/vct_indirect.png", toLdrImage(v.indirect, d));
+        writePng(std::string(dir) + "/vct_indirect.png", toLdrImage(indirect, d));
         writePng(std::string(dir) + "/pt_indirect.png", toLdrImage(pt, d));
     }
-    // Issue 11 asks for 80-120% on every wall and the floor; this VCT does not get there yet (see
-    // the README's table: the lamp's hot spot on the ceiling is the hard part). What is asserted is
-    // the band it does hold, so a regression shows; the issue's band is printed per wall.
+    // Issue 11: 80-120% of the path tracer's one-bounce indirect on every wall and the floor.
     int withinIssueBand = 0;
     for (const auto& [name, region] : kRegions) {
-        const double ours = regionMean(v.indirect, ref, region), theirs = regionMean(pt, ref, region);
+        const double ours = regionMean(indirect, ref, region), theirs = regionMean(pt, ref, region);
         const double ratio = ours / theirs;
-        const double multi = regionMean(subtract(ref.ptFull, ref.ptDirect), ref, region);
-        std::printf("VCT-TABLE energy cornell 64^3 %-10s vs 16-bounce indirect %.5f: %.0f%%\n", name.c_str(), multi,
-                    100.0 * ours / multi);
+        if (!ref.ptFull.rgba.empty()) {
+            const double multi = regionMean(subtract(ref.ptFull, ref.ptDirect), ref, region);
+            std::printf("VCT-TABLE energy cornell %-10s vs 16-bounce indirect %.5f: %.0f%%\n", name.c_str(), multi,
+                        100.0 * ours / multi);
+        }
         const bool inBand = ratio >= 0.8 && ratio <= 1.2;
-        std::printf("VCT-TABLE energy cornell 64^3 %-10s vct %.5f pathtrace %.5f ratio %.0f%% %s\n", name.c_str(), ours,
+        std::printf("VCT-TABLE energy cornell %-10s vct %.5f pathtrace %.5f ratio %.0f%% %s\n", name.c_str(), ours,
                     theirs, 100.0 * ratio, inBand ? "(in 80-120%)" : "(OUTSIDE 80-120%)");
         if (name == "ceiling") continue;  // the issue asks for the walls and the floor
         withinIssueBand += inBand;
-        EXPECT_GT(ratio, 0.4) << name;
-        EXPECT_LT(ratio, 1.8) << name;
+        EXPECT_GE(ratio, 0.8) << name;
+        EXPECT_LE(ratio, 1.2) << name;
     }
     std::printf("VCT-TABLE energy: %d of 4 (walls, floor) within the issue's 80-120%%\n", withinIssueBand);
-    std::printf("VCT-TABLE psnr cornell 64^3 default: %.2f dB sRGB vs 16-bounce path tracer\n",
-                compareImages(add(ref.direct, v.indirect), ref.ptFull).psnrSrgb);
+    std::printf("VCT-TABLE psnr cornell default: %.2f dB sRGB vs 1-bounce path tracer\n",
+                compareImages(v.frame, ref.ptOneBounce).psnrSrgb);
 }
 
 TEST(Vct, InjectedRadianceMatchesDirectLightPerWall) {
     const Reference& ref = reference("cornell");
-    const VctImages v = renderVct(makeBuiltinScene("cornell"), baseSettings("vct"), vct64());
+    const VctImages v = renderVct(makeBuiltinScene("cornell"), vctSettings());
     struct Wall { const char* name; int region; glm::vec3 albedo; glm::vec3 normal; };
     const Wall walls[] = {{"red wall", 8, {0.63f, 0.065f, 0.05f}, {1, 0, 0}},
                           {"green wall", 16, {0.14f, 0.45f, 0.091f}, {-1, 0, 0}},
@@ -197,7 +205,7 @@ TEST(Vct, InjectedRadianceMatchesDirectLightPerWall) {
 
 TEST(Vct, ColourBleedsFromTheWallsOntoTheFloor) {
     const Reference& ref = reference("cornell");
-    const VctImages v = renderVct(makeBuiltinScene("cornell"), baseSettings("vct"), vct64());
+    const VctImages v = renderVct(makeBuiltinScene("cornell"), vctSettings());
     // Floor pixels in the left and right quarters of the image: near the red and the green wall.
     double red[2] = {0, 0}, green[2] = {0, 0};
     for (int y = 0; y < kSize; ++y)
@@ -216,7 +224,7 @@ TEST(Vct, ColourBleedsFromTheWallsOntoTheFloor) {
 }
 
 // Issue 11 asks that the error fall from 32^3 to 64^3. Measured on llvmpipe it does not (indirect
-// RMSE 0.0302 at 32^3, 0.0318 at 64^3, see the README): the remaining error is the cones' bias
+// RMSE 0.0273 at 32^3, 0.0363 at 64^3, see the README): the remaining error is the cones' bias
 // (the back wall gets about half its light at both sizes), not resolution. Disabled rather than
 // weakened; run it with --gtest_also_run_disabled_tests.
 TEST(Vct, DISABLED_ErrorFallsWithResolution) {
@@ -225,9 +233,9 @@ TEST(Vct, DISABLED_ErrorFallsWithResolution) {
     double err[2];
     int i = 0;
     for (int res : {32, 64}) {
-        VctSettings s = vct64();
-        s.resolution = res;
-        const VctImages v = renderVct(makeBuiltinScene("cornell"), baseSettings("vct"), s);
+        RenderSettings s = vctSettings();
+        setVct(s, "resolution", std::to_string(res));
+        const VctImages v = renderVct(makeBuiltinScene("cornell"), s);
         err[i++] = indirectRmse(v.indirect, pt, ref);
     }
     std::printf("VCT-TABLE convergence cornell indirect RMSE: 32^3 %.5f, 64^3 %.5f\n", err[0], err[1]);
@@ -235,7 +243,7 @@ TEST(Vct, DISABLED_ErrorFallsWithResolution) {
 }
 
 TEST(Vct, CameraMoveReusesVoxels) {
-    const VctImages v = renderVct(makeBuiltinScene("cornell"), baseSettings("vct"), vct64(), 2);
+    const VctImages v = renderVct(makeBuiltinScene("cornell"), vctSettings(), 2);
     EXPECT_TRUE(v.cachedSecondFrame);
 }
 
@@ -243,16 +251,15 @@ TEST(Vct, EmitterLightsTheRoom) {
     // cornell-area has no punctual light: the rasterizer's direct term is the emitter itself, and
     // every bit of light on the walls comes from the emissive quad's voxels. (The path tracer
     // counts the quad's light on the walls as direct, so the full frames are compared.)
-    const VctImages v = renderVct(makeBuiltinScene("cornell-area"), baseSettings("vct"), vct64());
+    const VctImages v = renderVct(makeBuiltinScene("cornell-area"), vctSettings());
     const Reference& ref = reference("cornell-area");
-    const ImageF frame = add(ref.direct, v.indirect);
-    std::printf("VCT-TABLE psnr cornell-area 64^3 default: %.2f dB sRGB vs 16-bounce path tracer\n",
-                compareImages(frame, ref.ptFull).psnrSrgb);
+    const ImageF& frame = v.frame;
+    std::printf("VCT-TABLE psnr cornell-area default: %.2f dB sRGB vs 1-bounce path tracer\n",
+                compareImages(frame, ref.ptOneBounce).psnrSrgb);
     for (const auto& [name, region] : kRegions) {
-        const double ours = regionMean(frame, ref, region), one = regionMean(ref.ptOneBounce, ref, region),
-                     full = regionMean(ref.ptFull, ref, region);
-        std::printf("VCT-TABLE cornell-area %-10s vct frame %.4f, path tracer 1 bounce %.4f (%.0f%%), 16 bounces %.4f (%.0f%%)\n",
-                    name.c_str(), ours, one, 100.0 * ours / one, full, 100.0 * ours / full);
+        const double ours = regionMean(frame, ref, region), one = regionMean(ref.ptOneBounce, ref, region);
+        std::printf("VCT-TABLE cornell-area %-10s vct frame %.4f, path tracer 1 bounce %.4f (%.0f%%)\n", name.c_str(),
+                    ours, one, 100.0 * ours / one);
         if (name != "ceiling") {
             EXPECT_GT(ours, 0.25 * one) << name;
         }
@@ -262,7 +269,7 @@ TEST(Vct, EmitterLightsTheRoom) {
 // Extremes: one triangle, an empty scene, the Cornell box scaled by 1e-3 and 1e3, an emitter of
 // 1e4: finite, no crash, and (where there is light) not all black.
 TEST(Vct, Extremes) {
-    const VctSettings s = vct64();
+    const RenderSettings s = vctSettings();
     {
         Scene one;
         one.materials.push_back(lambert(glm::vec3(0.8f)));
@@ -274,30 +281,30 @@ TEST(Vct, Extremes) {
         l.position = {0.2f, 0.2f, 1.0f};
         one.lights.push_back(l);
         finalizeScene(one);
-        const VctImages v = renderVct(one, baseSettings("vct"), s);
-        EXPECT_TRUE(allFinite(v.diffuse) && allFinite(v.specular) && allFinite(v.ao));
+        const VctImages v = renderVct(one, s);
+        EXPECT_TRUE(allFinite(v.diffuse) && allFinite(v.specular) && allFinite(v.frame));
     }
     {
         Scene empty;
         finalizeScene(empty);
-        const VctImages v = renderVct(empty, baseSettings("vct"), s);
-        EXPECT_TRUE(allFinite(v.diffuse) && allFinite(v.ao));
+        const VctImages v = renderVct(empty, s);
+        EXPECT_TRUE(allFinite(v.diffuse) && allFinite(v.frame));
     }
-    const VctImages unit = renderVct(makeBuiltinScene("cornell"), baseSettings("vct"), s);
+    const VctImages unit = renderVct(scaledScene(makeBuiltinScene("cornell"), 1.0f), s);
     const Reference& ref = reference("cornell");
     for (float scale : {1e-3f, 1e3f}) {
-        const VctImages v = renderVct(scaledScene(makeBuiltinScene("cornell"), scale), baseSettings("vct"), s);
+        const VctImages v = renderVct(scaledScene(makeBuiltinScene("cornell"), scale), s);
         ASSERT_TRUE(allFinite(v.indirect));
         const double rel = indirectRmse(v.indirect, unit.indirect, ref) / regionMean(unit.indirect, ref, 0);
         std::printf("VCT-TABLE scale %g: indirect RMSE vs x1 = %.4f of the floor's mean\n", scale, rel);
-        EXPECT_LT(rel, 0.05) << "scale " << scale;
+        EXPECT_LT(rel, 0.01) << "scale " << scale;
     }
     {
         Scene hot = makeBuiltinScene("cornell-area");
         for (Material& m : hot.materials)
             if (m.emissive.x > 0.0f) m.emissive = glm::vec3(1e4f);
-        const VctImages v = renderVct(hot, baseSettings("vct"), s);
-        EXPECT_TRUE(allFinite(v.indirect) && allFinite(v.specular));
+        const VctImages v = renderVct(hot, s);
+        EXPECT_TRUE(allFinite(v.indirect) && allFinite(v.specular) && allFinite(v.frame));
         EXPECT_GT(imageMax(v.indirect), 0.0);
     }
 }
@@ -327,10 +334,10 @@ TEST(Vct, ThinWallLeakIsMeasured) {
     finalizeScene(s);
     for (bool anisotropic : {false, true})
         for (float offset : {1.5f, 3.0f}) {
-            VctSettings v = vct64();
-            v.anisotropic = anisotropic;
-            v.offset = offset;
-            const VctImages img = renderVct(s, baseSettings("vct"), v);
+            RenderSettings v = vctSettings();
+            setVct(v, "anisotropic", anisotropic ? "true" : "false");
+            setVct(v, "offset", std::to_string(offset));
+            const VctImages img = renderVct(s, v);
             ASSERT_TRUE(allFinite(img.indirect));
             double sums[2] = {0, 0};
             for (int y = 0; y < kSize; ++y)
@@ -349,23 +356,23 @@ TEST(Vct, ThinWallLeakIsMeasured) {
 // The debug views show the grid: ray-marched albedo sees the white back wall in the middle and
 // the red wall on the left; a slice across the room has red at its left end, green at its right.
 TEST(Vct, DebugViewsShowTheGrid) {
-    VctSettings s = vct64();
-    s.debugView = VctSettings::DebugView::Voxels;
-    const VctImages voxels = renderVct(makeBuiltinScene("cornell"), baseSettings("vct"), s);
-    ASSERT_EQ(voxels.debug.width, kSize);
-    const float* centre = voxels.debug.at(kSize / 2, kSize / 4);
+    RenderSettings s = vctSettings();
+    s.view = "vct.voxels";
+    const VctImages voxels = renderVct(makeBuiltinScene("cornell"), s);
+    ASSERT_EQ(voxels.frame.width, kSize);
+    const float* centre = voxels.frame.at(kSize / 2, kSize / 4);
     EXPECT_NEAR(centre[0], 0.73f, 0.02f);
     EXPECT_NEAR(centre[1], 0.73f, 0.02f);
-    const float* left = voxels.debug.at(kSize / 16, kSize / 2);
+    const float* left = voxels.frame.at(kSize / 16, kSize / 2);
     EXPECT_GT(left[0], 4.0f * left[1]) << "the red wall";
-    s.debugView = VctSettings::DebugView::Slice;
-    s.sliceAxis = 2;
-    s.slicePosition = 0.5f;
-    const VctImages slice = renderVct(makeBuiltinScene("cornell"), baseSettings("vct"), s);
+    s.view = "vct.slice";
+    setVct(s, "slice-axis", "z");
+    setVct(s, "slice-position", "0.5");
+    const VctImages slice = renderVct(makeBuiltinScene("cornell"), s);
     int reddest = -1, greenest = -1;
     float bestRed = 0.0f, bestGreen = 0.0f;
     for (int x = 0; x < kSize; ++x) {
-        const float* p = slice.debug.at(x, kSize / 2);
+        const float* p = slice.frame.at(x, kSize / 2);
         if (p[0] - p[1] > bestRed) bestRed = p[0] - p[1], reddest = x;
         if (p[1] - p[0] > bestGreen) bestGreen = p[1] - p[0], greenest = x;
     }
@@ -376,20 +383,23 @@ TEST(Vct, DebugViewsShowTheGrid) {
 }
 
 TEST(Vct, BadParametersAreOneClearError) {
-    VctSettings s;
-    s.resolution = 48;
-    EXPECT_THROW(checkVctSettings(s), Error);
-    s = VctSettings{};
-    s.stepFactor = NAN;
-    EXPECT_THROW(checkVctSettings(s), Error);
-    EXPECT_THROW(parseConservativeMode("sometimes"), Error);
-    EXPECT_THROW(vctPreset("ultra"), Error);
+    RenderSettings s = vctSettings();
+    EXPECT_THROW(setVct(s, "bounces", "9"), Error);
+    EXPECT_THROW(setVct(s, "step", "nan"), Error);
+    EXPECT_THROW(setVct(s, "conservative", "sometimes"), Error);
     try {
-        s = VctSettings{};
-        s.bounces = 9;
-        checkVctSettings(s);
+        setVct(s, "resolution", "1024");
+        FAIL() << "vct.resolution 1024 accepted";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("vct.bounces"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("vct.resolution"), std::string::npos) << e.what();
+    }
+    setVct(s, "resolution", "48");  // in range, but not a power of two: refused when built
+    context();
+    try {
+        Renderer r(makeBuiltinScene("cornell"), s);
+        FAIL() << "vct.resolution 48 accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("power of two"), std::string::npos) << e.what();
     }
 }
 
@@ -404,13 +414,16 @@ TEST(Vct, MeasurePresets) {
         const ImageMetrics none = compareImages(ref.direct, ref.ptFull, o);
         std::printf("VCT-TABLE psnr %s none(direct only): %.2f dB sRGB vs 16-bounce path tracer\n", scene, none.psnrSrgb);
         for (const char* preset : {"low", "medium", "high"}) {
-            const VctImages v = renderVct(makeBuiltinScene(scene), baseSettings("vct"), vctPreset(preset), 2);
-            const ImageF frame = add(ref.direct, v.indirect);
+            RenderSettings r = baseSettings("vct");
+            applyPreset(r, "vct", preset);
+            VctImages v = renderVct(makeBuiltinScene(scene), r, 2);
+            const ImageF& frame = v.frame;
             const ImageMetrics full = compareImages(frame, ref.ptFull, o);
             const ImageMetrics one = compareImages(frame, ref.ptOneBounce, o);
             std::printf("VCT-TABLE psnr %s %s: %.2f dB sRGB vs 16-bounce, %.2f dB vs 1-bounce; "
-                        "ms voxelize %.2f inject %.2f mips %.2f trace %.2f\n",
-                        scene, preset, full.psnrSrgb, one.psnrSrgb, v.stepMs[0], v.stepMs[1], v.stepMs[2], v.stepMs[3]);
+                        "first-frame ms voxelize %.2f inject %.2f mips %.2f bounce %.2f trace %.2f\n",
+                        scene, preset, full.psnrSrgb, one.psnrSrgb, v.stepMs["voxelize"], v.stepMs["inject"],
+                        v.stepMs["mips"], v.stepMs["bounce"], v.stepMs["trace"]);
             EXPECT_TRUE(allFinite(frame));
         }
     }

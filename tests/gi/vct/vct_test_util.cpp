@@ -4,61 +4,47 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "passes/gbuffer_pass.h"
-#include "passes/shadow_pass.h"
 #include "render_test_util.h"
+#include "tonemap.h"
 #include "voxel_test_util.h"
 
 namespace gis::test {
 
-namespace {
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-}
-}  // namespace
+void setVct(RenderSettings& s, const std::string& key, const std::string& text) { setParam(s, "vct." + key, text); }
 
-VctImages renderVct(const Scene& scene, const RenderSettings& settingsIn, const VctSettings& vct, int frames) {
+VctImages renderVct(const Scene& scene, RenderSettings settings, int frames) {
     context();
-    RenderSettings settings = settingsIn;
-    gl::MemoryLedger ledger;
-    GpuScene gpu(scene, ledger);
-    ShadowPass shadows(gpu, settings, ledger);
-    GBufferPass gbuffer(settings.width, settings.height, ledger);
-    VctPass pass(gpu, vct, settings.width, settings.height, ledger);
-    const CameraMatrices camera = cameraMatrices(scene, settings.camera, float(settings.width) / float(settings.height));
+    settings.gi = "vct";
+    settings.hdr32 = true;
+    Renderer renderer(scene, settings);
     VctImages out;
-    Frame frame{settings, gpu, camera, {}, {}, 0};
+    const VctPass* pass = nullptr;
+    for (const auto& p : renderer.passes())
+        if (auto* v = dynamic_cast<const VctPass*>(p.get())) pass = v;
+    if (!pass) throw Error("internal: no VCT pass");
     for (int f = 0; f < std::max(frames, 1); ++f) {
-        frame.index = uint64_t(f);
-        shadows.execute(frame);
-        gbuffer.execute(frame);
-        pass.execute(frame);
-        if (f == 1) out.cachedSecondFrame = pass.reusedLastFrame();
+        renderer.renderFrame();
+        if (f == 1) out.cachedSecondFrame = pass->reusedLastFrame();
     }
-    glFinish();
-    for (int s = 0; s < VctPass::StepCount; ++s) {
-        pass.stepTimer(s).collect(true);
-        out.stepMs[s] = median(pass.stepTimer(s).samples);
-    }
-    out.resolution = vct.resolution;
-    out.radiance = readVoxelsRgba16f(pass.voxelRadiance().radiance());
-    out.albedo = readVoxelsRgba8(pass.voxelizer().grid().albedo);
-    out.normal = readVoxelsRgba8(pass.voxelizer().grid().normal);
+    for (const PassTiming& t : renderer.timings(0))
+        if (t.step && t.pass.rfind("vct/", 0) == 0) out.stepMs[t.pass.substr(4)] = t.firstMs;
     const int w = settings.width, h = settings.height;
-    out.diffuse = readTextureFloat(frame.texture("indirect.diffuse"), w, h);
-    out.specular = readTextureFloat(frame.texture("indirect.specular"), w, h);
-    out.ao = readTextureFloat(frame.texture("ao"), w, h);
-    for (const char* view : {"vct.voxels", "vct.slice"})
-        if (frame.textures.count(view)) out.debug = readTextureFloat(frame.textures.at(view), w, h);
-    const ImageF base = readTextureFloat(frame.texture("gbuffer.baseColor"), w, h);
-    const ImageF material = readTextureFloat(frame.texture("gbuffer.material"), w, h);
+    out.frame = renderer.readHdr();
+    out.diffuse = readTextureFloat(renderer.frameTexture("indirect.diffuse"), w, h);
+    out.specular = readTextureFloat(renderer.frameTexture("indirect.specular"), w, h);
+    out.resolution = pass->rebuildSettings().resolution;
+    out.radiance = readVoxelsRgba16f(pass->voxelRadiance().radiance());
+    out.albedo = readVoxelsRgba8(pass->voxelizer().grid().albedo);
+    out.normal = readVoxelsRgba8(pass->voxelizer().grid().normal);
+    // The base colour target is sRGB8: read back, its values are the encoded ones.
+    const ImageF base = readTextureFloat(renderer.frameTexture("gbuffer.baseColor"), w, h);
+    const ImageF material = readTextureFloat(renderer.frameTexture("gbuffer.material"), w, h);
     out.indirect = out.diffuse;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < 3; ++c)
-                out.indirect.at(x, y)[c] = base.at(x, y)[c] * (1.0f - material.at(x, y)[0]) * out.diffuse.at(x, y)[c];
+                out.indirect.at(x, y)[c] =
+                    srgbToLinear(base.at(x, y)[c]) * (1.0f - material.at(x, y)[0]) * out.diffuse.at(x, y)[c];
     return out;
 }
 
