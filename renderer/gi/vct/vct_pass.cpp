@@ -34,7 +34,9 @@ std::vector<ProgramDesc> VctPass::programs() {
 VctPass::VctPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger)
     : built_(vctParams().read("vct", settings.params)), live_(built_) {
     checkVctSettings(built_);
-    const gl::MemoryScope voxels{&ledger, "vct.voxels"}, radiance{&ledger, "vct.radiance"}, trace{&ledger, name()};
+    // Everything is charged to the pass, so --timings, info and the panel show the method's whole
+    // footprint on its row (the README lists it per texture).
+    const gl::MemoryScope voxels{&ledger, name()}, radiance{&ledger, name()}, trace{&ledger, name()};
     const int n = built_.resolution;
     // Refuse before allocating anything: the whole method's voxel memory at once.
     checkVoxelBudget(n, voxelGridBytes(n) + voxelRadianceBytes(n, built_.anisotropic, built_.bounces),

@@ -27,7 +27,10 @@ public:
         return {"indirect.diffuse", "indirect.specular", "voxel.radiance"};
     }
     void execute(Frame& frame) override;
-    bool reusedLastFrame() const override { return reused_; }
+    // The trace runs every frame, so the pass as a whole never reuses its result; its voxelize,
+    // inject and mips steps do (they show as cached in --timings).
+    bool reusedLastFrame() const override { return false; }
+    bool voxelsReusedLastFrame() const { return reused_; }
     void invalidate(Changes c) override {
         if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) valid_ = false;
     }

@@ -24,7 +24,7 @@ VctImages renderVct(const Scene& scene, RenderSettings settings, int frames) {
     if (!pass) throw Error("internal: no VCT pass");
     for (int f = 0; f < std::max(frames, 1); ++f) {
         renderer.renderFrame();
-        if (f == 1) out.cachedSecondFrame = pass->reusedLastFrame();
+        if (f == 1) out.cachedSecondFrame = pass->voxelsReusedLastFrame();
     }
     for (const PassTiming& t : renderer.timings(0))
         if (t.step && t.pass.rfind("vct/", 0) == 0) out.stepMs[t.pass.substr(4)] = t.firstMs;
