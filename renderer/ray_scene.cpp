@@ -106,9 +106,16 @@ RayScene::RayScene(const GpuScene& gpuScene, gl::MemoryLedger& ledger, const std
     for (const TraceTriangle& t : bvh.triangles) {
         const GpuDraw& draw = gpuScene.draws[t.draw];
         const Primitive& prim = scene.primitives[scene.draws[t.draw].primitive];
+        // Under a mirroring transform (negative determinant) glTF's front faces wind clockwise
+        // (the rasterizer flips glFrontFace). Swapping corners 1 and 2 here, in the positions
+        // and the attributes alike, makes counter-clockwise mean front for every ray-traced
+        // triangle, so the tracers' front/back tests (culling, one-sided emitters) need no flag.
+        const bool mirrored = glm::determinant(glm::mat3(draw.world)) < 0.0f;
+        const int corner[3] = {0, mirrored ? 2 : 1, mirrored ? 1 : 2};
         const Vertex* v[3];
-        for (int k = 0; k < 3; ++k) v[k] = &prim.vertices[prim.indices[t.primitiveTriangle * 3 + k]];
-        tris.push_back({glm::vec4(t.p0, 0.0f), glm::vec4(t.p1, 0.0f), glm::vec4(t.p2, 0.0f)});
+        for (int k = 0; k < 3; ++k) v[k] = &prim.vertices[prim.indices[t.primitiveTriangle * 3 + corner[k]]];
+        const glm::vec3 corners[3] = {t.p0, t.p1, t.p2};
+        tris.push_back({glm::vec4(corners[0], 0.0f), glm::vec4(corners[corner[1]], 0.0f), glm::vec4(corners[corner[2]], 0.0f)});
         GpuTriangleAttributes a{};
         glm::vec4* normals[3] = {&a.n0, &a.n1, &a.n2};
         glm::vec4* tangents[3] = {&a.t0, &a.t1, &a.t2};

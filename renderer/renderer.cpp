@@ -8,6 +8,7 @@
 
 #include "debug_view.h"
 #include "gi/method.h"
+#include "memory_budget.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/lighting_pass.h"
 #include "passes/shadow_pass.h"
@@ -160,6 +161,7 @@ void checkMaterials(const Scene& scene) {
 Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : settings_(settings) {
     checkSettings(settings_);
     checkMaterials(scene);
+    checkMemoryBudget(scene, settings_);  // before any allocation: refuse what cannot fit
     camera_ = cameraMatrices(scene, settings_.camera, float(settings_.width) / float(settings_.height));
     gpuScene_ = std::make_unique<GpuScene>(scene, ledger_);
     services_ = std::make_unique<SceneServices>(*gpuScene_, ledger_);

@@ -35,12 +35,14 @@ float intersectAabb(vec3 lo, vec3 hi, vec3 origin, vec3 invDir, float tMax) {
     return enter <= exit ? enter : 1e38;
 }
 
-// Moller-Trumbore 1997. Returns t (or -1) and barycentrics of p1, p2.
-float intersectTriangle(TraceTriangle tri, vec3 origin, vec3 dir, out vec2 bary) {
+// Moller-Trumbore 1997. Returns t (or -1) and barycentrics of p1, p2. frontFace: the ray meets
+// the side p0 -> p1 -> p2 winds counter-clockwise around (det = -dot(dir, e1 x e2) > 0).
+float intersectTriangle(TraceTriangle tri, vec3 origin, vec3 dir, out vec2 bary, out bool frontFace) {
     vec3 e1 = tri.p1.xyz - tri.p0.xyz, e2 = tri.p2.xyz - tri.p0.xyz;
     vec3 p = cross(dir, e2);
     float det = dot(e1, p);
     bary = vec2(0.0);
+    frontFace = det > 0.0;
     if (abs(det) < 1e-30) return -1.0;  // ray parallel to the plane, or a degenerate triangle
     float invDet = 1.0 / det;
     vec3 s = origin - tri.p0.xyz;
@@ -53,11 +55,14 @@ float intersectTriangle(TraceTriangle tri, vec3 origin, vec3 dir, out vec2 bary)
     return dot(e2, q) * invDet;
 }
 
-// Supplied by the including shader: alpha-mask cut-outs (true = the ray passes through).
+// Supplied by the including shader: alpha-mask cut-outs (true = the ray passes through), and
+// whether a triangle is single-sided (glTF doubleSided: false).
 bool bvhTriangleIsCutout(uint triangle, vec2 barycentric);
+bool bvhTriangleIsSingleSided(uint triangle);
 
-// anyHit = true stops at the first hit (shadow rays).
-bool traceRay(vec3 origin, vec3 dir, float tMax, bool anyHit, out Hit hit) {
+// anyHit = true stops at the first hit (shadow rays). cullBackFaces: the ray passes through the
+// back of single-sided triangles, as the rasterizer culls them (glTF's rule; camera rays).
+bool traceRay(vec3 origin, vec3 dir, float tMax, bool anyHit, bool cullBackFaces, out Hit hit) {
     vec3 invDir = 1.0 / dir;  // IEEE: 1/0 = inf, which the slab test handles
     hit.t = tMax;
     hit.triangle = 0u;
@@ -73,8 +78,10 @@ bool traceRay(vec3 origin, vec3 dir, float tMax, bool anyHit, out Hit hit) {
             for (uint i = 0u; i < node.triangleCount; ++i) {
                 uint ti = node.leftOrFirst + i;
                 vec2 bary;
-                float t = intersectTriangle(u_triangles[ti], origin, dir, bary);
-                if (t > 0.0 && t < hit.t && !bvhTriangleIsCutout(ti, bary)) {
+                bool front;
+                float t = intersectTriangle(u_triangles[ti], origin, dir, bary, front);
+                if (t > 0.0 && t < hit.t && !(cullBackFaces && !front && bvhTriangleIsSingleSided(ti)) &&
+                    !bvhTriangleIsCutout(ti, bary)) {
                     hit.t = t;
                     hit.triangle = ti;
                     hit.barycentric = bary;
@@ -99,4 +106,8 @@ bool traceRay(vec3 origin, vec3 dir, float tMax, bool anyHit, out Hit hit) {
         }
     }
     return found;
+}
+
+bool traceRay(vec3 origin, vec3 dir, float tMax, bool anyHit, out Hit hit) {
+    return traceRay(origin, dir, tMax, anyHit, false, hit);
 }

@@ -40,6 +40,10 @@ vec2 triangleUv(TriangleAttributes a, vec2 b) {
     return a.uv01.xy * (1.0 - b.x - b.y) + a.uv01.zw * b.x + a.uv2MaterialEmitter.xy * b.y;
 }
 
+bool bvhTriangleIsSingleSided(uint triangle) {
+    return u_materials[int(u_attributes[triangle].uv2MaterialEmitter.z)].emissive.w < 0.5;
+}
+
 bool bvhTriangleIsCutout(uint triangle, vec2 barycentric) {
     TriangleAttributes a = u_attributes[triangle];
     RayMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];

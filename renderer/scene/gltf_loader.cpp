@@ -9,7 +9,9 @@
 //   * allow at most one GLB buffer without a uri (each would copy the whole BIN chunk),
 // and give it our own file callbacks (regular files only, size-capped) and image callback
 // (keeps the encoded bytes; we decode with stb_image ourselves, with size limits).
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -18,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -107,15 +110,24 @@ bool allowedPath(const std::string& path, const FsState* st) {
 // Reads a regular file of at most kMaxFileBytes. On failure returns false with a reason.
 bool readRegularFile(const std::string& path, std::vector<unsigned char>& out, std::string& why,
                      FsState* state) {
-    FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) {
+    // O_NONBLOCK: opening a FIFO for reading blocks until a writer appears, so the
+    // regular-file check must come before a blocking open. Checking the descriptor we opened
+    // (not a stat of the path beforehand) leaves no window to swap the file.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
         why = std::strerror(errno);
         return false;
     }
     struct stat st {};
-    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        std::fclose(f);
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        ::close(fd);
         why = "not a regular file";
+        return false;
+    }
+    FILE* f = ::fdopen(fd, "rb");
+    if (!f) {
+        why = std::strerror(errno);
+        ::close(fd);
         return false;
     }
     const uint64_t size = static_cast<uint64_t>(st.st_size);
@@ -182,7 +194,6 @@ bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string
 }
 
 // --- Pre-validation with nlohmann::json ----------------------------------------------------
-struct TooDeep {};
 
 bool asUnsigned(const nlohmann::json& obj, const char* key, uint64_t& out, bool required) {
     auto it = obj.find(key);
@@ -190,6 +201,75 @@ bool asUnsigned(const nlohmann::json& obj, const char* key, uint64_t& out, bool 
     if (!it->is_number_unsigned()) return false;
     out = it->get<uint64_t>();
     return true;
+}
+
+// The data: URI headers tinygltf 2.7 decodes (IsDataURI); anything else it treats as a path.
+const char* const kDataUriHeaders[] = {
+    "data:application/octet-stream;base64,", "data:application/gltf-buffer;base64,",
+    "data:image/jpeg;base64,", "data:image/png;base64,", "data:image/bmp;base64,",
+    "data:image/gif;base64,", "data:text/plain;base64,"};
+
+// Bytes tinygltf's base64_decode yields: it stops at the first '=' or non-alphabet character.
+uint64_t base64DecodedSize(const std::string& s, size_t from) {
+    uint64_t n = 0;
+    for (size_t i = from; i < s.size(); ++i) {
+        const char c = s[i];
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '/')) break;
+        ++n;
+    }
+    return n / 4 * 3 + (n % 4 ? n % 4 - 1 : 0);
+}
+
+// Percent-decoding as tinygltf applies it to buffer URIs ('+' is a space there too).
+std::string urlDecode(const std::string& s) {
+    auto hex = [](char c) -> int {
+        if (c >= '0' && c <= '9') return c - '0';
+        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+        return 0;
+    };
+    std::string out;
+    for (size_t i = 0; i < s.size(); ++i) {
+        if (s[i] == '+') {
+            out += ' ';
+        } else if (s[i] == '%' && i + 2 < s.size()) {
+            out += static_cast<char>((hex(s[i + 1]) << 4) | hex(s[i + 2]));
+            i += 2;
+        } else {
+            out += s[i];
+        }
+    }
+    return out;
+}
+
+// A URI short enough to quote in a one-line message.
+std::string shortUri(const std::string& uri) {
+    if (uri.size() <= 60) return oneLine(uri, 60);
+    return oneLine(uri.substr(0, 40), 40) + "...(" + str(uri.size()) + " chars)";
+}
+
+// tinygltf's error text as one short line: its lines deduplicated (it reports some twice), long
+// URIs shortened, at most 200 characters.
+std::string tinygltfReason(const std::string& err) {
+    std::vector<std::string> lines;
+    size_t start = 0;
+    while (start < err.size()) {
+        size_t end = err.find('\n', start);
+        if (end == std::string::npos) end = err.size();
+        std::string line = oneLine(err.substr(start, end - start), 1000);
+        start = end + 1;
+        for (const char* scheme : {"data:", "http://", "https://"}) {
+            const size_t at = line.find(scheme);
+            if (at == std::string::npos) continue;
+            size_t stop = line.find_first_of(" '\"", at);
+            if (stop == std::string::npos) stop = line.size();
+            line = line.substr(0, at) + shortUri(line.substr(at, stop - at)) + line.substr(stop);
+        }
+        if (!line.empty() && std::find(lines.begin(), lines.end(), line) == lines.end()) lines.push_back(line);
+    }
+    std::string joined;
+    for (const std::string& l : lines) joined += (joined.empty() ? "" : "; ") + l;
+    return oneLine(joined, 200);
 }
 
 class Loader {
@@ -208,7 +288,9 @@ private:
     }
 
     void prevalidate(const char* json, size_t len, bool binary);
+    void checkBufferUri(const std::string& what, const std::string& uri, const nlohmann::json& buffer);
     void checkExtensions();
+    void checkCameraDepthRange();
     void buildNodes();
     void convertMaterials();
     int textureImage(int textureIndex, int texCoord, const tinygltf::ExtensionMap& ext,
@@ -228,28 +310,90 @@ private:
     std::vector<uint8_t> bufferViewBytes(int bv, const std::string& what);
 
     std::string label_;
+    std::string baseDir_;
     Scene scene_;
     tinygltf::Model model_;
     std::set<std::string> warned_;
     std::map<std::pair<int, int>, int> primitiveIndex_;  // (mesh, primitive) -> scene primitive
     std::vector<int> imageIndex_;                         // glTF image -> scene image, -1 failed
     uint64_t totalVertices_ = 0, totalIndices_ = 0, totalPixels_ = 0;
+    // Spec violations seen in the JSON, refused when a node uses the camera/light.
+    std::map<int, std::string> badCameras_, badLights_;
 };
 
+// Deepest nesting of arrays/objects in `json`, stopping early past `limit`. One linear scan:
+// nlohmann 3.11's callback parser (the obvious way to limit depth) rescans the parent container
+// after every element, which made 10^5 nodes take seconds and 10^6 nodes minutes. Malformed JSON
+// (unbalanced brackets, unterminated strings) is left to the real parser to report.
+int jsonNestingDepth(const char* json, size_t len, int limit) {
+    int depth = 0, deepest = 0;
+    bool inString = false;
+    for (size_t i = 0; i < len; ++i) {
+        const char c = json[i];
+        if (inString) {
+            if (c == '\\')
+                ++i;  // the escaped character cannot end the string
+            else if (c == '"')
+                inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+            if (deepest > limit) return deepest;
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
+void Loader::checkBufferUri(const std::string& what, const std::string& uri, const nlohmann::json& buffer) {
+    if (uri.compare(0, 5, "data:") == 0) {
+        const char* header = nullptr;
+        for (const char* h : kDataUriHeaders)
+            if (uri.compare(0, std::strlen(h), h) == 0) header = h;
+        if (!header)
+            fail(what + ".uri: data URI '" + shortUri(uri) +
+                 "' is not supported (base64 with media type application/octet-stream or application/gltf-buffer)");
+        const uint64_t bytes = base64DecodedSize(uri, std::strlen(header));
+        uint64_t byteLength = 0;
+        if (asUnsigned(buffer, "byteLength", byteLength, true) && bytes != byteLength)
+            fail(what + ": byteLength is " + str(byteLength) + " but its data: URI decodes to " + str(bytes) +
+                 " bytes");
+        return;
+    }
+    const size_t colon = uri.find(':'), slash = uri.find('/');
+    if (colon != std::string::npos && (slash == std::string::npos || colon < slash))
+        fail(what + ".uri '" + shortUri(uri) + "' is not a relative file path (network and absolute URIs are not read)");
+    if (uri.empty()) fail(what + ".uri is empty");
+    // The file as tinygltf will look for it (percent-decoded, joined to the base directory),
+    // so that a missing .bin is reported with its buffer instead of as "File not found : x".
+    const std::string decoded = urlDecode(uri);
+    const std::string path = baseDir_.empty() ? decoded
+                             : baseDir_.back() == '/' ? baseDir_ + decoded : baseDir_ + "/" + decoded;
+    FsState st;
+    st.baseDir = baseDir_;
+    if (!allowedPath(path, &st))
+        fail(what + ".uri '" + shortUri(uri) + "' lies outside the glTF's directory (absolute or '..')");
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0)
+        fail(what + ".uri '" + shortUri(uri) + "': " + std::strerror(errno));
+    if (!S_ISREG(info.st_mode)) fail(what + ".uri '" + shortUri(uri) + "' is not a regular file");
+}
+
 void Loader::prevalidate(const char* json, size_t len, bool binary) {
+    // tinygltf recurses on extras/extensions: bound the nesting before anything parses it.
+    if (jsonNestingDepth(json, len, kMaxJsonDepth) > kMaxJsonDepth)
+        fail("JSON is nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
     nlohmann::json doc;
     try {
-        doc = nlohmann::json::parse(
-            json, json + len,
-            [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-                if (depth > kMaxJsonDepth) throw TooDeep{};
-                return true;
-            },
-            true);
-    } catch (const TooDeep&) {
-        fail("JSON is nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+        doc = nlohmann::json::parse(json, json + len, nullptr, true);
     } catch (const std::exception& e) {
-        fail(std::string("invalid JSON: ") + e.what());
+        // "[json.exception.parse_error.101] parse error at ..." without the library's tag.
+        std::string what = e.what();
+        if (what.rfind("[json.exception.", 0) == 0 && what.find("] ") != std::string::npos)
+            what = what.substr(what.find("] ") + 2);
+        fail("invalid JSON: " + what);
     }
     if (!doc.is_object()) fail("invalid glTF: the JSON root is not an object");
 
@@ -263,6 +407,42 @@ void Loader::prevalidate(const char* json, size_t len, bool binary) {
     const nlohmann::json* views = arrayOf("bufferViews");
     const nlohmann::json* images = arrayOf("images");
 
+    // What tinygltf reports badly: "JSON string too short." for {}, "File not found :" with no
+    // name for a buffer without uri, "File not found" for data: URIs it cannot decode and for
+    // http:// URIs, "Failed to decode 'uri'" plus the whole URI for a byteLength mismatch, and
+    // nothing at all for a skin without joints. Each gets a message naming the element here.
+    {
+        auto asset = doc.find("asset");
+        if (asset == doc.end() || !asset->is_object())
+            fail("asset: missing or not an object (a glTF needs \"asset\": {\"version\": \"2.0\"})");
+    }
+    if (buffers) {
+        for (size_t i = 0; i < buffers->size(); ++i) {
+            const auto& b = (*buffers)[i];
+            if (!b.is_object()) continue;  // tinygltf names the type error
+            const std::string what = "buffers[" + str(i) + "]";
+            auto u = b.find("uri");
+            if (u == b.end()) {
+                if (!binary) fail(what + ": no uri (only a .glb's buffer may omit it, for the BIN chunk)");
+                continue;
+            }
+            if (!u->is_string()) continue;
+            checkBufferUri(what, u->get_ref<const std::string&>(), b);
+        }
+    }
+    if (const nlohmann::json* skins = arrayOf("skins")) {
+        for (size_t i = 0; i < skins->size(); ++i) {
+            const auto& sk = (*skins)[i];
+            if (!sk.is_object()) continue;
+            auto j = sk.find("joints");
+            if (j == sk.end()) fail("skins[" + str(i) + "]: 'joints' is missing (required)");
+            if (!j->is_array()) fail("skins[" + str(i) + "].joints is not an array of node indices");
+            for (const auto& n : *j)
+                if (!n.is_number_unsigned())
+                    fail("skins[" + str(i) + "].joints holds " + oneLine(n.dump(), 30) + ", not a node index");
+        }
+    }
+
     if (binary && buffers) {
         size_t noUri = 0;
         for (const auto& b : *buffers)
@@ -270,6 +450,55 @@ void Loader::prevalidate(const char* json, size_t len, bool binary) {
         if (noUri > 1)
             fail("binary glTF has " + str(noUri) +
                  " buffers without a uri; only one may refer to the BIN chunk");
+    }
+
+    // Values tinygltf reads as "absent" although the spec forbids them: without a look at the
+    // JSON a byteStride of -12 becomes tightly packed data, and a range or aspectRatio of 0 the
+    // same as none given (infinite range, the viewport's aspect).
+    if (views) {
+        for (size_t i = 0; i < views->size(); ++i) {
+            const auto& view = (*views)[i];
+            auto it = view.is_object() ? view.find("byteStride") : view.end();
+            if (!view.is_object() || it == view.end()) continue;
+            const std::string what = "bufferViews[" + str(i) + "].byteStride";
+            if (!it->is_number_unsigned() || it->get<uint64_t>() > 252 ||
+                it->get<uint64_t>() % 4 != 0)
+                fail(what + " is " + oneLine(it->dump(), 40) +
+                     "; it must be a multiple of 4 from 4 to 252 (spec)");
+            if (it->get<uint64_t>() == 0)
+                warn(what + " is 0, below the spec's minimum 4 (read as tightly packed)");
+        }
+    }
+    auto positiveIfPresent = [](const nlohmann::json& obj, const char* key) {
+        if (!obj.is_object()) return true;
+        auto it = obj.find(key);
+        return it == obj.end() || (it->is_number() && it->get<double>() > 0.0);
+    };
+    if (const nlohmann::json* cameras = arrayOf("cameras")) {
+        for (size_t i = 0; i < cameras->size(); ++i) {
+            const auto& cam = (*cameras)[i];
+            if (!cam.is_object()) continue;
+            auto p = cam.find("perspective");
+            if (p != cam.end() && !positiveIfPresent(*p, "aspectRatio"))
+                badCameras_[int(i)] = "cameras[" + str(i) + "].perspective.aspectRatio is " +
+                                      oneLine((*p)["aspectRatio"].dump(), 40) +
+                                      "; it must be > 0 when given (spec)";
+        }
+    }
+    auto ext = doc.find("extensions");
+    if (ext != doc.end() && ext->is_object()) {
+        auto lp = ext->find("KHR_lights_punctual");
+        if (lp != ext->end() && lp->is_object()) {
+            auto lights = lp->find("lights");
+            if (lights != lp->end() && lights->is_array()) {
+                for (size_t i = 0; i < lights->size(); ++i) {
+                    if (!positiveIfPresent((*lights)[i], "range"))
+                        badLights_[int(i)] = "KHR_lights_punctual.lights[" + str(i) + "].range is " +
+                                             oneLine((*lights)[i]["range"].dump(), 40) +
+                                             "; it must be > 0 when given (absent = infinite)";
+                }
+            }
+        }
     }
 
     // tinygltf hands &buffer.data[view.byteOffset] for images in bufferViews to the image
@@ -302,6 +531,7 @@ void Loader::prevalidate(const char* json, size_t len, bool binary) {
 }
 
 Scene Loader::load(const uint8_t* data, size_t size, const std::string& baseDir) {
+    baseDir_ = baseDir;
     if (!data && size) fail("no data");
     if (size > kMaxInputBytes) fail("file is too large (" + str(size) + " bytes)");
     if (size == 0) fail("file is empty");
@@ -403,7 +633,10 @@ Scene Loader::load(const uint8_t* data, size_t size, const std::string& baseDir)
     } catch (const std::exception& e) {
         fail(std::string("invalid glTF: ") + e.what());
     }
-    if (!ok) fail("invalid glTF: " + (err.empty() ? std::string("tinygltf failed") : err));
+    if (!ok)
+        fail("invalid glTF: " + (err.empty() ? std::string("tinygltf rejected it without a reason (a required "
+                                                            "property may be missing or of the wrong type)")
+                                             : tinygltfReason(err)));
     for (const std::string* text : {&err, &twarn}) {
         size_t start = 0;
         while (start < text->size()) {
@@ -429,7 +662,42 @@ Scene Loader::load(const uint8_t* data, size_t size, const std::string& baseDir)
     } catch (const Error& e) {
         fail(e.what());
     }
+    checkCameraDepthRange();
     return std::move(scene_);
+}
+
+// A perspective depth buffer stores 1 - znear/z (a 32F G-buffer depth here): its resolution at
+// distance z is about 6e-8 * z / znear of z. The rasterizer rebuilds positions from depth, so a
+// znear far below the scene's depth breaks shading: on the Cornell box (depth ~5) FLIP against
+// znear 0.01 is 0.017 at 1e-4, 0.13 at 1e-5, 0.35 at 1e-6 and black at 1e-7. Reversed-Z
+// would lift this, but touches every pass that reads depth; until then such cameras are
+// refused below 1e-6 of the scene's depth and warned about below 1e-4.
+void Loader::checkCameraDepthRange() {
+    if (scene_.bounds.empty()) return;
+    for (size_t i = 0; i < scene_.cameras.size(); ++i) {
+        const Camera& cam = scene_.cameras[i];
+        if (cam.orthographic) continue;  // linear depth: znear does not cost precision
+        const glm::vec3 eye(cam.cameraToWorld[3]);
+        float depth = 0.0f;
+        for (int c = 0; c < 8; ++c) {
+            const glm::vec3 corner(c & 1 ? scene_.bounds.max.x : scene_.bounds.min.x,
+                                   c & 2 ? scene_.bounds.max.y : scene_.bounds.min.y,
+                                   c & 4 ? scene_.bounds.max.z : scene_.bounds.min.z);
+            depth = std::max(depth, glm::length(corner - eye));
+        }
+        if (!(depth > 0.0f) || !std::isfinite(depth)) continue;
+        const double ratio = double(cam.znear) / double(depth);
+        char text[160];
+        std::snprintf(text, sizeof text, "znear %.3g is %.2g of the scene's depth from it (%.3g)", double(cam.znear),
+                      ratio, double(depth));
+        const std::string what = "camera " + str(i) + quoted(cam.name) + ": " + text;
+        if (ratio < 1e-6) {
+            std::snprintf(text, sizeof text, "%.3g", double(depth) * 1e-4);
+            fail(what + "; the depth buffer cannot resolve that (use znear >= " + text + ")");
+        }
+        if (ratio < 1e-4)
+            warn(what + "; depth precision will show in the rasterizer (a larger znear helps)");
+    }
 }
 
 void Loader::checkExtensions() {
@@ -729,9 +997,15 @@ int Loader::decodeImage(int imageIndex) {
         return slot;
     }
     const uint64_t pixels = uint64_t(w) * uint64_t(h);
-    if (pixels > kMaxImagePixels || totalPixels_ + pixels > kMaxTotalImagePixels) {
-        warn(what + " is too large (" + std::to_string(w) + "x" + std::to_string(h) +
-             "); textures using it are ignored");
+    if (pixels > kMaxImagePixels) {
+        warn(what + " is too large (" + std::to_string(w) + "x" + std::to_string(h) + ", limit " +
+             str(kMaxImagePixels) + " pixels per image); textures using it are ignored");
+        return slot;
+    }
+    if (totalPixels_ + pixels > kMaxTotalImagePixels) {  // the image alone would fit: say what ran out
+        warn(what + " (" + std::to_string(w) + "x" + std::to_string(h) + ") exceeds the scene's image budget (" +
+             str(totalPixels_) + " of " + str(kMaxTotalImagePixels) +
+             " pixels already used); textures using it are ignored");
         return slot;
     }
     Image out;
@@ -1064,6 +1338,8 @@ void Loader::addNodeContent(int n, const glm::mat4& world) {
                  str(model_.cameras.size()) + " cameras)");
         const tinygltf::Camera& src = model_.cameras[size_t(node.camera)];
         const std::string cw = "camera " + std::to_string(node.camera) + quoted(src.name);
+        auto bad = badCameras_.find(node.camera);
+        if (bad != badCameras_.end()) fail(bad->second);
         Camera cam;
         cam.name = src.name;
         cam.cameraToWorld = orthonormalFrame(world);
@@ -1106,6 +1382,8 @@ void Loader::addNodeContent(int n, const glm::mat4& world) {
                  str(model_.lights.size()) + " lights)");
         const tinygltf::Light& src = model_.lights[size_t(li)];
         const std::string lw = "light " + std::to_string(li) + quoted(src.name);
+        auto bad = badLights_.find(li);
+        if (bad != badLights_.end()) fail(bad->second);
         Light l;
         l.name = src.name;
         if (src.type == "directional")
@@ -1127,6 +1405,15 @@ void Loader::addNodeContent(int n, const glm::mat4& world) {
         if (!std::isfinite(src.intensity) || src.intensity < 0.0 || src.intensity > 3.0e38)
             fail(lw + ": intensity must be a finite non-negative number");
         l.intensity = static_cast<float>(src.intensity);
+        // The renderers use color x intensity in float: refuse a product that would be Inf.
+        for (int c = 0; c < 3; ++c) {
+            const double product = double(l.color[c]) * double(l.intensity);
+            if (!(product <= double(std::numeric_limits<float>::max()))) {
+                char text[32];
+                std::snprintf(text, sizeof text, "%.3g", product);
+                fail(lw + ": color x intensity = " + text + " overflows a float (max 3.4e38)");
+            }
+        }
         if (!std::isfinite(src.range) || src.range < 0.0 || src.range > 3.0e38)
             fail(lw + ": range must be a finite positive number");
         l.range = static_cast<float>(src.range);

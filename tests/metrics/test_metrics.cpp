@@ -1,5 +1,8 @@
 // Metrics on synthetic images with answers known in closed form (renderer/metrics.h).
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -411,11 +414,39 @@ TEST(Heatmap, ImageLayoutColourBarAndMask) {
     EXPECT_NE(errorOf([&] { heatmapImage(ErrorMap{}, 1.0f); }), "(no error)");
 }
 
+// Failures that happen after the temporary file exists, in a directory that does exist (a
+// missing directory proves nothing: no file could appear there anyway): the write running into
+// the file size limit (as on a full disk), and the rename onto a target that is a directory.
+// Either way the error names the reason and the directory holds what it held before.
 TEST(Heatmap, FailedWriteLeavesNoFile) {
-    const ErrorMap map{4, 4, std::vector<float>(16, 0.5f)};
-    const std::string path = "/nonexistent-dir-for-gis-tests/heat.png";
-    EXPECT_NE(errorOf([&] { writeHeatmap(path, map, 1.0f); }), "(no error)");
-    EXPECT_FALSE(std::filesystem::exists(path));
+    namespace fs = std::filesystem;
+    const ErrorMap map{64, 64, std::vector<float>(64 * 64, 0.5f)};
+    const fs::path dir = fs::temp_directory_path() / ("gis_heatmap_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string path = (dir / "heat.png").string();
+
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        const rlimit limit{64, 64};  // bytes: the PNG needs more
+        ::setrlimit(RLIMIT_FSIZE, &limit);
+        const std::string err = errorOf([&] { writeHeatmap(path, map, 1.0f); });
+        ::_exit(err.find("File too large") != std::string::npos ? 0 : 1);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "status " << status;
+    EXPECT_TRUE(fs::is_empty(dir)) << "a partial or temporary file was left in " << dir;
+
+    fs::create_directory(path);  // the target is a directory: the rename must fail
+    EXPECT_NE(errorOf([&] { writeHeatmap(path, map, 1.0f); }).find("cannot rename"), std::string::npos);
+    EXPECT_TRUE(fs::is_directory(path));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1) << "temporary file left";
+
+    EXPECT_NE(errorOf([&] { writeHeatmap((dir / "no" / "heat.png").string(), map, 1.0f); }).find("does not exist"),
+              std::string::npos);
+    fs::remove_all(dir);
 }
 
 // --- Tone mapping (mirrors shaders/tonemap.frag; the CLI test compares it with the GPU) -------

@@ -3,6 +3,7 @@
 // where E is the irradiance the light delivers to it.
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "memory_budget.h"
 #include "render_test_util.h"
 
 namespace gis::test {
@@ -232,6 +233,34 @@ TEST(Extremes, HugeAndTinyScenesAndBrightLightsStayFinite) {
     for (float v : img.rgba) ASSERT_TRUE(std::isfinite(v)) << "1e6 x light in RGBA16F";
     const ImageU8 ldr = renderer.readLdr();
     EXPECT_GT(ldr.rgba[(size_t(r.height / 2) * r.width + r.width / 2) * 4], 200);  // saturates to white, not black
+}
+
+}  // namespace
+}  // namespace gis::test
+
+namespace gis::test {
+namespace {
+
+// The memory budget's estimate (renderer/memory_budget.cpp) restates the passes' formats; it must
+// stay equal to what the ledger counts once they exist, or the refusal guards the wrong number.
+TEST(MemoryBudget, EstimateMatchesTheLedger) {
+    context();
+    const Scene scene = makeBuiltinScene("cornell");
+    for (const char* gi : {"none", "ssao", "pathtrace"}) {
+        for (bool hdr32 : {false, true}) {
+            RenderSettings s;
+            s.width = 96;
+            s.height = 64;
+            s.gi = gi;
+            s.hdr32 = hdr32;
+            const uint64_t estimate = estimateGpuMemory(scene, s).total();
+            Renderer renderer(scene, s);
+            const double ledger = double(renderer.memory().total());
+            // The path tracer's BVH and triangle buffers are left out of the estimate (small next
+            // to images); everything else is exact.
+            EXPECT_NEAR(double(estimate), ledger, 0.02 * ledger + 64 * 1024) << gi << (hdr32 ? " hdr32" : "");
+        }
+    }
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // Every .gltf/.glb under shared/assets/gltf/_edge_cases/ (found at test time, recursively) either
-// loads or throws gis::Error with a non-empty one-line message naming the file. The expected
+// loads or throws gis::Error with a non-empty one-line message naming the file, then the problem
+// in at most 200 characters. The expected
 // outcome of each file is the documented acceptance table edge_case_outcomes.txt next to this
 // source; a changed outcome (or a file missing from the table) fails the test.
 #include <gtest/gtest.h>
@@ -73,6 +74,14 @@ TEST(EdgeCases, EachLoadsOrFailsCleanlyAsDocumented) {
             EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << "message does not name the file: " << message;
             EXPECT_GT(message.size(), path.size() + 2) << rel;
             message = message.substr(std::min(message.size(), path.size() + 2));
+            // The problem itself: short, and never one of tinygltf's texts that name nothing
+            // ("File not found :" without the file, "tinygltf failed", "JSON string too short").
+            EXPECT_LE(message.size(), 200u) << rel << ": " << message;
+            for (const char* vague : {"tinygltf failed", "JSON string too short", "[json.exception"})
+                EXPECT_EQ(message.find(vague), std::string::npos) << rel << ": " << message;
+            const size_t nf = message.find("File not found :");
+            EXPECT_TRUE(nf == std::string::npos || message.find_first_not_of(' ', nf + 16) != std::string::npos)
+                << rel << ": names no file: " << message;
         }
         // Any other exception type escapes and fails the test (as would a crash).
         auto it = table.find(rel);

@@ -200,6 +200,11 @@ GiMethod ssaoMethod() {
                               {"ssao.steps", {double(steps[i])}},
                               {"ssao.half-res", {half[i] ? 1.0 : 0.0}}}});
     m.programs = &SsaoPass::programs;
+    m.estimateMemory = [](const Scene&, const RenderSettings& s) {
+        const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
+        const bool half = ssaoParams().read("ssao", s.params).halfResolution;
+        return std::vector<std::pair<std::string, uint64_t>>{{"SSAO", half ? pixels * 2 : pixels * 8}};
+    };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<SsaoPass>(b.settings, b.ledger)); };
     // Temporal accumulation averages up to 16 frames.
     m.framesToConverge = [](const RenderSettings& s) { return ssaoParams().read("ssao", s.params).temporal ? 16 : 1; };

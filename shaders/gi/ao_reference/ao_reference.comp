@@ -30,7 +30,7 @@ void main() {
 
     float visibility = 0.0;
     Hit hit;
-    if (traceRay(origin, dir, 1e30, false, hit)) {
+    if (traceRay(origin, dir, 1e30, false, true, hit)) {  // culls as the G-buffer does
         RayHitGeometry g = hitGeometry(hit, dir);
         vec3 w = cosineDirection(g.normal, nextFloat2(rng));
         // A direction below the geometric surface (possible with interpolated or mapped normals)

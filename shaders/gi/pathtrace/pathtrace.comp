@@ -24,6 +24,8 @@ layout(location = U_MAX_BOUNCES) uniform int u_maxBounces;
 layout(location = U_EMITTER_COUNT) uniform int u_emitterCount;
 layout(location = U_RR_START) uniform int u_rrStart;
 
+// The largest finite float: path radiance is clamped here so that it never becomes Inf.
+const float MAX_RADIANCE = 3.4028e38;
 // Throughput below this ends a path: nothing it could still carry would show.
 const float MIN_THROUGHPUT = 1e-7;
 // Russian roulette never keeps a path with probability above this, so paths end eventually.
@@ -220,7 +222,10 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
     float lastBsdfPdf = 0.0;   // 0 = the ray came from the camera (no MIS for what it hits)
     for (int depth = 0;; ++depth) {
         Hit hit;
-        if (!traceRay(origin, dir, 1e30, false, hit)) {
+        // Camera rays pass through single-sided back faces, which the rasterizer culls: every
+        // method sees the same surfaces. Shadow and bounce rays meet both sides, as shadow maps
+        // (and Cycles) do.
+        if (!traceRay(origin, dir, 1e30, false, depth == 0, hit)) {
             radiance += throughput * u_background;
             break;
         }
@@ -271,10 +276,16 @@ void main() {
     vec4 far = u_invViewProj * vec4(ndc, 0.0, 1.0);  // not the far plane: it may be at infinity
     vec3 origin = near.xyz / near.w;
     vec3 dir = normalize(far.xyz / far.w - origin);
-    vec3 radiance = finiteOrZero(tracePath(origin, dir, rng));
+    // A path whose radiance overflowed (emission or background near FLT_MAX) counts as the
+    // largest float, not as black; NaN (min's result is undefined for it) still becomes 0.
+    vec3 radiance = finiteOrZero(min(tracePath(origin, dir, rng), vec3(MAX_RADIANCE)));
 
-    vec4 sum = u_sampleIndex == 0u ? vec4(0.0) : imageLoad(u_accumulation, pixel);
-    sum += vec4(radiance, 1.0);
-    imageStore(u_accumulation, pixel, sum);
-    imageStore(u_output, pixel, vec4(sum.rgb / sum.w, 1.0));
+    // The accumulation holds the running mean (rgb) and the sample count (w), not a sum: a sum
+    // of samples near FLT_MAX overflows to Inf after two, while the mean of finite non-negative
+    // samples lies between them. mean += (x - mean) / n stays in [min, max] of the samples.
+    vec4 acc = u_sampleIndex == 0u ? vec4(0.0) : imageLoad(u_accumulation, pixel);
+    acc.w += 1.0;
+    acc.rgb = min(acc.rgb + (radiance - acc.rgb) / acc.w, vec3(MAX_RADIANCE));
+    imageStore(u_accumulation, pixel, acc);
+    imageStore(u_output, pixel, vec4(acc.rgb, 1.0));
 }

@@ -1,0 +1,127 @@
+#include "memory_budget.h"
+
+#include "gi/method.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include "gl/gl.h"
+#include "renderer.h"
+#include "scene/scene.h"
+
+namespace gis {
+
+namespace {
+
+// Not in every glad build: the enums of the two vendor extensions.
+constexpr GLenum kGpuMemoryCurrentAvailableNvx = 0x9049;  // KiB
+constexpr GLenum kTextureFreeMemoryAti = 0x87FC;          // 4 values, [0] = free KiB
+
+bool hasGlExtension(const char* name) {
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; ++i) {
+        const auto* e = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
+        if (e && std::strcmp(e, name) == 0) return true;
+    }
+    return false;
+}
+
+std::string gib(uint64_t bytes) {
+    char text[32];
+    if (bytes >= (uint64_t(1) << 30))
+        std::snprintf(text, sizeof text, "%.1f GiB", double(bytes) / double(uint64_t(1) << 30));
+    else
+        std::snprintf(text, sizeof text, "%.0f MiB", double(bytes) / double(1 << 20));
+    return text;
+}
+
+}  // namespace
+
+uint64_t MemoryEstimate::total() const {
+    uint64_t sum = 0;
+    for (const auto& p : parts) sum += p.second;
+    return sum;
+}
+
+MemoryEstimate estimateGpuMemory(const Scene& scene, const RenderSettings& s) {
+    const uint64_t pixels = uint64_t(std::max(s.width, 0)) * uint64_t(std::max(s.height, 0));
+    MemoryEstimate e;
+    // Per-pixel bytes of each pass's targets (the formats in passes/*.cpp, as the ledger counts).
+    const GiMethod& method = giMethod(s.gi);
+    if (method.estimateMemory)  // the method's own passes and volumes
+        for (const auto& part : method.estimateMemory(scene, s)) e.parts.push_back(part);
+    if (method.pipeline == MethodPipeline::Deferred) {
+        e.parts.push_back({"G-buffer (28 bytes/pixel)", pixels * 28});
+        e.parts.push_back({s.hdr32 ? "lighting (RGBA32F)" : "lighting (RGBA16F)", pixels * (s.hdr32 ? 16 : 8)});
+        if (s.shadows && !scene.draws.empty()) {
+            uint64_t points = 0, flat = 0;
+            for (const Light& l : scene.lights) (l.type == LightType::Point ? points : flat) += 1;
+            const uint64_t map = uint64_t(s.shadowMapSize) * uint64_t(s.shadowMapSize) * 4;
+            const uint64_t cube = uint64_t(s.shadowCubeSize) * uint64_t(s.shadowCubeSize) * 4 * 6;
+            e.parts.push_back({"shadow maps", flat * map + points * cube});
+        }
+    }
+    e.parts.push_back({"tonemap (RGBA8)", pixels * 4});
+    uint64_t vertices = 0, indices = 0, texels = 0;
+    for (const Primitive& p : scene.primitives) {
+        vertices += p.vertices.size();
+        indices += p.indices.size();
+    }
+    for (const Image& img : scene.images) texels += uint64_t(img.width) * uint64_t(img.height);
+    e.parts.push_back({"scene (geometry, textures with mips)", vertices * sizeof(Vertex) + indices * 4 + texels * 4 * 4 / 3});
+    std::sort(e.parts.begin(), e.parts.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    return e;
+}
+
+MemoryBudget gpuMemoryBudget() {
+    MemoryBudget b;
+    if (const char* env = std::getenv("GIS_MEMORY_BUDGET_MB")) {
+        char* end = nullptr;
+        const unsigned long long mb = std::strtoull(env, &end, 10);
+        if (end != env && *end == '\0' && mb > 0) {
+            b.bytes = uint64_t(mb) << 20;
+            b.source = "GIS_MEMORY_BUDGET_MB";
+            return b;
+        }
+    }
+    GLint kib[4] = {0, 0, 0, 0};
+    if (hasGlExtension("GL_NVX_gpu_memory_info")) {
+        glGetIntegerv(kGpuMemoryCurrentAvailableNvx, kib);
+        if (kib[0] > 0) return {uint64_t(kib[0]) << 10, "available GPU memory (GL_NVX_gpu_memory_info)"};
+    }
+    if (hasGlExtension("GL_ATI_meminfo")) {
+        glGetIntegerv(kTextureFreeMemoryAti, kib);
+        if (kib[0] > 0) return {uint64_t(kib[0]) << 10, "free GPU memory (GL_ATI_meminfo)"};
+    }
+    glGetError();  // a query the driver did not take must not be reported by a later check
+    const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGESIZE);
+    b.bytes = pages > 0 && pageSize > 0 ? uint64_t(pages) * uint64_t(pageSize) / 2 : (uint64_t(8) << 30);
+    b.source = "half the physical memory (no GPU memory query; set GIS_MEMORY_BUDGET_MB to change)";
+    b.hostMemory = true;
+    return b;
+}
+
+void checkMemoryBudget(const Scene& scene, const RenderSettings& settings) {
+    MemoryEstimate e = estimateGpuMemory(scene, settings);
+    const MemoryBudget b = gpuMemoryBudget();
+    // Software GL allocates "GPU" memory in the same RAM as the image read back (RGBA32F for EXR,
+    // RGBA8 for PNG) and its encoding: 16384x16384 took 12.8 GB on a 23 GB machine.
+    if (b.hostMemory) {
+        const uint64_t pixels = uint64_t(settings.width) * uint64_t(settings.height);
+        e.parts.push_back({"read-back and encoding (host)", pixels * 20});
+        std::sort(e.parts.begin(), e.parts.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
+    }
+    if (e.total() <= b.bytes) return;
+    std::string parts;
+    for (size_t i = 0; i < e.parts.size() && i < 2; ++i) parts += (i ? ", " : "") + e.parts[i].first + " " + gib(e.parts[i].second);
+    throw Error(std::to_string(settings.width) + "x" + std::to_string(settings.height) + " needs about " +
+                gib(e.total()) + (b.hostMemory ? " of memory (" : " of GPU memory (") + parts + "), more than the " + gib(b.bytes) + " budget: " +
+                b.source + "; use a smaller --size");
+}
+
+}  // namespace gis
