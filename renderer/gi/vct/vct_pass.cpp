@@ -172,6 +172,14 @@ GiMethod vctMethod() {
          {{"vct.resolution", {128.0}}, {"vct.bounces", {2.0}}, {"vct.step", {0.33}}}},
     };
     m.programs = &VctPass::programs;
+    m.estimateMemory = [](const Scene&, const RenderSettings& s) {
+        const VctSettings v = vctParams().read("vct", s.params);
+        const uint64_t n = uint64_t(v.resolution), pixels = uint64_t(s.width) * uint64_t(s.height);
+        return std::vector<std::pair<std::string, uint64_t>>{
+            {"VCT voxel grid and voxelization sums", uint64_t(voxelGridBytes(int(n)))},
+            {"VCT radiance mips", uint64_t(voxelRadianceBytes(int(n), v.anisotropic, v.bounces))},
+            {"VCT screen targets", pixels * 18}};
+    };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<VctPass>(b.services.scene, b.settings, b.ledger)); };
     m.framesToConverge = [](const RenderSettings&) { return 1; };
     return m;
