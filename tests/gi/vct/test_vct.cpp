@@ -353,6 +353,57 @@ TEST(Vct, ThinWallLeakIsMeasured) {
         }
 }
 
+// Cones that leave the volume read the environment: a lone floor under a uniform sky of radiance
+// L sees L in every direction, so indirect.diffuse (E / pi) should be L there. It is not: 41% of
+// it at the defaults. A coarse sample's trilinear footprint reaches about 1.5 diameters, and the
+// lift keeps only one diameter between it and the surface, so the floor's own voxels occlude the
+// sky. Lifting by 2 diameters gives 96% here but bends the side cones towards the normal (the
+// Cornell floor then gets 172% of its light); capping the diameter at half the height instead
+// gives 92% here and 52% on the Cornell back wall. Disabled until one scheme does both.
+TEST(Vct, DISABLED_OpenFloorSeesTheSky) {
+    Scene s;
+    s.materials.push_back(lambert(glm::vec3(0.5f)));
+    addQuad(s, {0, 0, 0}, {0, 1, 0}, 4.0f, 0);
+    s.cameras.push_back(lookAtCamera({0, 3, 3}, {0, 0, 0}, 40.0f));
+    finalizeScene(s);
+    RenderSettings r = vctSettings();
+    r.background = glm::vec3(0.2f, 0.4f, 0.8f);
+    const VctImages v = renderVct(s, r);
+    const float* centre = v.diffuse.at(kSize / 2, kSize / 2);
+    std::printf("VCT-TABLE open floor under a (0.2, 0.4, 0.8) sky: indirect.diffuse (%.3f, %.3f, %.3f)\n", centre[0],
+                centre[1], centre[2]);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(centre[c], (*r.background)[c], 0.05 * (*r.background)[c]) << c;
+}
+
+// The specular cone: a glossy metal floor in front of a red emissive wall reflects red, and a
+// rough one reflects a wider, dimmer, still red image.
+TEST(Vct, GlossyFloorReflectsAnEmitter) {
+    Scene s;
+    Material metal = lambert(glm::vec3(0.9f));
+    metal.metallicFactor = 1.0f;
+    metal.roughnessFactor = 0.1f;
+    metal.specularFactor = 1.0f;
+    s.materials.push_back(metal);
+    Material lamp = lambert(glm::vec3(0.0f));
+    lamp.emissive = glm::vec3(4.0f, 0.2f, 0.2f);
+    s.materials.push_back(lamp);
+    addQuad(s, {0, 0, 0}, {0, 1, 0}, 4.0f, 0);
+    addQuad(s, {0, 1, -2}, {0, 0, 1}, 2.0f, 1);
+    s.cameras.push_back(lookAtCamera({0, 1.0f, 3}, {0, 0, -1}, 40.0f));
+    finalizeScene(s);
+    const VctImages v = renderVct(s, vctSettings());
+    ASSERT_TRUE(allFinite(v.specular));
+    double red = 0.0, green = 0.0;
+    for (int y = kSize / 2; y < kSize; ++y)  // the floor: lower half of the image
+        for (int x = 0; x < kSize; ++x) {
+            red = std::max(red, double(v.specular.at(x, y)[0]));
+            green = std::max(green, double(v.specular.at(x, y)[1]));
+        }
+    std::printf("VCT-TABLE glossy floor: brightest reflected red %.3f, green %.3f\n", red, green);
+    EXPECT_GT(red, 0.5);
+    EXPECT_GT(red, 5.0 * green);
+}
+
 // The debug views show the grid: ray-marched albedo sees the white back wall in the middle and
 // the red wall on the left; a slice across the room has red at its left end, green at its right.
 TEST(Vct, DebugViewsShowTheGrid) {
