@@ -14,7 +14,7 @@ namespace {
 TEST(Bench, RunsEndToEndAndCachesTheReference) {
     const std::string dir = tempDir("bench_tiny");
     const std::string args = "bench --scenes builtin:cornell --size 24x24 --frames 3 --warmup 1 --reference-spp 8 "
-                             "--presets low,high --out-dir " + dir;
+                             "--presets low,high --methods none,ssao,pathtrace --out-dir " + dir;
     CliResult r = runCli(args);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find("rendering the reference"), std::string::npos) << r.err;
