@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "metrics.h"
 #include "plot.h"
+#include "progress.h"
 #include "gi/method.h"
 #include "tonemap.h"
 
@@ -200,8 +201,13 @@ int runBench(const BenchOptions& o) {
                 // (the cached image is what is compared)
             } else {
                 std::fprintf(stderr, "%s: rendering the reference (%d spp)...\n", sceneName.c_str(), o.referenceSpp);
-                do refRenderer.renderFrame();
-                while (!refRenderer.converged());
+                ProgressBar progress(o.referenceSpp, sceneName + " reference");
+                do {
+                    refRenderer.renderFrame();
+                    glFinish();
+                    progress.update(refRenderer.samplesDone());
+                } while (!refRenderer.converged());
+                progress.finish();
                 reference = refRenderer.readHdr();
                 writeExr(refPath, reference);
             }
