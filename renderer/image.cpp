@@ -49,10 +49,9 @@ extern "C" void removeTmpAndReraise(int sig) {
 }
 
 // While a temporary file exists: SIGINT/SIGTERM/SIGHUP, where they would kill the process, remove
-// it before the process dies, and
-// SIGXFSZ (file size limit reached), which would kill the process and leave the file, is
-// ignored so that the write fails with EFBIG and takes the ordinary error path. SIGKILL cannot
-// be caught: it leaves the temporary file (never the target) behind.
+// it before the process dies, and SIGXFSZ (file size limit reached), which would kill the process
+// and leave the file, is ignored so that the write fails with EFBIG and takes the ordinary error
+// path. SIGKILL cannot be caught: it leaves the temporary file (never the target) behind.
 class TmpFileGuard {
 public:
     explicit TmpFileGuard(const std::string& tmp) {
