@@ -170,6 +170,11 @@ TEST(Hardening, BufferAndSchemaMessagesNameTheElement) {
          "buffers[0].uri: data URI 'data:application/x;base64,AAAA' is not supported"},
         {R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"missing.bin"}]})",
          "buffers[0].uri 'missing.bin': No such file or directory"},
+        {R"({"asset":{"version":"2.0"},"accessors":[{"count":1,"type":"SCALAR"}]})",
+         "accessors[0]: 'componentType' is missing (required)"},
+        {R"({"asset":{"version":"2.0"},"materials":[{},"material"]})", "materials[1] is \"material\", not an object"},
+        {R"({"asset":{"version":"2.0"},"bufferViews":[{"buffer":0,"byteLength":1e300}]})",
+         "bufferViews[0].byteLength is 1e+300"},
     };
     for (const Case& c : cases) {
         const std::string err = errorOf([&] { loadString(c.json); });
