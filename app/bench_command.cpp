@@ -15,7 +15,7 @@
 #include "commands.h"
 #include "metrics.h"
 #include "plot.h"
-#include "presets.h"
+#include "gi/method.h"
 #include "tonemap.h"
 
 namespace gis {
@@ -37,8 +37,8 @@ struct BenchRow {
 // size, sample count, bounces and seed: all of them are in the cache key.
 std::string referenceKey(const std::string& sceneSpec, const RenderSettings& s) {
     std::ostringstream key;
-    key << sceneSpec << "|" << s.width << "x" << s.height << "|cam" << s.camera << "|spp" << s.spp << "|b"
-        << s.maxBounces << "|seed" << s.seed;
+    key << sceneSpec << "|" << s.width << "x" << s.height << "|cam" << s.camera << "|" << s.gi << "|seed" << s.seed;
+    for (const auto& [name, value] : s.params) key << "|" << name << "=" << formatParamValue(findParam(name), value);
     std::error_code ec;
     if (fs::is_regular_file(sceneSpec, ec))
         key << "|" << fs::file_size(sceneSpec, ec) << "|" << fs::last_write_time(sceneSpec, ec).time_since_epoch().count();
@@ -53,23 +53,22 @@ std::string fileSafe(std::string s) {
     return s;
 }
 
-// Renders until converged; returns the GPU ms (median per frame after warm-up, or the sum of all
-// frames for a progressive method) and per-pass figures.
-void measure(Renderer& renderer, int frames, int warmup, BenchRow& row) {
+// Renders until the image is final; returns the GPU ms and per-pass figures. Progressive methods
+// (the path tracer): every frame's work summed, until converged. Methods that accumulate over
+// frames (framesToConverge, from the registry): the median per frame of `frames` frames after
+// warm-up, measured once converged, and the image scored is the converged one.
+void measure(Renderer& renderer, const GiMethod& method, int frames, int warmup, BenchRow& row) {
     const bool progressive = !renderer.converged();
+    const int converge = method.framesToConverge ? std::max(1, method.framesToConverge(renderer.settings())) : 1;
     if (progressive) {
         do renderer.renderFrame();
         while (!renderer.converged());
     } else {
-        for (int i = 0; i < frames; ++i) renderer.renderFrame();
+        for (int i = 0; i < converge - 1 + frames; ++i) renderer.renderFrame();
     }
-    for (const PassTiming& t : renderer.timings(progressive ? 0 : warmup)) {
-        const auto& samples = renderer.passes()[row.passMs.size()]->timer.samples;
-        double ms = t.medianMs;
-        if (progressive) {
-            ms = 0.0;
-            for (double v : samples) ms += v;
-        }
+    for (const PassTiming& t : renderer.timings(progressive ? 0 : converge - 1 + warmup)) {
+        if (t.step) continue;  // the pass's own figure already holds its steps
+        const double ms = progressive ? t.totalMs : t.medianMs;
         row.passMs.emplace_back(t.pass, ms);
         row.ms += ms;
     }
@@ -104,9 +103,17 @@ int runBench(const BenchOptions& o) {
     if (o.warmup < 0 || o.warmup >= o.frames) throw Error("--warmup must be in [0, --frames)");
     if (o.referenceSpp < 1 || o.referenceSpp > (1 << 20)) throw Error("--reference-spp must be in [1, 1048576]");
     const ErrorMetric metric = parseErrorMetric(o.metric);
-    const std::vector<std::string> methods = o.methods.empty() ? benchmarkMethods() : o.methods;
-    for (const std::string& m : methods) checkGiMethod(m);
-    for (const std::string& p : o.presets) describePreset("none", p);  // validates the name
+    std::vector<std::string> methods = o.methods;
+    if (methods.empty())
+        for (const GiMethod& m : giMethods())
+            if (m.benchmarked) methods.push_back(m.name);
+    for (const std::string& m : methods) {
+        const GiMethod& method = giMethod(m);
+        if (method.image != MethodImage::Radiance)
+            throw Error("--methods " + m + ": its image is not radiance, so it cannot be scored against the "
+                        "path-traced reference (it is the AO reference itself)");
+        for (const std::string& p : o.presets) method.preset(p);  // validates the name
+    }
     if (o.scenes.empty()) throw Error("--scenes needs at least one scene");
     std::vector<Scene> scenes;
     for (const std::string& spec : o.scenes) scenes.push_back(loadScene(spec));  // fail early on bad input
@@ -128,9 +135,9 @@ int runBench(const BenchOptions& o) {
         const std::string sceneName = scene.name.empty() ? o.scenes[si] : scene.name;
         RenderSettings refSettings = base;
         refSettings.gi = "pathtrace";
-        refSettings.spp = o.referenceSpp;
+        setParam(refSettings, "pathtrace.spp", std::to_string(o.referenceSpp));
+        setParam(refSettings, "pathtrace.bounces", "64");
         refSettings.samplesPerFrame = 16;
-        refSettings.maxBounces = 64;
         const std::string refPath = cacheDir + "/reference_" + fileSafe(sceneName) + "_" +
                                     referenceKey(o.scenes[si], refSettings) + ".exr";
         ImageF reference;
@@ -140,7 +147,7 @@ int runBench(const BenchOptions& o) {
             if (fs::exists(refPath)) {
                 reference = readExr(refPath);
                 std::fprintf(stderr, "%s: reference from cache %s\n", sceneName.c_str(), refPath.c_str());
-                refSettings.spp = 1;  // only for the grid's thumbnail below: the cached image is what is compared
+                // (the cached image is what is compared)
             } else {
                 std::fprintf(stderr, "%s: rendering the reference (%d spp)...\n", sceneName.c_str(), o.referenceSpp);
                 do refRenderer.renderFrame();
@@ -154,7 +161,7 @@ int runBench(const BenchOptions& o) {
         if (std::find(methods.begin(), methods.end(), "ssao") != methods.end()) {
             RenderSettings aoSettings = base;
             aoSettings.gi = "ao-reference";
-            aoSettings.spp = o.referenceSpp;
+            setParam(aoSettings, "ao-reference.spp", std::to_string(o.referenceSpp));
             aoSettings.samplesPerFrame = 64;
             const std::string aoPath = cacheDir + "/ao_reference_" + fileSafe(sceneName) + "_" +
                                        referenceKey(o.scenes[si], aoSettings) + ".exr";
@@ -178,16 +185,17 @@ int runBench(const BenchOptions& o) {
                 row.scene = sceneName;
                 row.method = methods[mi];
                 row.preset = preset;
-                row.description = describePreset(methods[mi], preset);
+                const GiMethod& method = giMethod(methods[mi]);
+                row.description = method.preset(preset).description;
                 RenderSettings s = base;
                 applyPreset(s, methods[mi], preset);
                 Renderer renderer(scene, s);
-                measure(renderer, o.frames, o.warmup, row);
+                measure(renderer, method, o.frames, o.warmup, row);
                 const ImageF image = renderer.readHdr();
                 row.error = compareImages(image, reference);
                 if (methods[mi] == "ssao" && !aoReference.rgba.empty()) {
                     RenderSettings aoView = s;
-                    aoView.view = DebugView::AmbientOcclusion;
+                    aoView.view = "ao";
                     Renderer aoRenderer(scene, aoView);
                     aoRenderer.renderFrame();
                     row.aoRmse = rmse(aoRenderer.readHdr(), aoReference);

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "bvh.h"
+#include "gi/method.h"
 #include "gl/shader.h"
 #include "image.h"
 #include "settings_io.h"
@@ -86,14 +87,39 @@ private:
     int lastQuarter_ = 0;
 };
 
+// GPU milliseconds per pass and its steps: the median over the frames after warm-up in which it
+// worked, the first frame apart (it builds what later frames reuse). A progressive pass (the path
+// tracer) reports its total and its time per sample; "cached" only when no measured frame worked.
+void printTimings(const Renderer& renderer, int frames, int warmup) {
+    const auto& owners = renderer.memory().bytesByOwner;
+    std::printf("%-22s %10s %10s %9s\n", "pass", "median ms", "first ms", "MiB");
+    double total = 0.0;
+    for (const PassTiming& t : renderer.timings(warmup)) {
+        const std::string name = t.step ? "  " + t.pass.substr(t.pass.find('/') + 1) : t.pass;
+        if (t.samples > 0) {
+            std::printf("%-22s %10s %10.3f %9.2f  total %.1f ms for %d samples: %.3f ms/sample\n", name.c_str(), "",
+                        t.firstMs, mib(t.bytes), t.totalMs, t.samples, t.totalMs / t.samples);
+            total += t.totalMs;
+            continue;
+        }
+        std::printf("%-22s %10.3f %10.3f %9.2f%s\n", name.c_str(), t.medianMs, t.firstMs, t.step ? 0.0 : mib(t.bytes),
+                    t.cached ? "  (cached: nothing it depends on changed)" : "");
+        if (!t.step) total += t.medianMs;
+    }
+    for (const auto& [owner, bytes] : owners)
+        if (owner.rfind("scene", 0) == 0) std::printf("%-22s %10s %10s %9.2f\n", owner.c_str(), "", "", mib(bytes));
+    std::printf("%-22s %10.3f %10s %9.2f  (%dx%d, %d frames, median of the last %d)\n", "total", total, "",
+                mib(renderer.memory().total()), renderer.settings().width, renderer.settings().height, frames,
+                frames - warmup);
+}
+
 }  // namespace
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--scene", o.scene,
                    "glTF file (.gltf/.glb) or builtin:NAME (cornell, cornell-area, brdf-gallery); required unless "
                    "--settings names one");
-    cmd.add_option("--out", o.out, "Output image: .png (tonemapped sRGB 8-bit) or .exr (linear float radiance)")
-        ->required();
+    cmd.add_option("--out", o.out, "Output image: .png (tonemapped sRGB 8-bit) or .exr (linear float radiance)");
     cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT")->capture_default_str();
     cmd.add_option("--backend", o.backend, "OpenGL context: auto (EGL, else OSMesa), egl, osmesa, glfw (hidden window)")
         ->capture_default_str();
@@ -119,20 +145,29 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--background", o.background, "Environment radiance R,G,B (or one value), overriding the scene's")
         ->delimiter(',')
         ->expected(1, 3);
-    cmd.add_option("--spp", o.spp, "--gi pathtrace / ao-reference: samples per pixel")->capture_default_str();
-    cmd.add_option("--max-bounces", o.maxBounces, "--gi pathtrace: indirect bounces (0 = direct light only)")
-        ->capture_default_str();
-    cmd.add_option("--ao-samples", o.aoSamples, "--gi ssao: directions in the hemisphere kernel (1-256)")
-        ->capture_default_str();
-    cmd.add_option("--ao-steps", o.aoSteps, "--gi ssao: points tested along each direction")->capture_default_str();
-    cmd.add_option("--ao-radius", o.aoRadius, "SSAO / ao-reference radius in world units (0 = 15% of the scene diagonal)")
-        ->capture_default_str();
-    cmd.add_option("--ao-bias", o.aoBias, "--gi ssao: depth bias as a fraction of the radius")->capture_default_str();
-    cmd.add_option("--ao-power", o.aoPower, "--gi ssao: AO^power")->capture_default_str();
-    cmd.add_flag("--ao-no-blur", o.aoNoBlur, "--gi ssao: skip the bilateral blur");
-    cmd.add_flag("--ao-half-res", o.aoHalfRes, "--gi ssao: compute AO at half resolution");
-    cmd.add_flag("--ao-temporal", o.aoTemporal, "--gi ssao: temporal accumulation (reprojection, per-frame noise)");
-    cmd.add_option("--view", o.view, "What to output: final, ao (the ambient occlusion term alone)")
+    cmd.add_option("--preset", o.preset, "Quality preset of the --gi method: low, medium, high (see `gisandbox methods`)");
+    cmd.add_option("--set", o.sets,
+                   "A method parameter, METHOD.KEY=VALUE (repeatable; e.g. --set ssao.samples=32). "
+                   "`gisandbox methods NAME` lists them")
+        ->take_all()
+        ->allow_extra_args(false);
+    // Older flags stay as aliases of their parameter rows (one flag may set the same key of
+    // several methods, e.g. --spp for pathtrace and ao-reference).
+    for (const GiMethod& m : giMethods())
+        for (const ParamDesc& d : m.params) {
+            if (d.alias.empty() || o.aliases.count(d.alias) || o.aliasFlags.count(d.alias)) continue;
+            const std::string help = "Alias of --set " + m.name + "." + d.key + ": " + d.help;
+            if (d.type == ParamType::Bool) {
+                o.aliasFlags[d.alias] = false;
+                cmd.add_flag(d.alias, o.aliasFlags[d.alias], help);
+            } else {
+                o.aliases[d.alias] = "";
+                cmd.add_option(d.alias, o.aliases[d.alias], help);
+            }
+        }
+    cmd.add_option("--view", o.view,
+                   "What to output: final, or a debug view the method's passes offer (gbuffer.normal, ao, ...); "
+                   "`--view list` lists them")
         ->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable shadow maps");
     cmd.add_flag("--hdr32", o.hdr32, "Light into RGBA32F instead of RGBA16F");
@@ -169,13 +204,15 @@ int runRender(const RenderOptions& o) {
     if (sceneSpec.empty()) throw Error("--scene is required (or --settings FILE)");
     if (use("--size")) parseRenderSize(o.size, s.width, s.height);
     const bool exr = endsWith(o.out, ".exr");
-    if (!exr && !endsWith(o.out, ".png")) throw Error("--out '" + o.out + "' must end in .png or .exr");
+    const bool listViews = o.given && o.given("--view") && o.view == "list";
+    if (o.out.empty() && !listViews) throw Error("--out is required");
+    if (!listViews && !exr && !endsWith(o.out, ".png")) throw Error("--out '" + o.out + "' must end in .png or .exr");
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
     if (o.warmup < 0 || o.warmup >= o.frames) throw Error("--warmup must be in [0, --frames)");
     if (o.ambient.size() != 1 && o.ambient.size() != 3) throw Error("--ambient takes one value or R,G,B");
     if (use("--camera")) s.camera = o.camera;
     if (use("--gi")) s.gi = o.gi;
-    checkGiMethod(s.gi);
+    giMethod(s.gi);  // throws for an unknown method
     if (use("--diffuse")) s.diffuse = parseDiffuse(o.diffuse);
     if (use("--specular")) s.specular = parseSpecular(o.specular);
     if (use("--tonemap")) s.tonemap = parseTonemapper(o.tonemap);
@@ -191,17 +228,17 @@ int runRender(const RenderOptions& o) {
         s.background = o.background.size() == 3 ? glm::vec3(o.background[0], o.background[1], o.background[2])
                                                 : glm::vec3(o.background[0]);
     }
-    if (use("--spp")) s.spp = o.spp;
-    if (use("--max-bounces")) s.maxBounces = o.maxBounces;
-    if (use("--ao-samples")) s.aoSamples = o.aoSamples;
-    if (use("--ao-steps")) s.aoSteps = o.aoSteps;
-    if (use("--ao-radius")) s.aoRadius = o.aoRadius;
-    if (use("--ao-bias")) s.aoBias = o.aoBias;
-    if (use("--ao-power")) s.aoPower = o.aoPower;
-    if (use("--ao-no-blur")) s.aoBlur = !o.aoNoBlur;
-    if (use("--ao-half-res")) s.aoHalfResolution = o.aoHalfRes;
-    if (use("--ao-temporal")) s.aoTemporal = o.aoTemporal;
-    if (use("--view")) s.view = parseDebugView(o.view);
+    if (use("--preset") && !o.preset.empty()) applyPreset(s, s.gi, o.preset);
+    for (const auto& [flag, value] : o.aliases)
+        if (o.given && o.given(flag)) setParam(s, flag, value);
+    for (const auto& [flag, on] : o.aliasFlags)
+        if (o.given && o.given(flag)) setParam(s, flag, on ? "true" : "false");
+    for (const std::string& kv : o.sets) {
+        const size_t eq = kv.find('=');
+        if (eq == std::string::npos) throw Error("--set '" + kv + "' is not METHOD.KEY=VALUE");
+        setParam(s, kv.substr(0, eq), kv.substr(eq + 1));
+    }
+    if (use("--view")) s.view = o.view;
     // Progressive methods add a few samples per frame so progress can be shown between frames.
     s.samplesPerFrame = 4;
     {
@@ -225,6 +262,12 @@ int runRender(const RenderOptions& o) {
     } else {
         ctx = headlessContext(o.backend, o.glDebug, o.verbose);
     }
+    if (s.view == "list") {  // what this method's passes can show
+        s.view = "final";
+        Renderer lister(scene, s);
+        for (const DebugViewDesc& v : lister.views()) std::printf("%-20s %s\n", v.name.c_str(), v.help.c_str());
+        return 0;
+    }
     Renderer renderer(scene, s);
     if (viewSettings && viewSettings->camera.free && !use("--camera")) {  // the view's free camera
         renderer.setCamera(view::viewCameraMatrices(*viewSettings, scene, float(s.width) / float(s.height)));
@@ -232,7 +275,9 @@ int runRender(const RenderOptions& o) {
     const int frames = o.timings ? o.frames : 1;
     for (int i = 0; i < frames; ++i) renderer.renderFrame();
     if (!renderer.converged()) {
-        ProgressBar progress(s.spp);
+        int target = 0;
+        for (const auto& pass : renderer.passes()) target = std::max(target, pass->progress().target);
+        ProgressBar progress(target);
         do {
             renderer.renderFrame();
             glFinish();
@@ -244,21 +289,7 @@ int runRender(const RenderOptions& o) {
     if (exr) writeExr(o.out, renderer.readHdr());
     else writePng(o.out, renderer.readLdr());
 
-    if (o.timings) {
-        // GPU milliseconds per pass: median over the frames after warm-up; the first frame apart,
-        // since it builds what later frames reuse.
-        const auto& owners = renderer.memory().bytesByOwner;
-        std::printf("%-10s %10s %10s %9s\n", "pass", "median ms", "first ms", "MiB");
-        double total = 0.0;
-        for (const PassTiming& t : renderer.timings(o.warmup)) {
-            std::printf("%-10s %10.3f %10.3f %9.2f%s\n", t.pass.c_str(), t.medianMs, t.firstMs, mib(t.bytes),
-                        t.cached ? "  (cached: scene and lights unchanged)" : "");
-            total += t.medianMs;
-        }
-        std::printf("%-10s %10s %10s %9.2f\n", "scene", "", "", mib(owners.count("scene") ? owners.at("scene") : 0));
-        std::printf("%-10s %10.3f %10s %9.2f  (%dx%d, %d frames, median of the last %d)\n", "total", total, "",
-                    mib(renderer.memory().total()), s.width, s.height, frames, frames - o.warmup);
-    }
+    if (o.timings) printTimings(renderer, frames, o.warmup);
     std::printf("wrote %s\n", o.out.c_str());
     return 0;
 }
@@ -338,6 +369,48 @@ int runInfo(const InfoOptions& o) {
     return 0;
 }
 
+void addMethodsOptions(CLI::App& cmd, MethodsOptions& o) {
+    cmd.add_option("method", o.method, "A method: list its parameters (type, range, default, live/rebuild, help)");
+    cmd.add_flag("--json", o.json, "Print JSON instead of text");
+}
+
+int runMethods(const MethodsOptions& o) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::array();
+    std::vector<const GiMethod*> list;
+    if (o.method.empty())
+        for (const GiMethod& m : giMethods()) list.push_back(&m);
+    else
+        list.push_back(&giMethod(o.method));
+    for (const GiMethod* m : list) {
+        nlohmann::ordered_json e{{"name", m->name}, {"summary", m->summary},
+                                 {"pipeline", m->pipeline == MethodPipeline::Deferred ? "deferred" : "standalone"}};
+        for (const GiPreset& p : m->presets) e["presets"][p.name] = p.description;
+        for (const ParamDesc& d : m->params)
+            e["params"].push_back({{"key", m->name + "." + d.key}, {"type", paramTypeName(d.type)},
+                                   {"range", describeParamRange(d)}, {"default", formatParamValue(d, d.defaultValue)},
+                                   {"update", d.update == ParamUpdate::Live ? "live" : "rebuild"},
+                                   {"alias", d.alias}, {"label", d.label}, {"help", d.help}});
+        j.push_back(e);
+    }
+    if (o.json) {
+        std::printf("%s\n", j.dump(2).c_str());
+        return 0;
+    }
+    for (const GiMethod* m : list) {
+        std::printf("%-13s %s\n", m->name.c_str(), m->summary.c_str());
+        if (o.method.empty()) continue;
+        for (const GiPreset& p : m->presets) std::printf("  preset %-7s %s\n", p.name.c_str(), p.description.c_str());
+        if (m->params.empty()) std::printf("  (no parameters)\n");
+        for (const ParamDesc& d : m->params)
+            std::printf("  %-26s %-6s %-24s default %-10s %-7s %s%s\n", (m->name + "." + d.key).c_str(),
+                        paramTypeName(d.type), describeParamRange(d).c_str(), formatParamValue(d, d.defaultValue).c_str(),
+                        d.update == ParamUpdate::Live ? "live" : "rebuild", d.help.c_str(),
+                        d.alias.empty() ? "" : (" (alias " + d.alias + ")").c_str());
+    }
+    if (o.method.empty()) std::printf("\n`gisandbox methods NAME` lists a method's parameters and presets.\n");
+    return 0;
+}
+
 void addShaderDumpOptions(CLI::App& cmd, ShaderDumpOptions& o) {
     cmd.add_option("--dump", o.dir, "Directory to write PROGRAM.STAGEFILE files into (for glslangValidator)")
         ->required();
@@ -352,7 +425,8 @@ int runShaderDump(const ShaderDumpOptions& o) {
     for (const ProgramDesc& p : allPrograms()) {
         for (const std::string& stage : p.stages) {
             const PreprocessedShader pre = preprocessShader(stage, p.defines);
-            const std::string path = o.dir + "/" + p.name + "." + stage;
+            // A stage in a subfolder (gi/ssao/ssao.frag) is dumped flat: its file name is enough.
+            const std::string path = o.dir + "/" + p.name + "." + fs::path(stage).filename().string();
             writeAtomically(path, [&](const std::string& tmp) {
                 std::ofstream out(tmp, std::ios::binary);
                 out << pre.source;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <string>
 
 #include "gl/context.h"
@@ -30,16 +31,10 @@ struct RenderOptions {
     int frames = 30;
     int warmup = 5;
     std::vector<float> background;
-    int spp = 64;
-    int maxBounces = 16;
-    int aoSamples = 16;
-    int aoSteps = 4;
-    float aoRadius = 0.0f;
-    float aoBias = 0.03f;
-    float aoPower = 1.0f;
-    bool aoNoBlur = false;
-    bool aoHalfRes = false;
-    bool aoTemporal = false;
+    std::string preset;                      // --preset low|medium|high: the method's preset
+    std::vector<std::string> sets;           // --set METHOD.KEY=VALUE, in order
+    std::map<std::string, std::string> aliases;  // older flags of parameter rows: --spp, --ao-samples ...
+    std::map<std::string, bool> aliasFlags;      // boolean ones: --ao-half-res, --ao-temporal
     std::string view = "final";
     bool glDebug = false;
     bool verbose = false;
@@ -56,6 +51,11 @@ struct InfoOptions {
     std::string backend = "auto";
     bool json = false;
     bool noGpu = false;
+};
+
+struct MethodsOptions {
+    std::string method;   // empty: list every method
+    bool json = false;
 };
 
 struct ShaderDumpOptions {
@@ -113,6 +113,8 @@ int runView(const ViewOptions& o);
 void addRenderOptions(CLI::App& cmd, RenderOptions& o);
 void addInfoOptions(CLI::App& cmd, InfoOptions& o);
 void addShaderDumpOptions(CLI::App& cmd, ShaderDumpOptions& o);
+void addMethodsOptions(CLI::App& cmd, MethodsOptions& o);
+int runMethods(const MethodsOptions& o);
 void addDiffOptions(CLI::App& cmd, DiffOptions& o);
 
 int runRender(const RenderOptions& o);

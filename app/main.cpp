@@ -25,6 +25,9 @@ int main(int argc, char** argv) {
     CLI::App* infoCmd = app.add_subcommand("info", "Print a scene's meshes, triangles, materials, lights, bounds and GPU memory");
     gis::addInfoOptions(*infoCmd, info);
 
+    gis::MethodsOptions methods;
+    CLI::App* methodsCmd = app.add_subcommand("methods", "List the GI methods, or one method's parameters and presets");
+    gis::addMethodsOptions(*methodsCmd, methods);
     gis::ShaderDumpOptions dump;
     CLI::App* shadersCmd = app.add_subcommand("shaders", "Write every shader program the app can request, preprocessed");
     gis::addShaderDumpOptions(*shadersCmd, dump);
@@ -48,6 +51,7 @@ int main(int argc, char** argv) {
         if (renderCmd->parsed()) return gis::runRender(render);
         if (infoCmd->parsed()) return gis::runInfo(info);
         if (shadersCmd->parsed()) return gis::runShaderDump(dump);
+        if (methodsCmd->parsed()) return gis::runMethods(methods);
         if (benchCmd->parsed()) return gis::runBench(bench);
         if (diffCmd->parsed()) return gis::runDiff(diff);
         if (viewCmd->parsed()) return gis::runView(view);

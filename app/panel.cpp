@@ -9,24 +9,13 @@
 #include <sstream>
 
 #include "brdf_cpu.h"
-#include "presets.h"
+#include "gi/method.h"
 
 namespace gis::view {
 
 namespace {
 
 constexpr float kDegrees = 57.29577951308232f;
-
-std::vector<std::string> methodNames() {
-    std::vector<std::string> names;
-    std::stringstream in(giMethodNames());
-    for (std::string n; std::getline(in, n, ',');) {
-        n.erase(0, n.find_first_not_of(' '));
-        n.erase(n.find_last_not_of(' ') + 1);
-        if (!n.empty()) names.push_back(n);
-    }
-    return names;
-}
 
 // A combo over names; calls `choose` with the one picked.
 template <typename F>
@@ -50,13 +39,85 @@ const char* paneTitle(ViewMode mode, int i) {
 
 double mib(int64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 
+// One widget per row of the pane's method's parameter table, with the row's range; a change is
+// a SetParam action (live rows never rebuild the pane's renderer).
+void paramControls(PanelContext& ctx, int pane) {
+    const PaneState& p = ctx.state.panes[pane];
+    const GiMethod& m = giMethod(p.gi);
+    if (m.params.empty()) return;
+    if (!ImGui::TreeNode("params", "Parameters (%zu)%s", m.params.size(), p.params.empty() ? "" : " *")) return;
+    for (const ParamDesc& d : m.params) {
+        const std::string key = m.name + "." + d.key;
+        const ParamValue v = paneParam(ctx.state, pane, m.name, d);
+        auto set = [&](const ParamValue& nv) { act(ctx, PanelAction::param(pane, key, formatParamValue(d, nv))); };
+        const std::string label = d.label + (d.update == ParamUpdate::Rebuild ? " *" : "");
+        ParamValue nv = v;
+        switch (d.type) {
+            case ParamType::Int: {
+                int x = int(v.number);
+                const bool wide = d.max - d.min > 4096;
+                if (wide ? ImGui::DragInt(label.c_str(), &x, 1.0f, int(d.min), int(d.max))
+                         : ImGui::SliderInt(label.c_str(), &x, int(d.min), int(d.max))) {
+                    nv.number = std::clamp(double(x), d.min, d.max);
+                    set(nv);
+                }
+                break;
+            }
+            case ParamType::Float: {
+                float x = float(v.number);
+                if (ImGui::DragFloat(label.c_str(), &x, float(std::max(std::abs(v.number), 1e-3) * 0.01), float(d.min),
+                                     float(std::min(d.max, 3e38)), "%.4g")) {
+                    nv.number = std::clamp(double(x), d.min, d.max);
+                    set(nv);
+                }
+                break;
+            }
+            case ParamType::Bool: {
+                bool x = v.number != 0;
+                if (ImGui::Checkbox(label.c_str(), &x)) {
+                    nv.number = x ? 1 : 0;
+                    set(nv);
+                }
+                break;
+            }
+            case ParamType::Choice:
+                combo(label.c_str(), v.text, d.choices, [&](const std::string& n) {
+                    nv.text = n;
+                    set(nv);
+                });
+                break;
+            case ParamType::Colour: {
+                glm::vec3 c = v.colour;
+                if (ImGui::ColorEdit3(label.c_str(), &c[0], ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
+                    nv.colour = glm::clamp(c, glm::vec3(0.0f), glm::vec3(float(d.max)));
+                    set(nv);
+                }
+                break;
+            }
+        }
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("%s = %s\n%s\nrange %s, default %s%s", key.c_str(), formatParamValue(d, v).c_str(),
+                              d.help.c_str(), describeParamRange(d).c_str(), formatParamValue(d, d.defaultValue).c_str(),
+                              d.update == ParamUpdate::Rebuild ? "\n* rebuilds the pane's renderer" : "");
+    }
+    if (!p.params.empty() && ImGui::Button("Reset to preset")) {
+        PanelAction a;
+        a.kind = PanelAction::ResetParams;
+        a.index = pane;
+        act(ctx, a);
+    }
+    ImGui::TreePop();
+}
+
 void paneControls(PanelContext& ctx, int i) {
     ViewState& s = ctx.state;
     const PaneState& p = s.panes[i];
     ImGui::PushID(i);
-    combo("GI method", p.gi, methodNames(), [&](const std::string& n) { act(ctx, PanelAction::method(i, n)); });
+    combo("GI method", p.gi, methodChoices(), [&](const std::string& n) { act(ctx, PanelAction::method(i, n)); });
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", giMethod(p.gi).summary.c_str());
     combo("Preset", p.preset, presetNames(), [&](const std::string& n) { act(ctx, PanelAction::preset(i, n)); });
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", describePreset(p.gi, p.preset).c_str());
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", giMethod(p.gi).preset(p.preset).description.c_str());
+    paramControls(ctx, i);
     std::vector<std::string> diffuse, specular;
     for (const DiffuseModelInfo& m : diffuseModels()) diffuse.push_back(m.name);
     for (const SpecularModelInfo& m : specularModels()) specular.push_back(m.name);
@@ -64,12 +125,14 @@ void paneControls(PanelContext& ctx, int i) {
           [&](const std::string& n) { act(ctx, PanelAction::diffuse(i, n)); });
     combo("Specular BRDF", specularModelName(p.specular), specular,
           [&](const std::string& n) { act(ctx, PanelAction::specular(i, n)); });
-    std::vector<std::string> displays;
-    for (PaneDisplay d : allPaneDisplays()) displays.push_back(paneDisplayName(d));
-    combo("Display", paneDisplayName(p.display), displays,
-          [&](const std::string& n) { act(ctx, PanelAction::display(i, parsePaneDisplay(n))); });
+    const PaneView& view = ctx.session.pane(i);
+    const std::vector<std::string> displays =
+        displayChoices(view.renderer ? view.renderer->views() : std::vector<DebugViewDesc>{});
+    combo("Display", p.display == PaneDisplay::Method ? p.methodView : paneDisplayName(p.display), displays,
+          [&](const std::string& n) { act(ctx, PanelAction::display(i, n)); });
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("lit image, error heatmap against the path-traced reference, or a G-buffer channel");
+        ImGui::SetTooltip("lit image, error heatmap against the path-traced reference, a G-buffer channel, or a "
+                          "debug view of the method's passes");
     bool direct = p.directOnly;
     if (ImGui::Checkbox("Direct light only", &direct)) act(ctx, PanelAction::directOnly(i, direct));
     const PaneView& pv = ctx.session.pane(i);

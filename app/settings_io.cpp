@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "brdf_cpu.h"
+#include "gi/method.h"
 #include "image.h"
 
 namespace gis::view {
@@ -56,6 +57,42 @@ const char* lightTypeName(LightType t) {
 
 }  // namespace
 
+ojson paramToJson(const ParamDesc& d, const ParamValue& v) {
+    switch (d.type) {
+        case ParamType::Int: return int64_t(v.number);
+        case ParamType::Float: return v.number;
+        case ParamType::Bool: return v.number != 0;
+        case ParamType::Choice: return v.text;
+        case ParamType::Colour: return vec(v.colour);
+    }
+    return nullptr;
+}
+
+ParamValue paramFromJson(const std::string& fullKey, const json& j) {
+    std::string method;
+    const ParamDesc& d = findParam(fullKey, &method);
+    if (fullKey != method + "." + d.key) throw Error("'" + fullKey + "' is a flag, not METHOD.KEY");
+    ParamValue v;
+    switch (d.type) {
+        case ParamType::Int: v.number = integer(j, fullKey); break;
+        case ParamType::Float:
+            if (!j.is_number() || !std::isfinite(j.get<double>())) throw Error("'" + fullKey + "' must be a number");
+            v.number = j.get<double>();
+            break;
+        case ParamType::Bool: v.number = boolean(j, fullKey) ? 1 : 0; break;
+        case ParamType::Choice: v.text = text(j, fullKey); break;
+        case ParamType::Colour: v.colour = vec3(j, fullKey); break;
+    }
+    checkParamValue(method, d, v);
+    return v;
+}
+
+ojson paramsToJson(const ParamValues& values) {
+    ojson j = ojson::object();
+    for (const auto& [key, value] : values) j[key] = paramToJson(findParam(key), value);
+    return j;
+}
+
 ojson lightToJson(const Light& l) {
     return ojson{{"name", l.name},
                  {"type", lightTypeName(l.type)},
@@ -104,9 +141,11 @@ ojson viewStateToJson(const ViewState& s) {
     for (const PaneState& p : s.panes)
         j["panes"].push_back(ojson{{"gi", p.gi},
                                    {"preset", p.preset},
+                                   {"params", paramsToJson(p.params)},
                                    {"diffuse", diffuseModelName(p.diffuse)},
                                    {"specular", specularModelName(p.specular)},
-                                   {"display", paneDisplayName(p.display)},
+                                   {"display", p.display == PaneDisplay::Method ? p.methodView
+                                                                                : paneDisplayName(p.display)},
                                    {"direct_only", p.directOnly}});
     j["tonemap"] = s.tonemap == Tonemapper::Aces ? "aces" : "linear";
     j["exposure"] = s.exposureEV;
@@ -186,7 +225,15 @@ void viewStateFromJson(const json& j, ViewState& state) {
                         else if (pk == "preset") apply(PanelAction::preset(p, text(pv, key)));
                         else if (pk == "diffuse") apply(PanelAction::diffuse(p, text(pv, key)));
                         else if (pk == "specular") apply(PanelAction::specular(p, text(pv, key)));
-                        else if (pk == "display") apply(PanelAction::display(p, parsePaneDisplay(text(pv, key))));
+                        else if (pk == "display") apply(PanelAction::display(p, text(pv, key)));
+                        else if (pk == "params") {
+                            if (!pv.is_object()) throw Error("must be an object of \"method.key\": value");
+                            s.panes[i].params.clear();
+                            for (const auto& [name, value] : pv.items()) {
+                                key = "panes[" + std::to_string(i) + "].params." + name;
+                                s.panes[i].params[name] = paramFromJson(name, value);
+                            }
+                        }
                         else if (pk == "direct_only") apply(PanelAction::directOnly(p, boolean(pv, key)));
                         else throw Error("unknown key");
                     }
@@ -337,17 +384,19 @@ ViewState loadViewSettings(const std::string& path) {
     return s;
 }
 
-// A trip-wire: the view rebuilds a pane's renderer when renderSettingsToJson's output changes, so a
-// RenderSettings field missing there would be silently ignored by the view. When RenderSettings
-// gains a field, add it to renderSettingsToJson below, then update this size (x86-64).
-static_assert(sizeof(RenderSettings) == 152,
-              "RenderSettings changed: add the new field to renderSettingsToJson (app/settings_io.cpp)");
-
 ojson renderSettingsToJson(const RenderSettings& s) {
+    // Every parameter of the method, defaults included, so a sidecar says what was rendered.
+    ParamValues params;
+    const GiMethod& m = giMethod(s.gi);
+    for (const ParamDesc& d : m.params) {
+        auto it = s.params.find(m.name + "." + d.key);
+        params[m.name + "." + d.key] = it == s.params.end() ? d.defaultValue : it->second;
+    }
     return ojson{{"width", s.width},
                  {"height", s.height},
                  {"camera", s.camera},
                  {"gi", s.gi},
+                 {"params", paramsToJson(params)},
                  {"diffuse", diffuseModelName(s.diffuse)},
                  {"specular", specularModelName(s.specular)},
                  {"tonemap", s.tonemap == Tonemapper::Aces ? "aces" : "linear"},
@@ -358,20 +407,9 @@ ojson renderSettingsToJson(const RenderSettings& s) {
                  {"shadows", s.shadows},
                  {"hdr32", s.hdr32},
                  {"background", s.background ? vec(*s.background) : ojson(nullptr)},
-                 {"spp", s.spp},
                  {"samples_per_frame", s.samplesPerFrame},
-                 {"max_bounces", s.maxBounces},
-                 {"russian_roulette_start", s.russianRouletteStart},
                  {"seed", s.seed},
-                 {"ao_samples", s.aoSamples},
-                 {"ao_steps", s.aoSteps},
-                 {"ao_radius", s.aoRadius},
-                 {"ao_bias", s.aoBias},
-                 {"ao_power", s.aoPower},
-                 {"ao_blur", s.aoBlur},
-                 {"ao_half_resolution", s.aoHalfResolution},
-                 {"ao_temporal", s.aoTemporal},
-                 {"view", s.view == DebugView::AmbientOcclusion ? "ao" : "final"}};
+                 {"view", s.view}};
 }
 
 }  // namespace gis::view

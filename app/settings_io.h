@@ -25,9 +25,14 @@ void viewStateFromJson(const nlohmann::json& json, ViewState& state);
 void saveViewSettings(const std::string& path, const ViewState& state);
 ViewState loadViewSettings(const std::string& path);
 
-// Every field of a RenderSettings (screenshot sidecars; the view compares them to decide when a
-// renderer must be rebuilt).
+// Every field of a RenderSettings and every parameter of its method (screenshot sidecars).
 nlohmann::ordered_json renderSettingsToJson(const RenderSettings& settings);
+
+// Method parameters in JSON: {"ssao.samples": 32, "vct.conservative": "geometry", ...}, each value
+// of its row's type, validated by the row.
+nlohmann::ordered_json paramToJson(const ParamDesc& desc, const ParamValue& value);
+ParamValue paramFromJson(const std::string& fullKey, const nlohmann::json& value);
+nlohmann::ordered_json paramsToJson(const ParamValues& values);
 
 nlohmann::ordered_json lightToJson(const Light& light);
 Light lightFromJson(const nlohmann::json& json);

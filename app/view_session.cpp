@@ -20,16 +20,6 @@ bool sameCamera(const CameraMatrices& a, const CameraMatrices& b) {
     return a.viewProj == b.viewProj && a.position == b.position;
 }
 
-GBufferChannel channelOf(PaneDisplay d) {
-    switch (d) {
-        case PaneDisplay::Depth: return GBufferChannel::Depth;
-        case PaneDisplay::Normal: return GBufferChannel::Normal;
-        case PaneDisplay::BaseColor: return GBufferChannel::BaseColor;
-        case PaneDisplay::Material: return GBufferChannel::Material;
-        default: return GBufferChannel::Emissive;
-    }
-}
-
 std::string lightsKey(const std::vector<Light>& lights) {
     nlohmann::ordered_json j = nlohmann::ordered_json::array();
     for (const Light& l : lights) j.push_back(lightToJson(l));
@@ -54,6 +44,16 @@ void push(std::deque<T>& d, T v) {
     while (d.size() > size_t(kHistoryFrames)) d.pop_front();
 }
 
+// "12/64 spp" for a progressive method, "64 spp" once converged, "" for the others.
+std::string progressText(const Renderer& r) {
+    for (const auto& pass : r.passes()) {
+        const Pass::Progress pr = pass->progress();
+        if (pr.target <= 0) continue;
+        return (pr.done >= pr.target ? "" : std::to_string(pr.done) + "/") + std::to_string(pr.target) + " spp";
+    }
+    return "";
+}
+
 std::string describe(const std::exception& e) {
     return dynamic_cast<const std::bad_alloc*>(&e) ? std::string("out of memory") : std::string(e.what());
 }
@@ -66,10 +66,7 @@ std::string structuralKey(const RenderSettings& settings) {
     return j.dump();
 }
 
-ViewSession::ViewSession() {
-    visualizer_ = std::make_unique<GBufferVisualizer>();
-    readFbo_ = gl::createFramebuffer();
-}
+ViewSession::ViewSession() { readFbo_ = gl::createFramebuffer(); }
 
 ViewSession::~ViewSession() { releaseRenderers(); }
 
@@ -133,20 +130,16 @@ void ViewSession::syncLights(const ViewState& state) {
     const std::vector<Light> lights = effectiveLights(state, sceneLights_);
     const std::string key = lightsKey(lights);
     if (key == lightsKey_) return;
-    releaseRenderers();  // every pass that reads lights bakes them in
+    // The renderers survive: each pass that holds lights (shadow maps, the path tracer's buffers)
+    // takes them again, and progressive passes start over.
     scene_->lights = lights;
     lightsKey_ = key;
-}
-
-float ViewSession::maxDistance(const CameraMatrices& camera) const {
-    const Aabb& b = scene_->bounds;
-    if (b.empty()) return 1.0f;
-    float d = 0.0f;
-    for (int i = 0; i < 8; ++i) {
-        const glm::vec3 c(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z);
-        d = std::max(d, glm::length(c - camera.position));
+    for (PaneView& p : panes_)
+        if (p.renderer) p.renderer->lightsChanged();
+    for (auto& [refKey, ref] : references_) {
+        ref.renderer->lightsChanged();
+        ref.image = ImageF{};
     }
-    return std::max(d, 1e-6f);
 }
 
 void ViewSession::renderFrame(const ViewState& state, int viewWidth, int viewHeight) {
@@ -181,7 +174,7 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
     PaneView& p = panes_[index];
     const RenderSettings want = paneSettings(state, index, paneSize_);
     const std::string key = structuralKey(want);
-    if (!p.renderer || key != p.builtKey) {
+    if (!p.renderer || requiresRebuild(p.renderer->settings(), want)) {
         if (key == p.failedKey) {
             p.shown = 0;
             return;
@@ -190,7 +183,6 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
         try {
             p.renderer = std::make_unique<Renderer>(*scene_, want);
             ++rebuilds_;
-            p.builtKey = key;
         } catch (const std::exception& e) {
             p.renderer.reset();
             p.failedKey = key;
@@ -201,7 +193,7 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
     }
     Renderer& r = *p.renderer;
     try {
-        r.setLiveSettings(want.diffuse, want.specular, want.tonemap, want.exposureEV);
+        r.setLiveSettings(want);
         if (!p.cameraSet || !sameCamera(p.camera, camera)) {
             r.setCamera(camera);
             p.camera = camera;
@@ -209,15 +201,10 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
         }
         r.renderFrame();
         collectTimings(p);
-        p.status = want.gi != "pathtrace" ? ""
-                   : r.converged()        ? std::to_string(want.spp) + " spp"
-                                          : std::to_string(r.samplesDone()) + "/" + std::to_string(want.spp) + " spp";
+        p.status = progressText(r);
         const PaneDisplay display = state.panes[index].display;
         p.heatmapWanted = display == PaneDisplay::Heatmap;
-        if (isGBufferDisplay(display)) {
-            visualizer_->draw(r, channelOf(display), maxDistance(camera), ensureDisplay(p));
-            p.shown = p.display.id();
-        } else if (display == PaneDisplay::Heatmap) {
+        if (display == PaneDisplay::Heatmap) {
             updateHeatmap(state, index, camera);
         } else {
             p.shown = r.frameTexture("display");
@@ -304,7 +291,7 @@ void ViewSession::updateHeatmap(const ViewState& state, int index, const CameraM
     }
     char cam[64];
     std::snprintf(cam, sizeof cam, "%a,%a,%a", camera.position.x, camera.position.y, camera.position.z);
-    const std::string key = p.builtKey + "|" + std::to_string(int(state.panes[index].diffuse)) + "|" +
+    const std::string key = structuralKey(r.settings()) + "|" + std::to_string(int(state.panes[index].diffuse)) + "|" +
                             std::to_string(int(state.panes[index].specular)) + "|" + std::to_string(int(state.tonemap)) +
                             "|" + std::to_string(state.exposureEV) + "|" + errorMetricName(state.heatmapMetric) + "|" +
                             cam + "|" + std::to_string(reinterpret_cast<uintptr_t>(ref));

@@ -19,7 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "debug_view.h"
+#include "renderer.h"
 #include "image.h"
 #include "renderer.h"
 #include "view_state.h"
@@ -38,7 +38,6 @@ struct PassHistory {
 // One visible pane: its renderer and what it shows.
 struct PaneView {
     std::unique_ptr<Renderer> renderer;
-    std::string builtKey;             // the settings it was built with (live ones left out)
     std::string failedKey;            // settings whose build failed (not retried until they change)
     CameraMatrices camera;
     bool cameraSet = false;
@@ -113,14 +112,12 @@ private:
     Reference* reference(const ViewState& state, int index, const CameraMatrices& camera);
     void collectTimings(PaneView& pane);
     GLuint ensureDisplay(PaneView& pane);
-    float maxDistance(const CameraMatrices& camera) const;
 
     std::unique_ptr<Scene> scene_;
     std::vector<Light> sceneLights_;     // as loaded
     std::string lightsKey_;              // the lights scene_ holds now
     PaneView panes_[kMaxPanes];
     std::map<std::string, Reference> references_;
-    std::unique_ptr<GBufferVisualizer> visualizer_;
     gl::Object readFbo_;
     glm::ivec2 paneSize_{1, 1};
     int visible_ = 0;
@@ -129,7 +126,7 @@ private:
     std::string lastError_;
 };
 
-// Key of the settings a Renderer bakes in (renderSettingsToJson without the live ones).
+// Key of a renderer's settings without the BRDFs and tone mapping (references, failed builds).
 std::string structuralKey(const RenderSettings& settings);
 
 }  // namespace gis::view

@@ -7,7 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "brdf_cpu.h"
-#include "presets.h"
+#include "gi/method.h"
 
 namespace gis::view {
 
@@ -95,6 +95,7 @@ const char* paneDisplayName(PaneDisplay d) {
         case PaneDisplay::Material: return "material";
         case PaneDisplay::Emissive: return "emissive";
         case PaneDisplay::Ao: return "ao";
+        case PaneDisplay::Method: return "method";
     }
     return "?";
 }
@@ -106,7 +107,7 @@ PaneDisplay parsePaneDisplay(const std::string& s) {
 }
 
 bool isGBufferDisplay(PaneDisplay d) {
-    return d != PaneDisplay::Lit && d != PaneDisplay::Heatmap && d != PaneDisplay::Ao;
+    return d != PaneDisplay::Lit && d != PaneDisplay::Heatmap && d != PaneDisplay::Ao && d != PaneDisplay::Method;
 }
 
 // --- Action constructors.
@@ -144,6 +145,21 @@ PanelAction PanelAction::display(int pane, PaneDisplay d) {
     a.kind = SetDisplay;
     a.index = pane;
     a.text = paneDisplayName(d);
+    return a;
+}
+PanelAction PanelAction::display(int pane, std::string name) {
+    PanelAction a;
+    a.kind = SetDisplay;
+    a.index = pane;
+    a.text = std::move(name);
+    return a;
+}
+PanelAction PanelAction::param(int pane, std::string fullKey, std::string value) {
+    PanelAction a;
+    a.kind = SetParam;
+    a.index = pane;
+    a.text = std::move(fullKey);
+    a.valueText = std::move(value);
     return a;
 }
 PanelAction PanelAction::directOnly(int pane, bool on) {
@@ -279,8 +295,21 @@ void applyPanelAction(ViewState& state, const PanelAction& a) {
     switch (a.kind) {
         case PanelAction::SetMethod:
             checkPane(a.index);
-            checkGiMethod(a.text);
+            giMethod(a.text);  // throws for an unknown one
             s.panes[a.index].gi = a.text;
+            if (s.panes[a.index].display == PaneDisplay::Method) s.panes[a.index].display = PaneDisplay::Lit;
+            break;
+        case PanelAction::SetParam: {
+            checkPane(a.index);
+            std::string method;
+            const ParamDesc& d = findParam(a.text, &method);
+            if (a.text != method + "." + d.key) throw Error("set takes METHOD.KEY, not the flag '" + a.text + "'");
+            s.panes[a.index].params[a.text] = parseParamValue(method, d, a.valueText);
+            break;
+        }
+        case PanelAction::ResetParams:
+            checkPane(a.index);
+            s.panes[a.index].params.clear();
             break;
         case PanelAction::SetPreset: {
             checkPane(a.index);
@@ -300,7 +329,12 @@ void applyPanelAction(ViewState& state, const PanelAction& a) {
             break;
         case PanelAction::SetDisplay:
             checkPane(a.index);
-            s.panes[a.index].display = parsePaneDisplay(a.text);
+            if (a.text.find('.') != std::string::npos && a.text.rfind("gbuffer.", 0) != 0) {
+                s.panes[a.index].display = PaneDisplay::Method;  // the renderer says whether it exists
+                s.panes[a.index].methodView = a.text;
+            } else {
+                s.panes[a.index].display = parsePaneDisplay(a.text);
+            }
             break;
         case PanelAction::SetDirectOnly:
             checkPane(a.index);
@@ -332,9 +366,8 @@ void applyPanelAction(ViewState& state, const PanelAction& a) {
             if (glm::any(glm::lessThan(a.vec, glm::vec3(0.0f)))) throw Error("background radiance must be non-negative");
             s.background = a.vec;
             break;
-        case PanelAction::SetMaxBounces:
-            if (a.value < 0.0f || a.value > 1024.0f || a.value != std::floor(a.value))
-                throw Error("max bounces must be a whole number in [0, 1024]");
+        case PanelAction::SetMaxBounces:  // the path tracer's row gives the range
+            checkParamValue("pathtrace", *giMethod("pathtrace").param("bounces"), ParamValue{a.value});
             s.maxBounces = int(a.value);
             break;
         case PanelAction::SetRenderScale:
@@ -344,8 +377,7 @@ void applyPanelAction(ViewState& state, const PanelAction& a) {
             break;
         case PanelAction::SetHeatmapMetric: s.heatmapMetric = parseErrorMetric(a.text); break;
         case PanelAction::SetReferenceSpp:
-            if (a.value < 1.0f || a.value > 65536.0f || a.value != std::floor(a.value))
-                throw Error("reference spp must be a whole number in [1, 65536]");
+            checkParamValue("pathtrace", *giMethod("pathtrace").param("spp"), ParamValue{a.value});
             s.referenceSpp = int(a.value);
             break;
         case PanelAction::SetCameraMode:
@@ -527,11 +559,22 @@ PanelAction parsePanelAction(const std::vector<std::string>& w) {
         a.text = w[2];
         return a;
     };
-    if (cmd == "method") return paneText(PanelAction::SetMethod, "method PANE none|pathtrace");
+    if (cmd == "method") return paneText(PanelAction::SetMethod, "method PANE NAME (gisandbox methods)");
+    if (cmd == "set") {
+        need(4, "set PANE METHOD.KEY VALUE");
+        return PanelAction::param(integer(w[1]), w[2], w[3]);
+    }
+    if (cmd == "reset-params") {
+        need(2, "reset-params PANE");
+        a.kind = PanelAction::ResetParams;
+        a.index = integer(w[1]);
+        return a;
+    }
     if (cmd == "preset") return paneText(PanelAction::SetPreset, "preset PANE low|medium|high");
     if (cmd == "diffuse") return paneText(PanelAction::SetDiffuse, "diffuse PANE NAME");
     if (cmd == "specular") return paneText(PanelAction::SetSpecular, "specular PANE NAME");
-    if (cmd == "display") return paneText(PanelAction::SetDisplay, "display PANE lit|heatmap|depth|normal|basecolor|material|emissive");
+    if (cmd == "display")
+        return paneText(PanelAction::SetDisplay, "display PANE lit|heatmap|depth|normal|basecolor|material|emissive|ao|VIEW");
     if (cmd == "direct-only") {
         need(3, "direct-only PANE on|off");
         return PanelAction::directOnly(integer(w[1]), onOff(w[2]));
@@ -716,6 +759,21 @@ glm::ivec2 paneRenderSize(const ViewState& state, int viewWidth, int viewHeight)
     return glm::max(glm::ivec2(glm::round(glm::vec2(r.w, r.h) * state.renderScale)), glm::ivec2(1));
 }
 
+namespace {
+std::string rendererView(const PaneState& p) {
+    switch (p.display) {
+        case PaneDisplay::Depth: return "gbuffer.depth";
+        case PaneDisplay::Normal: return "gbuffer.normal";
+        case PaneDisplay::BaseColor: return "gbuffer.basecolor";
+        case PaneDisplay::Material: return "gbuffer.material";
+        case PaneDisplay::Emissive: return "gbuffer.emissive";
+        case PaneDisplay::Ao: return "ao";
+        case PaneDisplay::Method: return p.methodView;
+        default: return "final";
+    }
+}
+}  // namespace
+
 RenderSettings paneSettings(const ViewState& state, int pane, glm::ivec2 size) {
     checkPane(pane);
     const PaneState& p = state.panes[pane];
@@ -728,15 +786,16 @@ RenderSettings paneSettings(const ViewState& state, int pane, glm::ivec2 size) {
     s.ambient = state.ambient;
     s.shadows = state.shadows;
     s.background = state.background;
-    s.maxBounces = state.maxBounces;
-    applyPreset(s, isGBufferDisplay(p.display) ? "none" : p.gi, p.preset);
+    applyPreset(s, p.gi, p.preset);
+    s.params["pathtrace.bounces"] = ParamValue{double(state.maxBounces)};  // shared by every pane
+    for (const auto& [key, value] : p.params) s.params[key] = value;       // the pane's own edits
     s.samplesPerFrame = 1;  // progressive: a sample per displayed frame
     s.diffuse = p.diffuse;
     s.specular = p.specular;
-    if (p.display == PaneDisplay::Ao) s.view = DebugView::AmbientOcclusion;
+    s.view = rendererView(p);
     if (p.directOnly) {
-        if (s.gi == "none") s.ambient = glm::vec3(0.0f);
-        if (s.gi == "pathtrace") s.maxBounces = 0;
+        if (giMethod(s.gi).pipeline == MethodPipeline::Deferred) s.ambient = glm::vec3(0.0f);
+        if (s.gi == "pathtrace") s.params["pathtrace.bounces"] = ParamValue{0.0};
     }
     return s;
 }
@@ -744,22 +803,44 @@ RenderSettings paneSettings(const ViewState& state, int pane, glm::ivec2 size) {
 RenderSettings referenceSettings(const ViewState& state, int pane, glm::ivec2 size) {
     RenderSettings s = paneSettings(state, pane, size);
     s.gi = "pathtrace";
-    s.spp = state.referenceSpp;
+    s.params = {{"pathtrace.spp", ParamValue{double(state.referenceSpp)}},
+                {"pathtrace.bounces", ParamValue{double(state.maxBounces)}}};
     s.samplesPerFrame = 1;
-    s.maxBounces = state.maxBounces;
     s.ambient = state.ambient;
+    s.view = "final";
     return s;
+}
+
+std::vector<std::string> methodChoices() {
+    std::vector<std::string> names;
+    for (const GiMethod& m : giMethods()) names.push_back(m.name);
+    return names;
+}
+
+std::vector<std::string> displayChoices(const std::vector<DebugViewDesc>& views) {
+    std::vector<std::string> names;
+    for (PaneDisplay d : allPaneDisplays()) names.push_back(paneDisplayName(d));
+    for (const DebugViewDesc& v : views)
+        if (v.name != "final" && v.name != "ao" && v.name.rfind("gbuffer.", 0) != 0) names.push_back(v.name);
+    return names;
+}
+
+ParamValue paneParam(const ViewState& state, int pane, const std::string& method, const ParamDesc& desc) {
+    const RenderSettings s = paneSettings(state, pane, {1, 1});
+    auto it = s.params.find(method + "." + desc.key);
+    return it == s.params.end() ? desc.defaultValue : it->second;
 }
 
 std::string paneLabel(const ViewState& state, int pane) {
     const PaneState& p = state.panes[pane];
-    std::string label = (isGBufferDisplay(p.display) ? std::string("gbuffer") : p.gi + "/" + p.preset) + " " +
-                        diffuseModelName(p.diffuse) + "+" + specularModelName(p.specular);
+    std::string label = p.gi + "/" + p.preset + (p.params.empty() ? "" : "*") + " " + diffuseModelName(p.diffuse) +
+                        "+" + specularModelName(p.specular);
     if (p.directOnly && !isGBufferDisplay(p.display)) label += " direct";
     if (p.display != PaneDisplay::Lit)
         label += std::string(" [") +
-                 (p.display == PaneDisplay::Heatmap ? std::string(errorMetricName(state.heatmapMetric)) + " heatmap"
-                                                    : paneDisplayName(p.display)) +
+                 (p.display == PaneDisplay::Heatmap  ? std::string(errorMetricName(state.heatmapMetric)) + " heatmap"
+                  : p.display == PaneDisplay::Method ? p.methodView
+                                                     : paneDisplayName(p.display)) +
                  "]";
     return label;
 }

@@ -18,7 +18,8 @@ namespace gis::view {
 
 enum class ViewMode { Single, Split, Grid };          // 1 pane; 2 panes with a divider; 2x2 panes
 // Ao: the ambient occlusion term alone (SSAO for --gi ssao, the image itself for ao-reference).
-enum class PaneDisplay { Lit, Heatmap, Depth, Normal, BaseColor, Material, Emissive, Ao };
+// Method: a debug view the pane's method offers (PaneState::methodView, e.g. "vct.slice").
+enum class PaneDisplay { Lit, Heatmap, Depth, Normal, BaseColor, Material, Emissive, Ao, Method };
 enum class CameraMode { Orbit, Fly };
 
 constexpr int kMaxPanes = 4;
@@ -28,13 +29,16 @@ const char* viewModeName(ViewMode m);
 ViewMode parseViewMode(const std::string& s);        // single, split, grid
 const char* paneDisplayName(PaneDisplay d);
 PaneDisplay parsePaneDisplay(const std::string& s);  // lit, heatmap, depth, normal, basecolor, material, emissive, ao
-const std::vector<PaneDisplay>& allPaneDisplays();
+const std::vector<PaneDisplay>& allPaneDisplays();   // the fixed ones (not Method)
 bool isGBufferDisplay(PaneDisplay d);                // depth .. emissive
+// The renderer's view name for a display ("final", "gbuffer.normal", "ao", a method's view).
 
 // What one pane shows: its own GI method (with a quality preset) and BRDFs; everything else is shared.
 struct PaneState {
     std::string gi = "none";
     std::string preset = "medium";
+    ParamValues params;        // the panel's parameter edits, over the preset ("method.key" -> value)
+    std::string methodView;    // display Method: which of the method's debug views
     DiffuseModel diffuse = DiffuseModel::Lambert;
     SpecularModel specular = SpecularModel::Ggx;
     PaneDisplay display = PaneDisplay::Lit;
@@ -105,6 +109,7 @@ struct ViewState {
 struct PanelAction {
     enum Kind {
         SetMethod, SetPreset, SetDiffuse, SetSpecular, SetDisplay, SetDirectOnly,  // pane, text / flag
+        SetParam, ResetParams,  // pane, text = "method.key", value = its text (`set 0 ssao.samples 32`)
         SetMode, SetDivider,
         SetExposure, SetTonemap, SetAmbient, SetShadows, SetBackground, SetMaxBounces, SetRenderScale,
         SetHeatmapMetric, SetReferenceSpp,
@@ -116,6 +121,7 @@ struct PanelAction {
     Kind kind = SetMethod;
     int index = 0;            // pane or light
     std::string text;
+    std::string valueText;    // SetParam
     bool flag = false;
     float value = 0.0f;
     glm::vec3 vec{0.0f};
@@ -126,6 +132,8 @@ struct PanelAction {
     static PanelAction diffuse(int pane, std::string name);
     static PanelAction specular(int pane, std::string name);
     static PanelAction display(int pane, PaneDisplay d);
+    static PanelAction display(int pane, std::string name);   // a fixed display or a method's view
+    static PanelAction param(int pane, std::string fullKey, std::string value);
     static PanelAction directOnly(int pane, bool on);
     static PanelAction viewMode(ViewMode m);
     static PanelAction dividerAt(float fraction);
@@ -166,8 +174,7 @@ std::vector<PaneRect> paneRects(ViewMode mode, int viewWidth, int viewHeight);
 glm::ivec2 paneRenderSize(const ViewState& state, int viewWidth, int viewHeight);
 
 // Everything a Renderer needs for pane `pane` at `size`: the shared settings, the pane's method,
-// preset, BRDFs and debug options. G-buffer displays render with the rasterizer (gi none), which
-// is where a G-buffer exists. In the view the path tracer adds one sample per frame.
+// preset, parameter edits, BRDFs and debug view. In the view the path tracer adds one sample per frame.
 RenderSettings paneSettings(const ViewState& state, int pane, glm::ivec2 size);
 // The path-traced reference the heatmap of `pane` compares against: the same scene, camera and
 // BRDFs, full global illumination at referenceSpp.
@@ -180,5 +187,11 @@ glm::vec3 cameraForward(const ViewCamera& camera);
 
 // A label for a pane: "none/medium lambert+ggx", "pathtrace/high ... [heatmap]".
 std::string paneLabel(const ViewState& state, int pane);
+// What the panel's combos offer: every registered GI method; the fixed displays plus the debug
+// views a pane's renderer offers (`views`, from Renderer::views()) that are not fixed ones.
+std::vector<std::string> methodChoices();
+std::vector<std::string> displayChoices(const std::vector<DebugViewDesc>& views);
+// The value a pane's method parameter has: the pane's edit, else its preset's, else the default.
+ParamValue paneParam(const ViewState& state, int pane, const std::string& method, const ParamDesc& desc);
 
 }  // namespace gis::view

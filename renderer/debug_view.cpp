@@ -1,42 +1,60 @@
 #include "debug_view.h"
 
+#include "services/scene_services.h"
+
 namespace gis {
 
-std::vector<ProgramDesc> GBufferVisualizer::programs() {
+std::vector<ProgramDesc> ChannelDisplay::programs() {
     return {{"view_debug", {"fullscreen.vert", "view_debug.frag"}, {}}};
 }
 
-GBufferVisualizer::GBufferVisualizer() {
+ChannelDisplay::ChannelDisplay() {
     program_ = buildProgram(programs()[0]);
     vao_ = gl::createVertexArray();
     fbo_ = gl::createFramebuffer();
 }
 
-void GBufferVisualizer::draw(const Renderer& renderer, GBufferChannel channel, float maxDistance, GLuint target) {
-    static const char* const sources[] = {"gbuffer.depth", "gbuffer.normal", "gbuffer.baseColor", "gbuffer.material",
-                                          "gbuffer.emissive"};
-    const GLuint depth = renderer.frameTexture("gbuffer.depth");
-    const GLuint source = renderer.frameTexture(sources[int(channel)]);
-    if (!depth || !source) throw Error("internal: the G-buffer display needs a frame with a G-buffer");
+void ChannelDisplay::draw(DisplayChannel channel, GLuint source, GLuint depth, const CameraMatrices& cam,
+                          float maxDistance, GLuint target, int width, int height) {
     glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, target, 0);
-    gl::checkFramebuffer(fbo_.id(), "G-buffer display");
+    gl::checkFramebuffer(fbo_.id(), "debug display");
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
-    glViewport(0, 0, renderer.settings().width, renderer.settings().height);
+    glViewport(0, 0, width, height);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     const GLuint p = program_.id();
     glUseProgram(p);
     glBindVertexArray(vao_.id());
-    const GLuint textures[2] = {source, depth};
+    const GLuint textures[2] = {source, depth ? depth : source};
     glBindTextures(0, 2, textures);
     glBindSamplers(0, 2, nullptr);
-    const CameraMatrices& cam = renderer.camera();
     glProgramUniform1i(p, 0, int(channel));
     glProgramUniformMatrix4fv(p, 1, 1, GL_FALSE, &cam.invViewProj[0][0]);
     glProgramUniform3fv(p, 2, 1, &cam.position[0]);
     glProgramUniform1f(p, 3, maxDistance);
+    glProgramUniform1i(p, 4, depth ? 1 : 0);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+namespace {
+// The depth display's black point: the far side of the scene's bounds from the camera.
+float farthestCorner(const Aabb& b, const glm::vec3& eye) {
+    if (b.empty()) return 1.0f;
+    float d = 0.0f;
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 c(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z);
+        d = std::max(d, glm::length(c - eye));
+    }
+    return std::max(d, 1e-6f);
+}
+}  // namespace
+
+void drawChannel(DisplayChannel channel, GLuint source, const Frame& frame, GLuint target) {
+    const GLuint depth = frame.has("gbuffer.depth") ? frame.texture("gbuffer.depth") : 0;
+    frame.services.channelDisplay().draw(channel, source, depth, frame.camera,
+                                         farthestCorner(frame.scene.cpu.bounds, frame.camera.position), target,
+                                         frame.settings.width, frame.settings.height);
 }
 
 }  // namespace gis

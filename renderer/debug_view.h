@@ -1,23 +1,28 @@
-// Debug displays of `gisandbox view`: a G-buffer channel (depth, normal, base colour, material,
-// emission) drawn into an RGBA8 image of display values (shaders/view_debug.frag).
+// Debug displays: one channel of a frame texture (G-buffer depth, normal, base colour, material,
+// emission, or a grey data value such as AO) drawn as display values into a target texture
+// (shaders/view_debug.frag). Passes use it for the debug views they offer.
 #pragma once
 
 #include "renderer.h"
 
 namespace gis {
 
-enum class GBufferChannel { Depth = 0, Normal = 1, BaseColor = 2, Material = 3, Emissive = 4 };
+enum class DisplayChannel { Depth = 0, Normal = 1, BaseColor = 2, Material = 3, Emissive = 4, Grey = 5 };
 
-class GBufferVisualizer {
+class ChannelDisplay {
 public:
-    GBufferVisualizer();  // needs a current GL context
-    // Draws `channel` of a finished frame of `renderer` (which must have a G-buffer) into `target`
-    // (an RGBA8 texture of the renderer's size). `maxDistance`: the depth display's black point.
-    void draw(const Renderer& renderer, GBufferChannel channel, float maxDistance, GLuint target);
+    ChannelDisplay();  // needs a current GL context
+    // `depth` 0: no G-buffer (every pixel is shown). `maxDistance`: the depth display's black point.
+    void draw(DisplayChannel channel, GLuint source, GLuint depth, const CameraMatrices& camera, float maxDistance,
+              GLuint target, int width, int height);
     static std::vector<ProgramDesc> programs();
 
 private:
     gl::Object program_, vao_, fbo_;
 };
+
+// Draws `channel` of `source` for the frame's camera into `target` (the frame's size), with the
+// frame's G-buffer depth as the mask where it has one. The renderer's ChannelDisplay is used.
+void drawChannel(DisplayChannel channel, GLuint source, const Frame& frame, GLuint target);
 
 }  // namespace gis

@@ -46,9 +46,10 @@ float luminance(glm::vec3 c) { return glm::dot(c, glm::vec3(0.2126f, 0.7152f, 0.
 
 }  // namespace
 
-RayScene::RayScene(const GpuScene& gpuScene, gl::MemoryLedger& ledger, const std::string& owner) {
+RayScene::RayScene(const GpuScene& gpuScene, gl::MemoryLedger& ledger, const std::string& owner)
+    : scope_{&ledger, owner} {
     const Scene& scene = gpuScene.cpu;
-    const gl::MemoryScope scope{&ledger, owner};
+    const gl::MemoryScope& scope = scope_;
     bvh = buildBvh(scene);
 
     // Textures: one array layer per scene image.
@@ -150,13 +151,17 @@ RayScene::RayScene(const GpuScene& gpuScene, gl::MemoryLedger& ledger, const std
     }
     emitterCount = emitterData.size();
 
-    const std::vector<GpuLight> lightData = makeGpuLights(scene);
-    lights = gl::createBuffer(scope, int64_t(lightData.size() * sizeof(GpuLight)), lightData.data());
+    updateLights(scene);
     nodes = gl::createBuffer(scope, int64_t(bvh.nodes.size() * sizeof(BvhNode)), bvh.nodes.data());
     triangles = gl::createBuffer(scope, int64_t(tris.size() * sizeof(GpuTraceTriangle)), tris.data());
     attributes = gl::createBuffer(scope, int64_t(attrs.size() * sizeof(GpuTriangleAttributes)), attrs.data());
     materials = gl::createBuffer(scope, int64_t(materialData.size() * sizeof(GpuRayMaterial)), materialData.data());
     emitters = gl::createBuffer(scope, int64_t(emitterData.size() * sizeof(GpuEmitter)), emitterData.data());
+}
+
+void RayScene::updateLights(const Scene& scene) {
+    const std::vector<GpuLight> lightData = makeGpuLights(scene);
+    lights = gl::createBuffer(scope_, int64_t(lightData.size() * sizeof(GpuLight)), lightData.data());
 }
 
 void RayScene::bind() const {

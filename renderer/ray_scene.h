@@ -1,7 +1,7 @@
 // The scene uploaded for GPU ray tracing (shaders/ray_scene.glsl): the BVH and its triangles in
 // leaf order, per-triangle shading attributes, materials, every texture in one array, and the
 // emissive triangles with their power-proportional selection probabilities. Built once per
-// renderer and shared by the ray-tracing passes (path tracer, ray-traced AO).
+// renderer, on first use, by SceneServices and shared by every ray-tracing pass.
 #pragma once
 
 #include <string>
@@ -15,12 +15,17 @@ struct RayScene {
     RayScene(const GpuScene& scene, gl::MemoryLedger& ledger, const std::string& owner);
     // SSBO bindings 0 (lights) to 5 (emitters), texture unit 0 (the texture array).
     void bind() const;
+    // The scene's lights were edited: uploads them again (the BVH and materials stay).
+    void updateLights(const Scene& scene);
 
     Bvh bvh;
     gl::Buffer lights, nodes, triangles, attributes, materials, emitters;
     gl::Texture textures;
     gl::Object sampler;
     size_t emitterCount = 0;
+
+private:
+    gl::MemoryScope scope_;
 };
 
 // What the progressive ray tracers share: one sample per pixel per dispatch, summed in `sum`,

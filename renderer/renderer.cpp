@@ -7,12 +7,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "debug_view.h"
+#include "gi/method.h"
 #include "memory_budget.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/lighting_pass.h"
-#include "passes/pathtrace_pass.h"
-#include "passes/ssao_pass.h"
 #include "passes/shadow_pass.h"
+#include "services/scene_services.h"
 
 namespace gis {
 
@@ -39,17 +39,21 @@ Tonemapper parseTonemapper(const std::string& s) {
     throw Error("unknown tonemapper '" + s + "' (expected aces or linear)");
 }
 
-std::string giMethodNames() { return "none, ssao, pathtrace, ao-reference"; }
-
-void checkGiMethod(const std::string& s) {
-    if (s != "none" && s != "ssao" && s != "pathtrace" && s != "ao-reference")
-        throw Error("unknown GI method '" + s + "' (available: " + giMethodNames() + ")");
+void setParam(RenderSettings& s, const std::string& fullKey, const std::string& text) {
+    // An alias flag (--spp, --ao-radius) sets every row that declares it.
+    bool any = false;
+    for (const GiMethod& m : giMethods())
+        for (const ParamDesc& d : m.params)
+            if (fullKey == m.name + "." + d.key || (!d.alias.empty() && fullKey == d.alias)) {
+                s.params[m.name + "." + d.key] = parseParamValue(m.name, d, text);
+                any = true;
+            }
+    if (!any) findParam(fullKey);  // throws the message naming the method's keys
 }
 
-DebugView parseDebugView(const std::string& s) {
-    if (s == "final") return DebugView::Final;
-    if (s == "ao") return DebugView::AmbientOcclusion;
-    throw Error("unknown view '" + s + "' (expected final or ao)");
+ParamValue getParam(const RenderSettings& s, const std::string& fullKey) {
+    auto it = s.params.find(fullKey);
+    return it != s.params.end() ? it->second : findParam(fullKey).defaultValue;
 }
 
 CameraMatrices cameraMatrices(const Scene& scene, int cameraIndex, float aspect) {
@@ -75,16 +79,41 @@ CameraMatrices cameraMatrices(const Scene& scene, int cameraIndex, float aspect)
     return m;
 }
 
-GLuint Frame::texture(const std::string& name) const {
-    auto it = textures.find(name);
-    if (it == textures.end()) throw Error("internal: no pass produced texture '" + name + "'");
+void Frame::put(const std::string& name, const gl::Texture& t) {
+    ResourceKind kind = ResourceKind::Texture2D;
+    if (t.target == GL_TEXTURE_3D) kind = ResourceKind::Texture3D;
+    else if (t.target == GL_TEXTURE_2D_ARRAY) kind = ResourceKind::Texture2DArray;
+    else if (t.target == GL_TEXTURE_CUBE_MAP_ARRAY) kind = ResourceKind::TextureCubeArray;
+    resources[name] = {t.id(), kind, t.format, t.width, t.height, t.depth, t.levels, 0};
+}
+
+void Frame::put(const std::string& name, const gl::Buffer& b) {
+    resources[name] = {b.id(), ResourceKind::Buffer, 0, 0, 0, 1, 1, b.size};
+}
+
+const FrameResource& Frame::resource(const std::string& name) const {
+    auto it = resources.find(name);
+    if (it == resources.end()) throw Error("internal: no pass produced '" + name + "'");
     return it->second;
 }
 
+GLuint Frame::texture(const std::string& name) const {
+    const FrameResource& r = resource(name);
+    if (r.kind == ResourceKind::Buffer) throw Error("internal: '" + name + "' is a buffer, not a texture");
+    return r.id;
+}
+
 GLuint Frame::buffer(const std::string& name) const {
-    auto it = buffers.find(name);
-    if (it == buffers.end()) throw Error("internal: no pass produced buffer '" + name + "'");
-    return it->second;
+    const FrameResource& r = resource(name);
+    if (r.kind != ResourceKind::Buffer) throw Error("internal: '" + name + "' is a texture, not a buffer");
+    return r.id;
+}
+
+StepTimers::Scope StepTimers::scope(const std::string& step) {
+    for (auto& [name, timer] : steps)
+        if (name == step) return Scope(timer.get());
+    steps.emplace_back(step, std::make_unique<gl::GpuTimer>());
+    return Scope(steps.back().second.get());
 }
 
 namespace {
@@ -107,22 +136,14 @@ void checkSettings(const RenderSettings& s) {
         for (int c = 0; c < 3; ++c)
             if (!std::isfinite((*s.background)[c]) || (*s.background)[c] < 0.0f)
                 throw Error("background radiance must be finite and non-negative");
-    range("samples per pixel", s.spp, 1, 1 << 20);
     range("samples per frame", s.samplesPerFrame, 1, 1 << 16);
-    range("max bounces", s.maxBounces, 0, 1024);
-    if (s.gi == "pathtrace" && ((s.diffuse != DiffuseModel::Lambert && s.diffuse != DiffuseModel::Burley) ||
-                                (s.specular != SpecularModel::Ggx && s.specular != SpecularModel::None)))
-        throw Error("the path tracer takes the physically based models only: --diffuse lambert|burley, "
+    const GiMethod& method = giMethod(s.gi);
+    if (method.physicalBrdfsOnly &&
+        ((s.diffuse != DiffuseModel::Lambert && s.diffuse != DiffuseModel::Burley) ||
+         (s.specular != SpecularModel::Ggx && s.specular != SpecularModel::None)))
+        throw Error("the " + method.name + " method takes the physically based models only: --diffuse lambert|burley, "
                     "--specular ggx|none");
-    range("AO samples", s.aoSamples, 1, 256);
-    range("AO steps", s.aoSteps, 1, 64);
-    if (!std::isfinite(s.aoRadius) || s.aoRadius < 0.0f || s.aoRadius > 1e30f)
-        throw Error("AO radius must be finite and non-negative (0 = automatic)");
-    if (!std::isfinite(s.aoBias) || s.aoBias < 0.0f || s.aoBias >= 1.0f)
-        throw Error("AO bias must be in [0, 1) (a fraction of the radius)");
-    if (!std::isfinite(s.aoPower) || s.aoPower <= 0.0f || s.aoPower > 64.0f)
-        throw Error("AO power must be in (0, 64]");
-    checkGiMethod(s.gi);
+    checkParams(s.params);
     if (int(s.diffuse) < 0 || int(s.diffuse) >= kDiffuseModelCount) throw Error("diffuse BRDF model out of range");
     if (int(s.specular) < 0 || int(s.specular) >= kSpecularModelCount) throw Error("specular BRDF model out of range");
 }
@@ -142,37 +163,62 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     checkMaterials(scene);
     checkMemoryBudget(scene, settings_);  // before any allocation: refuse what cannot fit
     camera_ = cameraMatrices(scene, settings_.camera, float(settings_.width) / float(settings_.height));
-    if (settings_.aoRadius <= 0.0f)  // sized from the scene: 15% of its diagonal
-        settings_.aoRadius = scene.bounds.empty() ? 1.0f : std::max(0.15f * glm::length(scene.bounds.extent()), 1e-6f);
     gpuScene_ = std::make_unique<GpuScene>(scene, ledger_);
+    services_ = std::make_unique<SceneServices>(*gpuScene_, ledger_);
+    const GiMethod& method = giMethod(settings_.gi);
     const int w = settings_.width, h = settings_.height;
-    if (settings_.gi == "pathtrace") {
-        passes_.push_back(std::make_unique<PathTracePass>(*gpuScene_, settings_, ledger_));
-    } else if (settings_.gi == "ao-reference") {
-        passes_.push_back(std::make_unique<AoReferencePass>(*gpuScene_, settings_, ledger_));
-    } else {
-        const bool ssao = settings_.gi == "ssao";
-        passes_.push_back(std::make_unique<ShadowPass>(*gpuScene_, settings_, ledger_));
-        passes_.push_back(std::make_unique<GBufferPass>(w, h, ledger_));
-        if (ssao) passes_.push_back(std::make_unique<SsaoPass>(settings_, ledger_));
-        passes_.push_back(
-            std::make_unique<LightingPass>(w, h, int(scene.lights.size()), settings_.hdr32, ssao, ledger_));
+    const bool deferred = method.pipeline == MethodPipeline::Deferred;
+    const bool gbufferView = settings_.view.rfind("gbuffer.", 0) == 0;
+    if (deferred) passes_.push_back(std::make_unique<ShadowPass>(*gpuScene_, settings_, ledger_));
+    if (deferred || gbufferView) passes_.push_back(std::make_unique<GBufferPass>(w, h, ledger_));
+    MethodBuild build{scene, settings_, *services_, ledger_, passes_};
+    method.addPasses(build);
+
+    // Every declared input must be the output of an earlier pass; no name has two writers.
+    std::set<std::string> produced;
+    auto declare = [&produced](const Pass& pass) {
+        for (const std::string& in : pass.inputs())
+            if (!produced.count(in))
+                throw Error(std::string("internal: pass '") + pass.name() + "' reads '" + in +
+                            "' before any pass writes it");
+        for (const std::string& out : pass.outputs())
+            if (!produced.insert(out).second)
+                throw Error(std::string("internal: pass '") + pass.name() + "' writes '" + out +
+                            "', which an earlier pass already writes");
+    };
+    for (const auto& pass : passes_) declare(*pass);
+    if (deferred) {
+        passes_.push_back(std::make_unique<LightingPass>(w, h, settings_.hdr32, produced, ledger_));
+        declare(*passes_.back());
     }
     passes_.push_back(std::make_unique<TonemapPass>(w, h, ledger_));
-
-    // Every declared input must be the output of an earlier pass.
-    std::set<std::string> produced;
-    for (const auto& pass : passes_) {
-        for (const std::string& in : pass->inputs())
-            if (!produced.count(in))
-                throw Error(std::string("internal: pass '") + pass->name() + "' reads '" + in +
-                            "' before any pass writes it");
-        for (const std::string& out : pass->outputs()) produced.insert(out);
+    declare(*passes_.back());
+    bool viewFound = settings_.view == "final";
+    for (const DebugViewDesc& v : views()) viewFound = viewFound || v.name == settings_.view;
+    if (!viewFound) {
+        std::string names;
+        for (const DebugViewDesc& v : views()) names += (names.empty() ? "" : ", ") + v.name;
+        throw Error("--view '" + settings_.view + "' is not produced by --gi " + settings_.gi + " (available: " +
+                    names + ")");
     }
+    if (settings_.view != "final")
+        debugTarget_ = gl::createTexture2D({&ledger_, "debug view"}, GL_RGBA16F, w, h);
     gl::checkOutOfMemory("creating the render passes");
 }
 
 Renderer::~Renderer() = default;
+
+std::vector<DebugViewDesc> Renderer::views() const {
+    std::vector<DebugViewDesc> all{{"final", "the lit, tone-mapped image"}};
+    for (const auto& pass : passes_)
+        for (const DebugViewDesc& v : pass->debugViews()) all.push_back(v);
+    // G-buffer displays exist for every method: methods without a G-buffer build one on request.
+    if (!std::any_of(passes_.begin(), passes_.end(), [](const auto& p) { return std::string(p->name()) == "gbuffer"; }))
+        for (const char* name : {"gbuffer.depth", "gbuffer.normal", "gbuffer.basecolor", "gbuffer.material",
+                                 "gbuffer.emissive"})
+            all.push_back({name, "G-buffer channel (see `render --gi none --view`)"});
+    return all;
+}
 
 int Renderer::samplesDone() const {
     for (const auto& pass : passes_)
@@ -187,43 +233,89 @@ bool Renderer::converged() const {
 }
 
 void Renderer::renderFrame() {
-    Frame frame{settings_, *gpuScene_, camera_, {}, {}, frameIndex_};
+    Frame frame{settings_, *gpuScene_, *services_, camera_, {}, frameIndex_};
     for (const auto& pass : passes_) {
+        frame.steps = &pass->steps;
         pass->timer.begin();
         pass->execute(frame);
-        pass->timer.end();
+        pass->timer.end(!pass->reusedLastFrame());
+        if (pass->writesImagesOrBuffers()) glMemoryBarrier(GL_ALL_BARRIER_BITS);
     }
     ++frameIndex_;
     hdr_ = frame.texture("radiance");
     ldr_ = frame.texture("display");
-    frameTextures_ = frame.textures;
+    if (settings_.view != "final") drawDebugView(frame);
+    frameResources_ = frame.resources;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    for (const auto& pass : passes_) pass->timer.collect(false);
+    for (const auto& pass : passes_) {
+        pass->timer.collect(false);
+        for (auto& step : pass->steps.steps) step.second->collect(false);
+    }
     gl::checkOutOfMemory("rendering a frame");
+}
+
+// A debug view replaces both outputs: its values are written as they are (no tone mapping).
+void Renderer::drawDebugView(Frame& frame) {
+    for (const auto& pass : passes_)
+        for (const DebugViewDesc& v : pass->debugViews())
+            if (v.name == settings_.view) {
+                pass->drawDebugView(v.name, frame, debugTarget_.id());
+                frame.put("display", debugTarget_);
+                hdr_ = ldr_ = debugTarget_.id();
+                return;
+            }
 }
 
 void Renderer::setCamera(const CameraMatrices& camera) {
     camera_ = camera;
-    restartAccumulation();
+    invalidate(ChangeCamera);
 }
 
-void Renderer::setLiveSettings(DiffuseModel diffuse, SpecularModel specular, Tonemapper tonemap, float exposureEV) {
-    const bool brdfChanged = diffuse != settings_.diffuse || specular != settings_.specular;
-    settings_.diffuse = diffuse;
-    settings_.specular = specular;
-    settings_.tonemap = tonemap;
-    settings_.exposureEV = exposureEV;
+void Renderer::setLiveSettings(const RenderSettings& live) {
+    if (requiresRebuild(settings_, live))
+        throw Error("internal: setLiveSettings with a setting that needs a new renderer");
+    Changes changes = 0;
+    if (live.diffuse != settings_.diffuse || live.specular != settings_.specular) changes |= ChangeBrdfModels;
+    if (live.params != settings_.params || live.ambient != settings_.ambient || live.exposureEV != settings_.exposureEV ||
+        live.tonemap != settings_.tonemap || live.background != settings_.background)
+        changes |= ChangeLiveParams;
+    const int camera = settings_.camera;
+    settings_ = live;
+    settings_.camera = camera;
     checkSettings(settings_);
-    if (brdfChanged) restartAccumulation();
+    if (changes) invalidate(changes);
 }
 
-void Renderer::restartAccumulation() {
-    for (const auto& pass : passes_) pass->restart();
+void Renderer::lightsChanged() {
+    services_->lightsChanged();
+    invalidate(ChangeLights);
+}
+
+void Renderer::invalidate(Changes changes) {
+    for (const auto& pass : passes_) pass->invalidate(changes);
+}
+
+bool requiresRebuild(const RenderSettings& a, const RenderSettings& b) {
+    if (a.width != b.width || a.height != b.height || a.gi != b.gi || a.shadowMapSize != b.shadowMapSize ||
+        a.shadowCubeSize != b.shadowCubeSize || a.shadows != b.shadows || a.hdr32 != b.hdr32 || a.seed != b.seed ||
+        a.view != b.view || a.samplesPerFrame != b.samplesPerFrame)
+        return true;
+    // A rebuild parameter of the method whose value differs (defaults included).
+    const GiMethod& m = giMethod(a.gi);
+    for (const ParamDesc& d : m.params) {
+        if (d.update != ParamUpdate::Rebuild) continue;
+        const std::string key = m.name + "." + d.key;
+        auto ia = a.params.find(key), ib = b.params.find(key);
+        const ParamValue& va = ia == a.params.end() ? d.defaultValue : ia->second;
+        const ParamValue& vb = ib == b.params.end() ? d.defaultValue : ib->second;
+        if (va != vb) return true;
+    }
+    return false;
 }
 
 GLuint Renderer::frameTexture(const std::string& name) const {
-    auto it = frameTextures_.find(name);
-    return it == frameTextures_.end() ? 0 : it->second;
+    auto it = frameResources_.find(name);
+    return it == frameResources_.end() ? 0 : it->second.id;
 }
 
 ImageF readTextureFloat(GLuint texture, int width, int height) {
@@ -258,24 +350,49 @@ ImageU8 Renderer::readLdr() const {
     return readTextureBytes(ldr_, settings_.width, settings_.height);
 }
 
+namespace {
+// Median over the frames after warm-up in which the timer's pass did work, total over all of them.
+PassTiming summarize(const std::string& name, const gl::GpuTimer& timer, int warmup) {
+    PassTiming t;
+    t.pass = name;
+    const auto& s = timer.samples;
+    if (!s.empty()) t.firstMs = s.front();
+    std::vector<double> steady;
+    for (size_t i = 0; i < s.size(); ++i) {
+        const bool worked = i >= timer.worked.size() || timer.worked[i];
+        if (!worked) continue;
+        t.totalMs += s[i];
+        ++t.workedFrames;
+        if (int(i) >= warmup) steady.push_back(s[i]);
+    }
+    if (!steady.empty()) {
+        std::nth_element(steady.begin(), steady.begin() + steady.size() / 2, steady.end());
+        t.medianMs = steady[steady.size() / 2];
+    }
+    t.cached = steady.empty();
+    return t;
+}
+}  // namespace
+
 std::vector<PassTiming> Renderer::timings(int warmup) const {
     glFinish();
     std::vector<PassTiming> out;
+    warmup = std::max(warmup, 0);
     for (const auto& pass : passes_) {
         pass->timer.collect(true);
-        PassTiming t;
-        t.pass = pass->name();
-        const auto& s = pass->timer.samples;
-        if (!s.empty()) t.firstMs = s.front();
-        std::vector<double> steady(s.begin() + std::min<size_t>(size_t(std::max(warmup, 0)), s.size()), s.end());
-        if (!steady.empty()) {
-            std::nth_element(steady.begin(), steady.begin() + steady.size() / 2, steady.end());
-            t.medianMs = steady[steady.size() / 2];
-        }
+        PassTiming t = summarize(pass->name(), pass->timer, warmup);
         auto it = ledger_.bytesByOwner.find(t.pass);
         t.bytes = it == ledger_.bytesByOwner.end() ? 0 : it->second;
-        t.cached = pass->reusedLastFrame();
+        t.samples = pass->progress().target > 0 ? pass->progress().done : 0;
         out.push_back(t);
+        for (const auto& [step, timer] : pass->steps.steps) {
+            timer->collect(true);
+            PassTiming st = summarize(std::string(pass->name()) + "/" + step, *timer, warmup);
+            st.step = true;
+            // A step that ran in some frames only (e.g. re-voxelize after a change): cached when
+            // its pass worked but it did not.
+            out.push_back(st);
+        }
     }
     return out;
 }
@@ -285,9 +402,13 @@ ProgramDesc brdfProbeProgram() { return {"brdf_probe", {"brdf_probe.comp"}, {}};
 std::vector<ProgramDesc> allPrograms() {
     std::vector<ProgramDesc> all;
     for (auto list : {ShadowPass::programs(), GBufferPass::programs(), LightingPass::programs(),
-                      TonemapPass::programs(), PathTracePass::programs(), SsaoPass::programs(),
-                      AoReferencePass::programs(), GBufferVisualizer::programs()})
+                      TonemapPass::programs(), ChannelDisplay::programs()})
         all.insert(all.end(), list.begin(), list.end());
+    for (const GiMethod& m : giMethods())
+        if (m.programs) {
+            const auto list = m.programs();
+            all.insert(all.end(), list.begin(), list.end());
+        }
     all.push_back(brdfProbeProgram());
     return all;
 }

@@ -224,3 +224,18 @@ vec3 evaluateBrdf(SurfaceBrdf s, vec3 N, vec3 V, vec3 L, int diffuseModel, int s
         f += specularToon(s, g, r) * invNoL;
     return f;
 }
+
+// Directional albedo of the specular lobe, integral of f * cos over the hemisphere, as the split
+// sum's scale and bias on F0 and F90: Karis, "Physically Based Shading on Mobile" (2014), an
+// analytic fit to the pre-integrated GGX table (Karis, "Real Shading in Unreal Engine 4", 2013).
+// Used to weight a method's pre-integrated specular radiance (the lighting contract); the other
+// lobes use the same fit, and SPECULAR_NONE reflects nothing.
+vec3 specularAlbedoSplitSum(SurfaceBrdf s, float NoV, int specularModel) {
+    if (specularModel == SPECULAR_NONE) return vec3(0.0);
+    const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
+    const vec4 c1 = vec4(1.0, 0.0425, 1.04, -0.04);
+    vec4 r = s.roughness * c0 + c1;
+    float a004 = min(r.x * r.x, exp2(-9.28 * NoV)) * r.x + r.y;
+    vec2 scaleBias = vec2(-1.04, 1.04) * a004 + r.zw;
+    return s.f0 * scaleBias.x + vec3(s.f90 * scaleBias.y);
+}

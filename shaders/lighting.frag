@@ -1,5 +1,6 @@
-// Deferred lighting: every punctual light with its shadow map, emission, and the constant ambient
-// term that is the `--gi none` baseline. Output is linear radiance.
+// Deferred lighting: every punctual light with its shadow map, emission, and the indirect light a
+// GI method gives through the lighting contract (README "The lighting contract"), or else the
+// constant ambient term that is the `--gi none` baseline. Output is linear radiance.
 #include "common.glsl"
 #include "brdf.glsl"
 #include "gbuffer_layout.glsl"
@@ -13,7 +14,9 @@ layout(binding = 3) uniform sampler2D s_gbufMaterial;
 layout(binding = 4) uniform sampler2D s_gbufEmissive;
 layout(binding = 5) uniform sampler2DArrayShadow s_shadowMaps;
 layout(binding = 6) uniform samplerCubeArrayShadow s_shadowCubes;
-layout(binding = 7) uniform sampler2D s_ao;   // r = ambient occlusion (SSAO), or a 1x1 one
+layout(binding = 7) uniform sampler2D s_ao;   // r = occlusion of the ambient term ("ao"), or a 1x1 one
+layout(binding = 8) uniform sampler2D s_indirectDiffuse;   // "indirect.diffuse" (or the 1x1 one)
+layout(binding = 9) uniform sampler2D s_indirectSpecular;  // "indirect.specular" (or the 1x1 one)
 
 layout(location = U_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = U_CAMERA_POS) uniform vec3 u_cameraPos;
@@ -22,8 +25,8 @@ layout(location = U_AMBIENT) uniform vec3 u_ambient;
 layout(location = U_BACKGROUND) uniform vec3 u_background;
 layout(location = U_BRDF_MODELS) uniform ivec2 u_brdfModels;  // diffuse, specular: --diffuse, --specular
 layout(location = U_SHADOWS_ENABLED) uniform int u_shadowsEnabled;
-layout(location = U_MAX_RADIANCE) uniform float u_maxRadiance;
-layout(location = U_DEBUG_VIEW) uniform int u_debugView;  // 0 final, 1 ambient occlusion only  // 65504 for an RGBA16F target: no Inf
+layout(location = U_MAX_RADIANCE) uniform float u_maxRadiance;  // 65504 for an RGBA16F target: no Inf
+layout(location = U_INDIRECT_INPUTS) uniform ivec2 u_indirectInputs;  // indirect.diffuse, indirect.specular given
 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_radiance;
@@ -75,15 +78,11 @@ void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     float depth = texelFetch(s_depth, pixel, 0).r;
     if (depth >= 1.0) {
-        o_radiance = vec4(u_debugView == 1 ? vec3(0.0) : min(u_background, vec3(u_maxRadiance)), 1.0);
+        o_radiance = vec4(min(u_background, vec3(u_maxRadiance)), 1.0);
         return;
     }
-    // SSAO may be at half resolution: bilinear upsampling of the (already depth-aware blurred) term.
+    // Methods may work at a lower resolution: bilinear upsampling of their (already filtered) terms.
     float ao = texture(s_ao, v_uv).r;
-    if (u_debugView == 1) {
-        o_radiance = vec4(vec3(ao), 1.0);
-        return;
-    }
     vec4 world = u_invViewProj * vec4(v_uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
     vec3 P = world.xyz / world.w;
     vec4 normalAndModels = texelFetch(s_gbufNormal, pixel, 0);
@@ -118,7 +117,25 @@ void main() {
         if (all(equal(response, vec3(0.0)))) continue;
         radiance += response * irradiance * shadowVisibility(light, P, N, dot(N, L));
     }
-    // Ambient/indirect only: L_ind = ambient * albedo * AO (material occlusion x screen-space AO).
-    radiance += u_ambient * (surface.diffuseColor + surface.f0) * material.z * ao;
+    // Indirect light. Without a method's terms: L_ind = ambient * (diffuse colour + F0) * AO, the
+    // constant-ambient baseline. With them (the lighting contract):
+    //   diffuse:  diffuseColor * indirect.diffuse (E / pi: a Lambert lobe integrated over the
+    //             incoming radiance, as evaluateBrdfCosine's diffuse term under uniform light);
+    //   specular: specularAlbedoSplitSum(F0, F90, roughness, N.V) * indirect.specular (the split-sum
+    //             approximation: the lobe's radiance times the lobe's directional albedo).
+    // AO (material occlusion x the method's "ao") multiplies only these terms, never direct light.
+    if (u_indirectInputs == ivec2(0)) {
+        radiance += u_ambient * (surface.diffuseColor + surface.f0) * material.z * ao;
+    } else {
+        vec3 diffuseIndirect = u_indirectInputs.x != 0 ? texture(s_indirectDiffuse, v_uv).rgb : u_ambient;
+        vec3 indirect = diffuseIndirect * surface.diffuseColor;
+        if (u_indirectInputs.y != 0) {
+            float NoV = max(dot(N, V), MIN_N_DOT_V);
+            indirect += texture(s_indirectSpecular, v_uv).rgb * specularAlbedoSplitSum(surface, NoV, models.y);
+        } else {
+            indirect += u_ambient * surface.f0;
+        }
+        radiance += indirect * (material.z * ao);
+    }
     o_radiance = vec4(min(finiteOrZero(radiance), vec3(u_maxRadiance)), 1.0);
 }

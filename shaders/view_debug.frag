@@ -1,5 +1,5 @@
-// `gisandbox view` debug displays: one G-buffer channel made visible, into an RGBA8 display image
-// (values as shown on screen, i.e. already sRGB-encoded where they are colours).
+// Debug displays: one G-buffer channel, or a grey data value (AO), made visible as display values
+// (already sRGB-encoded where they are colours; data such as AO stays linear).
 #include "common.glsl"
 
 // Locations are this program's own (renderer/debug_view.cpp uses the same numbers).
@@ -8,6 +8,7 @@
 #define CHANNEL_BASE_COLOR 2
 #define CHANNEL_MATERIAL 3
 #define CHANNEL_EMISSIVE 4
+#define CHANNEL_GREY 5
 
 layout(binding = 0) uniform sampler2D s_source;
 layout(binding = 1) uniform sampler2D s_depth;
@@ -15,13 +16,18 @@ layout(location = 0) uniform int u_channel;
 layout(location = 1) uniform mat4 u_invViewProj;
 layout(location = 2) uniform vec3 u_cameraPos;
 layout(location = 3) uniform float u_maxDistance;
+layout(location = 4) uniform int u_hasDepth;  // 0: no G-buffer, every pixel is shown
 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    float depth = texelFetch(s_depth, pixel, 0).r;
+    float depth = u_hasDepth != 0 ? texelFetch(s_depth, pixel, 0).r : 0.0;
+    if (u_channel == CHANNEL_GREY) {  // data, possibly at a lower resolution: filtered, 0 off geometry
+        o_color = vec4(vec3(depth >= 1.0 ? 0.0 : texture(s_source, v_uv).r), 1.0);
+        return;
+    }
     if (depth >= 1.0) {  // nothing drawn: a dark grey that no channel produces on geometry
         o_color = vec4(0.1, 0.1, 0.12, 1.0);
         return;

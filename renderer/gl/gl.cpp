@@ -197,10 +197,11 @@ void GpuTimer::begin() {
     open_ = true;
 }
 
-void GpuTimer::end() {
+void GpuTimer::end(bool worked) {
     if (!open_) return;
     glQueryCounter(end_[next_].id(), GL_TIMESTAMP);
     pending_[next_] = true;
+    worked_[next_] = worked;
     next_ = (next_ + 1) % kRing;
     open_ = false;
 }
@@ -219,6 +220,7 @@ void GpuTimer::collect(bool wait) {
         glGetQueryObjectui64v(begin_[i].id(), GL_QUERY_RESULT, &t0);
         glGetQueryObjectui64v(end_[i].id(), GL_QUERY_RESULT, &t1);
         samples.push_back(t1 > t0 ? static_cast<double>(t1 - t0) * 1e-6 : 0.0);
+        worked.push_back(worked_[i] ? 1 : 0);
         pending_[i] = false;
     }
 }

@@ -86,15 +86,20 @@ Object createSampler();
 class GpuTimer {
 public:
     void begin();
-    void end();
+    // worked = false: the pass reused its cached results this frame (kept apart in `worked`, so a
+    // converged or cached pass is not reported as taking 0 ms of real work).
+    void end(bool worked = true);
     // Reads every finished query into samples (milliseconds). wait = block until all are done.
     void collect(bool wait);
+    void clear() { samples.clear(), worked.clear(); }
     std::vector<double> samples;
+    std::vector<uint8_t> worked;  // per sample: 1 if the pass did work in that frame
 
 private:
     static constexpr int kRing = 4;
     Object begin_[kRing], end_[kRing];
     bool pending_[kRing] = {};
+    bool worked_[kRing] = {};
     int next_ = 0;
     bool open_ = false;
 };

@@ -1,5 +1,9 @@
 #include "passes/gbuffer_pass.h"
 
+#include <iterator>
+
+#include "debug_view.h"
+
 #include "uniforms.h"
 
 namespace gis {
@@ -56,11 +60,38 @@ void GBufferPass::execute(Frame& frame) {
     glFrontFace(GL_CCW);
     glDisable(GL_CULL_FACE);
     glDisable(GL_FRAMEBUFFER_SRGB);
-    frame.textures["gbuffer.depth"] = depth_.id();
-    frame.textures["gbuffer.baseColor"] = baseColor_.id();
-    frame.textures["gbuffer.normal"] = normal_.id();
-    frame.textures["gbuffer.material"] = material_.id();
-    frame.textures["gbuffer.emissive"] = emissive_.id();
+    frame.put("gbuffer.depth", depth_);
+    frame.put("gbuffer.baseColor", baseColor_);
+    frame.put("gbuffer.normal", normal_);
+    frame.put("gbuffer.material", material_);
+    frame.put("gbuffer.emissive", emissive_);
+}
+
+namespace {
+struct GBufferView {
+    const char* name;
+    const char* help;
+    DisplayChannel channel;
+};
+const GBufferView kGBufferViews[] = {
+    {"gbuffer.depth", "distance from the camera (white near, black at the scene's far side)", DisplayChannel::Depth},
+    {"gbuffer.normal", "world-space shading normal, N * 0.5 + 0.5", DisplayChannel::Normal},
+    {"gbuffer.basecolor", "base colour (sRGB)", DisplayChannel::BaseColor},
+    {"gbuffer.material", "metallic, roughness, occlusion as R, G, B", DisplayChannel::Material},
+    {"gbuffer.emissive", "emitted radiance, Reinhard-compressed", DisplayChannel::Emissive},
+};
+}  // namespace
+
+std::vector<DebugViewDesc> GBufferPass::debugViews() const {
+    std::vector<DebugViewDesc> views;
+    for (const GBufferView& v : kGBufferViews) views.push_back({v.name, v.help});
+    return views;
+}
+
+void GBufferPass::drawDebugView(const std::string& view, const Frame& frame, GLuint target) {
+    const gl::Texture* sources[] = {&depth_, &normal_, &baseColor_, &material_, &emissive_};
+    for (size_t i = 0; i < std::size(kGBufferViews); ++i)
+        if (view == kGBufferViews[i].name) drawChannel(kGBufferViews[i].channel, sources[i]->id(), frame, target);
 }
 
 }  // namespace gis

@@ -1,6 +1,7 @@
 #include "passes/lighting_pass.h"
 
 #include <cmath>
+#include <set>
 
 #include "uniforms.h"
 
@@ -17,17 +18,27 @@ std::vector<ProgramDesc> LightingPass::programs() {
     return {{"lighting", {"fullscreen.vert", "lighting.frag"}, {}}};
 }
 
-LightingPass::LightingPass(int width, int height, int lightCount, bool hdr32, bool useAo, gl::MemoryLedger& ledger)
-    : lightCount_(lightCount), useAo_(useAo) {
+LightingPass::LightingPass(int width, int height, bool hdr32, const std::set<std::string>& produced,
+                           gl::MemoryLedger& ledger)
+    : hasAo_(produced.count("ao") > 0),
+      hasDiffuse_(produced.count("indirect.diffuse") > 0),
+      hasSpecular_(produced.count("indirect.specular") > 0) {
     radiance_ = gl::createTexture2D({&ledger, name()}, hdr32 ? GL_RGBA32F : GL_RGBA16F, width, height);
-    if (!useAo_) {  // without an AO pass the ambient term is unoccluded: a 1x1 texture of ones
-        noAo_ = gl::createTexture2D({&ledger, name()}, GL_RG16F, 1, 1);
-        const float one[2] = {1.0f, 0.0f};
-        glTextureSubImage2D(noAo_.id(), 0, 0, 0, 1, 1, GL_RG, GL_FLOAT, one);
-    }
+    unit_ = gl::createTexture2D({&ledger, name()}, GL_RG16F, 1, 1);  // samplers stay valid; ao reads 1
+    const float one[2] = {1.0f, 0.0f};
+    glTextureSubImage2D(unit_.id(), 0, 0, 0, 1, 1, GL_RG, GL_FLOAT, one);
     fbo_ = gl::createColorTarget(radiance_, "lighting");
     program_ = buildProgram(programs()[0]);
     vao_ = gl::createVertexArray();
+}
+
+std::vector<std::string> LightingPass::inputs() const {
+    std::vector<std::string> in{"gbuffer.depth", "gbuffer.baseColor", "gbuffer.normal", "gbuffer.material",
+                                "gbuffer.emissive", "lights", "shadow.maps", "shadow.cubes"};
+    if (hasAo_) in.push_back("ao");
+    if (hasDiffuse_) in.push_back("indirect.diffuse");
+    if (hasSpecular_) in.push_back("indirect.specular");
+    return in;
 }
 
 void LightingPass::execute(Frame& frame) {
@@ -38,25 +49,31 @@ void LightingPass::execute(Frame& frame) {
     glDisable(GL_DEPTH_TEST);
     glUseProgram(p);
     glBindVertexArray(vao_.id());
-    const GLuint textures[8] = {frame.texture("gbuffer.depth"),    frame.texture("gbuffer.baseColor"),
-                                frame.texture("gbuffer.normal"),   frame.texture("gbuffer.material"),
-                                frame.texture("gbuffer.emissive"), frame.texture("shadow.maps"),
-                                frame.texture("shadow.cubes"),     useAo_ ? frame.texture("ao") : noAo_.id()};
-    glBindTextures(0, 8, textures);
-    glBindSamplers(0, 8, nullptr);
+    const GLuint textures[10] = {frame.texture("gbuffer.depth"),
+                                 frame.texture("gbuffer.baseColor"),
+                                 frame.texture("gbuffer.normal"),
+                                 frame.texture("gbuffer.material"),
+                                 frame.texture("gbuffer.emissive"),
+                                 frame.texture("shadow.maps"),
+                                 frame.texture("shadow.cubes"),
+                                 hasAo_ ? frame.texture("ao") : unit_.id(),
+                                 hasDiffuse_ ? frame.texture("indirect.diffuse") : unit_.id(),
+                                 hasSpecular_ ? frame.texture("indirect.specular") : unit_.id()};
+    glBindTextures(0, 10, textures);
+    glBindSamplers(0, 10, nullptr);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame.buffer("lights"));
     glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, U_CAMERA_POS, 1, &frame.camera.position[0]);
-    glProgramUniform1i(p, U_LIGHT_COUNT, lightCount_);
+    glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));
     glProgramUniform3fv(p, U_AMBIENT, 1, &s.ambient[0]);
     const glm::vec3 background = s.background.value_or(frame.scene.cpu.background);
     glProgramUniform3fv(p, U_BACKGROUND, 1, &background[0]);
     glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));
     glProgramUniform1i(p, U_SHADOWS_ENABLED, s.shadows ? 1 : 0);
-    glProgramUniform1i(p, U_DEBUG_VIEW, int(s.view));
+    glProgramUniform2i(p, U_INDIRECT_INPUTS, hasDiffuse_ ? 1 : 0, hasSpecular_ ? 1 : 0);
     glProgramUniform1f(p, U_MAX_RADIANCE, radiance_.format == GL_RGBA16F ? kMaxHalf : kMaxFloat);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    frame.textures["radiance"] = radiance_.id();
+    frame.put("radiance", radiance_);
 }
 
 std::vector<ProgramDesc> TonemapPass::programs() {
@@ -83,7 +100,7 @@ void TonemapPass::execute(Frame& frame) {
     glProgramUniform1f(p, U_EXPOSURE, std::exp2(frame.settings.exposureEV));
     glProgramUniform1i(p, U_TONEMAPPER, int(frame.settings.tonemap));
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    frame.textures["display"] = display_.id();
+    frame.put("display", display_);
 }
 
 }  // namespace gis

@@ -1,6 +1,17 @@
-// Deferred lighting: punctual lights with shadows, emission and the constant ambient baseline,
-// into a linear RGBA16F (or 32F) radiance target.
+// Deferred lighting: punctual lights with shadows, emission, and the indirect light a GI method
+// gives under the lighting contract, into a linear RGBA16F (or 32F) radiance target.
+//
+// The lighting contract: a method's passes may output, before this pass runs,
+//   "indirect.diffuse"   RGB: the cosine-weighted mean incoming radiance, E / pi (multiplied by the
+//                        diffuse colour);
+//   "indirect.specular"  RGB: radiance pre-integrated over the specular lobe (multiplied by the
+//                        split-sum directional albedo from F0, F90, roughness and N.V);
+//   "ao"                 R: occlusion of the indirect/ambient term.
+// Any that is missing falls back to the constant ambient (or to 1 for "ao"). No method edits this
+// pass or lighting.frag.
 #pragma once
+
+#include <set>
 
 #include "renderer.h"
 
@@ -8,24 +19,18 @@ namespace gis {
 
 class LightingPass final : public Pass {
 public:
-    // useAo: multiply the ambient term by the "ao" texture another pass (SSAO) wrote.
-    LightingPass(int width, int height, int lightCount, bool hdr32, bool useAo, gl::MemoryLedger& ledger);
+    // The contract's terms the method passes before this one produce, by name.
+    LightingPass(int width, int height, bool hdr32, const std::set<std::string>& produced, gl::MemoryLedger& ledger);
     const char* name() const override { return "lighting"; }
-    std::vector<std::string> inputs() const override {
-        std::vector<std::string> in{"gbuffer.depth", "gbuffer.baseColor", "gbuffer.normal", "gbuffer.material",
-                                    "gbuffer.emissive", "lights", "shadow.maps", "shadow.cubes"};
-        if (useAo_) in.push_back("ao");
-        return in;
-    }
+    std::vector<std::string> inputs() const override;
     std::vector<std::string> outputs() const override { return {"radiance"}; }
     void execute(Frame& frame) override;
     static std::vector<ProgramDesc> programs();
 
 private:
-    gl::Texture radiance_, noAo_;
+    gl::Texture radiance_, unit_;   // unit_: a 1x1 stand-in (ao = 1) for terms no method gives
     gl::Object fbo_, program_, vao_;
-    int lightCount_;
-    bool useAo_;
+    bool hasAo_, hasDiffuse_, hasSpecular_;
 };
 
 class TonemapPass final : public Pass {

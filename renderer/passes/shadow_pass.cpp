@@ -51,14 +51,28 @@ void checkLayerLimits(const Scene& scene) {
 std::vector<ProgramDesc> ShadowPass::programs() { return {{"shadow", {"scene.vert", "shadow.frag"}, {}}}; }
 
 ShadowPass::ShadowPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger)
-    : mapSize_(settings.shadowMapSize), cubeSize_(settings.shadowCubeSize) {
-    const Scene& cpu = scene.cpu;
+    : scene_(scene), ledger_(ledger), mapSize_(settings.shadowMapSize), cubeSize_(settings.shadowCubeSize),
+      shadows_(settings.shadows) {
+    layoutLights();
+    fbo_ = gl::createFramebuffer();
+    glNamedFramebufferDrawBuffer(fbo_.id(), GL_NONE);
+    program_ = buildProgram(programs()[0]);
+}
+
+void ShadowPass::invalidate(Changes changes) {
+    if (changes & ChangeLights) layoutLights();  // lights moved, appeared or went: new views and maps
+    if (changes & (ChangeLights | ChangeGeometry | ChangeMaterials)) valid_ = false;
+}
+
+void ShadowPass::layoutLights() {
+    const Scene& cpu = scene_.cpu;
+    views_.clear();
     const Aabb bounds = cpu.bounds.empty() ? Aabb{glm::vec3(-1), glm::vec3(1)} : cpu.bounds;
     const glm::vec3 center = bounds.center();
     const float radius = std::max(0.5f * glm::length(bounds.extent()), 1e-6f);
     int layers = 0, cubes = 0;
     lights_ = makeGpuLights(cpu);
-    const bool castsShadow = settings.shadows && !cpu.draws.empty();
+    const bool castsShadow = shadows_ && !cpu.draws.empty();
     if (castsShadow) checkLayerLimits(cpu);
     for (size_t i = 0; i < cpu.lights.size() && castsShadow; ++i) {
         const Light& l = cpu.lights[i];
@@ -104,7 +118,7 @@ ShadowPass::ShadowPass(const GpuScene& scene, const RenderSettings& settings, gl
         }
     }
 
-    const gl::MemoryScope scope{&ledger, name()};
+    const gl::MemoryScope scope{&ledger_, name()};
     lightBuffer_ = gl::createBuffer(scope, int64_t(lights_.size() * sizeof(GpuLight)), lights_.data());
     // Only what the scene needs; a 1-texel placeholder keeps the lighting pass's samplers valid.
     maps_ = layers ? gl::createTexture2DArray(scope, GL_DEPTH_COMPONENT32F, mapSize_, mapSize_, layers)
@@ -124,15 +138,13 @@ ShadowPass::ShadowPass(const GpuScene& scene, const RenderSettings& settings, gl
         if (!layers) glClearTexImage(maps_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
         if (!cubes) glClearTexImage(cubes_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
     }
-    fbo_ = gl::createFramebuffer();
-    glNamedFramebufferDrawBuffer(fbo_.id(), GL_NONE);
-    program_ = buildProgram(programs()[0]);
+    valid_ = false;
 }
 
 void ShadowPass::execute(Frame& frame) {
-    frame.buffers["lights"] = lightBuffer_.id();
-    frame.textures["shadow.maps"] = maps_.id();
-    frame.textures["shadow.cubes"] = cubes_.id();
+    frame.put("lights", lightBuffer_);
+    frame.put("shadow.maps", maps_);
+    frame.put("shadow.cubes", cubes_);
     reused_ = valid_;
     if (valid_) return;
     const GpuScene& scene = frame.scene;

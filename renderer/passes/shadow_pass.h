@@ -1,7 +1,8 @@
 // Shadow maps for every punctual light, sized by what the scene holds: one 2D array layer per
 // directional/spot light (directional fitted to the scene bounds, spot perspective over its cone),
-// one cube per point light. Scene and lights are static, so the maps are rendered once and reused
-// until invalidate(). Outputs the light list (with shadow matrices) for the lighting pass.
+// one cube per point light. View-independent: the maps are rendered once and reused until the
+// lights or the geometry change (a camera move keeps them). Outputs the light list (with shadow
+// matrices) for the lighting pass.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -18,18 +19,22 @@ public:
     std::vector<std::string> outputs() const override { return {"lights", "shadow.maps", "shadow.cubes"}; }
     void execute(Frame& frame) override;
     bool reusedLastFrame() const override { return reused_; }
-    void invalidate() { valid_ = false; }
+    void invalidate(Changes changes) override;
     static std::vector<ProgramDesc> programs();
     const std::vector<GpuLight>& lights() const { return lights_; }
 
 private:
     struct View { glm::mat4 viewProj; int layer; bool cube; };
+    void layoutLights();  // light list, shadow views and maps for the scene's current lights
+    const GpuScene& scene_;
+    gl::MemoryLedger& ledger_;
     std::vector<GpuLight> lights_;
     std::vector<View> views_;          // one per 2D layer or cube face
     gl::Buffer lightBuffer_;
     gl::Texture maps_, cubes_;         // 1-layer placeholders when the scene needs none
     gl::Object fbo_, program_;
     int mapSize_, cubeSize_;
+    bool shadows_;
     bool valid_ = false, reused_ = false;
 };
 

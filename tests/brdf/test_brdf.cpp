@@ -345,7 +345,9 @@ TEST(BrdfFurnace, EnergyConservingLobesReflectAtMostWhatArrives) {
             if (albedo[i].gpu < albedo[lo].gpu) lo = i;
             if (albedo[i].gpu > albedo[hi].gpu) hi = i;
             EXPECT_LE(albedo[i].gpu, 1.0 + kFurnaceTolerance) << c.lobe << " at " << labels[i];
-            if (c.equalsOne) EXPECT_NEAR(albedo[i].gpu, 1.0, kFurnaceTolerance) << c.lobe << " at " << labels[i];
+            if (c.equalsOne) {
+                EXPECT_NEAR(albedo[i].gpu, 1.0, kFurnaceTolerance) << c.lobe << " at " << labels[i];
+            }
             // The same integral over the CPU reference: the GLSL and the formula agree on the energy too.
             EXPECT_NEAR(albedo[i].gpu, albedo[i].cpu, 1e-4 * std::max(1.0, albedo[i].cpu)) << c.lobe << " at " << labels[i];
         }
@@ -475,8 +477,9 @@ TEST(BrdfReciprocity, BrdfsAreSymmetricInLightAndView) {
     // The exempt models really are not reciprocal (else they belong in the list above).
     for (int d = 0; d < kDiffuseCount; ++d)
         for (int s = 0; s < kSpecularCount; ++s)
-            if (!reciprocal(d, s))
+            if (!reciprocal(d, s)) {
                 EXPECT_GT(asymmetric[d][s], 0) << diffuseName(d) << "+" << specularName(s) << " looks reciprocal";
+            }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -78,27 +78,28 @@ TEST(PaneSettings, CombineSharedPaneAndDebugOptions) {
     applyPanelAction(s, parsePanelAction(splitWords("preset 0 low")));
     RenderSettings r = paneSettings(s, 0, {64, 32});
     EXPECT_EQ(r.gi, "pathtrace");
-    EXPECT_EQ(r.spp, 4) << "pathtrace/low is 4 spp (presets.cpp)";
+    EXPECT_EQ(getParam(r, "pathtrace.spp").number, 4) << "pathtrace/low is 4 spp";
     EXPECT_EQ(r.samplesPerFrame, 1) << "the view adds a sample per frame";
     EXPECT_EQ(r.width, 64);
     EXPECT_EQ(r.height, 32);
     EXPECT_FLOAT_EQ(r.exposureEV, 1.25f);
     applyPanelAction(s, PanelAction::directOnly(0, true));
-    EXPECT_EQ(paneSettings(s, 0, {8, 8}).maxBounces, 0);
+    EXPECT_EQ(getParam(paneSettings(s, 0, {8, 8}), "pathtrace.bounces").number, 0);
     applyPanelAction(s, PanelAction::method(0, "none"));
     EXPECT_EQ(paneSettings(s, 0, {8, 8}).ambient, glm::vec3(0.0f)) << "direct only: no ambient term";
     applyPanelAction(s, PanelAction::preset(0, "high"));
     EXPECT_EQ(paneSettings(s, 0, {8, 8}).shadowMapSize, 2048);
-    // A G-buffer display renders with the rasterizer whatever the method.
+    // A G-buffer display keeps the pane's method: every method can show its G-buffer.
     applyPanelAction(s, PanelAction::method(0, "pathtrace"));
     applyPanelAction(s, PanelAction::display(0, PaneDisplay::Normal));
-    EXPECT_EQ(paneSettings(s, 0, {8, 8}).gi, "none");
+    EXPECT_EQ(paneSettings(s, 0, {8, 8}).gi, "pathtrace");
+    EXPECT_EQ(paneSettings(s, 0, {8, 8}).view, "gbuffer.normal");
     // The reference: full GI at reference-spp, the pane's BRDFs.
     applyPanelAction(s, PanelAction::specular(0, "none"));
     const RenderSettings ref = referenceSettings(s, 0, {8, 8});
     EXPECT_EQ(ref.gi, "pathtrace");
-    EXPECT_EQ(ref.spp, s.referenceSpp);
-    EXPECT_EQ(ref.maxBounces, s.maxBounces);
+    EXPECT_EQ(getParam(ref, "pathtrace.spp").number, s.referenceSpp);
+    EXPECT_EQ(getParam(ref, "pathtrace.bounces").number, s.maxBounces);
     EXPECT_EQ(ref.specular, SpecularModel::None);
 }
 

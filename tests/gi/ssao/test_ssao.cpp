@@ -5,6 +5,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "gi/method.h"
 #include "render_test_util.h"
 
 namespace gis::test {
@@ -16,9 +17,9 @@ RenderSettings aoSettings(const std::string& method, int size = 96) {
     RenderSettings r;
     r.width = r.height = size;
     r.gi = method;
-    r.view = DebugView::AmbientOcclusion;
-    r.aoRadius = kRadius;
-    r.spp = 256;
+    r.view = "ao";
+    setParam(r, "--ao-radius", std::to_string(kRadius));
+    setParam(r, "--spp", std::to_string(256));
     r.samplesPerFrame = 64;
     return r;
 }
@@ -122,14 +123,13 @@ double rmse(const ImageF& a, const ImageF& b) {
 TEST(Ssao, ErrorAgainstRayTracedAoFallsFromLowToHighPreset) {
     const Scene s = makeBuiltinScene("cornell");
     RenderSettings ref = aoSettings("ao-reference", 64);
-    ref.spp = 512;
+    setParam(ref, "--spp", std::to_string(512));
     ref.samplesPerFrame = 128;
     const ImageF truth = renderHdr(s, ref);
     double previous = 1e9;
     for (const char* preset : {"low", "medium", "high"}) {
         RenderSettings r = aoSettings("ssao", 64);
-        if (std::string(preset) == "low") r.aoSamples = 8, r.aoSteps = 2, r.aoHalfResolution = true;
-        if (std::string(preset) == "high") r.aoSamples = 64, r.aoSteps = 8;
+        applyPreset(r, "ssao", preset);
         const double e = rmse(renderHdr(s, r), truth);
         std::printf("SSAO %s: RMSE against ray-traced AO %.4f\n", preset, e);
         EXPECT_LT(e, previous) << preset;
@@ -145,13 +145,13 @@ TEST(Ssao, ErrorAgainstRayTracedAoFallsFromLowToHighPreset) {
 TEST(Ssao, TemporalAccumulationRemovesNoiseAndFlicker) {
     const Scene s = makeBuiltinScene("cornell");
     RenderSettings converged = aoSettings("ssao", 64);
-    converged.aoSamples = 256;
-    converged.aoBlur = false;
+    setParam(converged, "ssao.samples", std::to_string(256));
+    setParam(converged, "ssao.blur", (false) ? "true" : "false");
     const ImageF noiseFree = renderHdr(s, converged);
     RenderSettings r = aoSettings("ssao", 64);
-    r.aoBlur = false;
+    setParam(r, "ssao.blur", (false) ? "true" : "false");
     const ImageF single = renderHdr(s, r);
-    r.aoTemporal = true;
+    setParam(r, "ssao.temporal", (true) ? "true" : "false");
     r.hdr32 = true;
     Renderer renderer(s, r);
     ImageF previous;
@@ -164,7 +164,7 @@ TEST(Ssao, TemporalAccumulationRemovesNoiseAndFlicker) {
         previous = std::move(img);
     }
     RenderSettings ref = aoSettings("ao-reference", 64);
-    ref.spp = 512;
+    setParam(ref, "--spp", std::to_string(512));
     ref.samplesPerFrame = 128;
     const ImageF truth = renderHdr(s, ref);
     const double off = rmse(single, noiseFree), on = rmse(previous, noiseFree);
@@ -191,8 +191,8 @@ TEST(Ssao, ExtremesStayFiniteAndInRange) {
         }
         finalizeScene(s);
         RenderSettings r = aoSettings("ssao", 48);
-        r.aoRadius = c.radius;
-        r.aoSamples = c.samples;
+        setParam(r, "--ao-radius", std::to_string(c.radius));
+        setParam(r, "ssao.samples", std::to_string(c.samples));
         const ImageF img = renderHdr(s, r);
         for (size_t i = 0; i < img.rgba.size(); i += 4) {
             ASSERT_TRUE(std::isfinite(img.rgba[i])) << "radius " << c.radius << " samples " << c.samples;
@@ -212,7 +212,7 @@ TEST_P(AoMatchesCycles, MeanRelativeErrorWithinTwoPercent) {
     const int size = 64;
     const ImageF ref = downsample(readExr(dir + "/refs/" + name + "/ao.exr"), 256 / size);
     RenderSettings r = aoSettings("ao-reference", size);
-    r.spp = 512;
+    setParam(r, "--spp", std::to_string(512));
     r.samplesPerFrame = 128;
     const ImageF img = renderHdr(s, r);
     const std::vector<PixelHit> hits = castPixels(s, 0, size, size, nullptr);

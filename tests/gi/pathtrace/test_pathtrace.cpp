@@ -39,9 +39,9 @@ TEST_P(MatchesCycles, ImageAndFaceMeansWithinTwoPercent) {
     RenderSettings r;
     r.width = r.height = kSize;
     r.gi = "pathtrace";
-    r.spp = kSpp;
+    setParam(r, "--spp", std::to_string(kSpp));
     r.samplesPerFrame = 32;
-    r.maxBounces = c.maxBounces;
+    setParam(r, "pathtrace.bounces", std::to_string(c.maxBounces));
     const ImageF img = renderHdr(scene, r);
 
     // Faces seen at pixel centres, edges masked: per-region means compare like with like.
@@ -126,9 +126,9 @@ TEST(PathTrace, FurnaceSphereReturnsSkyRadiance) {
     RenderSettings r;
     r.width = r.height = 24;
     r.gi = "pathtrace";
-    r.spp = 1024;
+    setParam(r, "--spp", std::to_string(1024));
     r.samplesPerFrame = 128;
-    r.maxBounces = 64;
+    setParam(r, "pathtrace.bounces", std::to_string(64));
     const ImageF img = renderHdr(s, r);
     double worst = 0.0, mean = 0.0;
     for (int y = 0; y < r.height; ++y)
@@ -146,7 +146,7 @@ ImageF renderCornell(int spp, uint32_t seed = 0) {
     RenderSettings r;
     r.width = r.height = 32;
     r.gi = "pathtrace";
-    r.spp = spp;
+    setParam(r, "--spp", std::to_string(spp));
     r.samplesPerFrame = 64;
     r.seed = seed;
     return renderHdr(makeBuiltinScene("cornell-area"), r);
@@ -195,9 +195,9 @@ TEST(PathTrace, DamagedHelmetUnderWhiteSkyAgainstCycles) {
     RenderSettings r;
     r.width = r.height = size;
     r.gi = "pathtrace";
-    r.spp = 128;
+    setParam(r, "--spp", std::to_string(128));
     r.samplesPerFrame = 32;
-    r.maxBounces = 64;
+    setParam(r, "pathtrace.bounces", std::to_string(64));
     const ImageF img = renderHdr(s, r);
     const ImageF ref = downsample(readExr(shared + "/assets/reference/refs/DamagedHelmet_sky/full.exr"), 256 / size);
     // Helmet pixels only: the sky reads exactly 1 in both.

@@ -1,10 +1,12 @@
-#include "passes/ssao_pass.h"
+#include "gi/ssao/ssao_pass.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "debug_view.h"
+#include "gi/method.h"
 #include "uniforms.h"
 
 namespace gis {
@@ -42,24 +44,49 @@ std::vector<glm::vec4> SsaoPass::kernel(int count) {
     return k;
 }
 
+const ParamTable<SsaoSettings>& ssaoParams() {
+    using S = SsaoSettings;
+    using U = ParamUpdate;
+    static const ParamTable<S> table = ParamTable<S>()
+        .integer(&S::samples, "samples", "Directions", "directions in the hemisphere kernel", 1, kMaxKernel, U::Rebuild,
+                 "--ao-samples")
+        .integer(&S::steps, "steps", "Steps", "points tested along each direction", 1, 64, U::Live, "--ao-steps")
+        .real(&S::radius, "radius", "Radius", "world units; 0 = 15% of the scene's diagonal", 0.0, 1e30, U::Live,
+              "--ao-radius")
+        .real(&S::bias, "bias", "Bias", "depth bias as a fraction of the radius", 0.0, 0.999, U::Live, "--ao-bias")
+        .real(&S::power, "power", "Power", "AO^power (contrast)", 0.001, 64.0, U::Live, "--ao-power")
+        .boolean(&S::blur, "blur", "Bilateral blur", "bilateral 4x4 blur over the noise tile", U::Rebuild)
+        .boolean(&S::halfResolution, "half-res", "Half resolution", "compute AO at half resolution", U::Rebuild,
+                 "--ao-half-res")
+        .boolean(&S::temporal, "temporal", "Temporal", "reprojected accumulation, per-frame noise rotation",
+                 U::Rebuild, "--ao-temporal");
+    return table;
+}
+
+float resolveAoRadius(float radius, const Scene& scene) {
+    if (radius > 0.0f) return radius;
+    return scene.bounds.empty() ? 1.0f : std::max(0.15f * glm::length(scene.bounds.extent()), 1e-6f);
+}
+
 std::vector<ProgramDesc> SsaoPass::programs() {
-    return {{"ssao", {"fullscreen.vert", "ssao.frag"}, {}},
-            {"ssao_blur", {"fullscreen.vert", "ssao_blur.frag"}, {}},
-            {"ssao_temporal", {"fullscreen.vert", "ssao_temporal.frag"}, {}}};
+    return {{"ssao", {"fullscreen.vert", "gi/ssao/ssao.frag"}, {}},
+            {"ssao_blur", {"fullscreen.vert", "gi/ssao/ssao_blur.frag"}, {}},
+            {"ssao_temporal", {"fullscreen.vert", "gi/ssao/ssao_temporal.frag"}, {}}};
 }
 
 SsaoPass::SsaoPass(const RenderSettings& s, gl::MemoryLedger& ledger)
-    : width_(s.aoHalfResolution ? std::max(1, s.width / 2) : s.width),
-      height_(s.aoHalfResolution ? std::max(1, s.height / 2) : s.height),
-      kernel_(kernel(std::min(s.aoSamples, kMaxKernel))) {
+    : params_(ssaoParams().read("ssao", s.params)),
+      width_(params_.halfResolution ? std::max(1, s.width / 2) : s.width),
+      height_(params_.halfResolution ? std::max(1, s.height / 2) : s.height),
+      kernel_(kernel(std::min(params_.samples, kMaxKernel))) {
     const gl::MemoryScope scope{&ledger, name()};
     raw_ = gl::createTexture2D(scope, GL_RG16F, width_, height_);
     rawFbo_ = gl::createColorTarget(raw_, "SSAO");
-    if (s.aoBlur) {
+    if (params_.blur) {
         blurred_ = gl::createTexture2D(scope, GL_RG16F, width_, height_);
         blurFbo_ = gl::createColorTarget(blurred_, "SSAO blur");
     }
-    if (s.aoTemporal)
+    if (params_.temporal)
         for (int i = 0; i < 2; ++i) {
             history_[i] = gl::createTexture2D(scope, GL_RGBA16F, width_, height_);
             historyFbo_[i] = gl::createColorTarget(history_[i], "SSAO history");
@@ -91,7 +118,8 @@ SsaoPass::SsaoPass(const RenderSettings& s, gl::MemoryLedger& ledger)
 }
 
 void SsaoPass::execute(Frame& frame) {
-    const RenderSettings& s = frame.settings;
+    const SsaoSettings live = ssaoParams().read("ssao", frame.settings.params);  // steps, radius, bias, power
+    const float radius = resolveAoRadius(live.radius, frame.scene.cpu);
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(vao_.id());
     glViewport(0, 0, width_, height_);
@@ -108,15 +136,15 @@ void SsaoPass::execute(Frame& frame) {
     glProgramUniformMatrix4fv(p, U_PROJ, 1, GL_FALSE, &frame.camera.proj[0][0]);
     glProgramUniformMatrix4fv(p, U_INV_PROJ, 1, GL_FALSE, &invProj[0][0]);
     glProgramUniformMatrix4fv(p, U_VIEW, 1, GL_FALSE, &frame.camera.view[0][0]);
-    glProgramUniform1f(p, U_AO_RADIUS, s.aoRadius);
+    glProgramUniform1f(p, U_AO_RADIUS, radius);
     // With temporal accumulation the noise tile shifts every frame, so the running mean sees
     // every rotation; without it the pattern stays put (no flicker on a still camera).
-    const float noiseOffset = s.aoTemporal ? float(frame.index % 16) : 0.0f;
-    glProgramUniform4f(p, U_AO_PARAMS, s.aoBias, s.aoPower, float(s.aoSteps), noiseOffset);
+    const float noiseOffset = params_.temporal ? float(frame.index % 16) : 0.0f;
+    glProgramUniform4f(p, U_AO_PARAMS, live.bias, live.power, float(live.steps), noiseOffset);
     glProgramUniform1i(p, U_AO_KERNEL_SIZE, int(kernel_.size()));
     glProgramUniform4fv(p, U_AO_KERNEL, GLsizei(kernel_.size()), &kernel_[0][0]);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    GLuint result = raw_.id();
+    const gl::Texture* result = &raw_;
 
     // 2. Bilateral blur over the noise tile.
     if (blurred_.id()) {
@@ -125,10 +153,10 @@ void SsaoPass::execute(Frame& frame) {
         glProgramUniformMatrix4fv(blurProgram_.id(), U_INV_PROJ, 1, GL_FALSE, &invProj[0][0]);
         glProgramUniformMatrix4fv(blurProgram_.id(), U_VIEW, 1, GL_FALSE, &frame.camera.view[0][0]);
         glBindFramebuffer(GL_FRAMEBUFFER, blurFbo_.id());
-        const GLuint blurInputs[2] = {result, frame.texture("gbuffer.normal")};
+        const GLuint blurInputs[2] = {result->id(), frame.texture("gbuffer.normal")};
         glBindTextures(0, 2, blurInputs);
         glDrawArrays(GL_TRIANGLES, 0, 3);
-        result = blurred_.id();
+        result = &blurred_;
     }
 
     // 3. Temporal accumulation into the history texture we did not read last frame.
@@ -137,7 +165,7 @@ void SsaoPass::execute(Frame& frame) {
         p = temporalProgram_.id();
         glUseProgram(p);
         glBindFramebuffer(GL_FRAMEBUFFER, historyFbo_[next].id());
-        const GLuint temporalInputs[3] = {result, history_[current_].id(), frame.texture("gbuffer.depth")};
+        const GLuint temporalInputs[3] = {result->id(), history_[current_].id(), frame.texture("gbuffer.depth")};
         glBindTextures(0, 3, temporalInputs);
         glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
         glProgramUniformMatrix4fv(p, U_PREV_VIEW_PROJ, 1, GL_FALSE, &prevViewProj_[0][0]);
@@ -146,28 +174,36 @@ void SsaoPass::execute(Frame& frame) {
         current_ = next;
         hasHistory_ = true;
         prevViewProj_ = frame.camera.viewProj;
-        result = history_[current_].id();
+        result = &history_[current_];
     }
-    frame.textures["ao"] = result;
+    frame.put("ao", *result);
+    result_ = result;
 }
 
-std::vector<ProgramDesc> AoReferencePass::programs() { return {{"ao_reference", {"ao_reference.comp"}, {}}}; }
-
-AoReferencePass::AoReferencePass(const GpuScene& scene, const RenderSettings& s, gl::MemoryLedger& ledger)
-    : rays_(scene, ledger, name()), samples_({&ledger, name()}, s.width, s.height, s.spp, s.samplesPerFrame) {
-    program_ = buildProgram(programs()[0]);
+void SsaoPass::drawDebugView(const std::string&, const Frame& frame, GLuint target) {
+    drawChannel(DisplayChannel::Grey, result_->id(), frame, target);
 }
 
-void AoReferencePass::execute(Frame& frame) {
-    frame.textures["radiance"] = samples_.mean.id();
-    if (samples_.finished()) return;
-    const GLuint p = program_.id();
-    glUseProgram(p);
-    rays_.bind();
-    glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
-    glProgramUniform1ui(p, U_SEED, frame.settings.seed);
-    glProgramUniform1f(p, U_AO_RADIUS, frame.settings.aoRadius);
-    samples_.runBatch(p);
+GiMethod ssaoMethod() {
+    GiMethod m;
+    m.name = "ssao";
+    m.summary = "screen-space ambient occlusion of the constant ambient term (hemisphere kernel, blur, temporal)";
+    m.params = ssaoParams().rows;
+    // Directions x points per direction, and resolution.
+    const int samples[3] = {8, 16, 64}, steps[3] = {2, 4, 8};
+    const bool half[3] = {true, false, false};
+    for (int i = 0; i < 3; ++i)
+        m.presets.push_back({presetNames()[i],
+                             std::to_string(samples[i]) + " directions x " + std::to_string(steps[i]) + " steps" +
+                                 (half[i] ? ", half resolution" : ""),
+                             {{"ssao.samples", {double(samples[i])}},
+                              {"ssao.steps", {double(steps[i])}},
+                              {"ssao.half-res", {half[i] ? 1.0 : 0.0}}}});
+    m.programs = &SsaoPass::programs;
+    m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<SsaoPass>(b.settings, b.ledger)); };
+    // Temporal accumulation averages up to 16 frames.
+    m.framesToConverge = [](const RenderSettings& s) { return ssaoParams().read("ssao", s.params).temporal ? 16 : 1; };
+    return m;
 }
 
 }  // namespace gis

@@ -1,0 +1,70 @@
+#include "gi/ao_reference/ao_reference_pass.h"
+
+#include "debug_view.h"
+#include "gi/method.h"
+#include "gi/ssao/ssao_pass.h"
+#include "uniforms.h"
+
+namespace gis {
+
+const ParamTable<AoReferenceSettings>& aoReferenceParams() {
+    using S = AoReferenceSettings;
+    static const ParamTable<S> table = ParamTable<S>()
+        .integer(&S::spp, "spp", "Rays per pixel", "cosine-distributed rays per pixel to accumulate", 1, 1 << 20,
+                 ParamUpdate::Live, "--spp")
+        .real(&S::radius, "radius", "Radius", "world units; 0 = 15% of the scene's diagonal", 0.0, 1e30,
+              ParamUpdate::Live, "--ao-radius");
+    return table;
+}
+
+std::vector<ProgramDesc> AoReferencePass::programs() {
+    return {{"ao_reference", {"gi/ao_reference/ao_reference.comp"}, {}}};
+}
+
+AoReferencePass::AoReferencePass(SceneServices& services, const RenderSettings& s, gl::MemoryLedger& ledger)
+    : rays_(services.rays()),
+      samples_({&ledger, name()}, s.width, s.height, 1, s.samplesPerFrame),
+      params_(aoReferenceParams().read("ao-reference", s.params)) {
+    samples_.target = params_.spp;
+    program_ = buildProgram(programs()[0]);
+}
+
+void AoReferencePass::execute(Frame& frame) {
+    const AoReferenceSettings now = aoReferenceParams().read("ao-reference", frame.settings.params);
+    if (now.radius != params_.radius || now.spp < samples_.done) samples_.done = 0;
+    params_ = now;
+    samples_.target = params_.spp;
+    samples_.perFrame = frame.settings.samplesPerFrame;
+    frame.put("radiance", samples_.mean);
+    if (samples_.finished()) return;
+    const GLuint p = program_.id();
+    glUseProgram(p);
+    rays_.bind();
+    glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
+    glProgramUniform1ui(p, U_SEED, frame.settings.seed);
+    glProgramUniform1f(p, U_AO_RADIUS, resolveAoRadius(params_.radius, frame.scene.cpu));
+    samples_.runBatch(p);
+}
+
+void AoReferencePass::drawDebugView(const std::string&, const Frame& frame, GLuint target) {
+    drawChannel(DisplayChannel::Grey, samples_.mean.id(), frame, target);
+}
+
+GiMethod aoReferenceMethod() {
+    GiMethod m;
+    m.name = "ao-reference";
+    m.summary = "ray-traced ambient occlusion within the AO radius: the truth SSAO is scored against";
+    m.pipeline = MethodPipeline::Standalone;
+    m.image = MethodImage::AmbientOcclusion;
+    m.benchmarked = false;
+    m.params = aoReferenceParams().rows;
+    for (auto [name, spp] : {std::pair{"low", 16}, {"medium", 64}, {"high", 256}})
+        m.presets.push_back({name, std::to_string(spp) + " rays per pixel", {{"ao-reference.spp", {double(spp)}}}});
+    m.programs = &AoReferencePass::programs;
+    m.addPasses = [](MethodBuild& b) {
+        b.add(std::make_unique<AoReferencePass>(b.services, b.settings, b.ledger));
+    };
+    return m;
+}
+
+}  // namespace gis

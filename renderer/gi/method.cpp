@@ -1,0 +1,83 @@
+#include "gi/method.h"
+
+#include <algorithm>
+
+namespace gis {
+
+std::vector<GiMethod>& methodRegistry();  // gi/methods.cpp
+
+const std::vector<GiMethod>& giMethods() { return methodRegistry(); }
+
+void registerGiMethod(GiMethod method) {
+    if (findGiMethod(method.name)) throw Error("GI method '" + method.name + "' is already registered");
+    methodRegistry().push_back(std::move(method));
+}
+
+const GiMethod* findGiMethod(const std::string& name) {
+    for (const GiMethod& m : giMethods())
+        if (m.name == name) return &m;
+    return nullptr;
+}
+
+std::string giMethodNames() {
+    std::string s;
+    for (const GiMethod& m : giMethods()) s += (s.empty() ? "" : ", ") + m.name;
+    return s;
+}
+
+const GiMethod& giMethod(const std::string& name) {
+    if (const GiMethod* m = findGiMethod(name)) return *m;
+    throw Error("unknown GI method '" + name + "' (available: " + giMethodNames() + ")");
+}
+
+const std::vector<std::string>& presetNames() {
+    static const std::vector<std::string> names{"low", "medium", "high"};
+    return names;
+}
+
+const ParamDesc* GiMethod::param(const std::string& key) const {
+    for (const ParamDesc& d : params)
+        if (d.key == key) return &d;
+    return nullptr;
+}
+
+const GiPreset& GiMethod::preset(const std::string& presetName) const {
+    for (const GiPreset& p : presets)
+        if (p.name == presetName) return p;
+    std::string names;
+    for (const GiPreset& p : presets) names += (names.empty() ? "" : ", ") + p.name;
+    throw Error("unknown preset '" + presetName + "' for " + name + " (expected " + names + ")");
+}
+
+void applyPreset(RenderSettings& s, const std::string& method, const std::string& presetName) {
+    const GiPreset& p = giMethod(method).preset(presetName);
+    s.gi = method;
+    for (const auto& [key, value] : p.values) s.params[key] = value;
+    if (p.shadowMapSize) s.shadowMapSize = p.shadowMapSize;
+    if (p.shadowCubeSize) s.shadowCubeSize = p.shadowCubeSize;
+}
+
+const ParamDesc& findParam(const std::string& fullKey, std::string* methodOut) {
+    for (const GiMethod& m : giMethods())
+        for (const ParamDesc& d : m.params)
+            if (fullKey == m.name + "." + d.key || (!d.alias.empty() && fullKey == d.alias)) {
+                if (methodOut) *methodOut = m.name;
+                return d;
+            }
+    const size_t dot = fullKey.find('.');
+    const GiMethod* m = dot == std::string::npos ? nullptr : findGiMethod(fullKey.substr(0, dot));
+    if (!m) throw Error("unknown parameter '" + fullKey + "' (expected METHOD.KEY; methods: " + giMethodNames() + ")");
+    std::string keys;
+    for (const ParamDesc& d : m->params) keys += (keys.empty() ? "" : ", ") + d.key;
+    throw Error("unknown parameter '" + fullKey + "' (" + m->name + " has: " + (keys.empty() ? "none" : keys) + ")");
+}
+
+void checkParams(const ParamValues& values) {
+    for (const auto& [key, value] : values) {
+        std::string method;
+        const ParamDesc& d = findParam(key, &method);
+        checkParamValue(method, d, value);
+    }
+}
+
+}  // namespace gis

@@ -1,0 +1,83 @@
+// A GI method as the rest of the app sees it: its name, its parameter rows, its presets, how it
+// fits the frame and the passes it adds. Every method lives in renderer/gi/<method>/ and is listed
+// once in renderer/gi/methods.cpp; the CLI, settings files, viewer panel, bench and `gisandbox
+// methods` all read this registry, never a method's name.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "renderer.h"
+
+namespace gis {
+
+struct SceneServices;
+
+// How a method fits the frame.
+enum class MethodPipeline {
+    // Shadows and G-buffer, then the method's passes, then the lighting pass, which consumes what
+    // they output under the lighting contract ("indirect.diffuse", "indirect.specular", "ao").
+    Deferred,
+    // The method writes "radiance" itself (the path tracer, ray-traced AO).
+    Standalone,
+};
+
+// What the method's image is, so the bench scores it against the right reference.
+enum class MethodImage { Radiance, AmbientOcclusion };
+
+struct GiPreset {
+    std::string name;            // low, medium, high
+    std::string description;     // "8 directions x 2 steps, half resolution"
+    ParamValues values;          // "method.key" -> value, overriding the defaults
+    int shadowMapSize = 0, shadowCubeSize = 0;  // 0: keep the render's
+};
+
+// What addPasses gets: the resolved settings, the scene, shared services, and where to put passes.
+struct MethodBuild {
+    const Scene& scene;
+    const RenderSettings& settings;
+    SceneServices& services;
+    gl::MemoryLedger& ledger;
+    std::vector<std::unique_ptr<Pass>>& passes;
+    void add(std::unique_ptr<Pass> pass) { passes.push_back(std::move(pass)); }
+};
+
+struct GiMethod {
+    std::string name;                       // --gi NAME
+    std::string summary;                    // one line for `gisandbox methods`
+    MethodPipeline pipeline = MethodPipeline::Deferred;
+    MethodImage image = MethodImage::Radiance;
+    bool physicalBrdfsOnly = false;         // refuses wrap/toon/blinn (the path tracer)
+    bool benchmarked = true;                // a row in `bench` (not the reference itself)
+    std::vector<ParamDesc> params;
+    std::vector<GiPreset> presets;          // low, medium, high
+    std::function<void(MethodBuild&)> addPasses;
+    std::function<std::vector<ProgramDesc>()> programs;  // every program its passes may build
+    // Frames a static view needs before the image is final (the bench scores after that many);
+    // progressive passes report their own progress and are rendered until converged().
+    std::function<int(const RenderSettings&)> framesToConverge;
+
+    const ParamDesc* param(const std::string& key) const;
+    const GiPreset& preset(const std::string& name) const;  // throws for an unknown name
+};
+
+// Every method, in registry order. Built-ins come from renderer/gi/methods.cpp.
+const std::vector<GiMethod>& giMethods();
+// Adds a method (tests register their own); throws if the name is taken.
+void registerGiMethod(GiMethod method);
+const GiMethod& giMethod(const std::string& name);   // throws "unknown GI method 'x' (available: ...)"
+const GiMethod* findGiMethod(const std::string& name);
+std::string giMethodNames();                         // "none, ssao, ..."
+const std::vector<std::string>& presetNames();       // low, medium, high
+
+// Applies `preset` of `method` to s: sets s.gi and the preset's values (as overrides).
+void applyPreset(RenderSettings& s, const std::string& method, const std::string& preset);
+
+// Resolves "method.key" or an alias flag; throws naming the key and the method's keys.
+const ParamDesc& findParam(const std::string& fullKey, std::string* methodOut = nullptr);
+// Validates every value in s.params against its row (one message format).
+void checkParams(const ParamValues& values);
+
+}  // namespace gis

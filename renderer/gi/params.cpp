@@ -1,0 +1,128 @@
+#include "gi/params.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace gis {
+
+namespace {
+
+// The shortest text (up to 9 significant digits, float's round-trip precision) that reads back as
+// the same float: "0.03", not "0.0299999993" for 0.03f.
+std::string number(double v) {
+    for (int digits = 6; digits <= 9; ++digits) {
+        std::ostringstream os;
+        os.precision(digits);
+        os << v;
+        const double back = std::strtod(os.str().c_str(), nullptr);
+        if (float(back) == float(v)) return os.str();
+    }
+    return std::to_string(v);
+}
+
+[[noreturn]] void fail(const std::string& method, const ParamDesc& d, const std::string& text, const std::string& why) {
+    throw Error(method + "." + d.key + ": '" + text + "' " + why);
+}
+
+bool parseDouble(const std::string& text, double& out) {
+    if (text.empty()) return false;
+    char* end = nullptr;
+    out = std::strtod(text.c_str(), &end);
+    return end && *end == '\0' && std::isfinite(out);
+}
+
+}  // namespace
+
+const char* paramTypeName(ParamType t) {
+    switch (t) {
+        case ParamType::Int: return "int";
+        case ParamType::Float: return "float";
+        case ParamType::Bool: return "bool";
+        case ParamType::Choice: return "choice";
+        case ParamType::Colour: return "colour";
+    }
+    return "?";
+}
+
+std::string describeParamRange(const ParamDesc& d) {
+    switch (d.type) {
+        case ParamType::Bool: return "true|false";
+        case ParamType::Choice: {
+            std::string s;
+            for (const std::string& c : d.choices) s += (s.empty() ? "" : "|") + c;
+            return s;
+        }
+        case ParamType::Colour: return "R,G,B in [0, " + number(d.max) + "]";
+        default: return "[" + number(d.min) + ", " + number(d.max) + "]";
+    }
+}
+
+std::string formatParamValue(const ParamDesc& d, const ParamValue& v) {
+    switch (d.type) {
+        case ParamType::Bool: return v.number != 0 ? "true" : "false";
+        case ParamType::Choice: return v.text;
+        case ParamType::Colour: return number(v.colour.r) + "," + number(v.colour.g) + "," + number(v.colour.b);
+        default: return number(v.number);
+    }
+}
+
+void checkParamValue(const std::string& method, const ParamDesc& d, const ParamValue& v) {
+    const std::string text = formatParamValue(d, v);
+    switch (d.type) {
+        case ParamType::Int:
+            if (v.number != std::floor(v.number)) fail(method, d, text, "is not an integer");
+            [[fallthrough]];
+        case ParamType::Float:
+            if (!std::isfinite(v.number) || v.number < d.min || v.number > d.max)
+                fail(method, d, text, "is out of range " + describeParamRange(d));
+            return;
+        case ParamType::Bool:
+            if (v.number != 0 && v.number != 1) fail(method, d, text, "is not one of " + describeParamRange(d));
+            return;
+        case ParamType::Choice:
+            for (const std::string& c : d.choices)
+                if (c == v.text) return;
+            fail(method, d, text, "is not one of " + describeParamRange(d));
+        case ParamType::Colour:
+            for (int c = 0; c < 3; ++c)
+                if (!std::isfinite(v.colour[c]) || v.colour[c] < 0 || v.colour[c] > d.max)
+                    fail(method, d, text, "is out of range: " + describeParamRange(d));
+            return;
+    }
+}
+
+ParamValue parseParamValue(const std::string& method, const ParamDesc& d, const std::string& text) {
+    ParamValue v;
+    switch (d.type) {
+        case ParamType::Int:
+        case ParamType::Float:
+            if (!parseDouble(text, v.number))
+                fail(method, d, text, std::string("is not ") + (d.type == ParamType::Int ? "an integer" : "a number"));
+            break;
+        case ParamType::Bool:
+            if (text == "true" || text == "1" || text == "on") v.number = 1;
+            else if (text == "false" || text == "0" || text == "off") v.number = 0;
+            else fail(method, d, text, "is not one of " + describeParamRange(d));
+            break;
+        case ParamType::Choice: v.text = text; break;
+        case ParamType::Colour: {
+            std::vector<double> parts;
+            std::stringstream ss(text);
+            std::string item;
+            while (std::getline(ss, item, ',')) {
+                double x = 0;
+                if (!parseDouble(item, x)) fail(method, d, text, "is not a colour (R,G,B or one value)");
+                parts.push_back(x);
+            }
+            if (parts.size() == 1) v.colour = glm::vec3(float(parts[0]));
+            else if (parts.size() == 3) v.colour = glm::vec3(float(parts[0]), float(parts[1]), float(parts[2]));
+            else fail(method, d, text, "is not a colour (R,G,B or one value)");
+            break;
+        }
+    }
+    checkParamValue(method, d, v);
+    return v;
+}
+
+}  // namespace gis

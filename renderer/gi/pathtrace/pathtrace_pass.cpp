@@ -1,0 +1,76 @@
+#include "gi/pathtrace/pathtrace_pass.h"
+
+#include <algorithm>
+
+#include "gi/method.h"
+#include "uniforms.h"
+
+namespace gis {
+
+const ParamTable<PathTraceSettings>& pathTraceParams() {
+    using S = PathTraceSettings;
+    static const ParamTable<S> table = ParamTable<S>()
+        .integer(&S::spp, "spp", "Samples per pixel", "samples per pixel to accumulate", 1, 1 << 20,
+                 ParamUpdate::Live, "--spp")
+        .integer(&S::bounces, "bounces", "Max bounces", "indirect bounces (0 = direct light only)", 0, 1024,
+                 ParamUpdate::Live, "--max-bounces")
+        .integer(&S::russianRouletteStart, "rr-start", "Roulette from bounce",
+                 "bounce from which Russian roulette may end a path", 0, 1024, ParamUpdate::Live);
+    return table;
+}
+
+std::vector<ProgramDesc> PathTracePass::programs() { return {{"pathtrace", {"gi/pathtrace/pathtrace.comp"}, {}}}; }
+
+PathTracePass::PathTracePass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger)
+    : rays_(services.rays()),
+      samples_({&ledger, name()}, settings.width, settings.height, 1, settings.samplesPerFrame),
+      params_(pathTraceParams().read("pathtrace", settings.params)) {
+    samples_.target = params_.spp;
+    program_ = buildProgram(programs()[0]);
+}
+
+void PathTracePass::execute(Frame& frame) {
+    const RenderSettings& s = frame.settings;
+    // Live parameters: a new sample count only moves the target; new bounces restart.
+    const PathTraceSettings now = pathTraceParams().read("pathtrace", s.params);
+    if (now.bounces != params_.bounces || now.russianRouletteStart != params_.russianRouletteStart) samples_.done = 0;
+    if (now.spp < samples_.done) samples_.done = 0;
+    params_ = now;
+    samples_.target = params_.spp;
+    samples_.perFrame = s.samplesPerFrame;
+
+    frame.put("radiance", samples_.mean);
+    if (samples_.finished()) return;  // converged to the requested sample count: nothing changes
+    const GLuint p = program_.id();
+    glUseProgram(p);
+    rays_.bind();
+    const glm::vec3 background = s.background.value_or(frame.scene.cpu.background);
+    glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
+    glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));
+    glProgramUniform3fv(p, U_BACKGROUND, 1, &background[0]);
+    glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));
+    glProgramUniform1ui(p, U_SEED, s.seed);
+    glProgramUniform1i(p, U_MAX_BOUNCES, params_.bounces);
+    glProgramUniform1i(p, U_EMITTER_COUNT, int(rays_.emitterCount));
+    glProgramUniform1i(p, U_RR_START, params_.russianRouletteStart);
+    samples_.runBatch(p);
+}
+
+GiMethod pathtraceMethod() {
+    GiMethod m;
+    m.name = "pathtrace";
+    m.summary = "GPU path tracer (BVH, NEE + MIS, progressive): the reference every method is scored against";
+    m.pipeline = MethodPipeline::Standalone;
+    m.physicalBrdfsOnly = true;
+    m.params = pathTraceParams().rows;
+    // At low sample counts: the reference's own speed/noise trade.
+    for (auto [name, spp] : {std::pair{"low", 4}, {"medium", 16}, {"high", 64}})
+        m.presets.push_back({name, std::to_string(spp) + " spp", {{"pathtrace.spp", {double(spp)}}}});
+    m.programs = &PathTracePass::programs;
+    m.addPasses = [](MethodBuild& b) {
+        b.add(std::make_unique<PathTracePass>(b.services, b.settings, b.ledger));
+    };
+    return m;
+}
+
+}  // namespace gis

@@ -1,0 +1,43 @@
+// `--gi pathtrace`: the ground truth every method is scored against. A GPU path tracer in a
+// compute shader over the shared BVH of the scene's triangles (SceneServices::rays), accumulating
+// one sample per pixel per dispatch into a float image until `spp` samples are done. Later frames
+// only add samples; a camera, light or BRDF change starts over.
+#pragma once
+
+#include "renderer.h"
+#include "services/scene_services.h"
+
+namespace gis {
+
+struct PathTraceSettings {
+    int spp = 64;                  // samples per pixel to accumulate
+    int bounces = 16;              // indirect bounces; 0 = direct lighting only
+    int russianRouletteStart = 3;  // bounce from which Russian roulette may end a path
+};
+const ParamTable<PathTraceSettings>& pathTraceParams();
+
+class PathTracePass final : public Pass {
+public:
+    PathTracePass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger);
+    const char* name() const override { return "pathtrace"; }
+    std::vector<std::string> outputs() const override { return {"radiance"}; }
+    void execute(Frame& frame) override;
+    bool reusedLastFrame() const override { return samples_.finished(); }
+    bool writesImagesOrBuffers() const override { return true; }
+    static std::vector<ProgramDesc> programs();
+
+    Progress progress() const override { return {samples_.done, samples_.target}; }
+    // Camera, lights, scene or BRDFs alter the image; live parameters are compared in execute().
+    void invalidate(Changes c) override {
+        if (c & ~Changes(ChangeLiveParams)) samples_.done = 0;
+    }
+    const Bvh& bvh() const { return rays_.bvh; }
+
+private:
+    RayScene& rays_;
+    SampleAccumulator samples_;
+    PathTraceSettings params_;
+    gl::Object program_;
+};
+
+}  // namespace gis

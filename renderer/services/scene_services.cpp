@@ -1,0 +1,19 @@
+#include "services/scene_services.h"
+
+namespace gis {
+
+RayScene& SceneServices::rays() {
+    if (!rays_) rays_ = std::make_unique<RayScene>(scene, ledger, "scene.rays");
+    return *rays_;
+}
+
+ChannelDisplay& SceneServices::channelDisplay() {
+    if (!channelDisplay_) channelDisplay_ = std::make_unique<ChannelDisplay>();
+    return *channelDisplay_;
+}
+
+void SceneServices::lightsChanged() {
+    if (rays_) rays_->updateLights(scene.cpu);
+}
+
+}  // namespace gis

@@ -1,0 +1,407 @@
+// The GI-method plug-in contract: a method defined entirely in this file is registered through the
+// same registry call as the built-ins and shows up everywhere a method is listed (`methods`, --set,
+// settings JSON, the panel's method list, a bench row); its "indirect.diffuse" lights the image
+// exactly as the lighting contract says; every parameter row of every method round-trips and
+// validates with one message format; change tracking keeps view-independent work across camera
+// moves; debug views and honest timings.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "cli_util.h"
+#include "commands.h"
+#include "gi/method.h"
+#include "render_test_util.h"
+#include "settings_io.h"
+#include "view_session.h"
+#include "view_state.h"
+
+namespace gis::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// --- The test-only method: a constant indirect radiance (live) given as "indirect.diffuse".
+struct ConstantSettings {
+    glm::vec3 radiance{0.25f, 0.5f, 1.0f};
+    int resolutionDivisor = 1;   // a rebuild parameter: the texture's size
+};
+
+const ParamTable<ConstantSettings>& constantParams() {
+    using S = ConstantSettings;
+    static const ParamTable<S> table = ParamTable<S>()
+        .colour(&S::radiance, "radiance", "Indirect radiance", "constant incoming radiance", 1e4, ParamUpdate::Live)
+        .integer(&S::resolutionDivisor, "divisor", "Divisor", "texture at 1/divisor resolution", 1, 8,
+                 ParamUpdate::Rebuild);
+    return table;
+}
+
+class ConstantIndirectPass final : public Pass {
+public:
+    ConstantIndirectPass(const RenderSettings& s, gl::MemoryLedger& ledger) {
+        const int d = constantParams().read("test-constant", s.params).resolutionDivisor;
+        texture_ = gl::createTexture2D({&ledger, name()}, GL_RGBA32F, std::max(1, s.width / d),
+                                       std::max(1, s.height / d));
+    }
+    const char* name() const override { return "test-constant"; }
+    std::vector<std::string> outputs() const override { return {"indirect.diffuse"}; }
+    void execute(Frame& frame) override {
+        auto step = frame.step("fill");
+        const glm::vec3 L = constantParams().read("test-constant", frame.settings.params).radiance;
+        const float value[4] = {L.r, L.g, L.b, 1.0f};
+        glClearTexImage(texture_.id(), 0, GL_RGBA, GL_FLOAT, value);
+        frame.put("indirect.diffuse", texture_);
+        ++executions;
+    }
+    int executions = 0;
+
+private:
+    gl::Texture texture_;
+};
+
+int constructions = 0;
+
+void registerConstantMethod() {
+    if (findGiMethod("test-constant")) return;
+    GiMethod m;
+    m.name = "test-constant";
+    m.summary = "test only: a constant indirect radiance";
+    m.params = constantParams().rows;
+    for (const std::string& p : presetNames())
+        m.presets.push_back({p, "constant", {{"test-constant.divisor", ParamValue{p == "low" ? 2.0 : 1.0}}}});
+    m.addPasses = [](MethodBuild& b) {
+        ++constructions;
+        b.add(std::make_unique<ConstantIndirectPass>(b.settings, b.ledger));
+    };
+    registerGiMethod(m);
+}
+
+// A white-or-grey ideal Lambert floor seen from above, nothing else: no lights, no ambient.
+Scene floorScene(glm::vec3 albedo) {
+    Scene scene;
+    scene.name = "floor";
+    scene.materials.push_back(lambert(albedo));
+    addQuad(scene, glm::vec3(0.0f), glm::vec3(0, 1, 0), 2.0f, 0);
+    scene.cameras.push_back(lookAtCamera(glm::vec3(0, 2, 0.001f), glm::vec3(0.0f), 30.0f));
+    finalizeScene(scene);
+    return scene;
+}
+
+std::string captureStdout(const std::function<void()>& run) {
+    testing::internal::CaptureStdout();
+    run();
+    return testing::internal::GetCapturedStdout();
+}
+
+TEST(Methods, RegistryListsTheBuiltinsInOrder) {
+    std::vector<std::string> names;
+    for (const GiMethod& m : giMethods()) names.push_back(m.name);
+    ASSERT_GE(names.size(), 4u);
+    EXPECT_EQ(std::vector<std::string>(names.begin(), names.begin() + 4),
+              (std::vector<std::string>{"none", "ssao", "ao-reference", "pathtrace"}));
+    for (const GiMethod& m : giMethods()) {
+        EXPECT_TRUE(m.addPasses) << m.name;
+        for (const std::string& p : presetNames()) EXPECT_NO_THROW(m.preset(p)) << m.name << " " << p;
+    }
+    EXPECT_THROW(registerGiMethod(giMethod("none")), Error) << "a taken name is refused";
+    EXPECT_THROW(giMethod("frobnicate"), Error);
+}
+
+TEST(Methods, ATestMethodAppearsEverywhereAMethodIsListed) {
+    registerConstantMethod();
+    // `gisandbox methods` and `gisandbox methods NAME`.
+    const std::string list = captureStdout([] { runMethods({}); });
+    EXPECT_NE(list.find("test-constant"), std::string::npos) << list;
+    const std::string params = captureStdout([] { runMethods({"test-constant", false}); });
+    EXPECT_NE(params.find("test-constant.radiance"), std::string::npos) << params;
+    EXPECT_NE(params.find("colour"), std::string::npos);
+    EXPECT_NE(params.find("test-constant.divisor"), std::string::npos);
+    EXPECT_NE(params.find("rebuild"), std::string::npos);
+    // --set, and its validation message.
+    RenderSettings s;
+    s.gi = "test-constant";
+    setParam(s, "test-constant.radiance", "0.5,0.25,2");
+    EXPECT_EQ(getParam(s, "test-constant.radiance").colour, glm::vec3(0.5f, 0.25f, 2.0f));
+    try {
+        setParam(s, "test-constant.divisor", "9");
+        ADD_FAILURE() << "out of range accepted";
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "test-constant.divisor: '9' is out of range [1, 8]");
+    }
+    // The panel's method list and a pane's settings JSON.
+    const std::vector<std::string> choices = view::methodChoices();
+    EXPECT_NE(std::find(choices.begin(), choices.end(), "test-constant"), choices.end());
+    view::ViewState state;
+    view::applyPanelAction(state, view::PanelAction::method(0, "test-constant"));
+    view::applyPanelAction(state, view::PanelAction::param(0, "test-constant.radiance", "3,2,1"));
+    view::ViewState loaded;
+    view::viewStateFromJson(nlohmann::json::parse(view::viewStateToJson(state).dump()), loaded);
+    EXPECT_EQ(loaded.panes[0].gi, "test-constant");
+    EXPECT_EQ(loaded.panes[0].params, state.panes[0].params);
+    EXPECT_EQ(getParam(view::paneSettings(loaded, 0, {8, 8}), "test-constant.radiance").colour, glm::vec3(3, 2, 1));
+}
+
+TEST(Methods, ATestMethodGetsABenchRow) {
+    registerConstantMethod();
+    const std::string dir = tempDir("bench_test_method");
+    BenchOptions o;
+    o.scenes = {"builtin:cornell"};
+    o.size = "16x16";
+    o.frames = 2;
+    o.warmup = 1;
+    o.methods = {"test-constant"};
+    o.presets = {"low"};
+    o.referenceSpp = 4;
+    o.outDir = dir;
+    context();
+    ASSERT_EQ(runBench(o), 0);
+    std::ifstream csv(dir + "/bench.csv");
+    std::string header, row;
+    std::getline(csv, header);
+    std::getline(csv, row);
+    EXPECT_NE(row.find(",test-constant,low,"), std::string::npos) << row;
+}
+
+// The lighting contract: with indirect.diffuse = L and nothing else, an ideal Lambert surface of
+// albedo a reflects exactly a * L (E = pi L, f = a / pi).
+TEST(Methods, IndirectDiffuseLightsALambertFloorAsTheContractSays) {
+    registerConstantMethod();
+    context();
+    for (glm::vec3 albedo : {glm::vec3(1.0f), glm::vec3(0.5f, 0.25f, 0.8f)}) {
+        const Scene scene = floorScene(albedo);
+        RenderSettings s;
+        s.width = s.height = 32;
+        s.gi = "test-constant";
+        s.ambient = glm::vec3(0.0f);
+        s.hdr32 = true;
+        const glm::vec3 L(0.25f, 0.5f, 4.0f);
+        setParam(s, "test-constant.radiance", "0.25,0.5,4");
+        const ImageF img = renderHdr(scene, s);
+        // The G-buffer stores base colour as sRGB8 (the GPU may round either way: one step is under
+        // 1% at these albedos); white is exact.
+        const bool white = albedo == glm::vec3(1.0f);
+        int floorPixels = 0;
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x) {
+                const float* p = img.at(x, y);
+                if (p[0] == 0.0f && p[1] == 0.0f && p[2] == 0.0f) continue;  // background is black
+                ++floorPixels;
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_NEAR(p[c], albedo[c] * L[c], (white ? 1e-5f : 1e-2f) * albedo[c] * L[c]) << x << "," << y;
+                for (int c = 0; c < 3; ++c) ASSERT_EQ(p[c], img.at(16, 16)[c]) << "not uniform at " << x << "," << y;
+            }
+        EXPECT_GT(floorPixels, 32 * 32 / 2);
+        // Without the method's term the constant ambient (0 here) is all there is: black floor.
+        s.gi = "none";
+        const ImageF dark = renderHdr(scene, s);
+        EXPECT_EQ(dark.at(16, 16)[0], 0.0f);
+    }
+}
+
+TEST(Methods, EveryParameterRowRoundTripsAndValidates) {
+    for (const GiMethod& m : giMethods())
+        for (const ParamDesc& d : m.params) {
+            const std::string key = m.name + "." + d.key;
+            // A value that is not the default, written as text (the CLI), into settings, to JSON
+            // (the settings file) and back.
+            ParamValue other = d.defaultValue;
+            switch (d.type) {
+                case ParamType::Int:
+                case ParamType::Float: other.number = d.defaultValue.number == d.max ? d.min : d.max; break;
+                case ParamType::Bool: other.number = 1 - d.defaultValue.number; break;
+                case ParamType::Choice: other.text = d.choices.back() == d.defaultValue.text ? d.choices.front() : d.choices.back(); break;
+                case ParamType::Colour: other.colour = glm::vec3(float(d.max)); break;
+            }
+            RenderSettings s;
+            setParam(s, key, formatParamValue(d, other));
+            EXPECT_EQ(getParam(s, key), other) << key;
+            const nlohmann::json j = nlohmann::json::parse(view::paramsToJson(s.params).dump());
+            EXPECT_EQ(view::paramFromJson(key, j.at(key)), other) << key;
+            // Out of range: one line naming the key and the range.
+            std::string bad;
+            if (d.type == ParamType::Int || d.type == ParamType::Float) bad = std::to_string(d.max * 2 + 1);
+            else if (d.type == ParamType::Bool) bad = "maybe";
+            else if (d.type == ParamType::Choice) bad = "no-such-choice";
+            else bad = "-1";
+            try {
+                setParam(s, key, bad);
+                ADD_FAILURE() << key << " accepted " << bad;
+            } catch (const Error& e) {
+                const std::string msg = e.what();
+                EXPECT_EQ(msg.rfind(key + ": '", 0), 0u) << msg;
+                EXPECT_NE(msg.find(describeParamRange(d)), std::string::npos) << msg;
+                EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+            }
+        }
+    RenderSettings s;
+    EXPECT_THROW(setParam(s, "ssao.frobnicate", "1"), Error);
+    EXPECT_THROW(setParam(s, "nomethod.samples", "1"), Error);
+    setParam(s, "--ao-radius", "0.5");  // an alias sets every row that declares it
+    EXPECT_EQ(getParam(s, "ssao.radius").number, 0.5);
+    EXPECT_EQ(getParam(s, "ao-reference.radius").number, 0.5);
+}
+
+TEST(Methods, LiveParametersNeverRebuildRebuildParametersDo) {
+    registerConstantMethod();
+    context();
+    const Scene scene = floorScene(glm::vec3(0.5f));
+    view::ViewSession session;
+    view::ViewState state;
+    ASSERT_TRUE(session.openScene(state, "builtin:cornell"));
+    view::applyPanelAction(state, view::PanelAction::method(0, "test-constant"));
+    session.renderFrame(state, 24, 24);
+    const int built = session.rebuilds();
+    const int made = constructions;
+    view::applyPanelAction(state, view::PanelAction::param(0, "test-constant.radiance", "0,0,1"));
+    session.renderFrame(state, 24, 24);
+    EXPECT_EQ(session.rebuilds(), built) << "a live parameter rebuilt the renderer";
+    EXPECT_EQ(constructions, made);
+    view::applyPanelAction(state, view::PanelAction::param(0, "test-constant.divisor", "2"));
+    session.renderFrame(state, 24, 24);
+    EXPECT_EQ(session.rebuilds(), built + 1) << "a rebuild parameter must rebuild";
+    EXPECT_EQ(constructions, made + 1);
+    // The same for a built-in: SSAO's steps are live, its direction count is baked into a kernel.
+    view::applyPanelAction(state, view::PanelAction::method(0, "ssao"));
+    session.renderFrame(state, 24, 24);
+    const int ssaoBuilt = session.rebuilds();
+    view::applyPanelAction(state, view::PanelAction::param(0, "ssao.steps", "7"));
+    session.renderFrame(state, 24, 24);
+    EXPECT_EQ(session.rebuilds(), ssaoBuilt);
+    view::applyPanelAction(state, view::PanelAction::param(0, "ssao.samples", "32"));
+    session.renderFrame(state, 24, 24);
+    EXPECT_EQ(session.rebuilds(), ssaoBuilt + 1);
+}
+
+TEST(Methods, CameraMovesKeepViewIndependentWork) {
+    context();
+    const Scene scene = makeBuiltinScene("cornell");
+    RenderSettings s;
+    s.width = s.height = 24;
+    Renderer r(scene, s);
+    r.renderFrame();
+    const Pass& shadows = *r.passes().front();
+    ASSERT_STREQ(shadows.name(), "shadows");
+    EXPECT_FALSE(shadows.reusedLastFrame()) << "the first frame renders the maps";
+    CameraMatrices moved = r.camera();
+    moved.position += glm::vec3(0.1f, 0.0f, 0.0f);
+    moved.view = glm::translate(moved.view, glm::vec3(-0.1f, 0.0f, 0.0f));
+    moved.viewProj = moved.proj * moved.view;
+    moved.invViewProj = glm::inverse(moved.viewProj);
+    r.setCamera(moved);
+    r.renderFrame();
+    EXPECT_TRUE(shadows.reusedLastFrame()) << "a camera move re-rendered the shadow maps";
+    r.invalidate(ChangeLights);
+    r.renderFrame();
+    EXPECT_FALSE(shadows.reusedLastFrame()) << "a light change must re-render them";
+}
+
+TEST(Methods, ALightEditKeepsTheRendererAndRestartsTheProgressivePass) {
+    context();
+    view::ViewSession session;
+    view::ViewState state;
+    ASSERT_TRUE(session.openScene(state, "builtin:cornell"));
+    view::applyPanelAction(state, view::PanelAction::method(0, "pathtrace"));
+    for (int i = 0; i < 3; ++i) session.renderFrame(state, 16, 16);
+    const int built = session.rebuilds();
+    EXPECT_EQ(session.pane(0).renderer->samplesDone(), 3);
+    view::PanelAction edit;
+    edit.kind = view::PanelAction::SetLightIntensity;
+    edit.index = 0;
+    edit.value = 2.0f * state.lights[0].light.intensity;
+    view::applyPanelAction(state, edit);
+    session.renderFrame(state, 16, 16);
+    EXPECT_EQ(session.rebuilds(), built) << "editing a light destroyed the renderer";
+    EXPECT_EQ(session.pane(0).renderer->samplesDone(), 1) << "the path tracer did not restart";
+}
+
+TEST(Methods, DuplicateOutputsAreRefusedAtConstruction) {
+    context();
+    if (!findGiMethod("test-duplicate")) {
+        GiMethod m;
+        m.name = "test-duplicate";
+        for (const std::string& p : presetNames()) m.presets.push_back({p, "", {}});
+        m.addPasses = [](MethodBuild& b) {
+            b.add(std::make_unique<ConstantIndirectPass>(b.settings, b.ledger));
+            b.add(std::make_unique<ConstantIndirectPass>(b.settings, b.ledger));
+        };
+        registerGiMethod(m);
+        registerConstantMethod();
+    }
+    RenderSettings s;
+    s.width = s.height = 8;
+    s.gi = "test-duplicate";
+    try {
+        Renderer r(makeBuiltinScene("cornell"), s);
+        ADD_FAILURE() << "two writers of one name were accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("indirect.diffuse"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Methods, StepTimersAndFrameResourcesCarryTheirShape) {
+    registerConstantMethod();
+    context();
+    RenderSettings s;
+    s.width = 20;
+    s.height = 10;
+    s.gi = "test-constant";
+    setParam(s, "test-constant.divisor", "2");
+    Renderer r(makeBuiltinScene("cornell"), s);
+    for (int i = 0; i < 3; ++i) r.renderFrame();
+    const FrameResource& indirect = r.frameResources().at("indirect.diffuse");
+    EXPECT_EQ(indirect.kind, ResourceKind::Texture2D);
+    EXPECT_EQ(indirect.width, 10);
+    EXPECT_EQ(indirect.height, 5);
+    EXPECT_EQ(indirect.format, GLenum(GL_RGBA32F));
+    EXPECT_EQ(r.frameResources().at("lights").kind, ResourceKind::Buffer);
+    EXPECT_EQ(r.frameResources().at("shadow.cubes").kind, ResourceKind::TextureCubeArray);
+    bool stepSeen = false;
+    for (const PassTiming& t : r.timings(1))
+        if (t.pass == "test-constant/fill") {
+            stepSeen = true;
+            EXPECT_TRUE(t.step);
+            EXPECT_EQ(t.workedFrames, 3);
+        }
+    EXPECT_TRUE(stepSeen);
+}
+
+// Debug views: listed, refused when a method does not produce them, G-buffer views in every method.
+TEST(Methods, DebugViewsAreListedAndTheGBufferWorksInEveryMethod) {
+    const CliResult list = runCli("render --scene builtin:cornell --gi ssao --view list");
+    EXPECT_EQ(list.status, 0) << list.err;
+    for (const char* v : {"final", "ao", "gbuffer.normal", "gbuffer.depth"})
+        EXPECT_NE(list.out.find(v), std::string::npos) << v << "\n" << list.out;
+    const std::string dir = tempDir("debug_views");
+    const CliResult noAo = runCli("render --scene builtin:cornell --gi none --view ao --out " + dir + "/x.png");
+    EXPECT_NE(noAo.status, 0);
+    EXPECT_NE(noAo.err.find("is not produced by --gi none"), std::string::npos) << noAo.err;
+    EXPECT_FALSE(fileExists(dir + "/x.png"));
+    const CliResult normals = runCli("render --scene builtin:cornell --size 32x32 --gi pathtrace --spp 1 --view "
+                                     "gbuffer.normal --out " + dir + "/n.png");
+    EXPECT_EQ(normals.status, 0) << normals.err;
+    const ImageU8 n = readPng(dir + "/n.png");
+    // The floor's normal (0, 1, 0) shows as (128, 255, 128).
+    const uint8_t* floor = &n.rgba[(size_t(30) * 32 + 16) * 4];
+    EXPECT_NEAR(floor[0], 128, 2);
+    EXPECT_NEAR(floor[1], 255, 2);
+    EXPECT_NEAR(floor[2], 128, 2);
+}
+
+// --timings is honest for progressive methods: total and per sample, and "cached" only when
+// nothing ran.
+TEST(Methods, ProgressiveTimingsReportTotalAndPerSample) {
+    const std::string dir = tempDir("timings");
+    const CliResult r = runCli("render --scene builtin:cornell --size 16x16 --gi pathtrace --spp 16 --timings "
+                               "--frames 6 --warmup 1 --out " + dir + "/pt.png");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("for 16 samples"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("ms/sample"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("pathtrace  (cached"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace gis::test
