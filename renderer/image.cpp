@@ -70,7 +70,9 @@ public:
         ign.sa_handler = SIG_IGN;
         sigemptyset(&ign.sa_mask);
         ::sigaction(SIGXFSZ, &ign, &gOldXfsz);
-        gTmpActive = 1;
+        // A path the buffer cannot hold is not armed: unlinking a truncated path could remove
+        // some other file.
+        gTmpActive = tmp.size() < sizeof gTmpPath;
     }
     ~TmpFileGuard() {
         gTmpActive = 0;
