@@ -1,5 +1,7 @@
 #include "memory_budget.h"
 
+#include "gi/method.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -52,22 +54,12 @@ MemoryEstimate estimateGpuMemory(const Scene& scene, const RenderSettings& s) {
     MemoryEstimate e;
     // Per-pixel bytes of each pass's targets (the formats in passes/*.cpp, as the ledger counts).
     const GiMethod& method = giMethod(s.gi);
+    if (method.estimateMemory)  // the method's own passes and volumes
+        for (const auto& part : method.estimateMemory(scene, s)) e.parts.push_back(part);
     const bool deferred = method.pipeline == MethodPipeline::Deferred;
-    if (!deferred) {
-        // The standalone methods (path tracer, ray-traced AO) accumulate in two RGBA32F images.
-        e.parts.push_back({s.gi + " accumulation (2 x RGBA32F)", pixels * 32});
-    }
+    // A G-buffer view of a standalone method adds the G-buffer; any debug view its RGBA16F target.
     if (deferred || s.view.rfind("gbuffer.", 0) == 0) e.parts.push_back({"G-buffer (28 bytes/pixel)", pixels * 28});
     if (s.view != "final") e.parts.push_back({"debug view (RGBA16F)", pixels * 8});
-    if (s.gi == "ssao") {
-        // RG16F raw (+ blurred) AO, two RGBA16F history images when temporal; at half resolution
-        // a quarter of the pixels.
-        const bool half = getParam(s, "ssao.half-res").number != 0.0;
-        const uint64_t aoPixels = half ? uint64_t(std::max(1, s.width / 2)) * uint64_t(std::max(1, s.height / 2)) : pixels;
-        const uint64_t perPixel = 4 + (getParam(s, "ssao.blur").number != 0.0 ? 4 : 0) +
-                                  (getParam(s, "ssao.temporal").number != 0.0 ? 16 : 0);
-        e.parts.push_back({"SSAO", aoPixels * perPixel});
-    }
     if (deferred) {
         e.parts.push_back({s.hdr32 ? "lighting (RGBA32F)" : "lighting (RGBA16F)", pixels * (s.hdr32 ? 16 : 8)});
         if (s.shadows && !scene.draws.empty()) {

@@ -61,6 +61,9 @@ GiMethod aoReferenceMethod() {
     for (auto [name, spp] : {std::pair{"low", 16}, {"medium", 64}, {"high", 256}})
         m.presets.push_back({name, std::to_string(spp) + " rays per pixel", {{"ao-reference.spp", {double(spp)}}}});
     m.programs = &AoReferencePass::programs;
+    m.estimateMemory = [](const Scene&, const RenderSettings& s) {
+        return std::vector<std::pair<std::string, uint64_t>>{{"ao-reference accumulation (2 x RGBA32F)", uint64_t(s.width) * uint64_t(s.height) * 32}};
+    };
     m.addPasses = [](MethodBuild& b) {
         b.add(std::make_unique<AoReferencePass>(b.services, b.settings, b.ledger));
     };

@@ -67,6 +67,9 @@ GiMethod pathtraceMethod() {
     for (auto [name, spp] : {std::pair{"low", 4}, {"medium", 16}, {"high", 64}})
         m.presets.push_back({name, std::to_string(spp) + " spp", {{"pathtrace.spp", {double(spp)}}}});
     m.programs = &PathTracePass::programs;
+    m.estimateMemory = [](const Scene&, const RenderSettings& s) {
+        return std::vector<std::pair<std::string, uint64_t>>{{"pathtrace accumulation (2 x RGBA32F)", uint64_t(s.width) * uint64_t(s.height) * 32}};
+    };
     m.addPasses = [](MethodBuild& b) {
         b.add(std::make_unique<PathTracePass>(b.services, b.settings, b.ledger));
     };
