@@ -195,6 +195,7 @@ int runRender(const RenderOptions& o) {
     const bool exr = endsWith(o.out, ".exr");
     const bool listViews = o.given && o.given("--view") && o.view == "list";
     if (o.out.empty() && !listViews) throw Error("--out is required");
+    if (!listViews && std::filesystem::is_directory(o.out)) throw Error("--out '" + o.out + "' is a directory");
     if (!listViews && !exr && !endsWith(o.out, ".png")) throw Error("--out '" + o.out + "' must end in .png or .exr");
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
     if (o.warmup < 0 || o.warmup >= o.frames) throw Error("--warmup must be in [0, --frames)");

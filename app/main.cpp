@@ -55,9 +55,14 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         std::string what = e.what();
         // A word where a command belongs: name it and the commands there are.
-        if (argc > 1 && argv[1][0] != '-' && dynamic_cast<const CLI::RequiredError*>(&e) != nullptr)
-            what = std::string("unknown command '") + argv[1] +
-                   "' (expected render, view, info, methods, bench, diff or shaders)";
+        bool known = false;
+        std::string names;
+        for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+            known = known || (argc > 1 && sub->get_name() == argv[1]);
+            names += (names.empty() ? "" : ", ") + sub->get_name();
+        }
+        if (argc > 1 && argv[1][0] != '-' && !known)
+            what = std::string("unknown command '") + argv[1] + "' (expected " + names + ")";
         std::fprintf(stderr, "gisandbox: error: %s (see --help)\n", what.c_str());
         return 1;
     }

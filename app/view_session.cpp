@@ -283,6 +283,13 @@ void ViewSession::updateHeatmap(const ViewState& state, int index, const CameraM
     PaneView& p = panes_[index];
     Renderer& r = *p.renderer;
     p.shown = r.frameTexture("display");  // until the heatmap exists
+    const PaneState& pane = state.panes[index];
+    if (!physicallyBased(pane.diffuse, pane.specular)) {  // the image stays; the pane says why
+        p.heatmapReady = false;
+        p.status = "no heatmap: the path-traced reference renders physically based BRDFs only "
+                   "(Lambert or Burley diffuse, GGX or no specular)";
+        return;
+    }
     Reference* ref = reference(state, index, camera);
     if (ref->image.rgba.empty()) {
         p.status = "reference " + std::to_string(ref->renderer->samplesDone()) + "/" +
