@@ -286,6 +286,7 @@ void ViewSession::updateHeatmap(const ViewState& state, int index, const CameraM
     const PaneState& pane = state.panes[index];
     if (!physicallyBased(pane.diffuse, pane.specular)) {  // the image stays; the pane says why
         p.heatmapReady = false;
+        p.heatmapWanted = false;  // nothing to wait for: the pane is settled
         p.status = "no heatmap: the path-traced reference renders physically based BRDFs only "
                    "(Lambert or Burley diffuse, GGX or no specular)";
         return;
