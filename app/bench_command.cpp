@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +29,7 @@ namespace fs = std::filesystem;
 struct BenchRow {
     std::string scene, method, preset, description;
     double ms = 0.0;                          // per frame; for progressive methods, to converge
+    double wallMs = 0.0;                      // wall clock with glFinish, the same way
     std::vector<std::pair<std::string, double>> passMs;
     int64_t bytes = 0;
     ImageMetrics error;
@@ -69,11 +71,22 @@ std::string fileSafe(std::string s) {
 void measure(Renderer& renderer, const GiMethod& method, int frames, int warmup, BenchRow& row) {
     const bool progressive = !renderer.converged();
     const int converge = method.framesToConverge ? std::max(1, method.framesToConverge(renderer.settings())) : 1;
+    std::vector<double> wall;
+    auto frame = [&] {
+        const auto t0 = std::chrono::steady_clock::now();
+        renderer.renderFrame();
+        glFinish();
+        wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    };
     if (progressive) {
-        do renderer.renderFrame();
+        do frame();
         while (!renderer.converged());
+        for (double w : wall) row.wallMs += w;
     } else {
-        for (int i = 0; i < converge - 1 + frames; ++i) renderer.renderFrame();
+        for (int i = 0; i < converge - 1 + frames; ++i) frame();
+        std::vector<double> steady(wall.begin() + std::min<size_t>(size_t(converge - 1 + warmup), wall.size()), wall.end());
+        std::nth_element(steady.begin(), steady.begin() + steady.size() / 2, steady.end());
+        row.wallMs = steady.empty() ? 0.0 : steady[steady.size() / 2];
     }
     for (const PassTiming& t : renderer.timings(progressive ? 0 : converge - 1 + warmup)) {
         if (t.step) continue;  // the pass's own figure already holds its steps
@@ -266,8 +279,8 @@ int runBench(const BenchOptions& o) {
                 char caption[200];
                 std::snprintf(caption, sizeof caption, "%s  %.1f ms, %s %.4f", label, row.ms, o.metric.c_str(), y);
                 tiles.emplace_back(caption, renderer.readLdr());
-                std::fprintf(stderr, "%-14s %-10s %-8s %10.2f ms %8.2f MiB  FLIP %.4f  RMSE %.5f  SSIM %.4f%s\n",
-                             sceneName.c_str(), row.method.c_str(), row.preset.c_str(), row.ms,
+                std::fprintf(stderr, "%-14s %-10s %-8s %10.2f ms GPU %10.2f ms wall %8.2f MiB  FLIP %.4f  RMSE %.5f  SSIM %.4f%s\n",
+                             sceneName.c_str(), row.method.c_str(), row.preset.c_str(), row.ms, row.wallMs,
                              double(row.bytes) / (1 << 20), row.error.flip, row.error.rmse, row.error.ssim,
                              row.aoRmse >= 0.0 ? ("  AO RMSE " + std::to_string(row.aoRmse)).c_str() : "");
                 rows.push_back(row);
@@ -290,7 +303,7 @@ int runBench(const BenchOptions& o) {
     j["reference_spp"] = o.referenceSpp;
     for (const BenchRow& r : rows) {
         nlohmann::ordered_json e{{"scene", r.scene}, {"method", r.method}, {"preset", r.preset},
-                                 {"description", r.description}, {"gpu_ms", r.ms}, {"gpu_bytes", r.bytes},
+                                 {"description", r.description}, {"gpu_ms", r.ms}, {"wall_ms", r.wallMs}, {"gpu_bytes", r.bytes},
                                  {"rmse", r.error.rmse}, {"relmse", r.error.relMse}, {"psnr_linear", r.error.psnrLinear},
                                  {"psnr_srgb", r.error.psnrSrgb}, {"ssim", r.error.ssim}, {"flip", r.error.flip}};
         for (const auto& [pass, ms] : r.passMs) e["pass_ms"][pass] = ms;
@@ -304,9 +317,10 @@ int runBench(const BenchOptions& o) {
     });
     writeAtomically(o.outDir + "/bench.csv", [&](const std::string& tmp) {
         std::ofstream f(tmp);
-        f << "scene,method,preset,gpu_ms,gpu_bytes,rmse,relmse,psnr_linear,psnr_srgb,ssim,flip,ao_rmse\n";
+        f << "scene,method,preset,gpu_ms,wall_ms,gpu_bytes,rmse,relmse,psnr_linear,psnr_srgb,ssim,flip,ao_rmse\n";
         for (const BenchRow& r : rows)
-            f << r.scene << "," << r.method << "," << r.preset << "," << r.ms << "," << r.bytes << "," << r.error.rmse
+            f << r.scene << "," << r.method << "," << r.preset << "," << r.ms << "," << r.wallMs << "," << r.bytes << ","
+              << r.error.rmse
               << "," << r.error.relMse << "," << formatMetric(r.error.psnrLinear) << ","
               << formatMetric(r.error.psnrSrgb) << "," << r.error.ssim << "," << r.error.flip << ","
               << (r.aoRmse >= 0.0 ? std::to_string(r.aoRmse) : std::string()) << "\n";
