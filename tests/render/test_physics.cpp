@@ -190,22 +190,7 @@ TEST(Physics, RendersAreDeterministic) {
 // Stability at the extremes of scale and brightness: the Cornell box scaled by 1e-3 and 1e3 (camera,
 // lights and clip planes with it, light intensity by scale^2 so irradiance is unchanged), and a
 // light 1e6 times too bright. Every pixel must stay finite and the image must look the same.
-Scene scaledCornell(float scale) {
-    Scene s = makeBuiltinScene("cornell");
-    const glm::mat4 m = glm::scale(glm::mat4(1.0f), glm::vec3(scale));
-    for (DrawItem& d : s.draws) d.world = m * d.world;
-    for (Light& l : s.lights) {
-        l.position *= scale;
-        l.intensity *= scale * scale;
-    }
-    for (Camera& c : s.cameras) {
-        c.cameraToWorld[3] = glm::vec4(glm::vec3(c.cameraToWorld[3]) * scale, 1.0f);
-        c.znear *= scale;
-        c.zfar *= scale;
-    }
-    finalizeScene(s);
-    return s;
-}
+Scene scaledCornell(float scale) { return scaledScene(makeBuiltinScene("cornell"), scale); }
 
 double meanChannel(const ImageF& img, int c) {
     double sum = 0.0;

@@ -29,9 +29,7 @@ VctImages renderVct(const Scene& scene, RenderSettings settings, int frames = 1)
 // Sets "vct.KEY" to `text` (validated by the registry).
 void setVct(RenderSettings& s, const std::string& key, const std::string& text);
 
-// Multiplies a scene's geometry, camera and lights by `scale` (light intensities by scale^2, so
-// irradiance, and with it every image, stays the same).
-Scene scaledScene(const Scene& scene, float scale);
+
 
 ImageF add(const ImageF& a, const ImageF& b);
 ImageF subtract(const ImageF& a, const ImageF& b);
