@@ -30,6 +30,7 @@ enum UniformLocation : int {
     U_MAX_BOUNCES = 42,
     U_EMITTER_COUNT = 43,
     U_RR_START = 44,
+    U_CAUSTICS = 45,        // 0: no light through glossy bounces after a diffuse one
     // ambient occlusion (SSAO, its blur and temporal passes, the ray-traced reference)
     U_AO_RADIUS = 50,
     U_AO_PARAMS = 51,        // bias (fraction of radius), power, steps per direction, noise offset

@@ -24,6 +24,7 @@
 #define U_MAX_BOUNCES 42
 #define U_EMITTER_COUNT 43
 #define U_RR_START 44
+#define U_CAUSTICS 45
 #define U_AO_RADIUS 50
 #define U_AO_PARAMS 51
 #define U_PROJ 52

@@ -15,7 +15,10 @@ const ParamTable<PathTraceSettings>& pathTraceParams() {
         .integer(&S::bounces, "bounces", "Max bounces", "indirect bounces (0 = direct light only)", 0, 1024,
                  ParamUpdate::Live, "--max-bounces")
         .integer(&S::russianRouletteStart, "rr-start", "Roulette from bounce",
-                 "bounce from which Russian roulette may end a path", 0, 1024, ParamUpdate::Live);
+                 "bounce from which Russian roulette may end a path", 0, 1024, ParamUpdate::Live)
+        .boolean(&S::caustics, "caustics", "Caustics",
+                 "false: after a diffuse bounce no glossy/specular light is picked up (Cycles' caustics switches)",
+                 ParamUpdate::Live);
     return table;
 }
 
@@ -33,7 +36,9 @@ void PathTracePass::execute(Frame& frame) {
     const RenderSettings& s = frame.settings;
     // Live parameters: a new sample count only moves the target; new bounces restart.
     const PathTraceSettings now = pathTraceParams().read("pathtrace", s.params);
-    if (now.bounces != params_.bounces || now.russianRouletteStart != params_.russianRouletteStart) samples_.done = 0;
+    if (now.bounces != params_.bounces || now.russianRouletteStart != params_.russianRouletteStart ||
+        now.caustics != params_.caustics)
+        samples_.done = 0;
     if (now.spp < samples_.done) samples_.done = 0;
     params_ = now;
     samples_.target = params_.spp;
@@ -53,6 +58,7 @@ void PathTracePass::execute(Frame& frame) {
     glProgramUniform1i(p, U_MAX_BOUNCES, params_.bounces);
     glProgramUniform1i(p, U_EMITTER_COUNT, int(rays_.emitterCount));
     glProgramUniform1i(p, U_RR_START, params_.russianRouletteStart);
+    glProgramUniform1i(p, U_CAUSTICS, params_.caustics ? 1 : 0);
     samples_.runBatch(p);
 }
 

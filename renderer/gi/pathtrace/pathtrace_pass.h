@@ -13,6 +13,7 @@ struct PathTraceSettings {
     int spp = 64;                  // samples per pixel to accumulate
     int bounces = 16;              // indirect bounces; 0 = direct lighting only
     int russianRouletteStart = 3;  // bounce from which Russian roulette may end a path
+    bool caustics = true;          // false: no glossy light after a diffuse bounce (Cycles' switch)
 };
 const ParamTable<PathTraceSettings>& pathTraceParams();
 

@@ -23,6 +23,11 @@ layout(location = U_SEED) uniform uint u_seed;
 layout(location = U_MAX_BOUNCES) uniform int u_maxBounces;
 layout(location = U_EMITTER_COUNT) uniform int u_emitterCount;
 layout(location = U_RR_START) uniform int u_rrStart;
+// 0: no caustics. As Cycles' Reflective/Refractive Caustics switches: once a path has made a
+// diffuse bounce, later vertices reflect no specular/glossy light (they are shaded and sampled as
+// if the specular model were `none`), so no light reaches the camera along diffuse -> glossy ->
+// light paths. Real-time methods produce no caustics; references are often rendered without.
+layout(location = U_CAUSTICS) uniform int u_caustics;
 
 // The largest finite float: path radiance is clamped here so that it never becomes Inf.
 const float MAX_RADIANCE = 3.4028e38;
@@ -119,9 +124,10 @@ float bsdfPdf(SurfacePoint s, vec3 V, vec3 L, float pSpecular) {
     return pdf;
 }
 
-bool sampleBsdf(SurfacePoint s, vec3 V, float pSpecular, inout Rng rng, out vec3 L) {
+bool sampleBsdf(SurfacePoint s, vec3 V, float pSpecular, inout Rng rng, out vec3 L, out bool specularLobe) {
     vec2 u = nextFloat2(rng);
-    if (nextFloat(rng) < pSpecular) {
+    specularLobe = nextFloat(rng) < pSpecular;
+    if (specularLobe) {
         vec3 t, b;
         orthonormalBasis(s.normal, t, b);
         vec3 vLocal = vec3(dot(V, t), dot(V, b), max(dot(V, s.normal), MIN_N_DOT_V));
@@ -170,7 +176,7 @@ bool visible(vec3 from, vec3 dir, float dist) {
 
 // Direct light at a surface point: every punctual light, plus one emissive triangle sampled by
 // power and weighted by MIS against BSDF sampling.
-vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, inout Rng rng) {
+vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, inout Rng rng) {
     vec3 origin = offsetRayOrigin(s.position, s.geometricNormal);
     vec3 sum = vec3(0.0);
     for (int i = 0; i < u_lightCount; ++i) {
@@ -180,7 +186,7 @@ vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, inout Rng rng) {
         float NoL = dot(s.normal, L);
         if (NoL <= 0.0 || dot(s.geometricNormal, L) <= 0.0 || all(equal(e, vec3(0.0)))) continue;
         if (!visible(origin, L, dist * (1.0 - 1e-4))) continue;
-        sum += evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, u_brdfModels.y) * e * NoL;
+        sum += evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel) * e * NoL;
     }
     if (u_emitterCount > 0) {
         uint ti = pickEmitter(nextFloat(rng));
@@ -207,7 +213,7 @@ vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, inout Rng rng) {
                 float lightPdf = a.uv2MaterialEmitter.w * d2 / abs(cosLight);
                 if (lightPdf > 0.0 && visible(origin, L, dist * (1.0 - 1e-4))) {
                     float weight = powerHeuristic(lightPdf, bsdfPdf(s, V, L, pSpecular));
-                    sum += evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, u_brdfModels.y) * le * NoL *
+                    sum += evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel) * le * NoL *
                            (weight / lightPdf);
                 }
             }
@@ -220,6 +226,7 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
     vec3 radiance = vec3(0.0);
     vec3 throughput = vec3(1.0);
     float lastBsdfPdf = 0.0;   // 0 = the ray came from the camera (no MIS for what it hits)
+    bool afterDiffuse = false; // the path has made a diffuse bounce (caustics switch)
     for (int depth = 0;; ++depth) {
         Hit hit;
         // Camera rays pass through single-sided back faces, which the rasterizer culls: every
@@ -243,14 +250,19 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
 
         vec3 V = -dir;
         float NoV = max(dot(s.normal, V), MIN_N_DOT_V);
+        bool noGlossy = afterDiffuse && u_caustics == 0;
+        if (noGlossy) s.hasSpecular = false;
+        int specularModel = noGlossy ? SPECULAR_NONE : u_brdfModels.y;
         float pSpecular = specularChoice(s, NoV);
-        radiance += throughput * directLight(s, V, pSpecular, rng);
+        radiance += throughput * directLight(s, V, pSpecular, specularModel, rng);
 
         vec3 L;
-        if (!sampleBsdf(s, V, pSpecular, rng, L)) break;
+        bool specularLobe;
+        if (!sampleBsdf(s, V, pSpecular, rng, L, specularLobe)) break;
+        afterDiffuse = afterDiffuse || !specularLobe;
         float pdf = bsdfPdf(s, V, L, pSpecular);
         if (!(pdf > 1e-12)) break;
-        throughput *= evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, u_brdfModels.y) * dot(s.normal, L) / pdf;
+        throughput *= evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel) * dot(s.normal, L) / pdf;
         if (!(max(max(throughput.r, throughput.g), throughput.b) > MIN_THROUGHPUT)) break;
         if (depth >= u_rrStart) {
             float survive = min(max(max(throughput.r, throughput.g), throughput.b), MAX_SURVIVAL);
