@@ -16,9 +16,9 @@ struct ProbeSettings {
     int sdfResolution = 64;     // probes.sdf-resolution: voxels and distance-field cells per edge (rebuild)
     int inside = 0;             // probes.inside: relocate | off, for probes inside solid geometry (rebuild)
     bool bounces = true;        // probes.multibounce: ray hits also get the probes' own irradiance (live)
-    float hysteresis = 0.9f;    // probes.hysteresis: weight of the old value once warmed up (live)
-    float threshold = 0.002f;   // probes.threshold: relative change below which updates stop (live)
-    int maxUpdates = 64;        // probes.max-updates: updates per probe after which they stop anyway (live)
+    float hysteresis = 0.98f;   // probes.hysteresis: weight of the old value once warmed up (live)
+    float threshold = 0.01f;    // probes.threshold: relative change below which updates stop (live)
+    int maxUpdates = 100;       // probes.max-updates: updates per probe after which they stop anyway (live)
     float normalBias = 0.1f;    // probes.normal-bias: along the normal and towards the eye, x probe step (live)
     float intensity = 1.0f;     // probes.intensity: scales indirect.diffuse (live)
     probes::Storage storageKind() const { return probes::Storage(storage); }

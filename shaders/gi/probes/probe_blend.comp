@@ -1,9 +1,9 @@
 // One probe update, steps 2 and 3: the batch's rays blended into each probe's irradiance
 // (u_mode 0: SH projection or the cosine-weighted mean per octahedral texel) or distance moments
 // (u_mode 1: mean and mean^2 of the hit distance under a sharp cosine power per texel). A probe's
-// first updates are a running mean (weight 1/(n+1)), later ones an exponential moving average of
+// first updates are a growing-weight running mean (weight 2/(n+2)), later ones an exponential moving average of
 // weight 1 - hysteresis: noise falls fast at first and a light change is still followed. The
-// largest relative change of the irradiance goes to u_change (atomicMax on the float's bits, which
+// largest relative change of the irradiance level goes to u_change (atomicMax on the float's bits, which
 // order like the floats for non-negative values) so the CPU can stop updating a converged scene.
 #include "gi/probes/probe_common.glsl"
 
@@ -22,7 +22,10 @@ shared vec3 s_dirs[MAX_RAYS];
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
-float newWeight(float updates) { return updates < 0.5 ? 1.0 : max(1.0 / (updates + 1.0), 1.0 - u_blendParams.x); }
+// 2 / (n + 2): a mean whose weights grow linearly with the update's number, so the first updates,
+// whose multi-bounce term still comes from probes that had not converged (or from before a light
+// edit), fade as 1/n^2 instead of 1/n; the hysteresis floor then keeps a moving average.
+float newWeight(float updates) { return updates < 0.5 ? 1.0 : max(2.0 / (updates + 2.0), 1.0 - u_blendParams.x); }
 
 vec4 blendIrradiance(int slot, int c) {
     vec3 n = octTexelDirection(c, OCT_IRRADIANCE_SIZE);
@@ -73,8 +76,11 @@ void main() {
                 vec3 old = probeIrradiance[base + c].rgb;
                 vec3 value = finiteOrZero(mix(old, blendIrradiance(slot, c).rgb, w));
                 probeIrradiance[base + c] = vec4(value, 1.0);
+                // SH: the level (DC) alone; the higher coefficients' estimates are noisier and matter
+                // less. Octahedral: every texel, each already a cosine-weighted mean.
+                bool measured = u_storage == PROBE_OCTAHEDRAL || c == 0;
                 float ref = u_storage == PROBE_OCTAHEDRAL ? luminance(old) + 1e-4 : level;
-                if (updates > 0.5) atomicMax(u_change, floatBitsToUint(luminance(abs(value - old)) / ref));
+                if (updates > 0.5 && measured) atomicMax(u_change, floatBitsToUint(luminance(abs(value - old)) / ref));
             }
         } else {
             int size = OCT_DISTANCE_SIZE * OCT_DISTANCE_SIZE;
