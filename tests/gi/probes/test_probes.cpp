@@ -260,5 +260,139 @@ TEST(Probe, ProbesInsideGeometryAreSwitchedOffOrRelocated) {
     }
 }
 
+
+// --- Against the path tracer (the README's "Probe GI" table) ----------------------------------
+
+constexpr int kMeasureSize = 64;
+
+RenderSettings measureSettings(const std::string& gi) {
+    RenderSettings r = small(kMeasureSize);
+    r.gi = gi;
+    r.hdr32 = true;
+    return r;
+}
+
+// The probes' frame after convergence (lighting pass, contract, no ambient).
+ImageF convergedProbes(const Scene& scene, RenderSettings s, int* updates = nullptr) {
+    ProbeRun run(scene, s);
+    const int n = run.renderUntilConverged(100);
+    if (updates) *updates = n;
+    return run.renderer->readHdr();
+}
+
+// Dark-room / lit-room mean of the indirect term on builtin:leak (x < 0 lit; the overhead camera
+// looks down the middle): columns left of 45% and right of 55% of the image.
+double leakRatio(const ImageF& indirect) {
+    double sums[2] = {0, 0};
+    for (int y = 0; y < indirect.height; ++y)
+        for (int x = 0; x < indirect.width; ++x) {
+            const int side = x < indirect.width * 45 / 100 ? 0 : x > indirect.width * 55 / 100 ? 1 : -1;
+            const float* p = indirect.at(x, y);
+            if (side >= 0) sums[side] += std::max(0.0f, p[0] + p[1] + p[2]);
+        }
+    return sums[0] > 0.0 ? sums[1] / sums[0] : 0.0;
+}
+
+// Visibility must cut the light that reaches the dark room through the wall (the path tracer's
+// dark room gets only what passes over the open tops of the rooms).
+TEST(Probe, ThinWallLeakIsLowerWithVisibility) {
+    const Scene s = makeBuiltinScene("leak");
+    const ImageF direct = renderHdr(s, measureSettings("none"));
+    double leak[2];
+    for (int v = 0; v < 2; ++v) {
+        RenderSettings r = measureSettings("probes");
+        setParam(r, "probes.visibility", v ? "true" : "false");
+        const ImageF indirect = subtract(convergedProbes(s, r), direct);
+        ASSERT_TRUE(allFinite(indirect));
+        leak[v] = leakRatio(indirect);
+        std::printf("PROBES-TABLE leak builtin:leak medium, visibility %s: dark room / lit room = %.4f\n",
+                    v ? "on " : "off", leak[v]);
+    }
+    EXPECT_LT(leak[1], leak[0]);
+    EXPECT_LT(leak[1], 0.15);
+}
+
+// Faces of builtin:cornell (castPixels: draw * 8 + face) and their interior pixels.
+const std::map<std::string, int> kFaces = {{"floor", 0}, {"ceiling", 1}, {"back", 2}, {"red wall", 8}, {"green wall", 16}};
+
+double faceMean(const ImageF& img, const std::vector<PixelHit>& hits, const std::vector<bool>& interior, int face,
+                int channel = -1) {
+    double sum = 0.0;
+    int n = 0;
+    for (size_t i = 0; i < hits.size(); ++i) {
+        if (!interior[i] || hits[i].region != face) continue;
+        const float* p = &img.rgba[i * 4];
+        sum += channel < 0 ? (p[0] + p[1] + p[2]) / 3.0 : p[channel];
+        ++n;
+    }
+    return n ? sum / n : 0.0;
+}
+
+// Colour bleeding: the floor's indirect light is redder near the red wall than near the green one.
+TEST(Probe, CornellIndirectBleedsTheWallColours) {
+    const Scene s = makeBuiltinScene("cornell");
+    RenderSettings r = measureSettings("probes");
+    applyPreset(r, "probes", "low");
+    r.ambient = glm::vec3(0.0f);
+    ProbeRun run(s, r);
+    run.renderUntilConverged(100);
+    const ImageF d = run.diffuse();
+    const auto hits = castPixels(s, 0, kMeasureSize, kMeasureSize, nullptr);
+    double redSide[2] = {0, 0}, greenSide[2] = {0, 0};
+    for (int y = 0; y < kMeasureSize; ++y)
+        for (int x = 0; x < kMeasureSize; ++x) {
+            if (hits[size_t(y * kMeasureSize + x)].region != kFaces.at("floor")) continue;
+            double* side = x < kMeasureSize / 3 ? redSide : x > 2 * kMeasureSize / 3 ? greenSide : nullptr;
+            if (!side) continue;
+            side[0] += d.at(x, y)[0];
+            side[1] += d.at(x, y)[1];
+        }
+    const double nearRed = redSide[0] / redSide[1], nearGreen = greenSide[0] / greenSide[1];
+    std::printf("PROBES-TABLE colour bleeding, floor indirect red/green: %.3f near the red wall, %.3f near the green\n",
+                nearRed, nearGreen);
+    EXPECT_GT(nearRed, nearGreen * 1.05);
+}
+
+// Energy per face against the multi-bounce path tracer and PSNR per preset and storage kind.
+// Slow (path tracer, 16 bounces, 256 spp): GIS_PROBES_MEASURE=1 runs it.
+TEST(Probe, MeasureAgainstThePathTracer) {
+    if (!std::getenv("GIS_PROBES_MEASURE")) GTEST_SKIP() << "GIS_PROBES_MEASURE=1 runs the measurement";
+    const Scene s = makeBuiltinScene("cornell");
+    const ImageF direct = renderHdr(s, measureSettings("none"));
+    RenderSettings pt = measureSettings("pathtrace");
+    setParam(pt, "pathtrace.spp", "256");
+    setParam(pt, "pathtrace.bounces", "16");
+    const ImageF ptFull = renderHdr(s, pt);
+    setParam(pt, "pathtrace.bounces", "0");
+    const ImageF ptIndirect = subtract(ptFull, renderHdr(s, pt));
+    const auto hits = castPixels(s, 0, kMeasureSize, kMeasureSize, nullptr);
+    const auto interior = interiorPixels(hits, kMeasureSize, kMeasureSize, 2, 0);
+    std::printf("PROBES-TABLE psnr none %.2f dB\n", compareImages(direct, ptFull).psnrSrgb);
+    struct Case {
+        const char* preset;
+        const char* storage;  // nullptr: the preset's
+        const char* visibility;
+    };
+    const Case cases[] = {{"low", nullptr, "true"},      {"medium", "sh1", "true"},  {"medium", nullptr, "true"},
+                          {"medium", "octahedral", "true"}, {"medium", nullptr, "false"}, {"high", nullptr, "true"}};
+    for (const Case& c : cases) {
+        RenderSettings r = measureSettings("probes");
+        applyPreset(r, "probes", c.preset);
+        r.ambient = glm::vec3(0.0f);
+        if (c.storage) setParam(r, "probes.storage", c.storage);
+        setParam(r, "probes.visibility", c.visibility);
+        int updates = 0;
+        const ImageF frame = convergedProbes(s, r, &updates);
+        const ImageF indirect = subtract(frame, direct);
+        std::printf("PROBES-TABLE %s storage=%s visibility=%s: %d updates, PSNR %.2f dB;", c.preset,
+                    c.storage ? c.storage : "(preset)", c.visibility, updates, compareImages(frame, ptFull).psnrSrgb);
+        for (const auto& [name, face] : kFaces) {
+            const double ratio = faceMean(indirect, hits, interior, face) / faceMean(ptIndirect, hits, interior, face);
+            std::printf(" %s %.0f%%", name.c_str(), 100.0 * ratio);
+        }
+        std::printf("\n");
+    }
+}
+
 }  // namespace
 }  // namespace gis::test
