@@ -21,7 +21,7 @@ const ParamTable<ProbeSettings>& probeParams() {
         .integer(&S::sdfResolution, "sdf-resolution", "SDF resolution",
                  "voxels and distance-field cells per edge (a power of two)", 8, 256, U::Rebuild)
         .choice(&S::inside, "inside", "Probes inside geometry",
-                "relocate = pushed out along the distance field's gradient (within 0.45 of a cell), else off; off = "
+                "relocate = pushed out along the distance field's gradient (at most 0.45 of a probe step), else off; off = "
                 "switched off",
                 {"relocate", "off"}, U::Rebuild)
         .boolean(&S::bounces, "multibounce", "Multi-bounce", "ray hits add the probes' own previous irradiance",
