@@ -323,6 +323,32 @@ TEST(Probe, ThinWallLeakIsLowerWithVisibility) {
     }
     EXPECT_LT(leak[1], leak[0]);
     EXPECT_LT(leak[1], 0.15);
+    // The voxel cone tracer on the same scene, for the side-by-side number (printed only).
+    RenderSettings v = measureSettings("vct");
+    const ImageF vct = subtract(renderHdr(s, v), direct);
+    ASSERT_TRUE(allFinite(vct));
+    std::printf("PROBES-TABLE leak builtin:leak vct medium: dark room / lit room = %.4f\n", leakRatio(vct));
+}
+
+// The update budget: a few probes per frame, round robin, still converges (in proportionally more
+// frames), and the debug view draws the probes.
+TEST(Probe, RoundRobinBudgetConvergesAndTheSpheresViewDrawsProbes) {
+    const Scene s = makeBuiltinScene("cornell");
+    RenderSettings r = small(32);
+    applyPreset(r, "probes", "low");
+    setParam(r, "probes.per-frame", "8");  // 27 probes: 4 frames per pass over all of them
+    ProbeRun run(s, r);
+    const int frames = run.renderUntilConverged(400);
+    std::printf("PROBES-TABLE low, 8 probes per frame: converged after %d frames\n", frames);
+    EXPECT_TRUE(run.pass->converged());
+    EXPECT_TRUE(allFinite(run.diffuse()));
+    EXPECT_GT(meanRgb(run.diffuse()), 0.0);
+    RenderSettings v = small(32);
+    applyPreset(v, "probes", "low");
+    v.view = "probes.spheres";
+    const ImageF spheres = renderHdr(s, [&] { v.gi = "probes"; return v; }());
+    ASSERT_TRUE(allFinite(spheres));
+    EXPECT_GT(meanRgb(spheres), 0.0);
 }
 
 // Faces of builtin:cornell (castPixels: draw * 8 + face) and their interior pixels.
@@ -416,6 +442,21 @@ TEST(Probe, MeasureAgainstThePathTracer) {
     };
     const Case cases[] = {{"low", nullptr, "true"},      {"medium", "sh1", "true"},  {"medium", nullptr, "true"},
                           {"medium", "octahedral", "true"}, {"medium", nullptr, "false"}, {"high", nullptr, "true"}};
+    // Error against probe density (medium otherwise) and ray count.
+    for (const char* spacing : {"0.5", "0.25", "0.167"}) {
+        RenderSettings r = measureSettings("probes");
+        r.ambient = glm::vec3(0.0f);
+        setParam(r, "probes.spacing", spacing);
+        std::printf("PROBES-TABLE sweep spacing %s: PSNR %.2f dB\n", spacing,
+                    compareImages(convergedProbes(s, r), ptFull).psnrSrgb);
+    }
+    for (const char* rays : {"32", "128", "512"}) {
+        RenderSettings r = measureSettings("probes");
+        r.ambient = glm::vec3(0.0f);
+        setParam(r, "probes.rays", rays);
+        std::printf("PROBES-TABLE sweep rays %s: PSNR %.2f dB\n", rays,
+                    compareImages(convergedProbes(s, r), ptFull).psnrSrgb);
+    }
     for (const Case& c : cases) {
         RenderSettings r = measureSettings("probes");
         applyPreset(r, "probes", c.preset);
