@@ -334,10 +334,13 @@ GiMethod probesMethod() {
             {"probe screen target", pixels * 8}};
     };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<ProbesPass>(b.services.scene, b.settings, b.ledger)); };
-    // Updates stop when converged; the bench renders this many frames first (max-updates cycles).
+    // Updates stop when converged (40-70 updates on the Cornell box) or after max-updates; the
+    // bench renders this many frames first. Capped so that a huge max-updates cannot stall it; with
+    // probes.per-frame below the probe count a pass over all probes takes several frames, which
+    // this cannot know (it sees no scene): such a bench row may be scored before convergence.
     m.framesToConverge = [](const RenderSettings& s) {
         const ProbeSettings p = probeParams().read("probes", s.params);
-        return std::min(p.maxUpdates, 64);
+        return std::min(p.maxUpdates, 200);
     };
     return m;
 }
