@@ -105,7 +105,8 @@ void ProbesPass::invalidate(Changes c) {
         // Restart the updates: the running mean starts over, so the new light is followed at once.
         needClassify_ = true;
         converged_ = false;
-        updates_ = 0;
+        pendingChange_ = false;
+        updates_ = finished_ = 0;
     }
 }
 
@@ -198,7 +199,6 @@ void ProbesPass::blend(int mode, const ProbeSettings& s, int first, int batch) {
 }
 
 void ProbesPass::update(Frame& frame, const ProbeSettings& s) {
-    const int count = grid_.count();
     const uint32_t zero[4] = {0, 0, 0, 0};
     glNamedBufferSubData(change_.id(), 0, 16, zero);
     rotation_ = randomRotation(updates_);
@@ -214,18 +214,25 @@ void ProbesPass::update(Frame& frame, const ProbeSettings& s) {
         auto t = frame.step("blend distance");
         blend(1, s, firstProbe_, batch_);
     }
-    // A small read-back (one float) per update; it waits for the update, which is what decides
-    // whether the next frame updates at all.
+    firstProbe_ = (firstProbe_ + batch_) % grid_.count();
+    ++updates_;
+    pendingChange_ = true;
+}
+
+// The last update's largest change, read at the start of the next frame rather than right after
+// the dispatch: by then the GPU has finished it, so the read does not stall the frame that
+// submitted it, and the decision still comes before the next update would be dispatched.
+void ProbesPass::finishUpdate(const ProbeSettings& s) {
     uint32_t bits = 0;
     glGetNamedBufferSubData(change_.id(), 0, 4, &bits);
+    pendingChange_ = false;
     std::memcpy(&lastChange_, &bits, 4);
     if (!std::isfinite(lastChange_)) lastChange_ = 1.0f;
     cycleChange_ = std::max(cycleChange_, lastChange_);
-    firstProbe_ = (firstProbe_ + batch_) % count;
-    ++updates_;
-    const int batchesPerCycle = (count + batch_ - 1) / batch_;
-    if (updates_ % batchesPerCycle == 0) {  // every probe got one more update
-        const int cycles = updates_ / batchesPerCycle;
+    ++finished_;
+    const int batchesPerCycle = (grid_.count() + batch_ - 1) / batch_;
+    if (finished_ % batchesPerCycle == 0) {  // every probe got one more update
+        const int cycles = finished_ / batchesPerCycle;
         // Two cycles at least: the first update of a probe replaces its value and reports no change.
         if ((cycles >= 2 && cycleChange_ < s.threshold) || cycles >= s.maxUpdates) converged_ = true;
         cycleChange_ = 0.0f;
@@ -257,6 +264,7 @@ void ProbesPass::execute(Frame& frame) {
         firstProbe_ = 0;
         cycleChange_ = 0.0f;
     }
+    if (!converged_ && pendingChange_) finishUpdate(live);
     updatedLastFrame_ = !converged_;
     if (!converged_) update(frame, live);
     {

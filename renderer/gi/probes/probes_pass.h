@@ -44,7 +44,7 @@ public:
     int updates() const { return updates_; }           // probe updates since the last restart (batches)
     bool converged() const { return converged_; }
     bool updatedLastFrame() const { return updatedLastFrame_; }
-    float lastChange() const { return lastChange_; }   // largest relative change of the last update
+    float lastChange() const { return lastChange_; }   // largest relative change of the last update read back
     struct StateCounts {
         int active = 0, relocated = 0, off = 0;
     };
@@ -57,6 +57,7 @@ private:
     void rebuildVolumes(Frame& frame);
     void classify();
     void update(Frame& frame, const ProbeSettings& live);
+    void finishUpdate(const ProbeSettings& live);
     void trace(const Frame& frame, const ProbeSettings& live, int first, int batch);
     void blend(int mode, const ProbeSettings& live, int first, int batch);
     void shade(const Frame& frame, const ProbeSettings& live);
@@ -72,9 +73,10 @@ private:
     gl::Texture diffuse_;
     gl::Object traceProgram_, blendProgram_, classifyProgram_, shadeProgram_, debugProgram_, sampler_;
     glm::mat3 rotation_{1.0f};
-    int batch_ = 1, firstProbe_ = 0, updates_ = 0;
+    int batch_ = 1, firstProbe_ = 0, updates_ = 0, finished_ = 0;
     float cycleChange_ = 0.0f, lastChange_ = 0.0f;
-    bool volumesValid_ = false, needClassify_ = true, converged_ = false, updatedLastFrame_ = false;
+    bool volumesValid_ = false, needClassify_ = true, converged_ = false, updatedLastFrame_ = false,
+         pendingChange_ = false;
 };
 
 }  // namespace gis
