@@ -296,13 +296,15 @@ std::vector<glm::vec3> ProbesPass::readIrradiance(int probe) const {
 
 std::vector<DebugViewDesc> ProbesPass::debugViews() const {
     return {{"probes.spheres", "every probe as a sphere showing its irradiance (E/pi) towards the viewer; dark red: "
-                               "switched off (inside geometry), blue rim: relocated"}};
+                               "switched off (inside geometry), blue rim: relocated"},
+            {"probes.state", "every probe as a sphere coloured by state: green active, blue relocated, red off"}};
 }
 
-void ProbesPass::drawDebugView(const std::string&, const Frame& frame, GLuint target) {
+void ProbesPass::drawDebugView(const std::string& view, const Frame& frame, GLuint target) {
     const GLuint p = debugProgram_.id();
     glUseProgram(p);
     setGridUniforms(p);
+    glProgramUniform1i(p, UP_MODE, view == "probes.state" ? 1 : 0);
     glProgramUniformMatrix4fv(p, UP_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UP_CAMERA_POS, 1, &frame.camera.position[0]);
     const float radius = 0.15f * std::min(grid_.step.x, std::min(grid_.step.y, grid_.step.z));

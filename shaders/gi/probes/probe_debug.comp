@@ -1,6 +1,7 @@
-// Debug view probes.spheres: every probe as a small sphere showing its irradiance (E / pi) in the
-// direction of the sphere's normal there, over the G-buffer's depth (nearer surfaces hide it).
-// Switched-off probes are drawn dark red, relocated ones with a blue rim.
+// Debug views probes.spheres (u_mode 0): every probe as a small sphere showing its irradiance
+// (E / pi) in the direction of the sphere's normal there, over the G-buffer's depth (nearer
+// surfaces hide it); switched-off probes dark red, relocated ones with a blue rim. probes.state
+// (u_mode 1): the same spheres flat-coloured by state: green active, blue relocated, red off.
 #include "gi/probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -9,6 +10,11 @@ layout(rgba16f, binding = 0) uniform writeonly image2D i_target;
 layout(location = UP_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = UP_CAMERA_POS) uniform vec3 u_cameraPos;
 layout(location = UP_SHADE_PARAMS) uniform vec4 u_shadeParams;  // -, -, -, sphere radius
+layout(location = UP_MODE) uniform int u_mode;
+
+vec3 stateColour(float state) {
+    return state > 1.5 ? vec3(1.0, 0.1, 0.1) : (state > 0.5 ? vec3(0.2, 0.4, 1.0) : vec3(0.1, 1.0, 0.2));
+}
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -32,6 +38,10 @@ void main() {
         best = t;
         vec3 normal = normalize(oc + dir * t);
         float state = probeState[2 * i].w;
+        if (u_mode == 1) {
+            colour = stateColour(state) * (0.4 + 0.6 * max(dot(normal, -dir), 0.0));
+            continue;
+        }
         colour = state > 1.5 ? vec3(0.3, 0.0, 0.0) : probeIrradianceOverPi(i, normal);
         if (state > 0.5 && state < 1.5 && dot(normal, -dir) < 0.4) colour = vec3(0.0, 0.2, 1.0);
     }

@@ -349,6 +349,12 @@ TEST(Probe, RoundRobinBudgetConvergesAndTheSpheresViewDrawsProbes) {
     const ImageF spheres = renderHdr(s, [&] { v.gi = "probes"; return v; }());
     ASSERT_TRUE(allFinite(spheres));
     EXPECT_GT(meanRgb(spheres), 0.0);
+    // probes.state: every probe of the Cornell box is active (green).
+    v.view = "probes.state";
+    const ImageF state = renderHdr(s, v);
+    double green = 0.0, red = 0.0;
+    for (size_t i = 0; i < state.rgba.size(); i += 4) green += state.rgba[i + 1], red += state.rgba[i];
+    EXPECT_GT(green, 2.0 * red);
 }
 
 // Faces of builtin:cornell (castPixels: draw * 8 + face) and their interior pixels.
