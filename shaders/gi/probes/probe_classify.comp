@@ -1,6 +1,7 @@
 // Probes inside solid geometry (negative distance) see only the inside of a wall and would leak
-// it into every room around: each is pushed out along the field's gradient to half a cell beyond
-// the surface when that stays within 0.45 of a probe step (u_mode 0, relocate), else switched off.
+// it into every room around: each is pushed out along the field's gradient to where the field is
+// half a cell outside, when that is within 0.45 of a probe step (u_mode 0, relocate), else (and
+// always with u_mode 1, off) switched off.
 // Writes each probe's state (offset, 0 active / 1 relocated / 2 off) and clears its update count.
 #include "gi/probes/probe_common.glsl"
 #include "sdf/sdf_march.glsl"
@@ -19,11 +20,19 @@ void main() {
     float d = sdfSample(s_distance, vol, p);
     vec4 state = vec4(0.0);
     if (d < 0.0) {
+        // Walk out along the gradient from |d| until the field says "outside by half a cell": the
+        // zero level set of a jump-flooded field sits on the seed voxels' centres, not exactly at
+        // |d| (and at a block's centre the gradient is only a tie-break direction).
         vec3 n = sdfNormal(s_distance, vol, p);
-        vec3 offset = n * (-d + 0.5 * sdfCellSize(vol));
+        float cell = sdfCellSize(vol);
         float limit = 0.45 * min(u_gridStep.x, min(u_gridStep.y, u_gridStep.z));
-        bool movable = u_mode == 0 && length(offset) <= limit && sdfSample(s_distance, vol, p + offset) > 0.0;
-        state = movable ? vec4(offset, 1.0) : vec4(0.0, 0.0, 0.0, PROBE_OFF);
+        state = vec4(0.0, 0.0, 0.0, PROBE_OFF);
+        for (float t = -d; u_mode == 0 && t <= limit; t += 0.5 * cell) {
+            if (sdfSample(s_distance, vol, p + n * t) > 0.5 * cell) {
+                state = vec4(n * t, 1.0);
+                break;
+            }
+        }
     }
     probeState[2 * i] = state;
     probeState[2 * i + 1] = vec4(0.0);

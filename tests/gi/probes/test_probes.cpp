@@ -274,6 +274,45 @@ TEST(Probe, ProbesInsideGeometryAreSwitchedOffOrRelocated) {
 }
 
 
+// One probe at the centre of a small solid block on a wide floor: relocate pushes it out of the
+// block (its offset is within 0.45 of a probe step), off switches it off; the others stay active.
+TEST(Probe, AProbeInsideASmallBlockIsRelocatedOrSwitchedOff) {
+    Scene s;
+    const int white = int(s.materials.size());
+    s.materials.push_back(lambert(glm::vec3(0.8f)));
+    addQuad(s, {0, -1, 0}, {0, 1, 0}, 6.0f, white);
+    addQuad(s, {0, 1, 0}, {0, -1, 0}, 6.0f, white);  // a ceiling: the bounds span y in [-1, 1]
+    const float h = 0.5f;
+    addQuad(s, {0, h, 0}, {0, 1, 0}, 1.0f, white);
+    addQuad(s, {0, -h, 0}, {0, -1, 0}, 1.0f, white);
+    addQuad(s, {h, 0, 0}, {1, 0, 0}, 1.0f, white);
+    addQuad(s, {-h, 0, 0}, {-1, 0, 0}, 1.0f, white);
+    addQuad(s, {0, 0, h}, {0, 0, 1}, 1.0f, white);
+    addQuad(s, {0, 0, -h}, {0, 0, -1}, 1.0f, white);
+    Light l;
+    l.type = LightType::Point;
+    l.position = {2.0f, 0.5f, 2.0f};
+    l.intensity = 2.0f;
+    s.lights.push_back(l);
+    s.cameras.push_back(lookAtCamera({4, 0.5f, 5}, {0, 0, 0}, 50.0f));
+    finalizeScene(s);
+    for (const char* mode : {"relocate", "off"}) {
+        RenderSettings r = small();
+        setParam(r, "probes.spacing", "0.34");  // 3 x 1 x 3 probes, steps of 2 m; one at the origin
+        setParam(r, "probes.inside", mode);
+        setParam(r, "probes.sdf-resolution", "32");
+        ProbeRun run(s, r);
+        run.renderer->renderFrame();
+        const auto c = run.pass->stateCounts();
+        std::printf("PROBES-TABLE block, %s: %d active, %d relocated, %d off of %d\n", mode, c.active, c.relocated,
+                    c.off, run.pass->grid().count());
+        EXPECT_EQ(run.pass->grid().count(), 9);
+        EXPECT_EQ(c.active, 8) << mode;
+        EXPECT_EQ(std::string(mode) == "relocate" ? c.relocated : c.off, 1) << mode;
+        EXPECT_TRUE(allFinite(run.renderer->readHdr()));
+    }
+}
+
 // --- Against the path tracer (the README's "Probe GI" table) ----------------------------------
 
 constexpr int kMeasureSize = 64;
