@@ -10,6 +10,7 @@
 #include "gi/method.h"
 #include "gi/probes/probe_math.h"
 #include "gi/probes/probes_pass.h"
+#include "memory_budget.h"
 #include "metrics.h"
 #include "render_test_util.h"
 #include "../vct/vct_test_util.h"
@@ -310,6 +311,30 @@ TEST(Probe, AProbeInsideASmallBlockIsRelocatedOrSwitchedOff) {
         EXPECT_EQ(c.active, 8) << mode;
         EXPECT_EQ(std::string(mode) == "relocate" ? c.relocated : c.off, 1) << mode;
         EXPECT_TRUE(allFinite(run.renderer->readHdr()));
+    }
+}
+
+// The memory budget's estimate for probes is the peak (voxelization sums and the jump flood's two
+// transient images included): never below what the ledger holds once the frame ran, and above it
+// by no more than those transients.
+TEST(Probe, MemoryEstimateCoversTheLedger) {
+    context();
+    const Scene scene = makeBuiltinScene("cornell");
+    for (const char* preset : {"low", "medium", "high"}) {
+        RenderSettings s = small(64);
+        applyPreset(s, "probes", preset);
+        s.gi = "probes";
+        const uint64_t estimate = estimateGpuMemory(scene, s).total();
+        Renderer renderer(scene, s);
+        renderer.renderFrame();
+        const double ledger = double(renderer.memory().total());
+        const ProbeSettings p = probeParams().read("probes", s.params);
+        const double transient = double(distanceFieldBuildBytes(p.sdfResolution) - distanceFieldBytes(p.sdfResolution)) +
+                                 double(voxelGridBytes(p.sdfResolution)) * 44.0 / 60.0;
+        std::printf("PROBES-TABLE memory %s: estimate %.2f MiB, ledger after a frame %.2f MiB\n", preset,
+                    double(estimate) / 1048576.0, ledger / 1048576.0);
+        EXPECT_GE(double(estimate), ledger) << preset;
+        EXPECT_LE(double(estimate), ledger + transient + 64 * 1024) << preset;
     }
 }
 
