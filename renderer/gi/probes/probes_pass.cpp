@@ -59,7 +59,7 @@ std::vector<ProgramDesc> ProbesPass::programs() {
 }
 
 ProbesPass::ProbesPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger)
-    : built_(probeParams().read("probes", settings.params)) {
+    : built_(probeParams().read("probes", settings.params)), maxUpdates_(built_.maxUpdates) {
     checkProbeSettings(built_);
     const gl::MemoryScope scope{&ledger, name()};
     grid_ = fitProbeGrid(scene.cpu.bounds, built_.spacing);
@@ -255,8 +255,16 @@ void ProbesPass::shade(const Frame& frame, const ProbeSettings& s) {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
+Pass::Progress ProbesPass::progress() const {
+    const int target = maxUpdates_ * ((grid_.count() + batch_ - 1) / batch_);
+    // Converged early: the target becomes the updates done, so `--timings` divides by those.
+    if (converged_) return {finished_, finished_};
+    return {std::min(finished_, target - 1), target};
+}
+
 void ProbesPass::execute(Frame& frame) {
     const ProbeSettings live = probeParams().read("probes", frame.settings.params);
+    maxUpdates_ = live.maxUpdates;
     if (!volumesValid_) rebuildVolumes(frame);
     volumesValid_ = true;
     if (needClassify_) {

@@ -33,6 +33,10 @@ public:
     std::vector<std::string> outputs() const override { return {"indirect.diffuse"}; }
     void execute(Frame& frame) override;
     bool reusedLastFrame() const override { return false; }  // the shading runs every frame
+    // Updates as progress, so `render` (and the sandbox's "converge") renders until the probes
+    // have converged: done = updates read back, target = the most updates there can be, and both
+    // the updates done once the stopping rule ends them earlier.
+    Progress progress() const override;
     void invalidate(Changes c) override;
     bool writesImagesOrBuffers() const override { return true; }
     std::vector<DebugViewDesc> debugViews() const override;
@@ -73,7 +77,7 @@ private:
     gl::Texture diffuse_;
     gl::Object traceProgram_, blendProgram_, classifyProgram_, shadeProgram_, debugProgram_, sampler_;
     glm::mat3 rotation_{1.0f};
-    int batch_ = 1, firstProbe_ = 0, updates_ = 0, finished_ = 0;
+    int batch_ = 1, firstProbe_ = 0, updates_ = 0, finished_ = 0, maxUpdates_ = 1;
     float cycleChange_ = 0.0f, lastChange_ = 0.0f;
     bool volumesValid_ = false, needClassify_ = true, converged_ = false, updatedLastFrame_ = false,
          pendingChange_ = false;
