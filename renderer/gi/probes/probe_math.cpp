@@ -35,6 +35,11 @@ glm::vec3 ProbeGrid::position(int index) const {
     return first + glm::vec3(x, y, z) * step;
 }
 
+int probeIndexNear(const ProbeGrid& g, const glm::vec3& p) {
+    const glm::ivec3 c = glm::clamp(glm::ivec3(glm::round((p - g.first) / g.step)), glm::ivec3(0), g.counts - 1);
+    return c.x + g.counts.x * (c.y + g.counts.y * c.z);
+}
+
 ProbeGrid fitProbeGrid(const Aabb& bounds, float spacing) {
     if (!(spacing > 0.0f) || !std::isfinite(spacing))
         throw Error("probes.spacing: " + std::to_string(spacing) + " gives no probe grid (it must be > 0)");

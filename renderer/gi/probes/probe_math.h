@@ -42,6 +42,8 @@ struct ProbeGrid {
     glm::vec3 position(int index) const;
 };
 constexpr int kMaxProbes = 1 << 18;
+// The index of the probe nearest to p (clamped to the grid).
+int probeIndexNear(const ProbeGrid& g, const glm::vec3& p);
 // Throws gis::Error with a clear message for a degenerate or oversized grid (non-finite bounds,
 // spacing <= 0, more than kMaxProbes probes). Empty bounds give one probe at the origin.
 ProbeGrid fitProbeGrid(const Aabb& bounds, float spacing);

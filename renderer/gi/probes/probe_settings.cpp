@@ -34,7 +34,10 @@ const ParamTable<ProbeSettings>& probeParams() {
                  100000, U::Live)
         .real(&S::normalBias, "normal-bias", "Normal/view bias", "offset of the shading point, x the probe step",
               0.0, 1.0, U::Live)
-        .real(&S::intensity, "intensity", "Intensity", "scales indirect.diffuse", 0.0, 16.0, U::Live);
+        .real(&S::intensity, "intensity", "Intensity", "scales indirect.diffuse", 0.0, 16.0, U::Live)
+        .integer(&S::debugProbe, "debug-probe", "Debug probe",
+                 "the probe whose last rays probes.rays draws (x fastest, then y, z); -1 = the middle one", -1,
+                 (1 << 18) - 1, U::Live);
     return table;
 }
 

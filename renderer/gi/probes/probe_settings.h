@@ -21,6 +21,7 @@ struct ProbeSettings {
     int maxUpdates = 100;       // probes.max-updates: updates per probe after which they stop anyway (live)
     float normalBias = 0.1f;    // probes.normal-bias: along the normal and towards the eye, x probe step (live)
     float intensity = 1.0f;     // probes.intensity: scales indirect.diffuse (live)
+    int debugProbe = -1;        // probes.debug-probe: whose rays probes.rays draws; -1 = the middle one (live)
     probes::Storage storageKind() const { return probes::Storage(storage); }
 };
 

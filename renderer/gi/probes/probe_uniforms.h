@@ -17,6 +17,7 @@ enum ProbeUniform : int {
     UP_INV_VIEW_PROJ = 511,
     UP_CAMERA_POS = 512,
     UP_SHADE_PARAMS = 513,   // bias (x min probe step), intensity, visibility on, probe radius (debug)
-    UP_MODE = 514,           // blend: 0 irradiance, 1 distance; classify: 0 relocate, 1 off
+    UP_MODE = 514,           // blend: 0 irradiance, 1 distance; classify: 0 relocate, 1 off; views: mode / probe
+    UP_VIEW_PROJ = 515,
 };
 }  // namespace gis::probes

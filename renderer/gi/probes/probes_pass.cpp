@@ -55,6 +55,7 @@ std::vector<ProgramDesc> ProbesPass::programs() {
     all.push_back({"probe_blend", {"gi/probes/probe_blend.comp"}, {}});
     all.push_back({"probe_shade", {"gi/probes/probe_shade.comp"}, {}});
     all.push_back({"probe_debug", {"gi/probes/probe_debug.comp"}, {}});
+    all.push_back({"probe_rays", {"gi/probes/probe_rays.comp"}, {}});
     return all;
 }
 
@@ -92,11 +93,12 @@ ProbesPass::ProbesPass(const GpuScene& scene, const RenderSettings& settings, gl
         glSamplerParameteri(sampler_.id(), w, GL_CLAMP_TO_EDGE);
     const auto all = programs();
     const size_t k = all.size();
-    classifyProgram_ = buildProgram(all[k - 5]);
-    traceProgram_ = buildProgram(all[k - 4]);
-    blendProgram_ = buildProgram(all[k - 3]);
-    shadeProgram_ = buildProgram(all[k - 2]);
-    debugProgram_ = buildProgram(all[k - 1]);
+    classifyProgram_ = buildProgram(all[k - 6]);
+    traceProgram_ = buildProgram(all[k - 5]);
+    blendProgram_ = buildProgram(all[k - 4]);
+    shadeProgram_ = buildProgram(all[k - 3]);
+    debugProgram_ = buildProgram(all[k - 2]);
+    raysProgram_ = buildProgram(all[k - 1]);
 }
 
 void ProbesPass::invalidate(Changes c) {
@@ -214,6 +216,7 @@ void ProbesPass::update(Frame& frame, const ProbeSettings& s) {
         auto t = frame.step("blend distance");
         blend(1, s, firstProbe_, batch_);
     }
+    lastFirst_ = firstProbe_;
     firstProbe_ = (firstProbe_ + batch_) % grid_.count();
     ++updates_;
     pendingChange_ = true;
@@ -305,10 +308,39 @@ std::vector<glm::vec3> ProbesPass::readIrradiance(int probe) const {
 std::vector<DebugViewDesc> ProbesPass::debugViews() const {
     return {{"probes.spheres", "every probe as a sphere showing its irradiance (E/pi) towards the viewer; dark red: "
                                "switched off (inside geometry), blue rim: relocated"},
-            {"probes.state", "every probe as a sphere coloured by state: green active, blue relocated, red off"}};
+            {"probes.state", "every probe as a sphere coloured by state: green active, blue relocated, red off"},
+            {"probes.rays", "the rays of probe probes.debug-probe from its last update, coloured by their radiance"}};
+}
+
+void ProbesPass::drawRays(const Frame& frame, GLuint target) {
+    const ProbeSettings live = probeParams().read("probes", frame.settings.params);
+    const int count = grid_.count();
+    const int probe = live.debugProbe < 0 ? probeIndexNear(grid_, grid_.position(0) + 0.5f * glm::vec3(grid_.counts - 1) * grid_.step)
+                                          : std::min(live.debugProbe, count - 1);
+    // The ray buffer holds the last batch only: a probe outside it has no rays to show.
+    const int slot = lastFirst_ < 0 ? -1 : (probe - lastFirst_ + count) % count;
+    const GLuint p = raysProgram_.id();
+    glUseProgram(p);
+    setGridUniforms(p);
+    glProgramUniformMatrix4fv(p, UP_VIEW_PROJ, 1, GL_FALSE, &frame.camera.viewProj[0][0]);
+    glProgramUniform1i(p, UP_RAYS, built_.rays);
+    glProgramUniform1i(p, UP_FIRST_PROBE, slot < batch_ ? slot : -1);
+    glProgramUniformMatrix3fv(p, UP_ROTATION, 1, GL_FALSE, &rotation_[0][0]);
+    glProgramUniform1i(p, UP_MODE, probe);
+    const GLuint depth = frame.texture("gbuffer.depth");
+    glBindTextures(4, 1, &depth);
+    glBindSamplers(4, 1, nullptr);
+    bindProbeBuffers();
+    glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(GLuint((diffuse_.width + 7) / 8), GLuint((diffuse_.height + 7) / 8), 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void ProbesPass::drawDebugView(const std::string& view, const Frame& frame, GLuint target) {
+    if (view == "probes.rays") {
+        drawRays(frame, target);
+        return;
+    }
     const GLuint p = debugProgram_.id();
     glUseProgram(p);
     setGridUniforms(p);

@@ -75,9 +75,11 @@ private:
     std::unique_ptr<DistanceField> field_;
     gl::Buffer irradiance_, distance_, state_, rays_, change_;
     gl::Texture diffuse_;
-    gl::Object traceProgram_, blendProgram_, classifyProgram_, shadeProgram_, debugProgram_, sampler_;
+    gl::Object traceProgram_, blendProgram_, classifyProgram_, shadeProgram_, debugProgram_, raysProgram_, sampler_;
     glm::mat3 rotation_{1.0f};
     int batch_ = 1, firstProbe_ = 0, updates_ = 0, finished_ = 0, maxUpdates_ = 1;
+    int lastFirst_ = -1;  // first probe of the last update's batch (-1: none yet), for probes.rays
+    void drawRays(const Frame& frame, GLuint target);
     float cycleChange_ = 0.0f, lastChange_ = 0.0f;
     bool volumesValid_ = false, needClassify_ = true, converged_ = false, updatedLastFrame_ = false,
          pendingChange_ = false;

@@ -15,3 +15,4 @@
 #define UP_CAMERA_POS 512
 #define UP_SHADE_PARAMS 513
 #define UP_MODE 514
+#define UP_VIEW_PROJ 515

@@ -419,6 +419,11 @@ TEST(Probe, RoundRobinBudgetConvergesAndTheSpheresViewDrawsProbes) {
     double green = 0.0, red = 0.0;
     for (size_t i = 0; i < state.rgba.size(); i += 4) green += state.rgba[i + 1], red += state.rgba[i];
     EXPECT_GT(green, 2.0 * red);
+    // probes.rays: the middle probe's last rays, lit by what they brought back.
+    v.view = "probes.rays";
+    const ImageF rays = renderHdr(s, v);
+    ASSERT_TRUE(allFinite(rays));
+    EXPECT_GT(meanRgb(rays), 0.0);
 }
 
 // Faces of builtin:cornell (castPixels: draw * 8 + face) and their interior pixels.
