@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 
@@ -158,8 +159,19 @@ void ProbesPass::classify() {
     glBindSamplers(0, 2, nullptr);
     bindProbeBuffers();
     glDispatchCompute(GLuint((grid_.count() + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     needClassify_ = false;
+    // A grid with no usable probe gives black indirect light everywhere: say so once (a read-back
+    // per classification, i.e. per geometry or light change, not per frame).
+    const StateCounts c = stateCounts();
+    if (c.active + c.relocated == 0 && !warnedAllOff_) {
+        std::fprintf(stderr,
+                     "gisandbox: warning: probes: all %d probes are inside geometry and switched off "
+                     "(probes.inside=%s); indirect.diffuse is black. Change probes.spacing or use "
+                     "probes.inside=relocate\n",
+                     grid_.count(), built_.inside == 0 ? "relocate" : "off");
+        warnedAllOff_ = true;
+    }
 }
 
 void ProbesPass::trace(const Frame& frame, const ProbeSettings& s, int first, int batch) {

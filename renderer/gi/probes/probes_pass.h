@@ -82,7 +82,7 @@ private:
     void drawRays(const Frame& frame, GLuint target);
     float cycleChange_ = 0.0f, lastChange_ = 0.0f;
     bool volumesValid_ = false, needClassify_ = true, converged_ = false, updatedLastFrame_ = false,
-         pendingChange_ = false;
+         pendingChange_ = false, warnedAllOff_ = false;
 };
 
 }  // namespace gis

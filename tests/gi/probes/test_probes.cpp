@@ -263,7 +263,10 @@ TEST(Probe, ProbesInsideGeometryAreSwitchedOffOrRelocated) {
         setParam(r, "probes.inside", mode);
         setParam(r, "probes.sdf-resolution", "32");
         ProbeRun run(s, r);
+        testing::internal::CaptureStderr();
         run.renderer->renderFrame();
+        const std::string warning = testing::internal::GetCapturedStderr();
+        EXPECT_NE(warning.find("all 27 probes are inside geometry"), std::string::npos) << warning;
         const auto c = run.pass->stateCounts();
         std::printf("PROBES-TABLE all inside, %s: %d active, %d relocated, %d off of %d\n", mode, c.active,
                     c.relocated, c.off, run.pass->grid().count());
