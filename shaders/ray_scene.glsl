@@ -3,6 +3,7 @@
 // at a hit - position, normals facing the ray, texture coordinates - plus alpha cut-outs.
 #include "common.glsl"
 #include "bvh.glsl"
+#include "sampling.glsl"
 
 struct TriangleAttributes {
     vec4 n0, n1, n2;          // shading normals
@@ -121,19 +122,3 @@ RayHitGeometry hitGeometry(Hit hit, vec3 rayDir) {
     return g;
 }
 
-void orthonormalBasis(vec3 n, out vec3 t, out vec3 b) {
-    // Duff et al. 2017, "Building an orthonormal basis, revisited".
-    float s = n.z >= 0.0 ? 1.0 : -1.0;
-    float a = -1.0 / (s + n.z);
-    float c = n.x * n.y * a;
-    t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
-    b = vec3(c, s + n.y * n.y * a, -n.y);
-}
-
-// Cosine-weighted direction around n (Malley's method: uniform on the disk, lifted).
-vec3 cosineDirection(vec3 n, vec2 u) {
-    vec3 t, b;
-    orthonormalBasis(n, t, b);
-    float r = sqrt(u.x), phi = 2.0 * PI * u.y;
-    return t * (r * cos(phi)) + b * (r * sin(phi)) + n * sqrt(max(0.0, 1.0 - u.x));
-}

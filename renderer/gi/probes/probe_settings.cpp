@@ -1,0 +1,50 @@
+#include "gi/probes/probe_settings.h"
+
+#include <string>
+
+namespace gis {
+
+const ParamTable<ProbeSettings>& probeParams() {
+    using S = ProbeSettings;
+    using U = ParamUpdate;
+    static const ParamTable<S> table = ParamTable<S>()
+        .real(&S::spacing, "spacing", "Probe spacing",
+              "cell width as a fraction of the scene's largest extent (>= 1: one probe)", 0.02, 4.0, U::Rebuild)
+        .integer(&S::rays, "rays", "Rays per probe", "rays each probe traces per update", 8, 512, U::Rebuild)
+        .choice(&S::storage, "storage", "Storage",
+                "sh1 = SH L1 (64 B), sh2 = SH L2 (144 B), octahedral = 6x6 irradiance map (576 B); plus 1568 B "
+                "of distance moments and 32 B of state per probe",
+                {"sh1", "sh2", "octahedral"}, U::Rebuild)
+        .boolean(&S::visibility, "visibility", "Visibility", "Chebyshev visibility from the distance moments", U::Live)
+        .integer(&S::probesPerFrame, "per-frame", "Probes per frame", "probes updated per frame, 0 = all", 0, 1 << 18,
+                 U::Rebuild)
+        .integer(&S::sdfResolution, "sdf-resolution", "SDF resolution",
+                 "voxels and distance-field cells per edge (a power of two)", 8, 256, U::Rebuild)
+        .choice(&S::inside, "inside", "Probes inside geometry",
+                "relocate = pushed out along the distance field's gradient (at most 0.45 of a probe step), else off; off = "
+                "switched off",
+                {"relocate", "off"}, U::Rebuild)
+        .boolean(&S::bounces, "multibounce", "Multi-bounce", "ray hits add the probes' own previous irradiance",
+                 U::Live)
+        .real(&S::hysteresis, "hysteresis", "Hysteresis", "weight of the old value once a probe has warmed up", 0.0,
+              0.99, U::Live)
+        .real(&S::threshold, "threshold", "Convergence threshold",
+              "largest relative change of an update below which the probes stop updating", 0.0, 1.0, U::Live)
+        .integer(&S::maxUpdates, "max-updates", "Max updates", "updates per probe after which they stop anyway", 1,
+                 100000, U::Live)
+        .real(&S::normalBias, "normal-bias", "Normal/view bias", "offset of the shading point, x the probe step",
+              0.0, 1.0, U::Live)
+        .real(&S::intensity, "intensity", "Intensity", "scales indirect.diffuse", 0.0, 16.0, U::Live)
+        .integer(&S::debugProbe, "debug-probe", "Debug probe",
+                 "the probe whose last rays probes.rays draws (x fastest, then y, z); -1 = the middle one", -1,
+                 (1 << 18) - 1, U::Live);
+    return table;
+}
+
+void checkProbeSettings(const ProbeSettings& s) {
+    const int r = s.sdfResolution;
+    if (r < 8 || r > 256 || (r & (r - 1)) != 0)
+        throw Error("probes.sdf-resolution: " + std::to_string(r) + " must be a power of two in [8, 256]");
+}
+
+}  // namespace gis

@@ -1,0 +1,32 @@
+// Probe GI's parameters: one row each in probeParams() (issue 13's names: probes.spacing,
+// probes.rays, probes.storage, probes.visibility), defaults in the initialisers below.
+#pragma once
+
+#include "gi/params.h"
+#include "gi/probes/probe_math.h"
+
+namespace gis {
+
+struct ProbeSettings {
+    float spacing = 0.25f;      // probes.spacing: cell width as a fraction of the scene's largest extent (rebuild)
+    int rays = 128;             // probes.rays: rays per probe per update (rebuild: sizes the ray buffer)
+    int storage = 1;            // probes.storage: sh1 | sh2 | octahedral (rebuild)
+    bool visibility = true;     // probes.visibility: Chebyshev visibility from the distance moments (live)
+    int probesPerFrame = 0;     // probes.per-frame: probes updated per frame, 0 = all (rebuild)
+    int sdfResolution = 64;     // probes.sdf-resolution: voxels and distance-field cells per edge (rebuild)
+    int inside = 0;             // probes.inside: relocate | off, for probes inside solid geometry (rebuild)
+    bool bounces = true;        // probes.multibounce: ray hits also get the probes' own irradiance (live)
+    float hysteresis = 0.98f;   // probes.hysteresis: weight of the old value once warmed up (live)
+    float threshold = 0.01f;    // probes.threshold: relative change below which updates stop (live)
+    int maxUpdates = 100;       // probes.max-updates: updates per probe after which they stop anyway (live)
+    float normalBias = 0.1f;    // probes.normal-bias: along the normal and towards the eye, x probe step (live)
+    float intensity = 1.0f;     // probes.intensity: scales indirect.diffuse (live)
+    int debugProbe = -1;        // probes.debug-probe: whose rays probes.rays draws; -1 = the middle one (live)
+    probes::Storage storageKind() const { return probes::Storage(storage); }
+};
+
+const ParamTable<ProbeSettings>& probeParams();
+// What the ranges cannot say (a power-of-two resolution); throws gis::Error naming the key.
+void checkProbeSettings(const ProbeSettings& s);
+
+}  // namespace gis

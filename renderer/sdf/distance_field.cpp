@@ -1,0 +1,181 @@
+#include "sdf/distance_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "renderer.h"
+#include "scene/scene.h"
+#include "sdf/sdf_uniforms.h"
+
+namespace gis {
+
+namespace {
+
+using namespace sdf;
+
+constexpr int kGroup = 4;  // local size of every shaders/sdf/*.comp, per axis
+
+GLuint groups(int n) { return GLuint((n + kGroup - 1) / kGroup); }
+
+void dispatch(int n) { glDispatchCompute(groups(n), groups(n), groups(n)); }
+
+int coarseSize(int resolution) { return (resolution + kSdfCoarseFactor - 1) / kSdfCoarseFactor; }
+
+// A timed step when the caller gave timers (the pass's frame.step), nothing otherwise.
+std::optional<StepTimers::Scope> timed(StepTimers* timers, const char* step) {
+    if (!timers) return std::nullopt;
+    return timers->scope(step);
+}
+
+void setSampling(const gl::Texture& t, GLenum filter) {
+    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, filter);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glTextureParameteri(t.id(), wrap, GL_CLAMP_TO_EDGE);
+}
+
+}  // namespace
+
+JfaVariant parseJfaVariant(const std::string& s) {
+    if (s == "plain") return JfaVariant::Plain;
+    if (s == "1+jfa") return JfaVariant::OnePlusJfa;
+    if (s == "jfa+2") return JfaVariant::JfaPlusTwo;
+    throw Error("unknown JFA variant '" + s + "' (plain, 1+jfa, jfa+2)");
+}
+
+const char* jfaVariantName(JfaVariant v) {
+    switch (v) {
+        case JfaVariant::Plain: return "plain";
+        case JfaVariant::OnePlusJfa: return "1+jfa";
+        case JfaVariant::JfaPlusTwo: return "jfa+2";
+    }
+    return "plain";
+}
+
+std::vector<int> jfaSteps(int resolution, JfaVariant v) {
+    int n = 1;
+    while (n < resolution) n *= 2;
+    std::vector<int> steps;
+    // 1+JFA: a step-1 pass first spreads every seed to its neighbours, so clusters of close seeds
+    // compete before the long jumps carry them (Rong & Tan 2007).
+    if (v == JfaVariant::OnePlusJfa) steps.push_back(1);
+    for (int k = n / 2; k >= 1; k /= 2) steps.push_back(k);
+    // JFA+2: two more passes with jumps 2 and 1 repair most cells the long jumps got wrong.
+    if (v == JfaVariant::JfaPlusTwo) steps.insert(steps.end(), {2, 1});
+    if (steps.empty()) steps.push_back(1);  // a single cell: one pass keeps it well defined
+    return steps;
+}
+
+int64_t distanceFieldBytes(int resolution) {
+    const int64_t n = resolution, c = coarseSize(resolution);
+    return 4 * (n * n * n + c * c * c);
+}
+
+int64_t distanceFieldBuildBytes(int resolution) {
+    const int64_t n = resolution;
+    return distanceFieldBytes(resolution) + 2 * 4 * n * n * n;
+}
+
+DistanceField::DistanceField(const SdfVolume& volume, const gl::MemoryScope& scope) : volume_(volume), scope_(scope) {
+    const int n = volume.resolution;
+    if (n < 1 || n > kSdfMaxResolution)
+        throw Error("distance field resolution " + std::to_string(n) + " is out of range [1, " +
+                    std::to_string(kSdfMaxResolution) + "]");
+    if (!(volume.size > 0.0f) || !std::isfinite(volume.size))
+        throw Error("distance field volume has no size");
+    distance_ = gl::createTexture3D(scope, GL_R32F, n, n, n);
+    setSampling(distance_, GL_LINEAR);
+    const int c = coarseSize(n);
+    coarse_ = gl::createTexture3D(scope, GL_R32F, c, c, c);
+    setSampling(coarse_, GL_NEAREST);
+    seedProgram_ = buildProgram({"sdf_seed", {"sdf/jfa_seed.comp"}, {}});
+    stepProgram_ = buildProgram({"sdf_jfa", {"sdf/jfa_step.comp"}, {}});
+    resolveProgram_ = buildProgram({"sdf_resolve", {"sdf/sdf_resolve.comp"}, {}});
+    coarseProgram_ = buildProgram({"sdf_coarse", {"sdf/sdf_coarse.comp"}, {}});
+}
+
+std::vector<ProgramDesc> DistanceField::programs() {
+    return {{"sdf_seed", {"sdf/jfa_seed.comp"}, {}},
+            {"sdf_jfa", {"sdf/jfa_step.comp"}, {}},
+            {"sdf_resolve", {"sdf/sdf_resolve.comp"}, {}},
+            {"sdf_coarse", {"sdf/sdf_coarse.comp"}, {}}};
+}
+
+void DistanceField::build(const SdfSeeds& seeds, JfaVariant variant, StepTimers* timers) {
+    const int n = volume_.resolution;
+    // Transient: two nearest-seed images, released when the field is resolved.
+    gl::Texture ping = gl::createTexture3D(scope_, GL_R32UI, n, n, n);
+    gl::Texture pong = gl::createTexture3D(scope_, GL_R32UI, n, n, n);
+    {
+        auto t = timed(timers, "seed");
+        glUseProgram(seedProgram_.id());
+        glProgramUniform1i(seedProgram_.id(), US_RESOLUTION, n);
+        glBindTextureUnit(0, seeds.occupancy);
+        glBindImageTexture(0, ping.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+        dispatch(n);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+    {
+        auto t = timed(timers, "jfa");
+        glUseProgram(stepProgram_.id());
+        glProgramUniform1i(stepProgram_.id(), US_RESOLUTION, n);
+        for (int step : jfaSteps(n, variant)) {
+            glProgramUniform1i(stepProgram_.id(), US_JFA_STEP, step);
+            glBindImageTexture(0, ping.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+            glBindImageTexture(1, pong.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+            dispatch(n);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            std::swap(ping, pong);  // the result is always in `ping`
+        }
+    }
+    {
+        auto t = timed(timers, "resolve");
+        const GLuint p = resolveProgram_.id();
+        glUseProgram(p);
+        glProgramUniform1i(p, US_RESOLUTION, n);
+        glProgramUniform1f(p, US_CELL_SIZE, volume_.cellSize());
+        glProgramUniform1f(p, US_FAR, volume_.farValue());
+        glProgramUniform1i(p, US_HAS_NORMALS, seeds.normals ? 1 : 0);
+        glBindTextureUnit(1, seeds.normals);
+        glBindImageTexture(0, ping.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(1, distance_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+        dispatch(n);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        buildCoarse();
+    }
+    for (GLuint unit : {0u, 1u}) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+}
+
+void DistanceField::buildCoarse() {
+    const GLuint p = coarseProgram_.id();
+    glUseProgram(p);
+    glProgramUniform1i(p, US_RESOLUTION, volume_.resolution);
+    glProgramUniform1f(p, US_CELL_SIZE, volume_.cellSize());
+    glProgramUniform1i(p, US_COARSE_FACTOR, kSdfCoarseFactor);
+    glBindTextureUnit(0, distance_.id());
+    glBindImageTexture(0, coarse_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    dispatch(coarse_.width);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+void DistanceField::upload(const std::vector<float>& distances) {
+    const int n = volume_.resolution;
+    if (distances.size() != size_t(n) * n * n) throw Error("distance field upload: wrong number of cells");
+    glTextureSubImage3D(distance_.id(), 0, 0, 0, 0, n, n, n, GL_RED, GL_FLOAT, distances.data());
+    buildCoarse();
+}
+
+std::vector<float> DistanceField::readBack() const {
+    const int n = volume_.resolution;
+    std::vector<float> out(size_t(n) * n * n);
+    glGetTextureImage(distance_.id(), 0, GL_RED, GL_FLOAT, GLsizei(out.size() * sizeof(float)), out.data());
+    return out;
+}
+
+void DistanceField::bind(GLuint unit) const {
+    glBindTextureUnit(unit, distance_.id());
+    glBindTextureUnit(unit + 1, coarse_.id());
+}
+
+}  // namespace gis

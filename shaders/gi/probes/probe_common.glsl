@@ -1,0 +1,157 @@
+// Probe GI's storage and lookups on the GPU: the twin of renderer/gi/probes/probe_math.{h,cpp}
+// (same constants and layouts). Buffers (std430): irradiance (one vec4 per SH coefficient or
+// octahedral texel, per probe), distance moments (vec2 per texel of a 14x14 octahedral map), state
+// (two vec4 per probe: relocation offset + state 0 active / 1 relocated / 2 off; update count).
+#include "common.glsl"
+#include "gi/probes/probe_uniforms.glsl"
+
+#define PROBE_SH1 0
+#define PROBE_SH2 1
+#define PROBE_OCTAHEDRAL 2
+#define OCT_IRRADIANCE_SIZE 6
+#define OCT_DISTANCE_SIZE 14
+#define PROBE_OFF 2.0
+
+layout(std430, binding = 0) buffer ProbeIrradiance { vec4 probeIrradiance[]; };
+layout(std430, binding = 1) buffer ProbeDistance { vec2 probeDistance[]; };
+layout(std430, binding = 2) buffer ProbeState { vec4 probeState[]; };
+
+layout(location = UP_GRID_FIRST) uniform vec3 u_gridFirst;
+layout(location = UP_GRID_STEP) uniform vec3 u_gridStep;
+layout(location = UP_GRID_COUNTS) uniform ivec3 u_gridCounts;
+layout(location = UP_STORAGE) uniform int u_storage;
+
+int probeCount() { return u_gridCounts.x * u_gridCounts.y * u_gridCounts.z; }
+int probeIndex(ivec3 c) { return c.x + u_gridCounts.x * (c.y + u_gridCounts.y * c.z); }
+ivec3 probeCoord(int i) {
+    return ivec3(i % u_gridCounts.x, (i / u_gridCounts.x) % u_gridCounts.y, i / (u_gridCounts.x * u_gridCounts.y));
+}
+bool probeOff(int i) { return probeState[2 * i].w > 1.5; }
+// Grid position plus the relocation offset.
+vec3 probePosition(int i) { return u_gridFirst + vec3(probeCoord(i)) * u_gridStep + probeState[2 * i].xyz; }
+
+int irradianceStride() {
+    return u_storage == PROBE_SH1 ? 4 : (u_storage == PROBE_SH2 ? 9 : OCT_IRRADIANCE_SIZE * OCT_IRRADIANCE_SIZE);
+}
+
+// Spherical Fibonacci: direction k of n, equal-area in z, golden-angle spiral in phi.
+vec3 fibonacciDirection(int k, int n) {
+    float z = 1.0 - (2.0 * float(k) + 1.0) / float(n);
+    float r = sqrt(max(0.0, 1.0 - z * z));
+    float phi = 2.39996323 * float(k);
+    return vec3(r * cos(phi), r * sin(phi), z);
+}
+
+// Real SH basis, bands 0-2 (Ramamoorthi & Hanrahan 2001's constants), coefficient c.
+float shBasis(int c, vec3 d) {
+    switch (c) {
+    case 0: return 0.282095;
+    case 1: return 0.488603 * d.y;
+    case 2: return 0.488603 * d.z;
+    case 3: return 0.488603 * d.x;
+    case 4: return 1.092548 * d.x * d.y;
+    case 5: return 1.092548 * d.y * d.z;
+    case 6: return 0.315392 * (3.0 * d.z * d.z - 1.0);
+    case 7: return 1.092548 * d.x * d.z;
+    default: return 0.546274 * (d.x * d.x - d.y * d.y);
+    }
+}
+// The clamped-cosine kernel's band factor A_l (pi, 2pi/3, pi/4).
+float shCosine(int c) { return c == 0 ? PI : (c < 4 ? 2.0943951 : 0.78539816); }
+
+vec2 octEncode(vec3 d) {
+    vec3 a = d / (abs(d.x) + abs(d.y) + abs(d.z));
+    vec2 p = a.xy;
+    if (a.z < 0.0) p = (1.0 - abs(p.yx)) * vec2(p.x >= 0.0 ? 1.0 : -1.0, p.y >= 0.0 ? 1.0 : -1.0);
+    return p * 0.5 + 0.5;
+}
+vec3 octDecode(vec2 uv) {
+    vec2 p = uv * 2.0 - 1.0;
+    vec3 d = vec3(p, 1.0 - abs(p.x) - abs(p.y));
+    if (d.z < 0.0) d.xy = (1.0 - abs(d.yx)) * vec2(d.x >= 0.0 ? 1.0 : -1.0, d.y >= 0.0 ? 1.0 : -1.0);
+    return normalize(d);
+}
+vec3 octTexelDirection(int t, int size) { return octDecode((vec2(t % size, t / size) + 0.5) / float(size)); }
+// A texel past the map's edge is its mirror across that edge (how the octahedron folds), so
+// bilinear lookups need no border texels.
+ivec2 octWrap(ivec2 t, int n) {
+    if (t.x < 0 || t.x >= n) t = ivec2(clamp(t.x, 0, n - 1), n - 1 - t.y);
+    if (t.y < 0 || t.y >= n) t = ivec2(n - 1 - t.x, clamp(t.y, 0, n - 1));
+    return t;
+}
+// Bilinear weights and the four texels around direction d on a size x size map.
+void octBilinear(vec3 d, int size, out ivec2 texels[4], out vec4 weights) {
+    vec2 p = octEncode(d) * float(size) - 0.5;
+    ivec2 base = ivec2(floor(p));
+    vec2 f = p - vec2(base);
+    texels[0] = octWrap(base, size);
+    texels[1] = octWrap(base + ivec2(1, 0), size);
+    texels[2] = octWrap(base + ivec2(0, 1), size);
+    texels[3] = octWrap(base + ivec2(1, 1), size);
+    weights = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+}
+
+// E / pi (the cosine-weighted mean incoming radiance) of probe i for normal n.
+vec3 probeIrradianceOverPi(int i, vec3 n) {
+    int base = i * irradianceStride();
+    if (u_storage == PROBE_OCTAHEDRAL) {
+        ivec2 t[4];
+        vec4 w;
+        octBilinear(n, OCT_IRRADIANCE_SIZE, t, w);
+        vec3 e = vec3(0.0);
+        for (int k = 0; k < 4; ++k) e += w[k] * probeIrradiance[base + t[k].y * OCT_IRRADIANCE_SIZE + t[k].x].rgb;
+        return e;
+    }
+    vec3 e = vec3(0.0);
+    int n9 = irradianceStride();
+    for (int c = 0; c < n9; ++c) e += shCosine(c) * shBasis(c, n) * probeIrradiance[base + c].rgb;
+    return max(e, vec3(0.0)) * INV_PI;  // low orders ring below zero behind strong lights
+}
+
+// Mean and mean^2 of the distance probe i saw around direction d.
+vec2 probeDistanceMoments(int i, vec3 d) {
+    ivec2 t[4];
+    vec4 w;
+    octBilinear(d, OCT_DISTANCE_SIZE, t, w);
+    int base = i * OCT_DISTANCE_SIZE * OCT_DISTANCE_SIZE;
+    vec2 m = vec2(0.0);
+    for (int k = 0; k < 4; ++k) m += w[k] * probeDistance[base + t[k].y * OCT_DISTANCE_SIZE + t[k].x];
+    return m;
+}
+
+// Indirect diffuse (E / pi) at P (already biased off the surface) with normal N: trilinear over
+// the 8 surrounding probes, weighted by how the normal faces each (wrapped, as in DDGI, so probes
+// behind still count a little) and, with `visibility`, by Chebyshev's bound on the probe seeing P
+// (from its distance moments: light behind a wall the probe saw closer than P is cut).
+vec3 sampleProbes(vec3 P, vec3 N, bool visibility) {
+    vec3 g = (P - u_gridFirst) / u_gridStep;
+    ivec3 base = clamp(ivec3(floor(g)), ivec3(0), max(u_gridCounts - 2, ivec3(0)));
+    vec3 alpha = clamp(g - vec3(base), 0.0, 1.0);
+    vec3 sum = vec3(0.0);
+    float weights = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        ivec3 off = ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+        int i = probeIndex(min(base + off, u_gridCounts - 1));
+        if (probeOff(i)) continue;
+        vec3 tri = mix(1.0 - alpha, alpha, vec3(off));
+        float w = tri.x * tri.y * tri.z;
+        vec3 toProbe = probePosition(i) - P;
+        float d = length(toProbe);
+        vec3 dir = d > 1e-30 ? toProbe / d : N;
+        float facing = 0.5 * (dot(dir, N) + 1.0);
+        w *= facing * facing + 0.2;
+        if (visibility) {
+            vec2 m = probeDistanceMoments(i, -dir);
+            if (d > m.x) {
+                float variance = abs(m.y - m.x * m.x);
+                float excess = d - m.x;
+                float chebyshev = variance / max(variance + excess * excess, 1e-30);
+                w *= chebyshev * chebyshev * chebyshev;
+            }
+        }
+        w = max(w, 1e-7);
+        sum += w * probeIrradianceOverPi(i, N);
+        weights += w;
+    }
+    return weights > 0.0 ? sum / weights : vec3(0.0);
+}

@@ -1,0 +1,34 @@
+// Test harness for sdf_march.glsl: marches a list of rays through a field and writes what the
+// marcher returned (tests/sdf/test_march.cpp). Not used by the renderer.
+#include "sdf/sdf_march.glsl"
+
+layout(local_size_x = 64) in;
+
+struct ProbeRay {
+    vec4 origin;     // xyz, w = max distance
+    vec4 direction;  // xyz (normalized), w unused
+};
+layout(std430, binding = 0) readonly buffer Rays { ProbeRay rays[]; };
+// Two vec4 per ray: position + hit (1/0), normal + steps.
+layout(std430, binding = 1) writeonly buffer Hits { vec4 hits[]; };
+layout(binding = 0) uniform sampler3D s_distance;
+layout(binding = 1) uniform sampler3D s_coarse;
+
+layout(location = 0) uniform uint u_count;
+layout(location = 1) uniform vec4 u_volume;   // origin xyz, size
+layout(location = 2) uniform int u_resolution;
+layout(location = 3) uniform vec4 u_march;    // hit threshold (cells), relaxation, max steps, start offset
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= u_count) return;
+    SdfVolume vol = SdfVolume(u_volume.xyz, u_volume.w, u_resolution);
+    SdfMarchParams p = sdfDefaultParams(rays[i].origin.w);
+    p.hitThreshold = u_march.x;
+    p.relaxation = u_march.y;
+    p.maxSteps = int(u_march.z);
+    p.startOffset = u_march.w;
+    SdfHit h = sdfMarch(s_distance, s_coarse, vol, rays[i].origin.xyz, rays[i].direction.xyz, p);
+    hits[2 * i] = vec4(h.position, h.hit ? 1.0 : 0.0);
+    hits[2 * i + 1] = vec4(h.normal, float(h.steps));
+}
