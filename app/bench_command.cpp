@@ -188,8 +188,14 @@ int runBench(const BenchOptions& o) {
 
     ContextOptions co;
     co.backend = parseBackend(o.backend);
-    auto ctx = createContext(co);
-    std::fprintf(stderr, "bench on %s (%s), %dx%d\n", ctx->renderer.c_str(), backendName(ctx->backend()), base.width,
+    // In-process callers (tests) that already hold a current context pass useCurrentContext: a
+    // second EGL context on the same display would tear theirs down with it.
+    std::unique_ptr<GlContext> ctx;
+    if (!o.useCurrentContext) ctx = createContext(co);
+    const std::string glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const std::string glVersion = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    const std::string backend = ctx ? backendName(ctx->backend()) : "caller's context";
+    std::fprintf(stderr, "bench on %s (%s), %dx%d\n", glRenderer.c_str(), backend.c_str(), base.width,
                  base.height);
 
     std::vector<BenchRow> rows;
@@ -290,13 +296,13 @@ int runBench(const BenchOptions& o) {
         const std::string yLabel = o.metric == "ssim" ? "1 - SSIM vs reference" : o.metric + " vs reference";
         writePng(stem + "_chart.png",
                  drawTradeoffChart(points, sceneName + ": error vs GPU time, " + o.size,
-                                   "GPU ms on " + ctx->renderer.substr(0, ctx->renderer.find(" (")) +
+                                   "GPU ms on " + glRenderer.substr(0, glRenderer.find(" (")) +
                                        " (per frame; path tracer: all samples)",
                                    yLabel));
     }
 
     nlohmann::ordered_json j;
-    j["machine"] = {{"gl_renderer", ctx->renderer}, {"gl_version", ctx->version}, {"backend", backendName(ctx->backend())}};
+    j["machine"] = {{"gl_renderer", glRenderer}, {"gl_version", glVersion}, {"backend", backend}};
     j["size"] = o.size;
     j["frames"] = o.frames;
     j["warmup"] = o.warmup;

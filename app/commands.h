@@ -78,6 +78,7 @@ struct BenchOptions {
     SceneSetupOptions setup;
     std::vector<float> ambient;
     std::vector<float> background;
+    bool useCurrentContext = false;   // in-process callers (tests) that hold a current GL context
 };
 
 // "WxH" -> width, height; throws gis::Error naming the flag value.

@@ -157,6 +157,7 @@ TEST(Methods, ATestMethodGetsABenchRow) {
     o.presets = {"low"};
     o.referenceSpp = 4;
     o.outDir = dir;
+    o.useCurrentContext = true;  // keep the test binary's context (a second one would end it)
     context();
     ASSERT_EQ(runBench(o), 0);
     std::ifstream csv(dir + "/bench.csv");
