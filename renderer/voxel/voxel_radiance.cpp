@@ -146,4 +146,19 @@ void VoxelRadiance::bind(GLuint unit) const {
     glBindSamplers(unit, 7, nullptr);
 }
 
+void voxelizeAndInject(Frame& frame, Voxelizer& voxelizer, VoxelRadiance& radiance) {
+    {
+        auto t = frame.step("voxelize");
+        voxelizer.voxelize(frame.scene);
+    }
+    VoxelRadiance::Lights lights;
+    lights.buffer = frame.buffer("lights");
+    lights.shadowMaps = frame.texture("shadow.maps");
+    lights.shadowCubes = frame.texture("shadow.cubes");
+    lights.count = int(frame.scene.cpu.lights.size());
+    lights.shadows = frame.settings.shadows;
+    auto t = frame.step("inject");
+    radiance.inject(voxelizer.grid(), lights);
+}
+
 }  // namespace gis

@@ -4,6 +4,7 @@
 // Probe GI and the SDF method shade their ray hits from the same radiance.
 #pragma once
 
+#include "renderer.h"
 #include "voxel/voxelizer.h"
 
 namespace gis {
@@ -50,5 +51,10 @@ private:
     bool anisotropic_;
     int bounces_;
 };
+
+// The first two steps of every voxel-based method (VCT, probes, SDF GI): voxelize the scene and
+// inject the frame's punctual lights (through the shadow pass's maps) and emission, timed as the
+// pass's "voxelize" and "inject" steps.
+void voxelizeAndInject(Frame& frame, Voxelizer& voxelizer, VoxelRadiance& radiance);
 
 }  // namespace gis

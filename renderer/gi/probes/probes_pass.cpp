@@ -131,20 +131,7 @@ void ProbesPass::bindProbeBuffers() const {
 }
 
 void ProbesPass::rebuildVolumes(Frame& frame) {
-    {
-        auto t = frame.step("voxelize");
-        voxelizer_->voxelize(frame.scene);
-    }
-    VoxelRadiance::Lights lights;
-    lights.buffer = frame.buffer("lights");
-    lights.shadowMaps = frame.texture("shadow.maps");
-    lights.shadowCubes = frame.texture("shadow.cubes");
-    lights.count = int(frame.scene.cpu.lights.size());
-    lights.shadows = frame.settings.shadows;
-    {
-        auto t = frame.step("inject");
-        radiance_->inject(voxelizer_->grid(), lights);
-    }
+    voxelizeAndInject(frame, *voxelizer_, *radiance_);
     field_->build({voxelizer_->grid().albedo.id(), voxelizer_->grid().normal.id()}, JfaVariant::OnePlusJfa,
                   frame.steps);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);

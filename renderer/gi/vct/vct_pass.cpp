@@ -55,20 +55,7 @@ VctPass::VctPass(const GpuScene& scene, const RenderSettings& settings, gl::Memo
 }
 
 void VctPass::rebuildVoxels(Frame& frame) {
-    {
-        auto t = frame.step("voxelize");
-        voxelizer_->voxelize(frame.scene);
-    }
-    VoxelRadiance::Lights lights;
-    lights.buffer = frame.buffer("lights");
-    lights.shadowMaps = frame.texture("shadow.maps");
-    lights.shadowCubes = frame.texture("shadow.cubes");
-    lights.count = int(frame.scene.cpu.lights.size());
-    lights.shadows = frame.settings.shadows;
-    {
-        auto t = frame.step("inject");
-        radiance_->inject(voxelizer_->grid(), lights);
-    }
+    voxelizeAndInject(frame, *voxelizer_, *radiance_);
     {
         auto t = frame.step("mips");
         radiance_->buildMips(voxelizer_->grid());
