@@ -429,6 +429,26 @@ int runMethods(const MethodsOptions& o) {
     return 0;
 }
 
+void addExportOptions(CLI::App& cmd, ExportOptions& o) {
+    cmd.add_option("--scene", o.scene, "builtin:NAME[?options] (or a glTF file) to write")->required();
+    cmd.add_option("--out", o.out, "Output .gltf (its .bin is written beside it)")->required();
+}
+
+int runExport(const ExportOptions& o) {
+    if (!endsWith(o.out, ".gltf")) throw Error("--out '" + o.out + "' must end in .gltf");
+    checkWritable(o.out, "--out");
+    const Scene scene = loadScene(o.scene);
+    writeGltf(scene, o.out);
+    std::printf("wrote %s (%zu triangles, %zu lights, %zu cameras)\n", o.out.c_str(), scene.triangleCount(),
+                scene.lights.size(), scene.cameras.size());
+    if (scene.background != glm::vec3(0.0f))
+        std::fprintf(stderr,
+                     "gisandbox: warning: glTF has no environment colour: render it under a sky of radiance "
+                     "(%g, %g, %g) to match\n",
+                     scene.background.r, scene.background.g, scene.background.b);
+    return 0;
+}
+
 void addShaderDumpOptions(CLI::App& cmd, ShaderDumpOptions& o) {
     cmd.add_option("--dump", o.dir, "Directory to write PROGRAM.STAGEFILE files into (for glslangValidator)")
         ->required();

@@ -59,6 +59,13 @@ struct MethodsOptions {
     bool json = false;
 };
 
+struct ExportOptions {
+    std::string scene;
+    std::string out;   // .gltf (a .bin is written beside it)
+};
+void addExportOptions(CLI::App& cmd, ExportOptions& o);
+int runExport(const ExportOptions& o);
+
 struct ShaderDumpOptions {
     std::string dir;
 };

@@ -29,6 +29,9 @@ int main(int argc, char** argv) {
     gis::MethodsOptions methods;
     CLI::App* methodsCmd = app.add_subcommand("methods", "List the GI methods, or one method's parameters and presets");
     gis::addMethodsOptions(*methodsCmd, methods);
+    gis::ExportOptions exportScene;
+    CLI::App* exportCmd = app.add_subcommand("export", "Write a scene (e.g. a built-in one) as glTF for other renderers");
+    gis::addExportOptions(*exportCmd, exportScene);
     gis::ShaderDumpOptions dump;
     CLI::App* shadersCmd = app.add_subcommand("shaders", "Write every shader program the app can request, preprocessed");
     gis::addShaderDumpOptions(*shadersCmd, dump);
@@ -71,6 +74,7 @@ int main(int argc, char** argv) {
         if (infoCmd->parsed()) return gis::runInfo(info);
         if (shadersCmd->parsed()) return gis::runShaderDump(dump);
         if (methodsCmd->parsed()) return gis::runMethods(methods);
+        if (exportCmd->parsed()) return gis::runExport(exportScene);
         if (benchCmd->parsed()) return gis::runBench(bench);
         if (diffCmd->parsed()) return gis::runDiff(diff);
         if (viewCmd->parsed()) return gis::runView(view);

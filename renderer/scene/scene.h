@@ -133,6 +133,9 @@ Scene loadGltfFile(const std::string& path);
 // Parses glTF from memory (the fuzzer's entry point). `baseDir` resolves external URIs.
 Scene loadGltfMemory(const uint8_t* data, size_t size, const std::string& baseDir);
 Scene makeBuiltinScene(const std::string& name);
+// Writes `scene` as PATH.gltf plus PATH.bin beside it (renderer/scene/gltf_writer.cpp: geometry,
+// materials, lights, cameras; no textures, no environment). Throws gis::Error on failure.
+void writeGltf(const Scene& scene, const std::string& path);
 std::vector<std::string> builtinSceneNames();
 
 // After loading: generate missing normals (area-weighted) and, where a normal map is used,

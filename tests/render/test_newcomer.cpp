@@ -124,3 +124,35 @@ TEST(Newcomer, BenchNamesResultsByFileStem) {
 
 }  // namespace
 }  // namespace gis::test
+
+namespace gis::test {
+namespace {
+
+// The built-in scenes written to glTF render the same through the loader: other renderers can
+// load what we compare against. (The atrium's sky is not in glTF: --background gives it back.)
+TEST(Export, BuiltinScenesRoundTripThroughGltf) {
+    const std::string dir = tempDir("export_roundtrip");
+    for (const char* scene : {"leak", "room", "mirror", "cornell-area", "atrium"}) {
+        const std::string gltf = dir + "/" + scene + ".gltf";
+        const CliResult w = runCli(std::string("export --scene builtin:") + scene + " --out " + gltf);
+        ASSERT_EQ(w.status, 0) << w.err;
+        EXPECT_TRUE(fileExists(dir + "/" + scene + ".bin"));
+        const std::string sky = std::string(scene) == "atrium" ? " --background 0.35,0.45,0.6" : "";
+        for (const std::string& spec : {std::string("builtin:") + scene, gltf}) {
+            const std::string out = dir + "/" + scene + (spec == gltf ? "_file" : "_builtin") + ".exr";
+            const CliResult r = runCli("render --scene " + spec + " --size 48x48 --hdr32 --lighting scene" + sky +
+                                       " --out " + out);
+            ASSERT_EQ(r.status, 0) << r.err;
+        }
+        const ImageF a = readExr(dir + "/" + scene + "_builtin.exr"), b = readExr(dir + "/" + scene + "_file.exr");
+        double diff = 0.0, sum = 0.0;
+        for (size_t i = 0; i < a.rgba.size(); ++i)
+            if (i % 4 != 3) diff += std::abs(double(a.rgba[i]) - b.rgba[i]), sum += a.rgba[i];
+        std::printf("%s: builtin vs exported glTF, mean |difference| %.4f%% of the mean\n", scene, 100.0 * diff / sum);
+        EXPECT_LT(diff, 0.002 * sum) << scene;
+    }
+    EXPECT_NE(runCli("export --scene builtin:leak --out " + dir + "/x.glb").status, 0);
+}
+
+}  // namespace
+}  // namespace gis::test
