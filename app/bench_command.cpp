@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include "commands.h"
 #include "metrics.h"
 #include "plot.h"
+#include "progress.h"
 #include "gi/method.h"
 #include "tonemap.h"
 
@@ -27,6 +29,7 @@ namespace fs = std::filesystem;
 struct BenchRow {
     std::string scene, method, preset, description;
     double ms = 0.0;                          // per frame; for progressive methods, to converge
+    double wallMs = 0.0;                      // wall clock with glFinish, the same way
     std::vector<std::pair<std::string, double>> passMs;
     int64_t bytes = 0;
     ImageMetrics error;
@@ -35,8 +38,16 @@ struct BenchRow {
 
 // The reference depends on the scene (and the file's size and time for glTF files), camera,
 // size, sample count, bounces and seed: all of them are in the cache key.
-std::string referenceKey(const std::string& sceneSpec, const RenderSettings& s) {
+std::string referenceKey(const std::string& sceneSpec, const Scene& scene, const RenderSettings& s) {
     std::ostringstream key;
+    // What --camera/--lighting/--background made of the scene: the camera used, lights, environment.
+    const glm::mat4& cam = scene.cameras.at(size_t(s.camera)).cameraToWorld;
+    for (int c = 0; c < 16; ++c) key << cam[c / 4][c % 4] << ",";
+    for (const Light& l : scene.lights)
+        key << "|L" << int(l.type) << l.intensity << l.color.r << l.color.g << l.color.b << l.position.x << l.position.y
+            << l.position.z << l.direction.x << l.direction.y << l.direction.z;
+    const glm::vec3 env = s.background.value_or(scene.background);
+    key << "|env" << env.r << "," << env.g << "," << env.b << "|";
     key << sceneSpec << "|" << s.width << "x" << s.height << "|cam" << s.camera << "|" << s.gi << "|seed" << s.seed;
     for (const auto& [name, value] : s.params) key << "|" << name << "=" << formatParamValue(findParam(name), value);
     std::error_code ec;
@@ -60,11 +71,22 @@ std::string fileSafe(std::string s) {
 void measure(Renderer& renderer, const GiMethod& method, int frames, int warmup, BenchRow& row) {
     const bool progressive = !renderer.converged();
     const int converge = method.framesToConverge ? std::max(1, method.framesToConverge(renderer.settings())) : 1;
+    std::vector<double> wall;
+    auto frame = [&] {
+        const auto t0 = std::chrono::steady_clock::now();
+        renderer.renderFrame();
+        glFinish();
+        wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    };
     if (progressive) {
-        do renderer.renderFrame();
+        do frame();
         while (!renderer.converged());
+        for (double w : wall) row.wallMs += w;
     } else {
-        for (int i = 0; i < converge - 1 + frames; ++i) renderer.renderFrame();
+        for (int i = 0; i < converge - 1 + frames; ++i) frame();
+        std::vector<double> steady(wall.begin() + std::min<size_t>(size_t(converge - 1 + warmup), wall.size()), wall.end());
+        std::nth_element(steady.begin(), steady.begin() + steady.size() / 2, steady.end());
+        row.wallMs = steady.empty() ? 0.0 : steady[steady.size() / 2];
     }
     for (const PassTiming& t : renderer.timings(progressive ? 0 : converge - 1 + warmup)) {
         if (t.step) continue;  // the pass's own figure already holds its steps
@@ -94,13 +116,47 @@ void addBenchOptions(CLI::App& cmd, BenchOptions& o) {
     cmd.add_option("--out-dir", o.outDir, "Where bench.json, bench.csv and the PNGs go")->capture_default_str();
     cmd.add_option("--cache-dir", o.cacheDir, "Where references are cached (default: OUT_DIR/cache)");
     cmd.add_option("--backend", o.backend, "OpenGL context: auto, egl, osmesa")->capture_default_str();
+    addSceneSetupOptions(cmd, o.setup);
+    cmd.add_option("--ambient", o.ambient, "Constant ambient radiance: one value or R,G,B")->delimiter(',')->expected(1, 3);
+    cmd.add_option("--background", o.background, "Environment radiance R,G,B (or one value), overriding the scene's")
+        ->delimiter(',')
+        ->expected(1, 3);
 }
+
+namespace {
+glm::vec3 colourFlag(const std::vector<float>& v, const char* flag) {
+    if (v.size() != 1 && v.size() != 3) throw Error(std::string(flag) + " takes one value or R,G,B");
+    for (float x : v)
+        if (!std::isfinite(x) || x < 0.0f) throw Error(std::string(flag) + " must be finite and non-negative");
+    return v.size() == 3 ? glm::vec3(v[0], v[1], v[2]) : glm::vec3(v[0]);
+}
+
+// Results are named by the scene's file stem (or builtin name), made unique within the run: two
+// files whose glTF scene is called "Scene" no longer overwrite each other's chart and rows.
+std::vector<std::string> uniqueSceneNames(const std::vector<std::string>& specs) {
+    std::vector<std::string> names;
+    for (const std::string& spec : specs) {
+        std::string base = spec.rfind("builtin:", 0) == 0 ? spec.substr(8) : fs::path(spec).stem().string();
+        if (base.empty()) base = "scene";
+        std::string name = base;
+        for (int k = 2; std::find(names.begin(), names.end(), name) != names.end(); ++k) name = base + "-" + std::to_string(k);
+        names.push_back(name);
+    }
+    return names;
+}
+}  // namespace
 
 int runBench(const BenchOptions& o) {
     RenderSettings base;
     parseRenderSize(o.size, base.width, base.height);
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
-    if (o.warmup < 0 || o.warmup >= o.frames) throw Error("--warmup must be in [0, --frames)");
+    if (o.warmup < 0 || o.warmup >= o.frames)
+        throw Error("--warmup " + std::to_string(o.warmup) + " must be in [0, --frames " + std::to_string(o.frames) +
+                    ") (the default warm-up is 5 frames: with fewer --frames, lower --warmup too)");
+    if (!o.ambient.empty()) base.ambient = colourFlag(o.ambient, "--ambient");
+    if (!o.background.empty()) base.background = colourFlag(o.background, "--background");
+    cameraRequest(o.setup);            // validates the camera flags before any work
+    parseLightingMode(o.setup.lighting);
     if (o.referenceSpp < 1 || o.referenceSpp > (1 << 20)) throw Error("--reference-spp must be in [1, 1048576]");
     const ErrorMetric metric = parseErrorMetric(o.metric);
     std::vector<std::string> methods = o.methods;
@@ -116,7 +172,14 @@ int runBench(const BenchOptions& o) {
     }
     if (o.scenes.empty()) throw Error("--scenes needs at least one scene");
     std::vector<Scene> scenes;
-    for (const std::string& spec : o.scenes) scenes.push_back(loadScene(spec));  // fail early on bad input
+    std::vector<RenderSettings> sceneBases;  // per scene: its camera, and the sky as ambient where added
+    const std::vector<std::string> sceneNames = uniqueSceneNames(o.scenes);
+    for (const std::string& spec : o.scenes) {  // fail early on bad input
+        scenes.push_back(loadScene(spec));
+        sceneBases.push_back(base);
+        sceneBases.back().camera = prepareScene(scenes.back(), o.setup, float(base.width) / float(base.height),
+                                                &sceneBases.back(), !o.ambient.empty());
+    }
     std::error_code ec;
     const std::string cacheDir = o.cacheDir.empty() ? o.outDir + "/cache" : o.cacheDir;
     fs::create_directories(cacheDir, ec);
@@ -132,14 +195,15 @@ int runBench(const BenchOptions& o) {
     std::vector<BenchRow> rows;
     for (size_t si = 0; si < scenes.size(); ++si) {
         const Scene& scene = scenes[si];
-        const std::string sceneName = scene.name.empty() ? o.scenes[si] : scene.name;
-        RenderSettings refSettings = base;
+        const std::string& sceneName = sceneNames[si];
+        const RenderSettings& sceneBase = sceneBases[si];
+        RenderSettings refSettings = sceneBase;
         refSettings.gi = "pathtrace";
         setParam(refSettings, "pathtrace.spp", std::to_string(o.referenceSpp));
         setParam(refSettings, "pathtrace.bounces", "64");
         refSettings.samplesPerFrame = 16;
         const std::string refPath = cacheDir + "/reference_" + fileSafe(sceneName) + "_" +
-                                    referenceKey(o.scenes[si], refSettings) + ".exr";
+                                    referenceKey(o.scenes[si], scene, refSettings) + ".exr";
         ImageF reference;
         ImageU8 referenceLdr;
         {
@@ -150,8 +214,13 @@ int runBench(const BenchOptions& o) {
                 // (the cached image is what is compared)
             } else {
                 std::fprintf(stderr, "%s: rendering the reference (%d spp)...\n", sceneName.c_str(), o.referenceSpp);
-                do refRenderer.renderFrame();
-                while (!refRenderer.converged());
+                ProgressBar progress(o.referenceSpp, sceneName + " reference");
+                do {
+                    refRenderer.renderFrame();
+                    glFinish();
+                    progress.update(refRenderer.samplesDone());
+                } while (!refRenderer.converged());
+                progress.finish();
                 reference = refRenderer.readHdr();
                 writeExr(refPath, reference);
             }
@@ -159,12 +228,12 @@ int runBench(const BenchOptions& o) {
         // Ray-traced AO, SSAO's own ground truth, cached the same way (only when SSAO is measured).
         ImageF aoReference;
         if (std::find(methods.begin(), methods.end(), "ssao") != methods.end()) {
-            RenderSettings aoSettings = base;
+            RenderSettings aoSettings = sceneBase;
             aoSettings.gi = "ao-reference";
             setParam(aoSettings, "ao-reference.spp", std::to_string(o.referenceSpp));
             aoSettings.samplesPerFrame = 64;
             const std::string aoPath = cacheDir + "/ao_reference_" + fileSafe(sceneName) + "_" +
-                                       referenceKey(o.scenes[si], aoSettings) + ".exr";
+                                       referenceKey(o.scenes[si], scene, aoSettings) + ".exr";
             if (fs::exists(aoPath)) {
                 aoReference = readExr(aoPath);
             } else {
@@ -187,7 +256,7 @@ int runBench(const BenchOptions& o) {
                 row.preset = preset;
                 const GiMethod& method = giMethod(methods[mi]);
                 row.description = method.preset(preset).description;
-                RenderSettings s = base;
+                RenderSettings s = sceneBase;
                 applyPreset(s, methods[mi], preset);
                 Renderer renderer(scene, s);
                 measure(renderer, method, o.frames, o.warmup, row);
@@ -210,8 +279,8 @@ int runBench(const BenchOptions& o) {
                 char caption[200];
                 std::snprintf(caption, sizeof caption, "%s  %.1f ms, %s %.4f", label, row.ms, o.metric.c_str(), y);
                 tiles.emplace_back(caption, renderer.readLdr());
-                std::fprintf(stderr, "%-14s %-10s %-8s %10.2f ms %8.2f MiB  FLIP %.4f  RMSE %.5f  SSIM %.4f%s\n",
-                             sceneName.c_str(), row.method.c_str(), row.preset.c_str(), row.ms,
+                std::fprintf(stderr, "%-14s %-10s %-8s %10.2f ms GPU %10.2f ms wall %8.2f MiB  FLIP %.4f  RMSE %.5f  SSIM %.4f%s\n",
+                             sceneName.c_str(), row.method.c_str(), row.preset.c_str(), row.ms, row.wallMs,
                              double(row.bytes) / (1 << 20), row.error.flip, row.error.rmse, row.error.ssim,
                              row.aoRmse >= 0.0 ? ("  AO RMSE " + std::to_string(row.aoRmse)).c_str() : "");
                 rows.push_back(row);
@@ -234,7 +303,7 @@ int runBench(const BenchOptions& o) {
     j["reference_spp"] = o.referenceSpp;
     for (const BenchRow& r : rows) {
         nlohmann::ordered_json e{{"scene", r.scene}, {"method", r.method}, {"preset", r.preset},
-                                 {"description", r.description}, {"gpu_ms", r.ms}, {"gpu_bytes", r.bytes},
+                                 {"description", r.description}, {"gpu_ms", r.ms}, {"wall_ms", r.wallMs}, {"gpu_bytes", r.bytes},
                                  {"rmse", r.error.rmse}, {"relmse", r.error.relMse}, {"psnr_linear", r.error.psnrLinear},
                                  {"psnr_srgb", r.error.psnrSrgb}, {"ssim", r.error.ssim}, {"flip", r.error.flip}};
         for (const auto& [pass, ms] : r.passMs) e["pass_ms"][pass] = ms;
@@ -248,9 +317,10 @@ int runBench(const BenchOptions& o) {
     });
     writeAtomically(o.outDir + "/bench.csv", [&](const std::string& tmp) {
         std::ofstream f(tmp);
-        f << "scene,method,preset,gpu_ms,gpu_bytes,rmse,relmse,psnr_linear,psnr_srgb,ssim,flip,ao_rmse\n";
+        f << "scene,method,preset,gpu_ms,wall_ms,gpu_bytes,rmse,relmse,psnr_linear,psnr_srgb,ssim,flip,ao_rmse\n";
         for (const BenchRow& r : rows)
-            f << r.scene << "," << r.method << "," << r.preset << "," << r.ms << "," << r.bytes << "," << r.error.rmse
+            f << r.scene << "," << r.method << "," << r.preset << "," << r.ms << "," << r.wallMs << "," << r.bytes << ","
+              << r.error.rmse
               << "," << r.error.relMse << "," << formatMetric(r.error.psnrLinear) << ","
               << formatMetric(r.error.psnrSrgb) << "," << r.error.ssim << "," << r.error.flip << ","
               << (r.aoRmse >= 0.0 ? std::to_string(r.aoRmse) : std::string()) << "\n";

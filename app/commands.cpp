@@ -10,8 +10,11 @@
 #include <chrono>
 #include <regex>
 #include <unistd.h>
+#include <cerrno>
+#include <cstring>
 
 #include "bvh.h"
+#include "progress.h"
 #include "gi/method.h"
 #include "gl/shader.h"
 #include "image.h"
@@ -21,20 +24,40 @@
 namespace gis {
 
 void parseRenderSize(const std::string& text, int& w, int& h) {
-    static const std::regex re(R"(^(\d{1,5})x(\d{1,5})$)");
+    static const std::regex re(R"(^(-?\d{1,12})x(-?\d{1,12})$)");
     std::smatch m;
     if (!std::regex_match(text, m, re)) throw Error("--size '" + text + "' is not WIDTHxHEIGHT (e.g. 256x256)");
-    w = std::stoi(m[1]);
-    h = std::stoi(m[2]);
+    const long long lw = std::stoll(m[1]), lh = std::stoll(m[2]);
+    if (lw < 1 || lh < 1 || lw > 16384 || lh > 16384)
+        throw Error("--size " + text + " is out of range (1..16384 per side)");
+    w = int(lw);
+    h = int(lh);
     if (w < 1 || h < 1 || w > 16384 || h > 16384)
         throw Error("--size " + text + " is out of range (1..16384 per side)");
 }
 
 namespace {
 
-bool endsWith(const std::string& s, const std::string& suffix) {
+bool endsWith(const std::string& s, const std::string& suffix) {  // case-insensitive: x.PNG is a PNG
     return s.size() >= suffix.size() &&
-           std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) { return std::tolower(a) == b; });
+           std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) {
+               return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+           });
+}
+
+// Fails before any rendering when `path` cannot be written: a directory, a missing or unwritable
+// folder (with the OS's reason). Creates and removes a probe file beside it.
+void checkWritable(const std::string& path, const char* flag) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw Error(std::string(flag) + " '" + path + "' is a directory");
+    const fs::path dir = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+    if (!fs::is_directory(dir, ec)) throw Error(std::string(flag) + ": directory '" + dir.string() + "' does not exist");
+    const std::string probe = (dir / (".gisandbox-write-test-" + std::to_string(getpid()))).string();
+    FILE* f = std::fopen(probe.c_str(), "wb");
+    if (!f) throw Error(std::string(flag) + " '" + path + "' cannot be written: " + std::strerror(errno));
+    std::fclose(f);
+    std::remove(probe.c_str());
 }
 
 void printWarnings(const Scene& scene) {
@@ -53,39 +76,6 @@ std::unique_ptr<GlContext> headlessContext(const std::string& backend, bool debu
 }
 
 double mib(int64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
-
-// Samples done, elapsed time and ETA on stderr: redrawn in place on a terminal, a line per
-// quarter otherwise (logs stay short).
-class ProgressBar {
-public:
-    explicit ProgressBar(int total) : total_(total), start_(std::chrono::steady_clock::now()), tty_(isatty(2)) {}
-    void update(int done) {
-        const double elapsed = seconds();
-        const double eta = done > 0 ? elapsed * (total_ - done) / done : 0.0;
-        const int quarter = total_ > 0 ? 4 * done / total_ : 4;
-        if (tty_) {
-            const int width = 30, filled = total_ > 0 ? width * done / total_ : width;
-            std::fprintf(stderr, "\r[%s%s] %d/%d spp  %.1f s elapsed  ETA %.1f s ", std::string(filled, '#').c_str(),
-                         std::string(width - filled, '.').c_str(), done, total_, elapsed, eta);
-        } else if (quarter > lastQuarter_) {
-            std::fprintf(stderr, "%d/%d spp  %.1f s elapsed  ETA %.1f s\n", done, total_, elapsed, eta);
-        }
-        lastQuarter_ = std::max(lastQuarter_, quarter);
-        std::fflush(stderr);
-    }
-    void finish() {
-        if (tty_) std::fprintf(stderr, "\n");
-    }
-
-private:
-    double seconds() const {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    }
-    int total_;
-    std::chrono::steady_clock::time_point start_;
-    bool tty_;
-    int lastQuarter_ = 0;
-};
 
 // GPU milliseconds per pass and its steps: the median over the frames after warm-up in which it
 // worked, the first frame apart (it builds what later frames reuse). A progressive pass (the path
@@ -123,8 +113,7 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT")->capture_default_str();
     cmd.add_option("--backend", o.backend, "OpenGL context: auto (EGL, else OSMesa), egl, osmesa, glfw (hidden window)")
         ->capture_default_str();
-    cmd.add_option("--camera", o.camera, "Index of the glTF camera (a default camera frames the scene if it has none)")
-        ->capture_default_str();
+    addSceneSetupOptions(cmd, o.setup);
     cmd.add_option("--gi", o.gi, "Global illumination method: " + giMethodNames())->capture_default_str();
     cmd.add_option("--diffuse", o.diffuse, "Diffuse BRDF: lambert, wrap (roughness-driven wrap), toon, burley")
         ->capture_default_str();
@@ -206,11 +195,11 @@ int runRender(const RenderOptions& o) {
     const bool exr = endsWith(o.out, ".exr");
     const bool listViews = o.given && o.given("--view") && o.view == "list";
     if (o.out.empty() && !listViews) throw Error("--out is required");
+    if (!listViews && std::filesystem::is_directory(o.out)) throw Error("--out '" + o.out + "' is a directory");
     if (!listViews && !exr && !endsWith(o.out, ".png")) throw Error("--out '" + o.out + "' must end in .png or .exr");
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
     if (o.warmup < 0 || o.warmup >= o.frames) throw Error("--warmup must be in [0, --frames)");
     if (o.ambient.size() != 1 && o.ambient.size() != 3) throw Error("--ambient takes one value or R,G,B");
-    if (use("--camera")) s.camera = o.camera;
     if (use("--gi")) s.gi = o.gi;
     giMethod(s.gi);  // throws for an unknown method
     if (use("--diffuse")) s.diffuse = parseDiffuse(o.diffuse);
@@ -241,15 +230,24 @@ int runRender(const RenderOptions& o) {
     if (use("--view")) s.view = o.view;
     // Progressive methods add a few samples per frame so progress can be shown between frames.
     s.samplesPerFrame = 4;
-    {
-        namespace fs = std::filesystem;
-        fs::path dir = fs::path(o.out).parent_path();
-        if (!dir.empty() && !fs::is_directory(dir)) throw Error("--out: directory '" + dir.string() + "' does not exist");
-    }
+    if (!listViews) checkWritable(o.out, "--out");
+    // A parameter of another method than the one rendered does nothing: say so.
+    for (const auto& [key, value] : s.params)
+        if (key.rfind(s.gi + ".", 0) != 0 && !(viewSettings && key == "pathtrace.bounces"))
+            std::fprintf(stderr, "gisandbox: warning: %s is a parameter of another method than --gi %s: ignored\n",
+                         key.c_str(), s.gi.c_str());
 
     Scene scene = loadScene(sceneSpec);
     printWarnings(scene);
-    if (viewSettings) scene.lights = view::effectiveLights(*viewSettings, scene.lights);  // the panel's edits
+    {
+        SceneSetupOptions setup = o.setup;
+        if (viewSettings && !use("--lighting")) setup.lighting = viewSettings->lighting;
+        // With --settings the file's ambient stands: the view applied the same rule when it opened the scene.
+        const bool ambientFixed = viewSettings.has_value() || (o.given && o.given("--ambient"));
+        const int camera = prepareScene(scene, setup, float(s.width) / float(s.height), &s, ambientFixed);
+        if (viewSettings) scene.lights = view::effectiveLights(*viewSettings, scene.lights);  // the panel's edits
+        if (!viewSettings || use("--camera") || use("--camera-pos")) s.camera = camera;
+    }
     std::unique_ptr<GlContext> ctx;
     if (parseBackend(o.backend) == Backend::Glfw) {
         ContextOptions co;
@@ -269,11 +267,19 @@ int runRender(const RenderOptions& o) {
         return 0;
     }
     Renderer renderer(scene, s);
-    if (viewSettings && viewSettings->camera.free && !use("--camera")) {  // the view's free camera
+    if (viewSettings && viewSettings->camera.free && !use("--camera") && !use("--camera-pos")) {  // the free camera
         renderer.setCamera(view::viewCameraMatrices(*viewSettings, scene, float(s.width) / float(s.height)));
     }
     const int frames = o.timings ? o.frames : 1;
-    for (int i = 0; i < frames; ++i) renderer.renderFrame();
+    // Wall-clock per frame with the GPU finished, comparable with other engines' wall-clock figures
+    // (Godot's frame time) where GPU timer queries are not.
+    std::vector<double> wallMs;
+    for (int i = 0; i < frames; ++i) {
+        const auto t0 = std::chrono::steady_clock::now();
+        renderer.renderFrame();
+        if (o.timings) glFinish();
+        wallMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
     if (!renderer.converged()) {
         int target = 0;
         for (const auto& pass : renderer.passes()) target = std::max(target, pass->progress().target);
@@ -289,7 +295,13 @@ int runRender(const RenderOptions& o) {
     if (exr) writeExr(o.out, renderer.readHdr());
     else writePng(o.out, renderer.readLdr());
 
-    if (o.timings) printTimings(renderer, frames, o.warmup);
+    if (o.timings) {
+        printTimings(renderer, frames, o.warmup);
+        std::vector<double> steady(wallMs.begin() + std::min<size_t>(size_t(o.warmup), wallMs.size()), wallMs.end());
+        std::nth_element(steady.begin(), steady.begin() + steady.size() / 2, steady.end());
+        std::printf("%-22s %10.3f %10.3f %9s  (wall clock per frame with glFinish, median after warm-up)\n", "wall",
+                    steady[steady.size() / 2], wallMs.front(), "");
+    }
     std::printf("wrote %s\n", o.out.c_str());
     return 0;
 }
@@ -316,8 +328,11 @@ int runInfo(const InfoOptions& o) {
     j["textures"] = scene.images.size();
     j["lights"] = scene.lights.size();
     j["cameras"] = scene.cameras.size();
-    j["bounds"] = {{"min", {scene.bounds.min.x, scene.bounds.min.y, scene.bounds.min.z}},
-                   {"max", {scene.bounds.max.x, scene.bounds.max.y, scene.bounds.max.z}}};
+    if (scene.bounds.empty())
+        j["bounds"] = nullptr;
+    else
+        j["bounds"] = {{"min", {scene.bounds.min.x, scene.bounds.min.y, scene.bounds.min.z}},
+                       {"max", {scene.bounds.max.x, scene.bounds.max.y, scene.bounds.max.z}}};
     static const char* lightTypes[] = {"directional", "point", "spot"};
     for (const Light& l : scene.lights)
         j["light_list"].push_back({{"name", l.name}, {"type", lightTypes[int(l.type)]}, {"intensity", l.intensity},
@@ -353,8 +368,11 @@ int runInfo(const InfoOptions& o) {
         std::printf("  %-11s %-16s intensity %g colour (%g, %g, %g)\n", lightTypes[int(l.type)], l.name.c_str(),
                     l.intensity, l.color.r, l.color.g, l.color.b);
     std::printf("cameras    %zu\n", scene.cameras.size());
-    std::printf("bounds     (%g, %g, %g) .. (%g, %g, %g)\n", scene.bounds.min.x, scene.bounds.min.y,
-                scene.bounds.min.z, scene.bounds.max.x, scene.bounds.max.y, scene.bounds.max.z);
+    if (scene.bounds.empty())
+        std::printf("bounds     empty (no geometry)\n");
+    else
+        std::printf("bounds     (%g, %g, %g) .. (%g, %g, %g)\n", scene.bounds.min.x, scene.bounds.min.y,
+                    scene.bounds.min.z, scene.bounds.max.x, scene.bounds.max.y, scene.bounds.max.z);
     if (j.contains("bvh"))
         std::printf("BVH        %zu nodes, %d leaves, depth %d, SAH cost %.2f, built in %.2f ms (Embree SAH)\n",
                     j["bvh"]["nodes"].get<size_t>(), j["bvh"]["leaves"].get<int>(), j["bvh"]["depth"].get<int>(),

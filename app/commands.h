@@ -6,6 +6,7 @@
 
 #include "gl/context.h"
 #include "renderer.h"
+#include "scene_setup_options.h"
 
 namespace CLI { class App; }
 
@@ -16,7 +17,7 @@ struct RenderOptions {
     std::string out;
     std::string size = "256x256";
     std::string backend = "auto";
-    int camera = 0;
+    SceneSetupOptions setup;             // --lighting, --camera, --camera-pos, --look-at, --fov
     std::string gi = "none";
     std::string diffuse = "lambert";
     std::string specular = "ggx";
@@ -74,6 +75,9 @@ struct BenchOptions {
     std::string outDir = "bench";
     std::string cacheDir;
     std::string backend = "auto";
+    SceneSetupOptions setup;
+    std::vector<float> ambient;
+    std::vector<float> background;
 };
 
 // "WxH" -> width, height; throws gis::Error naming the flag value.
@@ -102,7 +106,7 @@ struct ViewOptions {
     std::string size = "1280x720";       // window
     std::string script;
     std::string screenshotDir = "screenshots";
-    int camera = 0;
+    SceneSetupOptions setup;
     bool glDebug = false;
     bool verbose = false;
     std::function<bool(const std::string& flag)> given;

@@ -11,6 +11,7 @@
 int main(int argc, char** argv) {
     CLI::App app{"gisandbox: explore and compare real-time global illumination against a reference"};
     app.require_subcommand(1);
+    app.set_version_flag("--version", "gisandbox " GIS_VERSION);
     app.set_help_all_flag("--help-all", "Show help for every subcommand");
     // Usage errors are one line too, like every other failure.
     app.failure_message([](const CLI::App*, const CLI::Error& e) {
@@ -42,10 +43,28 @@ int main(int argc, char** argv) {
     CLI::App* diffCmd = app.add_subcommand("diff", "Compare an image with a reference: RMSE, relMSE, PSNR, SSIM, FLIP");
     gis::addDiffOptions(*diffCmd, diff);
 
+    // Exit status: 0 success (and --help, --version), 1 any failure, usage errors included.
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
+    } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::string what = e.what();
+        // A word where a command belongs: name it and the commands there are.
+        bool known = false;
+        std::string names;
+        for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+            known = known || (argc > 1 && sub->get_name() == argv[1]);
+            names += (names.empty() ? "" : ", ") + sub->get_name();
+        }
+        if (argc > 1 && argv[1][0] != '-' && !known)
+            what = std::string("unknown command '") + argv[1] + "' (expected " + names + ")";
+        std::fprintf(stderr, "gisandbox: error: %s (see --help)\n", what.c_str());
+        return 1;
     }
     try {
         if (renderCmd->parsed()) return gis::runRender(render);

@@ -462,8 +462,11 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
             a.flag = shadows;
             act(ctx, a);
         }
+        // Ranges from the path tracer's parameter rows, the one place they are declared.
+        const ParamDesc& bouncesRow = *giMethod("pathtrace").param("bounces");
+        const ParamDesc& sppRow = *giMethod("pathtrace").param("spp");
         int bounces = s.maxBounces;
-        if (ImGui::SliderInt("Max bounces (pathtrace)", &bounces, 0, 64)) {
+        if (ImGui::DragInt("Bounces", &bounces, 0.2f, int(bouncesRow.min), int(bouncesRow.max))) {
             PanelAction a;
             a.kind = PanelAction::SetMaxBounces;
             a.value = float(bounces);
@@ -477,10 +480,11 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
                   act(ctx, a);
               });
         int spp = s.referenceSpp;
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("path tracer: %s", bouncesRow.help.c_str());
         if (ImGui::InputInt("Reference spp", &spp, 16, 64, ImGuiInputTextFlags_EnterReturnsTrue)) {
             PanelAction a;
             a.kind = PanelAction::SetReferenceSpp;
-            a.value = float(std::clamp(spp, 1, 65536));
+            a.value = float(std::clamp(spp, int(sppRow.min), int(sppRow.max)));
             act(ctx, a);
         }
     }

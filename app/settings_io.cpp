@@ -135,6 +135,7 @@ ojson viewStateToJson(const ViewState& s) {
     ojson j;
     j["gisandbox_view_settings"] = kSettingsVersion;
     j["scene"] = s.scene;
+    j["lighting"] = s.lighting;
     j["view_size"] = {s.viewWidth, s.viewHeight};
     j["mode"] = viewModeName(s.mode);
     j["divider"] = s.divider;
@@ -202,6 +203,8 @@ void viewStateFromJson(const json& j, ViewState& state) {
                                 std::to_string(kSettingsVersion) + ")");
             } else if (k == "scene") {
                 s.scene = text(v, k);
+            } else if (k == "lighting") {
+                s.lighting = lightingModeName(parseLightingMode(text(v, k)));
             } else if (k == "view_size") {
                 if (!v.is_array() || v.size() != 2) throw Error("'view_size' must be [width, height]");
                 s.viewWidth = integer(v[0], k);

@@ -238,11 +238,12 @@ int ViewApp::run() {
     session_ = std::make_unique<ViewSession>();
     state_.viewWidth = std::max(1, width - int(kPanelWidth));
     state_.viewHeight = height;
+    state_.lighting = lightingModeName(parseLightingMode(options_.setup.lighting));
     if (!options_.settings.empty()) {
         if (!session_->loadSettings(state_, options_.settings)) throw Error(session_->lastError());
         if (options_.given && options_.given("--scene") && !session_->openScene(state_, options_.scene))
             throw Error(session_->lastError());
-    } else if (!session_->openScene(state_, options_.scene, options_.camera)) {
+    } else if (!session_->openScene(state_, options_.scene, cameraRequest(options_.setup))) {
         throw Error(session_->lastError());
     }
     scenePath_ = state_.scene;
@@ -330,7 +331,7 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
     cmd.add_option("--settings", o.settings, "Start from a settings file (saved by the panel, or a screenshot's .json)");
     cmd.add_option("--size", o.size, "Window size WIDTHxHEIGHT (the panel takes 420 pixels of it)")
         ->capture_default_str();
-    cmd.add_option("--camera", o.camera, "Index of the glTF camera to start from")->capture_default_str();
+    addSceneSetupOptions(cmd, o.setup);
     cmd.add_option("--script", o.script, "Run timed actions from FILE (see README, Interactive sandbox)");
     cmd.add_option("--screenshot-dir", o.screenshotDir, "Where screenshots (F12) go")->capture_default_str();
     cmd.add_flag("--gl-debug", o.glDebug, "Debug context; print KHR_debug messages");

@@ -70,11 +70,14 @@ ViewSession::ViewSession() { readFbo_ = gl::createFramebuffer(); }
 
 ViewSession::~ViewSession() { releaseRenderers(); }
 
-bool ViewSession::openScene(ViewState& state, const std::string& spec, int camera) {
+bool ViewSession::openScene(ViewState& state, const std::string& spec, const CameraRequest& request) {
     try {
         auto scene = std::make_unique<Scene>(loadScene(spec));
         ViewState s = state;
         s.scene = spec;
+        if (applyLighting(*scene, parseLightingMode(state.lighting))) s.ambient = glm::vec3(kDefaultSkyRadiance);
+        const int camera =
+            resolveCamera(*scene, request, float(std::max(s.viewWidth, 1)) / float(std::max(s.viewHeight, 1)));
         resetCamera(s, *scene, camera);
         resetLights(s, *scene);
         releaseRenderers();
@@ -94,7 +97,9 @@ bool ViewSession::loadSettings(ViewState& state, const std::string& path) {
     try {
         const ViewState loaded = loadViewSettings(path);
         ViewState s = loaded;
-        if (!openScene(s, loaded.scene, loaded.camera.sceneCamera)) return false;  // lastError_ is set
+        CameraRequest request;
+        request.index = loaded.camera.sceneCamera;
+        if (!openScene(s, loaded.scene, request)) return false;  // lastError_ is set
         // openScene reset camera and lights from the scene (and set what "reset" returns to):
         // now the file's own.
         s.camera = loaded.camera;
@@ -278,6 +283,14 @@ void ViewSession::updateHeatmap(const ViewState& state, int index, const CameraM
     PaneView& p = panes_[index];
     Renderer& r = *p.renderer;
     p.shown = r.frameTexture("display");  // until the heatmap exists
+    const PaneState& pane = state.panes[index];
+    if (!physicallyBased(pane.diffuse, pane.specular)) {  // the image stays; the pane says why
+        p.heatmapReady = false;
+        p.heatmapWanted = false;  // nothing to wait for: the pane is settled
+        p.status = "no heatmap: the path-traced reference renders physically based BRDFs only "
+                   "(Lambert or Burley diffuse, GGX or no specular)";
+        return;
+    }
     Reference* ref = reference(state, index, camera);
     if (ref->image.rgba.empty()) {
         p.status = "reference " + std::to_string(ref->renderer->samplesDone()) + "/" +

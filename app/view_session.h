@@ -61,10 +61,11 @@ public:
     ViewSession(const ViewSession&) = delete;
     ViewSession& operator=(const ViewSession&) = delete;
 
-    // Loads a scene and makes it the current one: resets `state`'s camera (to scene camera
-    // `camera`) and light list. On failure keeps the previous scene and state, sets lastError()
+    // Loads a scene and makes it the current one: applies state.lighting, resets `state`'s camera
+    // (to the camera `camera` asks for: the file's first by default, framing when it has none)
+    // and light list. On failure keeps the previous scene and state, sets lastError()
     // and returns false.
-    bool openScene(ViewState& state, const std::string& spec, int camera = 0);
+    bool openScene(ViewState& state, const std::string& spec, const CameraRequest& camera = {});
     // Loads a settings file: its scene, then everything else over it. On failure keeps the
     // previous scene and state, sets lastError() and returns false.
     bool loadSettings(ViewState& state, const std::string& path);

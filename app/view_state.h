@@ -69,6 +69,7 @@ struct LightState {
 
 struct ViewState {
     std::string scene = "builtin:cornell";
+    std::string lighting = "auto";        // --lighting: applied when the scene is opened
     ViewMode mode = ViewMode::Single;
     std::array<PaneState, kMaxPanes> panes;
     float divider = 0.5f;                 // split: left pane's share of the view width, [0.02, 0.98]

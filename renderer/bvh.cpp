@@ -59,8 +59,7 @@ glm::vec3 upper(const RTCBounds& b) { return {b.upper_x, b.upper_y, b.upper_z}; 
 
 }  // namespace
 
-Bvh buildBvh(const Scene& scene) {
-    const auto start = std::chrono::steady_clock::now();
+std::vector<TraceTriangle> worldTriangles(const Scene& scene) {
     std::vector<TraceTriangle> tris;
     for (size_t d = 0; d < scene.draws.size(); ++d) {
         const Primitive& p = scene.primitives[scene.draws[d].primitive];
@@ -75,6 +74,12 @@ Bvh buildBvh(const Scene& scene) {
             tris.push_back(t);
         }
     }
+    return tris;
+}
+
+Bvh buildBvh(const Scene& scene) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<TraceTriangle> tris = worldTriangles(scene);
     if (tris.empty()) throw Error("cannot build a BVH: the scene has no triangles");
 
     std::vector<RTCBuildPrimitive> prims(tris.size());

@@ -37,6 +37,10 @@ struct Bvh {
     int leafCount = 0;
 };
 
+// Every draw's triangles in world space, in draw order (the BVH builder's input; the shared scene
+// triangles of renderer/services use the same list, so both agree triangle for triangle).
+std::vector<TraceTriangle> worldTriangles(const Scene& scene);
+
 // Throws gis::Error when the scene has no triangles or Embree fails.
 Bvh buildBvh(const Scene& scene);
 

@@ -48,10 +48,10 @@ extern "C" void removeTmpAndReraise(int sig) {
     ::raise(sig);  // now with the previous disposition (by default: terminate)
 }
 
-// While a temporary file exists: SIGINT/SIGTERM/SIGHUP remove it before the process dies, and
-// SIGXFSZ (file size limit reached), which would kill the process and leave the file, is
-// ignored so that the write fails with EFBIG and takes the ordinary error path. SIGKILL cannot
-// be caught: it leaves the temporary file (never the target) behind.
+// While a temporary file exists: SIGINT/SIGTERM/SIGHUP, where they would kill the process, remove
+// it before the process dies, and SIGXFSZ (file size limit reached), which would kill the process
+// and leave the file, is ignored so that the write fails with EFBIG and takes the ordinary error
+// path. SIGKILL cannot be caught: it leaves the temporary file (never the target) behind.
 class TmpFileGuard {
 public:
     explicit TmpFileGuard(const std::string& tmp) {
@@ -61,14 +61,18 @@ public:
         sigemptyset(&sa.sa_mask);
         for (size_t i = 0; i < 3; ++i) {
             ::sigaction(kCleanupSignals[i], &sa, &gOldActions[i]);
-            // A signal the caller ignores (nohup) stays ignored.
-            if (gOldActions[i].sa_handler == SIG_IGN) ::sigaction(kCleanupSignals[i], &gOldActions[i], nullptr);
+            // Only where the signal would kill the process: one the caller ignores (nohup) stays
+            // ignored, and one the caller handles (a window's graceful quit) lets the write finish.
+            const bool wasDefault = !(gOldActions[i].sa_flags & SA_SIGINFO) && gOldActions[i].sa_handler == SIG_DFL;
+            if (!wasDefault) ::sigaction(kCleanupSignals[i], &gOldActions[i], nullptr);
         }
         struct sigaction ign {};
         ign.sa_handler = SIG_IGN;
         sigemptyset(&ign.sa_mask);
         ::sigaction(SIGXFSZ, &ign, &gOldXfsz);
-        gTmpActive = 1;
+        // A path the buffer cannot hold is not armed: unlinking a truncated path could remove
+        // some other file.
+        gTmpActive = tmp.size() < sizeof gTmpPath;
     }
     ~TmpFileGuard() {
         gTmpActive = 0;

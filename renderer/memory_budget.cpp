@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "gi/method.h"
 #include "gl/gl.h"
 #include "renderer.h"
 #include "scene/scene.h"
@@ -55,8 +56,11 @@ MemoryEstimate estimateGpuMemory(const Scene& scene, const RenderSettings& s) {
     const GiMethod& method = giMethod(s.gi);
     if (method.estimateMemory)  // the method's own passes and volumes
         for (const auto& part : method.estimateMemory(scene, s)) e.parts.push_back(part);
-    if (method.pipeline == MethodPipeline::Deferred) {
-        e.parts.push_back({"G-buffer (28 bytes/pixel)", pixels * 28});
+    const bool deferred = method.pipeline == MethodPipeline::Deferred;
+    // A G-buffer view of a standalone method adds the G-buffer; any debug view its RGBA16F target.
+    if (deferred || s.view.rfind("gbuffer.", 0) == 0) e.parts.push_back({"G-buffer (28 bytes/pixel)", pixels * 28});
+    if (s.view != "final") e.parts.push_back({"debug view (RGBA16F)", pixels * 8});
+    if (deferred) {
         e.parts.push_back({s.hdr32 ? "lighting (RGBA32F)" : "lighting (RGBA16F)", pixels * (s.hdr32 ? 16 : 8)});
         if (s.shadows && !scene.draws.empty()) {
             uint64_t points = 0, flat = 0;

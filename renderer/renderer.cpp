@@ -39,6 +39,10 @@ Tonemapper parseTonemapper(const std::string& s) {
     throw Error("unknown tonemapper '" + s + "' (expected aces or linear)");
 }
 
+bool physicallyBased(DiffuseModel d, SpecularModel s) {
+    return (d == DiffuseModel::Lambert || d == DiffuseModel::Burley) && (s == SpecularModel::Ggx || s == SpecularModel::None);
+}
+
 void setParam(RenderSettings& s, const std::string& fullKey, const std::string& text) {
     // An alias flag (--spp, --ao-radius) sets every row that declares it.
     bool any = false;
@@ -138,9 +142,7 @@ void checkSettings(const RenderSettings& s) {
                 throw Error("background radiance must be finite and non-negative");
     range("samples per frame", s.samplesPerFrame, 1, 1 << 16);
     const GiMethod& method = giMethod(s.gi);
-    if (method.physicalBrdfsOnly &&
-        ((s.diffuse != DiffuseModel::Lambert && s.diffuse != DiffuseModel::Burley) ||
-         (s.specular != SpecularModel::Ggx && s.specular != SpecularModel::None)))
+    if (method.physicalBrdfsOnly && !physicallyBased(s.diffuse, s.specular))
         throw Error("the " + method.name + " method takes the physically based models only: --diffuse lambert|burley, "
                     "--specular ggx|none");
     checkParams(s.params);

@@ -31,6 +31,8 @@ enum class Tonemapper { Aces, Linear };
 DiffuseModel parseDiffuse(const std::string& s);    // lambert, wrap, toon, burley
 SpecularModel parseSpecular(const std::string& s);  // ggx, blinn, toon, none
 Tonemapper parseTonemapper(const std::string& s);
+// Lambert or Burley diffuse with GGX or no specular: what the path tracer (the reference) renders.
+bool physicallyBased(DiffuseModel diffuse, SpecularModel specular);
 
 struct RenderSettings {
     int width = 256, height = 256;

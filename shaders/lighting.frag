@@ -31,48 +31,7 @@ layout(location = U_INDIRECT_INPUTS) uniform ivec2 u_indirectInputs;  // indirec
 in vec2 v_uv;
 layout(location = 0) out vec4 o_radiance;
 
-// Receiver-side bias: move the lookup along the normal by a few shadow-map texels, more at grazing
-// light, so a lit plane never shadows itself (acne) and contact shadows stay (little peter-panning).
-const float SHADOW_NORMAL_OFFSET_TEXELS = 1.5;
-// 3x3 taps, each a hardware 2x2 comparison (bilinear PCF): a soft edge about 4 texels wide.
-const int PCF_RADIUS = 1;
-
-float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
-    int layer = int(light.cone.z);
-    if (u_shadowsEnabled == 0 || layer < 0) return 1.0;
-    int type = int(light.positionType.w);
-    float distance = type == LIGHT_DIRECTIONAL ? 0.0 : length(light.positionType.xyz - P);
-    float texel = light.shadowParams.x + light.shadowParams.y * distance;
-    vec3 Po = P + N * texel * SHADOW_NORMAL_OFFSET_TEXELS * (1.0 - 0.5 * NoL);
-    // PCF taps lie in the receiver's tangent plane, one shadow texel apart: taps spread across
-    // the light's view instead would sink into a tilted receiver and shadow it (acne at grazing).
-    vec3 T = normalize(abs(N.y) < 0.99 ? cross(N, vec3(0.0, 1.0, 0.0)) : cross(N, vec3(1.0, 0.0, 0.0)));
-    vec3 B = cross(N, T);
-
-    float sum = 0.0;
-    for (int i = -PCF_RADIUS; i <= PCF_RADIUS; ++i)
-        for (int j = -PCF_RADIUS; j <= PCF_RADIUS; ++j) {
-            vec3 tap = Po + (T * float(i) + B * float(j)) * texel;
-            if (type == LIGHT_POINT) {
-                // Compare with the depth the cube face's perspective projection stores: its view
-                // depth is the distance along the dominant axis.
-                vec3 d = tap - light.positionType.xyz;
-                vec3 ad = abs(d);
-                float n = light.shadowParams.z, f = light.shadowParams.w;
-                float z = max(max(max(ad.x, ad.y), ad.z), n);
-                float depth = ((f + n) / (f - n) - 2.0 * f * n / ((f - n) * z)) * 0.5 + 0.5;
-                sum += texture(s_shadowCubes, vec4(d, float(layer)), depth);
-            } else {
-                vec4 clip = light.shadowMatrix * vec4(tap, 1.0);
-                vec3 p = clip.xyz / max(clip.w, 1e-20) * 0.5 + 0.5;
-                // Outside the map (or behind a spot light) nothing was rendered: lit.
-                bool outside = clip.w <= 0.0 || any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)));
-                sum += outside ? 1.0 : texture(s_shadowMaps, vec4(p.xy, float(layer), p.z));
-            }
-        }
-    float taps = float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
-    return sum / taps;
-}
+#include "shadows.glsl"
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);

@@ -7,7 +7,8 @@
     X(noneMethod)              \
     X(ssaoMethod)              \
     X(aoReferenceMethod)       \
-    X(pathtraceMethod)
+    X(pathtraceMethod)         \
+    X(vctMethod)
 
 namespace gis {
 

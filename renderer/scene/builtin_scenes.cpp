@@ -9,48 +9,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/scene.h"
+#include "scene/mesh_builders.h"
 #include "scene/scene_internal.h"
 
 namespace gis {
 namespace {
 
-// One quad (two triangles 0-1-2, 0-2-3 as in the reference generator) with a constant normal.
-void addQuad(Primitive& p, const glm::vec3 (&c)[4], const glm::vec3& n) {
-    const uint32_t base = static_cast<uint32_t>(p.vertices.size());
-    for (const glm::vec3& pos : c) {
-        Vertex v;
-        v.position = pos;
-        v.normal = n;
-        v.tangent = glm::vec4(0.0f);  // missing: finalizeScene derives one from the normal
-        p.vertices.push_back(v);
-    }
-    for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) p.indices.push_back(base + i);
-}
-
-Material lambert(const std::string& name, const glm::vec3& albedo) {
-    Material m;
-    m.name = name;
-    m.baseColorFactor = glm::vec4(albedo, 1.0f);
-    m.metallicFactor = 0.0f;
-    m.roughnessFactor = 1.0f;
-    m.specularFactor = 0.0f;  // KHR_materials_specular.specularFactor = 0: ideal Lambert
-    m.doubleSided = false;
-    return m;
-}
-
-// Unit cube centred at the origin, faces +Z, -Z, +X, -X, +Y, -Y, outward, CCW.
-Primitive unitCube(int material) {
-    Primitive p;
-    p.material = material;
-    const float h = 0.5f;
-    addQuad(p, {{-h, -h, h}, {h, -h, h}, {h, h, h}, {-h, h, h}}, {0, 0, 1});
-    addQuad(p, {{-h, -h, -h}, {-h, h, -h}, {h, h, -h}, {h, -h, -h}}, {0, 0, -1});
-    addQuad(p, {{h, -h, -h}, {h, h, -h}, {h, h, h}, {h, -h, h}}, {1, 0, 0});
-    addQuad(p, {{-h, -h, -h}, {-h, -h, h}, {-h, h, h}, {-h, h, -h}}, {-1, 0, 0});
-    addQuad(p, {{-h, h, -h}, {-h, h, h}, {h, h, h}, {h, h, -h}}, {0, 1, 0});
-    addQuad(p, {{-h, -h, -h}, {h, -h, -h}, {h, -h, h}, {-h, -h, h}}, {0, -1, 0});
-    return p;
-}
+using namespace detail;
 
 Scene makeCornell(bool areaLight) {
     Scene s;
@@ -134,35 +99,6 @@ Scene makeCornell(bool areaLight) {
 // BRDF model ids as in gis::DiffuseModel / SpecularModel (renderer.h; this library has no GL).
 enum GalleryDiffuse { kLambert = 0, kWrap = 1, kToonDiffuse = 2, kBurley = 3 };
 enum GallerySpecular { kGgx = 0, kBlinnPhong = 1, kToonSpecular = 2, kNoSpecular = 3 };
-
-// UV sphere of radius r centred at the origin: `segments` around +Y, `rings` from pole to pole,
-// outward normals, CCW seen from outside, tangents along +phi.
-Primitive uvSphere(float r, int segments, int rings, int material) {
-    Primitive p;
-    p.material = material;
-    const float pi = 3.14159265358979f;
-    for (int i = 0; i <= rings; ++i) {
-        const float theta = pi * float(i) / float(rings);  // from +Y down
-        for (int j = 0; j <= segments; ++j) {
-            const float phi = 2.0f * pi * float(j) / float(segments);
-            const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
-            Vertex v;
-            v.position = r * n;
-            v.normal = n;
-            v.tangent = glm::vec4(-std::sin(phi), 0.0f, -std::cos(phi), 1.0f);
-            v.uv = glm::vec2(float(j) / float(segments), float(i) / float(rings));
-            p.vertices.push_back(v);
-        }
-    }
-    const uint32_t row = uint32_t(segments) + 1;
-    for (uint32_t i = 0; i < uint32_t(rings); ++i)
-        for (uint32_t j = 0; j < uint32_t(segments); ++j) {
-            const uint32_t a = i * row + j, b = a + row;  // b is one ring further down
-            if (i != 0) for (uint32_t k : {a, b, a + 1}) p.indices.push_back(k);
-            if (i + 1 != uint32_t(rings)) for (uint32_t k : {a + 1, b, b + 1}) p.indices.push_back(k);
-        }
-    return p;
-}
 
 Scene makeBrdfGallery() {
     Scene s;
@@ -260,15 +196,26 @@ Scene makeBrdfGallery() {
 
 }  // namespace
 
-std::vector<std::string> builtinSceneNames() { return {"cornell", "cornell-area", "brdf-gallery"}; }
+std::vector<std::string> builtinSceneNames() {
+    return {"cornell", "cornell-area", "brdf-gallery", "leak", "room", "mirror", "atrium"};
+}
 
-Scene makeBuiltinScene(const std::string& name) {
+Scene makeBuiltinScene(const std::string& spec) {
+    // NAME or NAME?key=value&key=value (builtin:leak?thickness=0.01&doorway=1).
+    const size_t q = spec.find('?');
+    const std::string name = spec.substr(0, q);
+    const detail::SceneOptions options = detail::parseSceneOptions(spec, q == std::string::npos ? "" : spec.substr(q + 1));
+    if (name == "leak") return detail::makeLeakScene(options);
+    if (name == "room") return detail::makeRoomScene(options);
+    if (name == "mirror") return detail::makeMirrorScene(options);
+    if (name == "atrium") return detail::makeAtriumScene(options);
+    if (!options.empty()) throw Error("built-in scene '" + detail::oneLine(name, 80) + "' takes no options");
     if (name == "cornell") return makeCornell(false);
     if (name == "cornell-area") return makeCornell(true);
     if (name == "brdf-gallery") return makeBrdfGallery();
     std::string list;
     for (const std::string& n : builtinSceneNames()) list += (list.empty() ? "" : ", ") + n;
-    throw Error("unknown built-in scene '" + detail::oneLine(name, 80) + "' (available: " + list +
+    throw Error("unknown built-in scene '" + detail::oneLine(spec, 80) + "' (available: " + list +
                 ")");
 }
 

@@ -415,6 +415,9 @@ void Loader::prevalidate(const char* json, size_t len, bool binary) {
         auto asset = doc.find("asset");
         if (asset == doc.end() || !asset->is_object())
             fail("asset: missing or not an object (a glTF needs \"asset\": {\"version\": \"2.0\"})");
+        auto version = asset->find("version");
+        if (version == asset->end() || !version->is_string())
+            fail("asset.version: missing or not a string (a glTF needs \"asset\": {\"version\": \"2.0\"})");
     }
     if (buffers) {
         for (size_t i = 0; i < buffers->size(); ++i) {
@@ -430,6 +433,58 @@ void Loader::prevalidate(const char* json, size_t len, bool binary) {
             checkBufferUri(what, u->get_ref<const std::string&>(), b);
         }
     }
+    // Required properties and element types tinygltf checks without saying which element failed
+    // ("'componentType' property is missing in Accessor.", "`materials' does not contain an JSON
+    // object."): the same checks, naming the element.
+    for (const char* key : {"accessors", "animations", "buffers", "bufferViews", "cameras", "images", "materials",
+                            "meshes", "nodes", "samplers", "scenes", "skins", "textures"}) {
+        auto it = doc.find(key);
+        const nlohmann::json* list = it != doc.end() && it->is_array() ? &*it : nullptr;  // tinygltf skips others
+        for (size_t i = 0; list && i < list->size(); ++i)
+            if (!(*list)[i].is_object())
+                fail(std::string(key) + "[" + str(i) + "] is " + oneLine((*list)[i].dump(), 30) + ", not an object");
+    }
+    auto require = [&](const nlohmann::json& obj, const std::string& what, std::initializer_list<const char*> keys) {
+        for (const char* k : keys)
+            if (obj.find(k) == obj.end()) fail(what + ": '" + k + "' is missing (required)");
+    };
+    auto eachOf = [&](const char* key, std::initializer_list<const char*> keys) {
+        auto it = doc.find(key);
+        if (it != doc.end() && it->is_array())
+            for (size_t i = 0; i < it->size(); ++i) require((*it)[i], std::string(key) + "[" + str(i) + "]", keys);
+    };
+    eachOf("accessors", {"componentType", "count", "type"});
+    eachOf("bufferViews", {"buffer", "byteLength"});
+    eachOf("buffers", {"byteLength"});
+    eachOf("cameras", {"type"});
+    if (views)
+        for (size_t i = 0; i < views->size(); ++i) {
+            auto bl = (*views)[i].find("byteLength");
+            if (!bl->is_number_unsigned())
+                fail("bufferViews[" + str(i) + "].byteLength is " + oneLine(bl->dump(), 30) +
+                     "; it must be a non-negative integer");
+        }
+    if (buffers)
+        for (size_t i = 0; i < buffers->size(); ++i) {
+            auto bl = (*buffers)[i].find("byteLength");
+            if (!bl->is_number_unsigned() || bl->get<uint64_t>() == 0)
+                fail("buffers[" + str(i) + "].byteLength is " + oneLine(bl->dump(), 30) + "; it must be a positive integer");
+        }
+    if (const nlohmann::json* anims = arrayOf("animations"))
+        for (size_t a = 0; a < anims->size(); ++a)
+            for (const char* part : {"channels", "samplers"}) {
+                auto list = (*anims)[a].find(part);
+                if (list == (*anims)[a].end() || !list->is_array()) continue;
+                for (size_t i = 0; i < list->size(); ++i)
+                    require((*list)[i], "animations[" + str(a) + "]." + part + "[" + str(i) + "]",
+                            part[0] == 'c' ? std::initializer_list<const char*>{"sampler", "target"}
+                                           : std::initializer_list<const char*>{"input", "output"});
+            }
+    if (images)
+        for (size_t i = 0; i < images->size(); ++i)
+            if ((*images)[i].find("uri") == (*images)[i].end() && (*images)[i].find("bufferView") == (*images)[i].end())
+                fail("images[" + str(i) + "]: neither 'uri' nor 'bufferView' is given (one is required)");
+
     if (const nlohmann::json* skins = arrayOf("skins")) {
         for (size_t i = 0; i < skins->size(); ++i) {
             const auto& sk = (*skins)[i];
@@ -492,6 +547,10 @@ void Loader::prevalidate(const char* json, size_t len, bool binary) {
             auto lights = lp->find("lights");
             if (lights != lp->end() && lights->is_array()) {
                 for (size_t i = 0; i < lights->size(); ++i) {
+                    const std::string lw = "KHR_lights_punctual.lights[" + str(i) + "]";
+                    if (!(*lights)[i].is_object()) fail(lw + " is not an object");
+                    require((*lights)[i], lw, {"type"});
+                    if ((*lights)[i]["type"] == "spot") require((*lights)[i], lw, {"spot"});
                     if (!positiveIfPresent((*lights)[i], "range"))
                         badLights_[int(i)] = "KHR_lights_punctual.lights[" + str(i) + "].range is " +
                                              oneLine((*lights)[i]["range"].dump(), 40) +

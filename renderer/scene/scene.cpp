@@ -287,6 +287,12 @@ Scene loadScene(const std::string& spec) {
     static const std::string kPrefix = "builtin:";
     if (spec.compare(0, kPrefix.size(), kPrefix) == 0)
         return makeBuiltinScene(spec.substr(kPrefix.size()));
+    // A file that is no glTF (an image passed by mistake) is named as such, not as broken JSON.
+    const size_t dot = spec.find_last_of('.');
+    std::string ext = dot == std::string::npos ? "" : spec.substr(dot + 1);
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != "gltf" && ext != "glb")
+        throw Error(detail::oneLine(spec, 200) + ": not a glTF file (expected a .gltf or .glb file, or builtin:NAME)");
     return loadGltfFile(spec);
 }
 

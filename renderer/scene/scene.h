@@ -143,4 +143,36 @@ void finalizeScene(Scene& scene);
 // A camera that frames the scene bounds from +Z (used when the file has none).
 Camera defaultCamera(const Aabb& bounds, float aspect);
 
+// --- Light and camera for scenes that bring none (renderer/scene/scene_setup.cpp).
+
+// auto: the scene's own lights and emitters, or the default sun and sky when it has neither;
+// scene: exactly the scene's (possibly none: a black image); default: the sun and sky instead of
+// the scene's lights; none: no punctual light (emission only).
+enum class LightingMode { Auto, Scene, Default, None };
+LightingMode parseLightingMode(const std::string& s);  // auto, scene, default, none
+const char* lightingModeName(LightingMode m);
+// The default: a sun of irradiance 3 from 50 degrees elevation, azimuth 30 degrees (from +Z
+// towards +X), and a uniform sky of radiance 0.4, Godot's default environment in spirit.
+constexpr float kDefaultSunIrradiance = 3.0f;
+constexpr float kDefaultSunElevationDegrees = 50.0f;
+constexpr float kDefaultSunAzimuthDegrees = 30.0f;
+constexpr float kDefaultSkyRadiance = 0.4f;
+bool hasOwnLighting(const Scene& scene);  // a punctual light or an emissive material
+// Applies `mode`; returns true when the default sun and sky were added (the caller says so once).
+bool applyLighting(Scene& scene, LightingMode mode);
+
+// Which camera to render from: the file's camera `index` (-1: the first, or `auto` framing when
+// the file has none), `autoFrame` (frame the scene's bounds), or a camera at `position` looking at
+// `lookAt` with a vertical field of view of `fovDegrees` (when position is set).
+struct CameraRequest {
+    int index = -1;
+    bool autoFrame = false;
+    bool hasPosition = false;
+    glm::vec3 position{0.0f}, lookAt{0.0f};
+    float fovDegrees = 40.0f;
+};
+// Resolves `request` to an index into scene.cameras, appending a camera where one is made.
+// Throws gis::Error for an index the file does not have (also when it has none).
+int resolveCamera(Scene& scene, const CameraRequest& request, float aspect);
+
 }  // namespace gis

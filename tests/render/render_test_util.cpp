@@ -214,4 +214,22 @@ ImageF downsample(const ImageF& img, int factor) {
     return out;
 }
 
+Scene scaledScene(const Scene& in, float scale) {
+    Scene s = in;
+    const glm::mat4 m = glm::scale(glm::mat4(1.0f), glm::vec3(scale));
+    for (DrawItem& d : s.draws) d.world = m * d.world;
+    for (Camera& c : s.cameras) {
+        c.cameraToWorld[3] = glm::vec4(glm::vec3(c.cameraToWorld[3]) * scale, 1.0f);
+        c.znear *= scale;
+        c.zfar *= scale;
+    }
+    for (Light& l : s.lights) {
+        l.position *= scale;
+        if (l.type != LightType::Directional) l.intensity *= scale * scale;
+        l.range *= scale;
+    }
+    finalizeScene(s);
+    return s;
+}
+
 }  // namespace gis::test

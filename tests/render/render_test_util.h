@@ -51,6 +51,11 @@ std::vector<PixelHit> castPixels(const Scene& scene, int camera, int width, int 
 std::vector<bool> interiorPixels(const std::vector<PixelHit>& hits, int width, int height, int edgeRadius,
                                  int shadowRadius);
 
+// The scene scaled by `scale` about the origin: geometry, cameras (position, near, far) and lights
+// (position, range, and point/spot intensity by scale^2, so irradiance is unchanged). Radiance
+// does not depend on the unit of length: every method must render it the same.
+Scene scaledScene(const Scene& scene, float scale);
+
 // Box-filter downsampling by an integer factor.
 ImageF downsample(const ImageF& img, int factor);
 

@@ -89,7 +89,12 @@ INSTANTIATE_TEST_SUITE_P(BuiltinScenes, Golden,
                                            GoldenCase{"cornell-area", "egl", kLlvmpipe},
                                            // Every BRDF model, one row each (README, BRDF section).
                                            GoldenCase{"brdf-gallery", "osmesa", kLlvmpipe, "192x128", "192x128"},
-                                           GoldenCase{"brdf-gallery", "egl", kLlvmpipe, "192x128", "192x128"}),
+                                           GoldenCase{"brdf-gallery", "egl", kLlvmpipe, "192x128", "192x128"},
+                                           // The GI test scenes (README, Scenes).
+                                           GoldenCase{"leak", "osmesa", kLlvmpipe},
+                                           GoldenCase{"room", "osmesa", kLlvmpipe},
+                                           GoldenCase{"mirror", "osmesa", kLlvmpipe},
+                                           GoldenCase{"atrium", "osmesa", kLlvmpipe}),
                          [](const auto& info) {
                              std::string n = std::string(info.param.scene) + "_" + info.param.backend;
                              for (char& ch : n) if (ch == '-') ch = '_';

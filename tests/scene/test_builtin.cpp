@@ -131,7 +131,8 @@ void compareWithReference(const std::string& builtin, const std::string& ref) {
 }  // namespace
 
 TEST(Builtin, Names) {
-    EXPECT_EQ(gis::builtinSceneNames(), (std::vector<std::string>{"cornell", "cornell-area", "brdf-gallery"}));
+    EXPECT_EQ(gis::builtinSceneNames(), (std::vector<std::string>{"cornell", "cornell-area", "brdf-gallery", "leak", "room",
+                                                                  "mirror", "atrium"}));
 }
 
 // The BRDF chart: 6 rows x 10 spheres, each row one BRDF combination (per-material override), the
@@ -194,4 +195,48 @@ TEST(Builtin, CornellAreaMatchesCornellBoxReference) {
             EXPECT_FALSE(m.doubleSided);
         }
     EXPECT_EQ(emitters, 1);
+}
+
+// The GI test scenes: options change what they say, and only known options in range are taken.
+TEST(Builtin, LeakSceneWallThicknessAndDoorway) {
+    auto sharedWall = [](const gis::Scene& s) {
+        float thinnest = 1e9f;  // the shared wall is the box whose x extent is smallest
+        for (const auto& d : s.draws) thinnest = std::min(thinnest, std::abs(d.world[0][0]));
+        return thinnest;
+    };
+    EXPECT_NEAR(sharedWall(gis::makeBuiltinScene("leak")), 0.02f, 1e-6f);
+    EXPECT_NEAR(sharedWall(gis::makeBuiltinScene("leak?thickness=0.01")), 0.01f, 1e-6f);
+    const gis::Scene door = gis::makeBuiltinScene("leak?thickness=0.05&doorway=1");
+    EXPECT_EQ(door.draws.size(), gis::makeBuiltinScene("leak").draws.size() + 2) << "three boxes frame the doorway";
+    ASSERT_EQ(door.lights.size(), 1u);
+    EXPECT_LT(door.lights[0].position.x, 0.0f) << "the lamp is in the left room";
+    EXPECT_THROW(gis::makeBuiltinScene("leak?thickness=0.001"), gis::Error);
+    EXPECT_THROW(gis::makeBuiltinScene("leak?colour=1"), gis::Error);
+    EXPECT_THROW(gis::makeBuiltinScene("leak?thickness"), gis::Error);
+    EXPECT_THROW(gis::makeBuiltinScene("cornell?detail=2"), gis::Error);
+}
+
+TEST(Builtin, AtriumDetailScalesTrianglesPastOneMillion) {
+    const size_t low = gis::makeBuiltinScene("atrium").triangleCount();
+    EXPECT_GT(low, 10000u);
+    EXPECT_LT(low, 20000u);
+    const size_t high = gis::makeBuiltinScene("atrium?detail=10").triangleCount();
+    EXPECT_GT(high, 1000000u);
+    const gis::Scene a = gis::makeBuiltinScene("atrium");
+    ASSERT_EQ(a.lights.size(), 1u);
+    EXPECT_EQ(a.lights[0].type, gis::LightType::Directional);
+    EXPECT_GT(a.background.b, 0.0f) << "a sky";
+    EXPECT_THROW(gis::makeBuiltinScene("atrium?detail=13"), gis::Error);
+}
+
+TEST(Builtin, RoomIsClosedAndMirrorHasTwoMetalSpheres) {
+    const gis::Scene room = gis::makeBuiltinScene("room");
+    ASSERT_EQ(room.cameras.size(), 1u);
+    const glm::vec3 eye(room.cameras[0].cameraToWorld[3]);
+    EXPECT_TRUE(glm::all(glm::greaterThan(eye, room.bounds.min)) && glm::all(glm::lessThan(eye, room.bounds.max)))
+        << "the camera is inside";
+    const gis::Scene mirror = gis::makeBuiltinScene("mirror");
+    int metals = 0;
+    for (const auto& m : mirror.materials) metals += m.metallicFactor == 1.0f;
+    EXPECT_EQ(metals, 2);
 }

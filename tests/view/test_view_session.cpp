@@ -209,6 +209,22 @@ TEST(Session, HeatmapAgainstTheReference) {
     EXPECT_TRUE(s.session->pane(0).heatmapReady);
 }
 
+// A toon pane cannot be compared with the path tracer: it keeps its image and says why, in the
+// viewer's words (not the command line's flags).
+TEST(Session, HeatmapOfANonPhysicalBrdfKeepsTheImage) {
+    Sandbox s;
+    s.act("specular 0 toon");
+    const ImageU8 lit = s.view(32, 32);
+    s.act("display 0 heatmap");
+    const ImageU8 shown = s.view(32, 32);
+    EXPECT_EQ(meanAbsDiff(shown, lit), 0.0) << "the lit image stays";
+    const PaneView& p = s.session->pane(0);
+    EXPECT_FALSE(p.heatmapReady);
+    EXPECT_NE(p.status.find("physically based BRDFs only"), std::string::npos) << p.status;
+    EXPECT_EQ(p.status.find("--"), std::string::npos) << "no command-line flags in the viewer: " << p.status;
+    EXPECT_TRUE(s.session->lastError().empty()) << s.session->lastError();
+}
+
 TEST(Session, LightEditsChangeTheImage) {
     Sandbox s;
     const ImageU8 base = s.view(32, 32);

@@ -201,9 +201,13 @@ GiMethod ssaoMethod() {
                               {"ssao.half-res", {half[i] ? 1.0 : 0.0}}}});
     m.programs = &SsaoPass::programs;
     m.estimateMemory = [](const Scene&, const RenderSettings& s) {
-        const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
-        const bool half = ssaoParams().read("ssao", s.params).halfResolution;
-        return std::vector<std::pair<std::string, uint64_t>>{{"SSAO", half ? pixels * 2 : pixels * 8}};
+        // RG16F raw (+ blurred) AO and two RGBA16F history images when temporal, at the pass's
+        // own (maybe half) resolution: the targets the constructor creates.
+        const SsaoSettings p = ssaoParams().read("ssao", s.params);
+        const uint64_t w = uint64_t(p.halfResolution ? std::max(1, s.width / 2) : s.width);
+        const uint64_t h = uint64_t(p.halfResolution ? std::max(1, s.height / 2) : s.height);
+        const uint64_t perPixel = 4 + (p.blur ? 4 : 0) + (p.temporal ? 16 : 0);
+        return std::vector<std::pair<std::string, uint64_t>>{{"SSAO", w * h * perPixel}};
     };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<SsaoPass>(b.settings, b.ledger)); };
     // Temporal accumulation averages up to 16 frames.

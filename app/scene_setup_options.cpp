@@ -1,0 +1,58 @@
+#include "scene_setup_options.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+
+namespace gis {
+
+void addSceneSetupOptions(CLI::App& cmd, SceneSetupOptions& o) {
+    cmd.add_option("--lighting", o.lighting,
+                   "auto (the scene's lights, or a default sun and sky when it has no light and no emitter), "
+                   "scene, default (sun and sky instead), none")
+        ->capture_default_str();
+    cmd.add_option("--camera", o.camera,
+                   "The file's camera N, or auto (frame the scene's bounds; the default for files without cameras)");
+    cmd.add_option("--camera-pos", o.cameraPos, "Camera position X,Y,Z (with --look-at)")->delimiter(',')->expected(3);
+    cmd.add_option("--look-at", o.lookAt, "Point the camera looks at X,Y,Z (with --camera-pos)")->delimiter(',')->expected(3);
+    cmd.add_option("--fov", o.fov, "Vertical field of view in degrees, with --camera-pos")->capture_default_str();
+}
+
+CameraRequest cameraRequest(const SceneSetupOptions& o) {
+    CameraRequest r;
+    if (!o.cameraPos.empty() || !o.lookAt.empty()) {
+        if (o.cameraPos.size() != 3 || o.lookAt.size() != 3) throw Error("--camera-pos and --look-at go together, X,Y,Z each");
+        if (!o.camera.empty()) throw Error("--camera and --camera-pos exclude each other");
+        r.hasPosition = true;
+        r.position = glm::vec3(o.cameraPos[0], o.cameraPos[1], o.cameraPos[2]);
+        r.lookAt = glm::vec3(o.lookAt[0], o.lookAt[1], o.lookAt[2]);
+        r.fovDegrees = o.fov;
+        if (!std::isfinite(glm::length(r.position)) || !std::isfinite(glm::length(r.lookAt)))
+            throw Error("--camera-pos and --look-at must be finite");
+        return r;
+    }
+    if (o.camera == "auto") {
+        r.autoFrame = true;
+    } else if (!o.camera.empty()) {
+        char* end = nullptr;
+        const long index = std::strtol(o.camera.c_str(), &end, 10);
+        if (*end != '\0' || index < 0 || index > 1000000)
+            throw Error("--camera '" + o.camera + "' is not a camera index (0, 1, ...) or auto");
+        r.index = int(index);
+    }
+    return r;
+}
+
+int prepareScene(Scene& scene, const SceneSetupOptions& o, float aspect, RenderSettings* settings, bool ambientGiven) {
+    const LightingMode mode = parseLightingMode(o.lighting);
+    if (applyLighting(scene, mode)) {
+        std::fprintf(stderr,
+                     "gisandbox: the scene has no light: added the default sun (irradiance %g, elevation %g deg, "
+                     "azimuth %g deg) and sky (radiance %g); --lighting scene renders without them\n",
+                     kDefaultSunIrradiance, kDefaultSunElevationDegrees, kDefaultSunAzimuthDegrees, kDefaultSkyRadiance);
+        if (settings && !ambientGiven) settings->ambient = glm::vec3(kDefaultSkyRadiance);
+    }
+    return resolveCamera(scene, cameraRequest(o), aspect);
+}
+
+}  // namespace gis

@@ -1,0 +1,41 @@
+#include "gi/vct/vct_settings.h"
+
+namespace gis {
+
+const ParamTable<VctSettings>& vctParams() {
+    using S = VctSettings;
+    using U = ParamUpdate;
+    static const ParamTable<S> table = ParamTable<S>()
+        .integer(&S::resolution, "resolution", "Resolution", "voxels per edge (a power of two)", 8, 512, U::Rebuild)
+        .choice(&S::conservative, "conservative", "Conservative raster",
+                "hardware = GL_NV_conservative_raster (falls back to geometry), geometry = dilation in the "
+                "geometry shader, off = plain rasterization",
+                {"hardware", "geometry", "off"}, U::Rebuild)
+        .boolean(&S::anisotropic, "anisotropic", "Anisotropic mips", "six directional mip chains", U::Rebuild)
+        .integer(&S::bounces, "bounces", "Bounces", "1 = direct light and emission; more gather in voxel space again", 1,
+                 4, U::Rebuild)
+        .choice(&S::coneSet, "cones", "Diffuse cones", "six 60-degree cones (Godot's set) or four 90-degree cones",
+                {"six", "four"}, U::Live)
+        .real(&S::stepFactor, "step", "Step", "step as a fraction of the cone's diameter", 0.05, 2.0, U::Live)
+        .real(&S::maxDistance, "max-distance", "Max distance", "cone length as a fraction of the volume's edge", 0.01,
+              2.0, U::Live)
+        .real(&S::offset, "offset", "Self-occlusion offset", "start offset along the normal, in voxels", 0.0, 8.0,
+              U::Live)
+        .real(&S::intensity, "intensity", "Intensity", "scales the indirect terms", 0.0, 16.0, U::Live)
+        .boolean(&S::specular, "specular", "Specular cone", "trace the specular cone", U::Live)
+        .choice(&S::debugChannel, "debug-channel", "Debug channel", "what vct.voxels and vct.slice show",
+                {"albedo", "emission", "radiance", "occupancy"}, U::Live)
+        .integer(&S::debugLevel, "debug-level", "Debug mip level", "mip level for radiance and occupancy", 0, 9,
+                 U::Live)
+        .choice(&S::sliceAxis, "slice-axis", "Slice axis", "axis vct.slice cuts across", {"x", "y", "z"}, U::Live)
+        .real(&S::slicePosition, "slice-position", "Slice position", "where along the axis, 0..1", 0.0, 1.0, U::Live);
+    return table;
+}
+
+void checkVctSettings(const VctSettings& s) {
+    const int r = s.resolution;
+    if (r < 8 || r > 512 || (r & (r - 1)) != 0)
+        throw Error("vct.resolution: " + std::to_string(r) + " must be a power of two in [8, 512]");
+}
+
+}  // namespace gis

@@ -1,0 +1,36 @@
+// Voxel cone tracing's parameters: one row each in vctParams() (issue 11's names: vct.resolution,
+// vct.conservative, vct.anisotropic, vct.bounces, ...), defaults in the initialisers below.
+#pragma once
+
+#include <string>
+
+#include "gi/params.h"
+#include "voxel/voxelizer.h"
+
+namespace gis {
+
+struct VctSettings {
+    int resolution = 64;       // vct.resolution: voxels per edge, a power of two (rebuild)
+    int conservative = 0;      // vct.conservative: hardware | geometry | off (ConservativeMode order; rebuild)
+    bool anisotropic = true;   // vct.anisotropic: six directional mip chains (rebuild)
+    int bounces = 1;           // vct.bounces: 1 = direct light re-emitted once; more gather again (rebuild)
+    int coneSet = 0;           // vct.cones: six (60-degree, Godot's) | four (90-degree) (live)
+    float stepFactor = 0.5f;   // vct.step: step as a fraction of the cone diameter (live)
+    float maxDistance = 1.0f;  // vct.max-distance: fraction of the volume's edge (live)
+    float offset = 1.5f;       // vct.offset: self-occlusion offset along the normal, voxels (live)
+    float intensity = 1.0f;    // vct.intensity: scales the indirect terms (live)
+    bool specular = true;      // vct.specular: trace the specular cone (live)
+    // What the debug views vct.voxels and vct.slice show (live).
+    int debugChannel = 0;      // vct.debug-channel: albedo | emission | radiance | occupancy
+    int debugLevel = 0;        // vct.debug-level: mip level (radiance and occupancy)
+    int sliceAxis = 2;         // vct.slice-axis: x | y | z
+    float slicePosition = 0.5f;  // vct.slice-position: 0..1 across the volume
+
+    ConservativeMode conservativeMode() const { return ConservativeMode(conservative); }
+};
+
+const ParamTable<VctSettings>& vctParams();
+// What the table's ranges cannot say (a power-of-two resolution); throws gis::Error naming the key.
+void checkVctSettings(const VctSettings& s);
+
+}  // namespace gis

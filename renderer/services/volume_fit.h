@@ -1,0 +1,38 @@
+// A cubic volume fitted to the scene's bounds: what the voxelizer (and the SDF, and probe grids)
+// place their grids in. Robust for empty, flat, single-triangle and very small or large scenes.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "gl/gl.h"
+#include "scene/scene.h"
+
+namespace gis {
+
+struct VolumeFit {
+    glm::vec3 origin{0.0f};  // world position of the cube's minimum corner
+    float size = 1.0f;       // world edge length of the cube
+    int resolution = 1;      // voxels per edge
+    float voxelSize() const { return size / float(resolution); }
+    // Voxel coordinates run over [0, resolution]^3; voxel (i, j, k) covers [i, i+1) x ...
+    glm::vec3 worldToVoxel(const glm::vec3& p) const { return (p - origin) / voxelSize(); }
+    glm::vec3 voxelToWorld(const glm::vec3& v) const { return origin + v * voxelSize(); }
+    glm::mat4 worldToVoxelMatrix() const;
+    glm::mat4 voxelToWorldMatrix() const;
+};
+
+// The cube around `bounds`, centred on them, its edge the longest extent plus `marginVoxels` empty
+// voxels on each side (so surfaces on the bounds never sit in the outermost voxel, where trilinear
+// lookups and mips would clamp them). Empty bounds give a unit cube at the origin; a flat or
+// point-like scene gets a cube sized from its largest extent or, if all are zero, from its distance
+// to the origin. Throws gis::Error for a resolution outside [1, 4096] or non-finite bounds.
+VolumeFit fitVolume(const Aabb& bounds, int resolution, float marginVoxels = 2.0f);
+
+// The scene's bounds as a shared service: one per renderer, handed to every volume-based method.
+struct SceneVolume {
+    SceneVolume(const Scene& scene, gl::MemoryLedger& ledger);
+    Aabb bounds;
+    VolumeFit fit(int resolution, float marginVoxels = 2.0f) const { return fitVolume(bounds, resolution, marginVoxels); }
+};
+
+}  // namespace gis

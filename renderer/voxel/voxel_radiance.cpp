@@ -1,0 +1,149 @@
+#include "voxel/voxel_radiance.h"
+
+#include <cmath>
+
+#include "voxel/voxel_uniforms.h"
+
+namespace gis {
+
+using namespace voxel;
+
+namespace {
+int levelsFor(int n) {
+    int levels = 1;
+    while ((n >> levels) >= 1) ++levels;
+    return levels;
+}
+
+void setVolumeSampling(const gl::Texture& t) {
+    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    // Clamp to the edge, not to a transparent border: cones stop at the volume's boundary, and a
+    // border would fade the surfaces that lie in the outermost texels of every coarse level.
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glTextureParameteri(t.id(), wrap, GL_CLAMP_TO_EDGE);
+}
+
+void dispatch3D(int w, int h, int d) { glDispatchCompute(GLuint((w + 3) / 4), GLuint((h + 3) / 4), GLuint((d + 3) / 4)); }
+
+int64_t chainTexels(int n) {
+    int64_t sum = 0;
+    for (int s = n; s >= 1; s /= 2) sum += int64_t(s) * s * s;
+    return sum;
+}
+}  // namespace
+
+int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces) {
+    int64_t bytes = 8 * chainTexels(resolution);
+    if (anisotropic) bytes += 6 * 8 * chainTexels(resolution / 2);
+    if (bounces > 1) bytes += 8 * int64_t(resolution) * resolution * resolution;
+    return bytes;
+}
+
+std::vector<ProgramDesc> VoxelRadiance::programs() {
+    return {{"voxel_inject", {"voxel/inject.comp"}, {}},
+            {"voxel_mip", {"voxel/voxel_mip.comp"}, {}},
+            {"voxel_bounce", {"voxel/bounce.comp"}, {}}};
+}
+
+VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::MemoryScope& scope)
+    : scope_(scope), anisotropic_(anisotropic && n >= 2), bounces_(bounces) {
+    checkVoxelBudget(n, voxelRadianceBytes(n, anisotropic_, bounces), scope.owner);
+    radiance_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n, levelsFor(n));
+    setVolumeSampling(radiance_);
+    if (anisotropic_)
+        for (gl::Texture& t : directional_) {
+            t = gl::createTexture3D(scope, GL_RGBA16F, n / 2, n / 2, n / 2, levelsFor(n / 2));
+            setVolumeSampling(t);
+        }
+    if (bounces_ > 1) direct_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n);
+    const auto p = programs();
+    injectProgram_ = buildProgram(p[0]);
+    mipProgram_ = buildProgram(p[1]);
+    bounceProgram_ = buildProgram(p[2]);
+}
+
+void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
+    const GLuint p = injectProgram_.id();
+    const int n = radiance_.width;
+    const glm::mat4 voxelToWorld = grid.fit.voxelToWorldMatrix();
+    glUseProgram(p);
+    glProgramUniform1i(p, UV_RESOLUTION, n);
+    glProgramUniformMatrix4fv(p, UV_VOXEL_TO_WORLD, 1, GL_FALSE, &voxelToWorld[0][0]);
+    glProgramUniform1f(p, UV_VOXEL_SIZE, grid.fit.voxelSize());
+    glProgramUniform1i(p, UV_LIGHT_COUNT, lights.buffer ? lights.count : 0);
+    glProgramUniform1i(p, UV_SHADOWS_ENABLED, lights.shadows ? 1 : 0);
+    const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), grid.emission.id()};
+    glBindTextures(0, 3, textures);
+    glBindSamplers(0, 7, nullptr);
+    if (lights.shadowMaps) glBindTextureUnit(5, lights.shadowMaps);
+    if (lights.shadowCubes) glBindTextureUnit(6, lights.shadowCubes);
+    if (lights.buffer) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights.buffer);
+    const gl::Texture& target = bounces_ > 1 ? direct_ : radiance_;
+    glBindImageTexture(0, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    dispatch3D(n, n, n);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    if (bounces_ > 1) glCopyImageSubData(direct_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, radiance_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+}
+
+void VoxelRadiance::downsample(const gl::Texture& source, int sourceLevel, const gl::Texture& target, int targetLevel,
+                               int direction, GLuint normals) {
+    const GLuint p = mipProgram_.id();
+    glProgramUniform1i(p, UV_MIP_LEVEL, sourceLevel);
+    glProgramUniform1i(p, UV_DIRECTION, direction);
+    glProgramUniform1i(p, UV_NORMAL_WEIGHT, normals ? 1 : 0);
+    glBindTextureUnit(0, source.id());
+    glBindTextureUnit(1, normals ? normals : source.id());
+    glBindImageTexture(0, target.id(), targetLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    const int size = std::max(target.width >> targetLevel, 1);
+    dispatch3D(size, size, size);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void VoxelRadiance::buildMips(const VoxelGrid& grid) {
+    glUseProgram(mipProgram_.id());
+    glBindSamplers(0, 2, nullptr);
+    for (int level = 1; level < radiance_.levels; ++level) downsample(radiance_, level - 1, radiance_, level, -1);
+    if (!anisotropic_) return;
+    for (int d = 0; d < 6; ++d) {
+        downsample(radiance_, 0, directional_[d], 0, d, grid.normal.id());
+        for (int level = 1; level < directional_[d].levels; ++level)
+            downsample(directional_[d], level - 1, directional_[d], level, d);
+    }
+}
+
+void VoxelRadiance::bounce(const VoxelGrid& grid, const ConeSettings& cones, glm::vec3 environment) {
+    const int n = radiance_.width;
+    const GLuint p = bounceProgram_.id();
+    const float maxDistance = cones.maxDistance > 0.0f ? cones.maxDistance : std::sqrt(3.0f) * float(n);
+    glProgramUniform1i(p, UV_RESOLUTION, n);
+    glProgramUniform1i(p, UV_CONE_SET, cones.coneSet);
+    glProgramUniform4f(p, UV_TRACE_PARAMS, cones.stepFactor, maxDistance, cones.offset, 0.0f);
+    glProgramUniform3fv(p, UV_ENVIRONMENT, 1, &environment[0]);
+    glProgramUniform1i(p, UV_ANISOTROPIC, anisotropic_ ? 1 : 0);
+    for (int b = 1; b < bounces_; ++b) {
+        // Cones read the whole chain while the result is written: write to a scratch volume,
+        // then copy it over level 0.
+        glUseProgram(p);
+        const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), direct_.id()};
+        glBindTextures(0, 3, textures);
+        glBindSamplers(0, 10, nullptr);
+        bind(3);
+        gl::Texture next = gl::createTexture3D(scope_, GL_RGBA16F, n, n, n);
+        glBindImageTexture(0, next.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        dispatch3D(n, n, n);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        glCopyImageSubData(next.id(), GL_TEXTURE_3D, 0, 0, 0, 0, radiance_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+        buildMips(grid);
+    }
+}
+
+void VoxelRadiance::bind(GLuint unit) const {
+    GLuint textures[7];
+    textures[0] = radiance_.id();
+    for (int d = 0; d < 6; ++d) textures[1 + d] = anisotropic_ ? directional_[d].id() : radiance_.id();
+    glBindTextures(unit, 7, textures);
+    glBindSamplers(unit, 7, nullptr);
+}
+
+}  // namespace gis

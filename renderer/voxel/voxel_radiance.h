@@ -1,0 +1,54 @@
+// The light the voxels send out: direct light from every punctual light through its shadow map
+// plus emission, injected per voxel (Lambertian), optionally further bounces gathered by cone
+// tracing in voxel space, and the mip chains cones read (isotropic, and six directional ones).
+// Probe GI and the SDF method shade their ray hits from the same radiance.
+#pragma once
+
+#include "voxel/voxelizer.h"
+
+namespace gis {
+
+struct ConeSettings {
+    int coneSet = 0;             // 0: 6 cones of 60 degrees (Godot's set), 1: 4 cones of 90 degrees
+    float stepFactor = 0.5f;     // step as a fraction of the cone diameter
+    float maxDistance = 0.0f;    // voxels; 0 = the volume's diagonal
+    float offset = 1.0f;         // self-occlusion offset along the normal, voxels
+};
+
+// Bytes of the radiance chains at this resolution (for the budget check before allocating).
+int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces);
+
+class VoxelRadiance {
+public:
+    VoxelRadiance(int resolution, bool anisotropic, int bounces, const gl::MemoryScope& scope);
+    struct Lights {
+        GLuint buffer = 0, shadowMaps = 0, shadowCubes = 0;
+        int count = 0;
+        bool shadows = true;
+    };
+    // Direct light + emission into level 0.
+    void inject(const VoxelGrid& grid, const Lights& lights);
+    // The mip chains from level 0 (and the directional chains when anisotropic, which read the
+    // grid's normals).
+    void buildMips(const VoxelGrid& grid);
+    // bounces - 1 more bounces, each followed by new mips. Needs inject() and buildMips() first.
+    void bounce(const VoxelGrid& grid, const ConeSettings& cones, glm::vec3 environment);
+    // Seven consecutive texture units from `unit` (shaders/voxel/cone_trace.glsl's layout).
+    void bind(GLuint unit) const;
+    const gl::Texture& radiance() const { return radiance_; }
+    bool anisotropic() const { return anisotropic_; }
+    int resolution() const { return radiance_.width; }
+    static std::vector<ProgramDesc> programs();
+
+private:
+    void downsample(const gl::Texture& source, int sourceLevel, const gl::Texture& target, int targetLevel, int direction,
+                    GLuint normals = 0);
+    gl::Texture radiance_, direct_;
+    gl::Texture directional_[6];
+    gl::Object injectProgram_, mipProgram_, bounceProgram_;
+    gl::MemoryScope scope_;
+    bool anisotropic_;
+    int bounces_;
+};
+
+}  // namespace gis

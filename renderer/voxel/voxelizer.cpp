@@ -1,0 +1,147 @@
+#include "voxel/voxelizer.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "voxel/voxel_uniforms.h"
+
+namespace gis {
+
+using namespace voxel;
+
+namespace {
+constexpr int kChannels = 11;  // shaders/voxel/voxel_sums.glsl: VOXEL_CHANNELS
+
+bool hasExtension(const char* name) {
+    GLint n = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
+    for (GLint i = 0; i < n; ++i)
+        if (std::string(reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)))) == name) return true;
+    return false;
+}
+
+// Largest emitted radiance any material can produce (emissive textures are at most 1), so the
+// fixed-point sums can hold emission normalised to [0, 1].
+float maxEmission(const GpuScene& scene) {
+    float m = 0.0f;
+    for (const GpuMaterial& g : scene.materials)
+        for (int c = 0; c < 3; ++c) m = std::max(m, g.params.emissive[c]);
+    return std::min(std::max(m, 1e-6f), 65504.0f);
+}
+
+std::string mib(int64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
+}  // namespace
+
+ConservativeMode parseConservativeMode(const std::string& s) {
+    if (s == "hardware") return ConservativeMode::Hardware;
+    if (s == "geometry") return ConservativeMode::Geometry;
+    if (s == "off") return ConservativeMode::Off;
+    throw Error("vct.conservative: unknown mode '" + s + "' (expected hardware, geometry or off)");
+}
+
+const char* conservativeModeName(ConservativeMode m) {
+    return m == ConservativeMode::Hardware ? "hardware" : m == ConservativeMode::Geometry ? "geometry" : "off";
+}
+
+int64_t voxelGridBytes(int resolution) {
+    const int64_t voxels = int64_t(resolution) * resolution * resolution;
+    return voxels * (4 + 4 + 8 + kChannels * 4);
+}
+
+void checkVoxelBudget(int resolution, int64_t bytes, const std::string& what) {
+    GLint max3d = 0;
+    glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
+    if (max3d > 0 && resolution > max3d)
+        throw Error(what + ": resolution " + std::to_string(resolution) + "^3 exceeds the driver's 3D texture size " +
+                    std::to_string(max3d));
+    if (bytes > kVoxelBudgetBytes)
+        throw Error(what + ": resolution " + std::to_string(resolution) + "^3 would need about " + mib(bytes) +
+                    " of GPU memory, more than the " + mib(kVoxelBudgetBytes) + " a voxel method may hold");
+}
+
+bool Voxelizer::hardwareConservativeAvailable() { return hasExtension("GL_NV_conservative_raster"); }
+
+std::vector<ProgramDesc> Voxelizer::programs() {
+    return {{"voxelize", {"scene.vert", "voxel/voxelize.geom", "voxel/voxelize.frag"}, {}},
+            {"voxel_resolve", {"voxel/voxel_resolve.comp"}, {}}};
+}
+
+Voxelizer::Voxelizer(const VolumeFit& fit, ConservativeMode mode, const gl::MemoryScope& scope)
+    : scope_(scope), mode_(mode) {
+    const int n = fit.resolution;
+    checkVoxelBudget(n, voxelGridBytes(n), scope.owner);
+    if (mode_ == ConservativeMode::Hardware && !hardwareConservativeAvailable()) {
+        static bool warned = false;  // once per process: a renderer per frame size would repeat it
+        if (!warned)
+            std::fprintf(stderr, "gisandbox: warning: GL_NV_conservative_raster is not available; "
+                                 "vct.conservative=hardware falls back to geometry\n");
+        warned = true;
+        mode_ = ConservativeMode::Geometry;
+    }
+    grid_.fit = fit;
+    grid_.albedo = gl::createTexture3D(scope, GL_RGBA8, n, n, n);
+    grid_.normal = gl::createTexture3D(scope, GL_RGBA8, n, n, n);
+    grid_.emission = gl::createTexture3D(scope, GL_RGBA16F, n, n, n);
+    for (const gl::Texture* t : {&grid_.albedo, &grid_.normal, &grid_.emission}) {
+        glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    const auto programs = Voxelizer::programs();
+    voxelizeProgram_ = buildProgram(programs[0]);
+    resolveProgram_ = buildProgram(programs[1]);
+    fbo_ = gl::createFramebuffer();  // no attachments: only its size matters
+    glNamedFramebufferParameteri(fbo_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, n);
+    glNamedFramebufferParameteri(fbo_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, n);
+}
+
+void Voxelizer::voxelize(const GpuScene& scene) {
+    const int n = grid_.fit.resolution;
+    // The sums live only while voxelizing: at 256^3 they are 640 MiB that nothing else needs.
+    gl::Buffer sums = gl::createBuffer(scope_, int64_t(n) * n * n * kChannels * 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    const GLuint zero = 0;
+    glClearNamedBufferData(sums.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, sums.id());
+
+    const float emissionMax = maxEmission(scene);
+    const GLuint p = voxelizeProgram_.id();
+    const glm::mat4 worldToVoxel = grid_.fit.worldToVoxelMatrix();
+    const glm::mat4 identity(1.0f);
+    glProgramUniformMatrix4fv(p, UV_WORLD_TO_VOXEL, 1, GL_FALSE, &worldToVoxel[0][0]);
+    glProgramUniformMatrix4fv(p, 2 /* U_VIEW_PROJ: unused, the geometry shader projects */, 1, GL_FALSE,
+                              &identity[0][0]);
+    glProgramUniform1i(p, UV_RESOLUTION, n);
+    glProgramUniform1i(p, UV_CONSERVATIVE, mode_ == ConservativeMode::Off ? 0 : mode_ == ConservativeMode::Geometry ? 1 : 2);
+    glProgramUniform1f(p, UV_EMISSION_SCALE, 1.0f / emissionMax);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+    glViewport(0, 0, n, n);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);  // both faces: a wall seen from behind is still in its voxels
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    if (mode_ == ConservativeMode::Hardware) glEnable(GL_CONSERVATIVE_RASTERIZATION_NV);
+    glUseProgram(p);
+    glBindVertexArray(scene.vao.id());
+    for (const GpuDraw& d : scene.draws) {
+        scene.setDrawUniforms(p, d);
+        scene.bindMaterial(scene.materials[d.material]);
+        glDrawElementsBaseVertex(GL_TRIANGLES, d.indexCount, GL_UNSIGNED_INT,
+                                 reinterpret_cast<const void*>(uintptr_t(d.firstIndex) * 4), d.baseVertex);
+    }
+    if (mode_ == ConservativeMode::Hardware) glDisable(GL_CONSERVATIVE_RASTERIZATION_NV);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+    const GLuint r = resolveProgram_.id();
+    glUseProgram(r);
+    glProgramUniform1i(r, UV_RESOLUTION, n);
+    glProgramUniform1f(r, UV_EMISSION_SCALE, 1.0f / emissionMax);
+    glBindImageTexture(0, grid_.albedo.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
+    glBindImageTexture(1, grid_.normal.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
+    glBindImageTexture(2, grid_.emission.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    const GLuint groups = GLuint((n + 3) / 4);
+    glDispatchCompute(groups, groups, groups);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+}  // namespace gis

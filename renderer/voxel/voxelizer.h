@@ -1,0 +1,56 @@
+// The voxelizer: the scene rasterized into a cubic grid of averaged albedo, normal, emission and
+// occupancy (shaders/voxel/). Triangles are projected along their dominant axis in a geometry
+// shader and rasterized conservatively, by GL_NV_conservative_raster (hardware) or by dilating the
+// triangle in the geometry shader (geometry); `off` is plain rasterization, which misses thin and
+// small triangles. Shared by VCT, the SDF's jump-flood seeds and probe GI.
+#pragma once
+
+#include <string>
+
+#include "gl/gl.h"
+#include "gl/shader.h"
+#include "gpu_scene.h"
+#include "services/volume_fit.h"
+
+namespace gis {
+
+enum class ConservativeMode { Hardware, Geometry, Off };
+ConservativeMode parseConservativeMode(const std::string& s);  // hardware, geometry, off
+const char* conservativeModeName(ConservativeMode m);
+
+// GPU bytes the voxel textures of one grid take (albedo, normal, emission, and the transient
+// fixed-point sums during voxelization).
+int64_t voxelGridBytes(int resolution);
+// Throws gis::Error with the estimate when `bytes` exceed what we allow a voxel method to hold
+// (kVoxelBudgetBytes) or the resolution exceeds the driver's 3D texture size, before anything is
+// allocated.
+void checkVoxelBudget(int resolution, int64_t bytes, const std::string& what);
+constexpr int64_t kVoxelBudgetBytes = int64_t(8) << 30;
+
+struct VoxelGrid {
+    VolumeFit fit;
+    gl::Texture albedo;    // RGBA8: linear albedo, a = occupancy (1 where any surface touched)
+    gl::Texture normal;    // RGBA8: mean normal * 0.5 + 0.5 (shorter than 1 where normals disagree)
+    gl::Texture emission;  // RGBA16F: emitted radiance
+};
+
+class Voxelizer {
+public:
+    // Allocates the grid (charged to scope.owner) after checking its size. `hardware` without
+    // GL_NV_conservative_raster falls back to `geometry` with one warning on stderr.
+    Voxelizer(const VolumeFit& fit, ConservativeMode mode, const gl::MemoryScope& scope);
+    // Clears the grid and voxelizes every draw of the scene.
+    void voxelize(const GpuScene& scene);
+    const VoxelGrid& grid() const { return grid_; }
+    ConservativeMode mode() const { return mode_; }
+    static std::vector<ProgramDesc> programs();
+    static bool hardwareConservativeAvailable();
+
+private:
+    VoxelGrid grid_;
+    gl::MemoryScope scope_;
+    ConservativeMode mode_;
+    gl::Object voxelizeProgram_, resolveProgram_, fbo_;
+};
+
+}  // namespace gis

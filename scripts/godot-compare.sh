@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Our frame against Godot 3.2.3's on the same Cornell box (cornell_point, 256x256), measured side by
+# side in one sitting, as wall-clock ms per frame (ours with glFinish; Godot's includes presenting
+# under Xvfb). Prints a Markdown table with the ratios. Needs godot3 and xvfb (Debian packages):
+#   apt-get install -y --no-install-recommends godot3 xvfb
+# Usage (project root, after a build): bash scripts/godot-compare.sh [build/gisandbox]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin=${1:-build/gisandbox}
+peer=../shared/peers/godot3-cornell
+scene=../shared/assets/reference/scenes/cornell_point/cornell_point.gltf
+command -v godot3 >/dev/null || { echo "godot3 is not installed (apt-get install godot3 xvfb)" >&2; exit 1; }
+
+godot() {  # variant -> median ms per frame
+  bash "$peer/run.sh" "$1" | sed -n 's/.*FRAME_MS[^0-9]*\([0-9.]*\).*/\1/p' | head -1
+}
+ours() {  # flags -> median wall ms per frame
+  "$bin" render --scene "$scene" --size 256x256 --timings --frames 40 --warmup 10 --out /tmp/gis_compare.png "$@" |
+    awk '$1 == "wall" {print $2}'
+}
+row() {  # label, godot variant, our flags...
+  local label=$1 variant=$2; shift 2
+  local g o
+  g=$(godot "$variant"); o=$(ours "$@")
+  awk -v l="$label" -v v="$variant" -v g="$g" -v f="$*" -v o="$o" \
+    'BEGIN { printf "| %s | %s: %.1f | `%s`: %.1f | %.2f |\n", l, v, g, f, o, o / g }'
+}
+echo "| frame | Godot 3.2.3 GLES3 (wall ms) | gisandbox (wall ms, glFinish) | ours / Godot |"
+echo "|---|---|---|---|"
+row "direct light, one shadowed point light" direct --gi none
+row "+ SSAO (Godot default / our medium)" ssao --gi ssao --preset medium
+row "+ SSAO (our low: 8x2, half resolution)" ssao --gi ssao --preset low
+row "voxel GI (GIProbe 128 / our vct high)" gi128 --gi vct --preset high
+row "voxel GI (GIProbe 64 / our vct medium)" gi64 --gi vct --preset medium

@@ -1,0 +1,62 @@
+// VCT debug views. "vct.voxels": the grid ray-marched from the camera, showing the first voxel with
+// occupancy >= 0.5 at the chosen mip level. "vct.slice": one slice of the grid, stretched over the
+// image. Channels: 0 albedo, 1 emission, 2 radiance, 3 occupancy. Albedo and emission exist at
+// level 0 only; radiance and occupancy at every level of the radiance chain.
+#include "common.glsl"
+#include "voxel/voxel_uniforms.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform sampler3D s_albedo;
+layout(binding = 1) uniform sampler3D s_emission;
+layout(binding = 2) uniform sampler3D s_radiance;
+layout(rgba16f, binding = 0) uniform writeonly image2D i_view;
+
+layout(location = UV_WORLD_TO_VOXEL) uniform mat4 u_worldToVoxel;
+layout(location = UV_RESOLUTION) uniform int u_resolution;
+layout(location = UV_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
+layout(location = UV_DEBUG_PARAMS) uniform vec4 u_debug;  // channel, level, slice axis (-1: ray march), slice position 0..1
+
+vec4 texelAt(ivec3 v, int channel, int level) {
+    if (channel == 0) return level == 0 ? texelFetch(s_albedo, v, 0) : vec4(0.0);
+    if (channel == 1) return level == 0 ? vec4(texelFetch(s_emission, v, 0).rgb, texelFetch(s_albedo, v, 0).a) : vec4(0.0);
+    vec4 r = texelFetch(s_radiance, v, level);
+    return channel == 2 ? vec4(r.a > 1e-6 ? r.rgb / r.a : vec3(0.0), r.a) : vec4(vec3(r.a), r.a);
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(i_view);
+    if (any(greaterThanEqual(pixel, size))) return;
+    int channel = int(u_debug.x), level = clamp(int(u_debug.y), 0, textureQueryLevels(s_radiance) - 1);
+    int n = max(u_resolution >> level, 1);
+    vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
+    vec4 result = vec4(0.0, 0.0, 0.0, 1.0);
+    if (u_debug.z >= 0.0) {
+        int axis = int(u_debug.z);
+        vec3 c = vec3(0.0);
+        c[axis] = clamp(u_debug.w, 0.0, 1.0);
+        c[(axis + 1) % 3] = uv.x;
+        c[(axis + 2) % 3] = uv.y;
+        result.rgb = texelAt(ivec3(min(c * float(n), vec3(n - 1))), channel, level).rgb;
+    } else {
+        vec4 a = u_invViewProj * vec4(uv * 2.0 - 1.0, -1.0, 1.0), b = u_invViewProj * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
+        vec3 o = (u_worldToVoxel * vec4(a.xyz / a.w, 1.0)).xyz / float(1 << level);
+        vec3 e = (u_worldToVoxel * vec4(b.xyz / b.w, 1.0)).xyz / float(1 << level);
+        vec3 d = normalize(e - o);
+        // Enter the grid's box, then step a quarter texel at a time.
+        vec3 inv = 1.0 / max(abs(d), vec3(1e-8)) * sign(d + 1e-12);
+        vec3 t0 = (vec3(0.0) - o) * inv, t1 = (vec3(float(n)) - o) * inv;
+        float tIn = max(max(max(min(t0.x, t1.x), min(t0.y, t1.y)), min(t0.z, t1.z)), 0.0);
+        float tOut = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), max(t0.z, t1.z));
+        for (float t = tIn; t < tOut && t - tIn < 4.0 * float(n); t += 0.25) {
+            ivec3 v = ivec3(floor(o + d * t));
+            if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(n)))) continue;
+            vec4 s = texelAt(v, channel, level);
+            if (texelFetch(s_radiance, v, level).a >= 0.5 || (level == 0 && texelFetch(s_albedo, v, 0).a > 0.0)) {
+                result.rgb = s.rgb;
+                break;
+            }
+        }
+    }
+    imageStore(i_view, pixel, vec4(finiteOrZero(result.rgb), 1.0));
+}

@@ -1,0 +1,62 @@
+// Voxel cone tracing per pixel: the lighting contract's indirect.diffuse (cosine-weighted mean
+// incoming radiance, E / pi), indirect.specular (radiance along one cone around the mirror
+// direction whose aperture follows roughness) and ao (1 - the diffuse cones' mean opacity).
+#include "common.glsl"
+#include "voxel/voxel_uniforms.glsl"
+#define VOXEL_TEXTURE_UNIT 4
+#include "voxel/cone_trace.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform sampler2D s_depth;
+layout(binding = 1) uniform sampler2D s_gbufNormal;
+layout(binding = 2) uniform sampler2D s_gbufMaterial;
+layout(rgba16f, binding = 0) uniform writeonly image2D i_diffuse;
+layout(rgba16f, binding = 1) uniform writeonly image2D i_specular;
+layout(r16f, binding = 2) uniform writeonly image2D i_ao;
+
+layout(location = UV_WORLD_TO_VOXEL) uniform mat4 u_worldToVoxel;
+layout(location = UV_RESOLUTION) uniform int u_resolution;
+layout(location = UV_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
+layout(location = UV_CAMERA_POS) uniform vec3 u_cameraPos;
+layout(location = UV_CONE_SET) uniform int u_coneSet;
+layout(location = UV_TRACE_PARAMS) uniform vec4 u_traceParams;  // step factor, max distance, offset, specular on
+layout(location = UV_ENVIRONMENT) uniform vec3 u_environment;
+layout(location = UV_ANISOTROPIC) uniform int u_anisotropic;
+layout(location = UV_INTENSITY) uniform float u_intensity;
+
+// tan(half aperture) of the specular cone: the GGX lobe widens with alpha = roughness^2; a floor
+// keeps mirrors from stepping a fraction of a voxel at a time.
+float specularConeTan(float roughness) { return clamp(roughness * roughness, 0.03, 1.0); }
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(i_diffuse);
+    if (any(greaterThanEqual(pixel, size))) return;
+    float depth = texelFetch(s_depth, pixel, 0).r;
+    if (depth >= 1.0) {  // background: nothing to light
+        imageStore(i_diffuse, pixel, vec4(0.0));
+        imageStore(i_specular, pixel, vec4(0.0));
+        imageStore(i_ao, pixel, vec4(1.0));
+        return;
+    }
+    vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
+    vec4 world = u_invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    vec3 P = world.xyz / world.w;
+    vec3 N = normalize(texelFetch(s_gbufNormal, pixel, 0).xyz);
+    vec4 material = texelFetch(s_gbufMaterial, pixel, 0);
+    ConeTracer t = ConeTracer(float(u_resolution), u_traceParams.x, u_traceParams.y, u_anisotropic != 0);
+    vec3 origin = (u_worldToVoxel * vec4(P, 1.0)).xyz + N * u_traceParams.z;
+
+    vec4 diffuse = traceDiffuse(t, origin, N, u_coneSet, 1.0, u_environment, 0.0);
+    vec3 specular = vec3(0.0);
+    if (u_traceParams.w > 0.5) {
+        vec3 V = normalize(u_cameraPos - P);
+        vec3 R = reflect(-V, N);
+        bool escaped;
+        vec4 c = traceCone(t, origin, R, specularConeTan(material.y), 1.0, N, escaped);
+        specular = c.rgb + (escaped ? (1.0 - c.a) * u_environment : vec3(0.0));
+    }
+    imageStore(i_diffuse, pixel, vec4(finiteOrZero(diffuse.rgb * u_intensity), 1.0));
+    imageStore(i_specular, pixel, vec4(finiteOrZero(specular * u_intensity), 1.0));
+    imageStore(i_ao, pixel, vec4(saturate(1.0 - diffuse.a), 0.0, 0.0, 0.0));
+}

@@ -1,0 +1,132 @@
+// Cone tracing through the voxel radiance (renderer/voxel/voxel_radiance.h), for every method that
+// gathers light from the voxels. Positions and distances are in voxel units ([0, resolution]^3).
+// The including shader declares the uniforms below at these bindings by including this file after
+// defining VOXEL_TEXTURE_UNIT (the first of seven consecutive units: isotropic chain, then the six
+// directional chains +X -X +Y -Y +Z -Z, which start at half resolution).
+layout(binding = VOXEL_TEXTURE_UNIT + 0) uniform sampler3D s_voxelRadiance;
+layout(binding = VOXEL_TEXTURE_UNIT + 1) uniform sampler3D s_voxelPosX;
+layout(binding = VOXEL_TEXTURE_UNIT + 2) uniform sampler3D s_voxelNegX;
+layout(binding = VOXEL_TEXTURE_UNIT + 3) uniform sampler3D s_voxelPosY;
+layout(binding = VOXEL_TEXTURE_UNIT + 4) uniform sampler3D s_voxelNegY;
+layout(binding = VOXEL_TEXTURE_UNIT + 5) uniform sampler3D s_voxelPosZ;
+layout(binding = VOXEL_TEXTURE_UNIT + 6) uniform sampler3D s_voxelNegZ;
+
+struct ConeTracer {
+    float resolution;   // voxels per edge
+    float stepFactor;   // step length as a fraction of the cone's diameter there
+    float maxDistance;  // voxels
+    bool anisotropic;
+};
+
+// Radiance and opacity seen through the voxels around p (voxel units) at level lod, travelling dir.
+vec4 sampleVoxels(ConeTracer t, vec3 p, vec3 dir, float lod) {
+    vec3 uvw = p / t.resolution;
+    if (!t.anisotropic || lod <= 0.0) return textureLod(s_voxelRadiance, uvw, max(lod, 0.0));
+    // The directional chains start one level up; blend in from the shared finest level.
+    float dlod = max(lod - 1.0, 0.0);
+    vec3 w = dir * dir;
+    vec4 sx = dir.x > 0.0 ? textureLod(s_voxelPosX, uvw, dlod) : textureLod(s_voxelNegX, uvw, dlod);
+    vec4 sy = dir.y > 0.0 ? textureLod(s_voxelPosY, uvw, dlod) : textureLod(s_voxelNegY, uvw, dlod);
+    vec4 sz = dir.z > 0.0 ? textureLod(s_voxelPosZ, uvw, dlod) : textureLod(s_voxelNegZ, uvw, dlod);
+    // Opacities combine as transmittances, (1 - a) = prod (1 - a_axis)^w_axis: a cone crossing a
+    // surface obliquely is stopped by it as long as the chain along the surface's normal sees it;
+    // a weighted mean would let (1 - w_normal) of the cone through the surface. Radiance is the
+    // opacity-weighted mean of the three chains.
+    vec3 a = clamp(vec3(sx.a, sy.a, sz.a), 0.0, 0.9999);
+    float alpha = 1.0 - exp(dot(w, log(1.0 - a)));
+    float weight = dot(w, a);
+    vec3 radiance = weight > 1e-6 ? (w.x * sx.rgb + w.y * sy.rgb + w.z * sz.rgb) / weight : vec3(0.0);
+    vec4 s = vec4(radiance * alpha, alpha);
+    return lod < 1.0 ? mix(textureLod(s_voxelRadiance, uvw, 0.0), s, lod) : s;
+}
+
+// Front-to-back accumulation along a cone from `origin` (voxel units) with tan(half aperture)
+// `tanHalf`, starting `start` voxels out. `surfaceNormal` (unit, or 0 for none) is the normal of
+// the surface the cone leaves: each sample is lifted along it until the sample's footprint (about
+// one diameter around its centre, what a trilinear mip lookup blends) clears the surface's
+// tangent plane, so a wide cone never filters in the surface's own voxels (a lit floor lighting
+// itself). Returns premultiplied radiance and opacity; `escaped` says the cone left the volume
+// (the caller adds the environment for what is left); a cone that runs out of distance inside the
+// volume adds nothing more (indoors, the environment would leak).
+vec4 traceCone(ConeTracer t, vec3 origin, vec3 dir, float tanHalf, float start, vec3 surfaceNormal, out bool escaped) {
+    vec4 acc = vec4(0.0);
+    float dist = start;
+    escaped = false;
+    for (int i = 0; i < 4096 && dist < t.maxDistance && acc.a < 0.99; ++i) {
+        float diameter = max(1.0, 2.0 * tanHalf * dist);
+        float height = dot(dir, surfaceNormal) * dist;
+        vec3 p = origin + dir * dist + surfaceNormal * max(diameter - height, 0.0);
+        // Leaving the volume: one last sample at its boundary, so a surface in the outermost
+        // voxels (the scene's bounds are fitted tightly) is not stepped over.
+        bool leaving = any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(t.resolution)));
+        if (leaving) p = clamp(p, vec3(0.5), vec3(t.resolution - 0.5));
+        float stepLength = max(diameter * t.stepFactor, 0.05);
+        vec4 s = sampleVoxels(t, p, dir, log2(diameter));
+        // A mip's opacity is for a path one diameter long; this step covers stepLength.
+        float alpha = 1.0 - pow(1.0 - clamp(s.a, 0.0, 0.9999), stepLength / diameter);
+        vec3 radiance = s.a > 1e-6 ? s.rgb / s.a : vec3(0.0);
+        acc.rgb += (1.0 - acc.a) * alpha * radiance;
+        acc.a += (1.0 - acc.a) * alpha;
+        dist += stepLength;
+        if (leaving) {
+            escaped = true;
+            break;
+        }
+    }
+    return acc;
+}
+
+// The diffuse cone sets: 6 cones of 60 degrees (one along the normal, weight 0.25, five at 60
+// degrees from it, 0.15 each: the set Godot's voxel GI uses), or 4 cones of 90 degrees at 45
+// degrees from the normal, 0.25 each. Weights sum to 1: for uniform incoming radiance L the result
+// is L, i.e. the cosine-weighted mean radiance E / pi.
+int diffuseConeCount(int coneSet) { return coneSet == 0 ? 6 : 4; }
+
+void diffuseCone(int coneSet, int i, out vec3 dirTangent, out float tanHalf, out float weight) {
+    if (coneSet == 0) {
+        tanHalf = 0.57735;  // tan(30 degrees)
+        if (i == 0) {
+            dirTangent = vec3(0.0, 0.0, 1.0);
+            weight = 0.25;
+            return;
+        }
+        float phi = float(i - 1) * (2.0 * 3.14159265 / 5.0);
+        dirTangent = vec3(0.866025 * cos(phi), 0.866025 * sin(phi), 0.5);
+        weight = 0.15;
+        return;
+    }
+    tanHalf = 1.0;  // tan(45 degrees)
+    float phi = float(i) * (3.14159265 / 2.0) + 3.14159265 / 4.0;
+    dirTangent = vec3(0.707107 * cos(phi), 0.707107 * sin(phi), 0.707107);
+    weight = 0.25;
+}
+
+// An orthonormal basis around n whose first tangent points as far up (+Y) as the surface allows.
+// Five or four cones cannot be symmetric under every rotation: tied to "up", mirror-image
+// surfaces (the two side walls of a room) get mirror-image cones and so the same light.
+mat3 tangentFrame(vec3 n) {
+    vec3 up = abs(n.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(0.0, 0.0, -1.0);
+    vec3 t = normalize(up - n * dot(n, up));
+    return mat3(t, cross(n, t), n);
+}
+
+// Cosine-weighted mean incoming radiance (E / pi) at a surface point with normal n, and the
+// occlusion (mean opacity) of the cones. Cones that leave the volume see `environment`. The cone
+// set is turned about n by `rotation` (a fraction of a full turn; for methods that vary it over
+// pixels or frames and filter, which a fixed set of a few cones otherwise aliases).
+vec4 traceDiffuse(ConeTracer t, vec3 origin, vec3 n, int coneSet, float start, vec3 environment, float rotation) {
+    mat3 frame = tangentFrame(n);
+    float angle = rotation * 6.2831853;
+    frame = mat3(frame[0] * cos(angle) + frame[1] * sin(angle), -frame[0] * sin(angle) + frame[1] * cos(angle), frame[2]);
+    vec4 sum = vec4(0.0);
+    for (int i = 0; i < diffuseConeCount(coneSet); ++i) {
+        vec3 d;
+        float tanHalf, weight;
+        diffuseCone(coneSet, i, d, tanHalf, weight);
+        bool escaped;
+        vec4 c = traceCone(t, origin, frame * d, tanHalf, start, n, escaped);
+        if (escaped) c.rgb += (1.0 - c.a) * environment;
+        sum += weight * c;
+    }
+    return sum;
+}

@@ -1,0 +1,69 @@
+// Light injection: the radiance each voxel's surface sends out, assuming Lambertian reflection:
+// albedo / pi * (sum over punctual lights of irradiance * shadow-map visibility) + emission.
+// Stored premultiplied by occupancy (rgb = L * a, a = occupancy), ready for averaging into mips.
+#include "common.glsl"
+#include "lights.glsl"
+#include "voxel/voxel_uniforms.glsl"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(binding = 0) uniform sampler3D s_albedo;
+layout(binding = 1) uniform sampler3D s_normal;
+layout(binding = 2) uniform sampler3D s_emission;
+layout(binding = 5) uniform sampler2DArrayShadow s_shadowMaps;
+layout(binding = 6) uniform samplerCubeArrayShadow s_shadowCubes;
+layout(rgba16f, binding = 0) uniform writeonly image3D i_radiance;
+
+layout(location = UV_RESOLUTION) uniform int u_resolution;
+layout(location = UV_VOXEL_TO_WORLD) uniform mat4 u_voxelToWorld;
+layout(location = UV_VOXEL_SIZE) uniform float u_voxelSize;
+layout(location = UV_LIGHT_COUNT) uniform int u_lightCount;
+layout(location = UV_SHADOWS_ENABLED) uniform int u_shadowsEnabled;
+
+#include "shadows.glsl"
+
+// Irradiance at normal incidence from `light` at P, and the direction towards it.
+vec3 lightIrradiance(GpuLight light, vec3 P, out vec3 L) {
+    int type = int(light.positionType.w);
+    if (type == LIGHT_DIRECTIONAL) {
+        L = -light.directionRange.xyz;
+        return light.radiance.rgb;
+    }
+    vec3 toLight = light.positionType.xyz - P;
+    float d2 = max(dot(toLight, toLight), 1e-30);
+    float d = sqrt(d2);
+    L = toLight / d;
+    vec3 e = light.radiance.rgb * rangeWindow(d, light.directionRange.w) / d2;
+    if (type == LIGHT_SPOT) e *= spotCone(dot(-L, light.directionRange.xyz), light.cone.x, light.cone.y);
+    return e;
+}
+
+void main() {
+    ivec3 v = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(v, ivec3(u_resolution)))) return;
+    vec4 albedo = texelFetch(s_albedo, v, 0);
+    if (albedo.a == 0.0) {
+        imageStore(i_radiance, v, vec4(0.0));
+        return;
+    }
+    vec3 meanNormal = texelFetch(s_normal, v, 0).xyz * 2.0 - 1.0;
+    float len = length(meanNormal);
+    // Surfaces facing opposite ways in one voxel average to a short normal: light it from every
+    // side at half strength rather than not at all.
+    bool oriented = len > 0.3;
+    vec3 N = oriented ? meanNormal / len : vec3(0.0, 1.0, 0.0);
+    vec3 P = (u_voxelToWorld * vec4(vec3(v) + 0.5, 1.0)).xyz;
+    // Look the shadow up one voxel in front of the surface: the voxel centre may lie behind it.
+    vec3 Ps = P + N * (oriented ? u_voxelSize : 0.0);
+    vec3 irradiance = vec3(0.0);
+    for (int i = 0; i < u_lightCount; ++i) {
+        vec3 L;
+        // Irradiance at the centre (the surface is within a voxel of it; the shadow lookup point is
+        // not, and near a light the inverse-square law would overshoot there).
+        vec3 e = lightIrradiance(u_lights[i], P, L);
+        float cosine = oriented ? max(dot(N, L), 0.0) : 0.5;
+        if (cosine <= 0.0 || all(equal(e, vec3(0.0)))) continue;
+        irradiance += e * cosine * shadowVisibility(u_lights[i], Ps, N, cosine);
+    }
+    vec3 radiance = albedo.rgb * INV_PI * irradiance + texelFetch(s_emission, v, 0).rgb;
+    imageStore(i_radiance, v, vec4(min(finiteOrZero(radiance), vec3(65504.0)), 1.0));
+}

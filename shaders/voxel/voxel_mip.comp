@@ -1,0 +1,54 @@
+// One level of the radiance mip chain from the level below (premultiplied radiance, occupancy).
+// ISOTROPIC: the mean of the 2x2x2 children. Otherwise DIRECTION (0..5 = +X -X +Y -Y +Z -Z, the
+// way a cone travels): along that axis the two children are composited front to back (what a cone
+// sees passing through), and the four composited pairs are averaged, so a thin wall stays opaque
+// for cones that cross it instead of averaging to half-transparent. The first directional level
+// also weighs each surface voxel by how squarely its mean normal faces the axis (|n.axis|): a
+// plane seen edge-on covers nothing, but its one-voxel-thick voxelization would cover 1/D of every
+// coarse cell beside it, so a bright ceiling would glow into every cone running along it.
+#include "voxel/voxel_uniforms.glsl"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(binding = 0) uniform sampler3D s_source;  // the level below, read with texelFetch
+layout(binding = 1) uniform sampler3D s_normal;  // the voxel grid's mean normals (level 0 only)
+layout(rgba16f, binding = 0) uniform writeonly image3D i_target;
+layout(location = UV_MIP_LEVEL) uniform int u_sourceLevel;
+layout(location = UV_DIRECTION) uniform int u_direction;  // -1: isotropic
+layout(location = UV_NORMAL_WEIGHT) uniform int u_weightByNormal;
+
+// A child voxel as seen by a cone travelling along `axis`: scaled by |n.axis|, how much of the
+// voxel's surface a cone along that axis sees. (Showing a voxel's light only to cones that face
+// its front was tried too: it darkened every wall to half of the path tracer's light.)
+vec4 child(ivec3 c, int axis) {
+    vec4 v = texelFetch(s_source, c, u_sourceLevel);
+    if (u_weightByNormal == 0) return v;
+    vec3 n = texelFetch(s_normal, c, 0).xyz * 2.0 - 1.0;
+    float len = length(n);
+    return len > 0.3 ? v * (abs(n[axis]) / len) : v;
+}
+
+void main() {
+    ivec3 v = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(v, imageSize(i_target)))) return;
+    ivec3 base = v * 2;
+    vec4 sum = vec4(0.0);
+    if (u_direction < 0) {
+        for (int i = 0; i < 8; ++i) sum += texelFetch(s_source, base + ivec3(i & 1, (i >> 1) & 1, i >> 2), u_sourceLevel);
+    } else {
+        int axis = u_direction / 2;
+        bool positive = (u_direction & 1) == 0;
+        ivec3 along = ivec3(0);
+        along[axis] = 1;
+        ivec3 u = ivec3(0), w = ivec3(0);
+        u[(axis + 1) % 3] = 1;
+        w[(axis + 2) % 3] = 1;
+        for (int i = 0; i < 4; ++i) {
+            ivec3 lo = base + u * (i & 1) + w * (i >> 1);
+            vec4 a = child(lo, axis), b = child(lo + along, axis);
+            vec4 front = positive ? a : b, back = positive ? b : a;
+            sum += front + (1.0 - front.a) * back;
+        }
+        sum *= 2.0;  // four pairs, each standing for two voxels' worth of the eight
+    }
+    imageStore(i_target, v, sum * 0.125);
+}

@@ -1,0 +1,35 @@
+// Voxelization, step 3: the fixed-point sums become averages in the voxel textures.
+#include "voxel/voxel_uniforms.glsl"
+#include "voxel/voxel_sums.glsl"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(rgba8, binding = 0) uniform writeonly image3D i_albedo;    // rgb albedo, a occupancy (0 or 1)
+layout(rgba8, binding = 1) uniform writeonly image3D i_normal;    // xyz mean normal * 0.5 + 0.5, a occupancy
+layout(rgba16f, binding = 2) uniform writeonly image3D i_emission; // rgb emitted radiance
+
+layout(location = UV_RESOLUTION) uniform int u_resolution;
+layout(location = UV_EMISSION_SCALE) uniform float u_emissionScale;  // the scale voxelize.frag applied
+
+float sumOf(ivec3 v, int channel) { return float(u_voxelSums[voxelSumIndex(v, u_resolution, channel)]); }
+
+void main() {
+    ivec3 v = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(v, ivec3(u_resolution)))) return;
+    float count = sumOf(v, 0);
+    if (count == 0.0) {
+        imageStore(i_albedo, v, vec4(0.0));
+        imageStore(i_normal, v, vec4(0.5, 0.5, 0.5, 0.0));
+        imageStore(i_emission, v, vec4(0.0));
+        return;
+    }
+    float norm = 1.0 / (count * VOXEL_FIXED_ONE);
+    vec3 albedo = vec3(sumOf(v, 1), sumOf(v, 2), sumOf(v, 3)) * norm;
+    // Emission is averaged over the emissive samples only: a lamp 1 mm under the ceiling shares
+    // its voxels with the ceiling, and seen from below the voxel shows the lamp, not half of it.
+    float emissive = max(sumOf(v, 10), 1.0);
+    vec3 emission = vec3(sumOf(v, 4), sumOf(v, 5), sumOf(v, 6)) / (emissive * VOXEL_FIXED_ONE) / u_emissionScale;
+    vec3 normal = vec3(sumOf(v, 7), sumOf(v, 8), sumOf(v, 9)) * norm * 2.0 - 1.0;
+    imageStore(i_albedo, v, vec4(albedo, 1.0));
+    imageStore(i_normal, v, vec4(normal * 0.5 + 0.5, 1.0));
+    imageStore(i_emission, v, vec4(min(emission, vec3(65504.0)), 0.0));
+}

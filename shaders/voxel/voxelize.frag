@@ -1,0 +1,54 @@
+// Voxelization, step 2: each fragment adds its surface sample to every voxel of its column that the
+// triangle's plane crosses within the pixel (up to three: the dominant axis keeps the slope <= 1
+// per axis), clipped to the triangle's depth extent. In the conservative modes fragments outside
+// the triangle's box grown by half a pixel are dropped (the dilated triangle's sharp corners).
+#include "common.glsl"
+#include "material.glsl"
+#include "voxel/voxel_uniforms.glsl"
+#include "voxel/voxel_sums.glsl"
+
+in VoxelData {
+    vec3 normal;
+    vec2 uv;
+    vec4 color;
+} v_in;
+flat in int g_axis;
+flat in vec4 g_bounds;
+flat in vec3 g_plane;
+flat in vec2 g_depthRange;
+
+layout(location = UV_RESOLUTION) uniform int u_resolution;
+layout(location = UV_CONSERVATIVE) uniform int u_conservative;
+layout(location = UV_EMISSION_SCALE) uniform float u_emissionScale;
+
+ivec3 unswizzleFromAxis(ivec3 s, int axis) { return axis == 0 ? s.zxy : axis == 1 ? s.yzx : s; }
+
+uint fixedPoint(float x) { return uint(clamp(x, 0.0, 1.0) * VOXEL_FIXED_ONE + 0.5); }
+
+void main() {
+    vec4 base = materialBaseColor(v_in.uv, v_in.color);
+    if (materialCutout(base.a)) discard;
+    vec2 c = gl_FragCoord.xy;
+    float depth = dot(g_plane.xy, c) + g_plane.z;
+    float lo = depth, hi = depth;
+    if (u_conservative != 0) {
+        if (any(lessThan(c + 0.5, g_bounds.xy)) || any(greaterThan(c - 0.5, g_bounds.zw))) discard;
+        float reach = 0.5 * (abs(g_plane.x) + abs(g_plane.y));  // depth change from centre to corner
+        lo = max(depth - reach, g_depthRange.x);
+        hi = min(depth + reach, g_depthRange.y);
+    }
+    int k0 = max(int(floor(lo)), 0), k1 = min(int(floor(hi)), u_resolution - 1);
+    vec3 emission = max(u_emissive * texture(s_emissive, v_in.uv).rgb, vec3(0.0)) * u_emissionScale;
+    float len2 = dot(v_in.normal, v_in.normal);
+    vec3 n = len2 > 1e-20 ? v_in.normal * inversesqrt(len2) : vec3(0.0);
+    uint values[VOXEL_CHANNELS] = uint[VOXEL_CHANNELS](
+        1u, fixedPoint(base.r), fixedPoint(base.g), fixedPoint(base.b), fixedPoint(emission.r),
+        fixedPoint(emission.g), fixedPoint(emission.b), fixedPoint(n.x * 0.5 + 0.5), fixedPoint(n.y * 0.5 + 0.5),
+        fixedPoint(n.z * 0.5 + 0.5), any(greaterThan(emission, vec3(0.0))) ? 1u : 0u);
+    for (int k = k0; k <= k1; ++k) {
+        ivec3 voxel = unswizzleFromAxis(ivec3(ivec2(c), k), g_axis);
+        if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(u_resolution)))) continue;
+        for (int ch = 0; ch < VOXEL_CHANNELS; ++ch)
+            atomicAdd(u_voxelSums[voxelSumIndex(voxel, u_resolution, ch)], values[ch]);
+    }
+}

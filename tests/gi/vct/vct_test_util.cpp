@@ -1,0 +1,65 @@
+#include "vct_test_util.h"
+
+#include <algorithm>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render_test_util.h"
+#include "tonemap.h"
+#include "voxel_test_util.h"
+
+namespace gis::test {
+
+void setVct(RenderSettings& s, const std::string& key, const std::string& text) { setParam(s, "vct." + key, text); }
+
+VctImages renderVct(const Scene& scene, RenderSettings settings, int frames) {
+    context();
+    settings.gi = "vct";
+    settings.hdr32 = true;
+    Renderer renderer(scene, settings);
+    VctImages out;
+    const VctPass* pass = nullptr;
+    for (const auto& p : renderer.passes())
+        if (auto* v = dynamic_cast<const VctPass*>(p.get())) pass = v;
+    if (!pass) throw Error("internal: no VCT pass");
+    for (int f = 0; f < std::max(frames, 1); ++f) {
+        renderer.renderFrame();
+        if (f == 1) out.cachedSecondFrame = pass->voxelsReusedLastFrame();
+    }
+    for (const PassTiming& t : renderer.timings(0))
+        if (t.step && t.pass.rfind("vct/", 0) == 0) out.stepMs[t.pass.substr(4)] = t.firstMs;
+    const int w = settings.width, h = settings.height;
+    out.frame = renderer.readHdr();
+    out.diffuse = readTextureFloat(renderer.frameTexture("indirect.diffuse"), w, h);
+    out.specular = readTextureFloat(renderer.frameTexture("indirect.specular"), w, h);
+    out.resolution = pass->rebuildSettings().resolution;
+    out.radiance = readVoxelsRgba16f(pass->voxelRadiance().radiance());
+    out.albedo = readVoxelsRgba8(pass->voxelizer().grid().albedo);
+    out.normal = readVoxelsRgba8(pass->voxelizer().grid().normal);
+    // The base colour target is sRGB8: read back, its values are the encoded ones.
+    const ImageF base = readTextureFloat(renderer.frameTexture("gbuffer.baseColor"), w, h);
+    const ImageF material = readTextureFloat(renderer.frameTexture("gbuffer.material"), w, h);
+    out.indirect = out.diffuse;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c)
+                out.indirect.at(x, y)[c] =
+                    srgbToLinear(base.at(x, y)[c]) * (1.0f - material.at(x, y)[0]) * out.diffuse.at(x, y)[c];
+    return out;
+}
+
+ImageF add(const ImageF& a, const ImageF& b) {
+    ImageF r = a;
+    for (size_t i = 0; i < r.rgba.size(); ++i)
+        if (i % 4 != 3) r.rgba[i] += b.rgba[i];
+    return r;
+}
+
+ImageF subtract(const ImageF& a, const ImageF& b) {
+    ImageF r = a;
+    for (size_t i = 0; i < r.rgba.size(); ++i)
+        if (i % 4 != 3) r.rgba[i] -= b.rgba[i];
+    return r;
+}
+
+}  // namespace gis::test

@@ -1,0 +1,37 @@
+// Renders `--gi vct` through the renderer (registry, lighting contract) and hands back what the VCT
+// tests look at: the frame, the contract's terms, the voxel grid, the sub-step timings.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "gi/vct/vct_pass.h"
+#include "image.h"
+#include "renderer.h"
+
+namespace gis::test {
+
+struct VctImages {
+    ImageF frame;      // the renderer's radiance (or the debug view, with settings.view)
+    ImageF diffuse;    // indirect.diffuse (E / pi)
+    ImageF specular;   // indirect.specular
+    ImageF indirect;   // diffuse albedo * indirect.diffuse: the contract's diffuse term, on the CPU
+    std::map<std::string, double> stepMs;    // "voxelize", "inject", "mips", "bounce", "trace": first-frame ms
+    bool cachedSecondFrame = false;          // the second frame reused voxels and injection
+    int resolution = 0;
+    std::vector<float> radiance;             // level 0 of the voxel radiance, RGBA, x fastest
+    std::vector<uint8_t> albedo, normal;     // the voxel grid, RGBA8
+};
+
+// settings.gi is set to "vct"; "vct.*" parameters come from settings.params.
+VctImages renderVct(const Scene& scene, RenderSettings settings, int frames = 1);
+
+// Sets "vct.KEY" to `text` (validated by the registry).
+void setVct(RenderSettings& s, const std::string& key, const std::string& text);
+
+
+
+ImageF add(const ImageF& a, const ImageF& b);
+ImageF subtract(const ImageF& a, const ImageF& b);
+
+}  // namespace gis::test

@@ -1,0 +1,218 @@
+// The voxelizer against exact answers: conservative modes mark every voxel an exact triangle-box
+// test marks (and `off` demonstrably does not), a closed box is watertight, averaging keeps a
+// uniform colour, and oversized grids are refused before anything is allocated.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <queue>
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render_test_util.h"
+#include "voxel_test_util.h"
+
+namespace gis::test {
+namespace {
+
+constexpr int kN = 32;
+
+VolumeFit unitVoxels(int n) {
+    VolumeFit f;
+    f.origin = glm::vec3(0.0f);
+    f.size = float(n);
+    f.resolution = n;
+    return f;
+}
+
+std::vector<uint8_t> occupancy(const Scene& scene, ConservativeMode mode, int n = kN) {
+    context();
+    gl::MemoryLedger ledger;
+    GpuScene gpu(scene, ledger);
+    Voxelizer v(unitVoxels(n), mode, {&ledger, "test.voxels"});
+    v.voxelize(gpu);
+    const std::vector<uint8_t> rgba = readVoxelsRgba8(v.grid().albedo);
+    std::vector<uint8_t> occ(rgba.size() / 4);
+    for (size_t i = 0; i < occ.size(); ++i) occ[i] = rgba[i * 4 + 3] > 0;
+    return occ;
+}
+
+glm::vec3 randomPoint(std::mt19937& rng, float lo, float hi) {
+    std::uniform_real_distribution<float> u(lo, hi);
+    return {u(rng), u(rng), u(rng)};
+}
+
+glm::vec3 randomUnit(std::mt19937& rng) {
+    std::normal_distribution<float> g;
+    glm::vec3 v(g(rng), g(rng), g(rng));
+    return glm::length(v) > 1e-6f ? glm::normalize(v) : glm::vec3(1, 0, 0);
+}
+
+// Ordinary triangles, slivers thinner than a voxel and triangles smaller than a voxel, anywhere
+// inside the grid with a margin.
+std::vector<Triangle> randomTriangles(unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<Triangle> tris;
+    for (int i = 0; i < 20; ++i) {  // ordinary: up to ~8 voxels across
+        const glm::vec3 c = randomPoint(rng, 6.0f, kN - 6.0f);
+        tris.push_back({c + randomPoint(rng, -4, 4), c + randomPoint(rng, -4, 4), c + randomPoint(rng, -4, 4)});
+    }
+    for (int i = 0; i < 20; ++i) {  // slivers: 4..12 voxels long, 0.01..0.3 wide
+        const glm::vec3 a = randomPoint(rng, 8.0f, kN - 8.0f);
+        const glm::vec3 dir = randomUnit(rng), side = glm::normalize(glm::cross(dir, randomUnit(rng)));
+        const glm::vec3 b = a + dir * (4.0f + 8.0f * u(rng));
+        const glm::vec3 c = glm::mix(a, b, u(rng)) + side * (0.01f + 0.29f * u(rng));
+        tris.push_back({a, b, c});
+    }
+    for (int i = 0; i < 20; ++i) {  // sub-voxel: edges 0.05..0.6 voxels
+        const glm::vec3 c = randomPoint(rng, 4.0f, kN - 4.0f);
+        const float s = 0.05f + 0.55f * u(rng);
+        tris.push_back({c, c + randomUnit(rng) * s, c + randomUnit(rng) * s});
+    }
+    return tris;
+}
+
+struct Comparison {
+    int exact = 0, missing = 0, extra = 0;
+};
+
+Comparison compare(const std::vector<uint8_t>& gpu, const std::vector<uint8_t>& mustMark,
+                   const std::vector<uint8_t>& mayMark) {
+    Comparison c;
+    for (size_t i = 0; i < gpu.size(); ++i) {
+        c.exact += mustMark[i];
+        if (mustMark[i] && !gpu[i]) ++c.missing;
+        if (gpu[i] && !mayMark[i]) ++c.extra;
+    }
+    return c;
+}
+
+TEST(Voxelizer, ConservativeModesMarkEveryOverlappedVoxel) {
+    for (unsigned seed : {1u, 2u, 3u}) {
+        const std::vector<Triangle> tris = randomTriangles(seed);
+        const Scene scene = triangleScene(tris);
+        // Voxels a triangle overlaps by more than a hair must be marked; ones it only touches
+        // within float rounding may or may not be.
+        const std::vector<uint8_t> must = exactVoxels(tris, kN, 0.5 - 1e-4);
+        const std::vector<uint8_t> may = exactVoxels(tris, kN, 0.5 + 1e-4);
+        const Comparison geometry = compare(occupancy(scene, ConservativeMode::Geometry), must, may);
+        const Comparison hardware = compare(occupancy(scene, ConservativeMode::Hardware), must, may);
+        const Comparison off = compare(occupancy(scene, ConservativeMode::Off), must, may);
+        std::printf("seed %u: exact %d voxels; geometry misses %d, %d extra (%.0f%%); hardware misses %d, %d extra; "
+                    "off misses %d (%.0f%%), %d extra\n",
+                    seed, geometry.exact, geometry.missing, geometry.extra, 100.0 * geometry.extra / geometry.exact,
+                    hardware.missing, hardware.extra, off.missing, 100.0 * off.missing / off.exact, off.extra);
+        EXPECT_EQ(geometry.missing, 0) << "seed " << seed;
+        EXPECT_EQ(hardware.missing, 0) << "seed " << seed;
+        EXPECT_GT(off.missing, geometry.exact / 20) << "plain rasterization should miss thin and small triangles";
+    }
+}
+
+// A rotated closed box: no 6-connected path of empty voxels leads from outside to its centre.
+TEST(Voxelizer, ClosedBoxIsWatertight) {
+    Scene cube = makeBuiltinScene("cornell");  // borrow nothing but a unit cube's primitive
+    Primitive box;
+    for (const Primitive& p : cube.primitives)
+        if (p.vertices.size() == 24) box = p;  // the blocks: unit cubes, 6 quads
+    ASSERT_EQ(box.vertices.size(), 24u);
+    for (ConservativeMode mode : {ConservativeMode::Geometry, ConservativeMode::Off}) {
+        Scene s;
+        s.materials.push_back(lambert(glm::vec3(0.8f)));
+        box.material = 0;
+        s.primitives.push_back(box);
+        glm::mat4 world = glm::translate(glm::mat4(1.0f), glm::vec3(kN * 0.5f));
+        world = glm::rotate(world, 0.5f, glm::normalize(glm::vec3(1, 2, 3)));
+        world = glm::scale(world, glm::vec3(17.3f, 11.1f, 13.7f));
+        s.draws.push_back(DrawItem{0, world});
+        finalizeScene(s);
+        const std::vector<uint8_t> occ = occupancy(s, mode);
+        std::vector<uint8_t> seen(occ.size(), 0);
+        std::queue<glm::ivec3> open;
+        open.push(glm::ivec3(0));
+        seen[0] = 1;
+        bool reachedCentre = false;
+        const glm::ivec3 centre(kN / 2);
+        while (!open.empty()) {
+            const glm::ivec3 v = open.front();
+            open.pop();
+            if (v == centre) reachedCentre = true;
+            for (int k = 0; k < 6; ++k) {
+                glm::ivec3 w = v;
+                w[k / 2] += k % 2 ? 1 : -1;
+                if (glm::any(glm::lessThan(w, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(w, glm::ivec3(kN))))
+                    continue;
+                const size_t i = (size_t(w.z) * kN + w.y) * kN + w.x;
+                if (occ[i] || seen[i]) continue;
+                seen[i] = 1;
+                open.push(w);
+            }
+        }
+        if (mode == ConservativeMode::Geometry) {
+            EXPECT_FALSE(reachedCentre) << "a 6-connected gap in the box's surface";
+        }
+        std::printf("closed box, %s: %s\n", conservativeModeName(mode), reachedCentre ? "leaks" : "watertight");
+    }
+}
+
+// Every voxel of a uniformly coloured wall (two triangles, so voxels on the diagonal average
+// samples of both) carries the colour within 1/255.
+TEST(Voxelizer, UniformWallKeepsItsColour) {
+    const glm::vec3 colour(0.3f, 0.6f, 0.9f);
+    const glm::vec3 a(3.3f, 4.1f, 10.2f), b(28.7f, 5.2f, 21.3f), c(27.9f, 27.6f, 19.8f), d(2.9f, 26.1f, 9.4f);
+    const Scene scene = triangleScene({{a, b, c}, {a, c, d}}, colour);
+    context();
+    gl::MemoryLedger ledger;
+    GpuScene gpu(scene, ledger);
+    Voxelizer v(unitVoxels(kN), ConservativeMode::Geometry, {&ledger, "test.voxels"});
+    v.voxelize(gpu);
+    const std::vector<uint8_t> rgba = readVoxelsRgba8(v.grid().albedo);
+    int occupied = 0;
+    double worst = 0.0;
+    for (size_t i = 0; i < rgba.size(); i += 4) {
+        if (!rgba[i + 3]) continue;
+        ++occupied;
+        for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::abs(rgba[i + ch] / 255.0 - colour[ch]));
+    }
+    std::printf("wall: %d voxels, worst colour error %.2f/255\n", occupied, worst * 255.0);
+    EXPECT_GT(occupied, 500);
+    EXPECT_LE(worst, 1.0 / 255.0 + 1e-6);
+}
+
+// The same scene twice gives bit-identical voxels (integer sums do not depend on fragment order).
+TEST(Voxelizer, Deterministic) {
+    const Scene scene = triangleScene(randomTriangles(7), glm::vec3(0.2f, 0.7f, 0.4f));
+    context();
+    gl::MemoryLedger ledger;
+    GpuScene gpu(scene, ledger);
+    Voxelizer v(unitVoxels(kN), ConservativeMode::Geometry, {&ledger, "test.voxels"});
+    v.voxelize(gpu);
+    const auto first = readVoxelsRgba8(v.grid().albedo);
+    v.voxelize(gpu);
+    EXPECT_EQ(first, readVoxelsRgba8(v.grid().albedo));
+}
+
+TEST(Voxelizer, RefusesGridsThatDoNotFitBeforeAllocating) {
+    context();
+    gl::MemoryLedger ledger;
+    VolumeFit f = unitVoxels(1024);
+    try {
+        Voxelizer v(f, ConservativeMode::Geometry, {&ledger, "test.voxels"});
+        FAIL() << "a 1024^3 grid was accepted";
+    } catch (const Error& e) {
+        const std::string msg = e.what();
+        std::printf("%s\n", msg.c_str());
+        EXPECT_NE(msg.find("MiB"), std::string::npos) << msg;
+    }
+    EXPECT_EQ(ledger.total(), 0);
+}
+
+TEST(Voxelizer, EmptySceneGivesAnEmptyGrid) {
+    const Scene scene = triangleScene({});
+    const std::vector<uint8_t> occ = occupancy(scene, ConservativeMode::Geometry, 8);
+    for (uint8_t o : occ) EXPECT_EQ(o, 0);
+}
+
+}  // namespace
+}  // namespace gis::test
