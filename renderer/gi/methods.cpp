@@ -8,7 +8,8 @@
     X(ssaoMethod)              \
     X(aoReferenceMethod)       \
     X(pathtraceMethod)         \
-    X(vctMethod)
+    X(vctMethod)               \
+    X(sdfMethod)
 
 namespace gis {
 
