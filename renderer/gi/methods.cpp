@@ -9,6 +9,7 @@
     X(aoReferenceMethod)       \
     X(pathtraceMethod)         \
     X(vctMethod)               \
+    X(sdfMethod)               \
     X(probesMethod)
 
 namespace gis {

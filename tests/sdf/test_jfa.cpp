@@ -152,6 +152,35 @@ TEST(SdfJfa, ClosedBoxIsNegativeInsidePositiveOutside) {
     EXPECT_GT(outside, 0);
 }
 
+// A wall one cell thick: voxelized from both sides of a double-sided quad its averaged normals
+// cancel, and both sides are outside (positive); a single-sided wall (normals +x) makes the
+// region behind it negative - what an open mesh does, stated in sdf_resolve.comp.
+TEST(SdfJfa, OneCellWallSignFollowsItsNormals) {
+    const int n = 16, wall = 7;
+    for (bool doubleSided : {true, false}) {
+        SeedGrid g = uniformSeeds(n, 0, 1);
+        for (int z = 0; z < n; ++z)
+            for (int y = 0; y < n; ++y) {
+                g.seed[g.index(wall, y, z)] = 1;
+                g.normal[g.index(wall, y, z)] = doubleSided ? glm::vec3(0.0f) : glm::vec3(1, 0, 0);
+            }
+        gl::MemoryLedger ledger;
+        const gl::MemoryScope scope{&ledger, "sdf_test"};
+        SeedTextures textures = uploadSeeds(g, scope);
+        DistanceField field({glm::vec3(0.0f), float(n), n}, scope);
+        field.build(textures.seeds(true), JfaVariant::Plain);
+        const auto d = field.readBack();
+        for (int z = 0; z < n; ++z)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x) {
+                    const float expected = float(std::abs(x - wall));
+                    const float sign = doubleSided || x > wall ? 1.0f : -1.0f;
+                    ASSERT_EQ(d[g.index(x, y, z)], x == wall ? 0.0f : sign * expected)
+                        << (doubleSided ? "double" : "single") << "-sided, x " << x;
+                }
+    }
+}
+
 // Time per step on this machine's GL (llvmpipe in CI), printed for the README.
 TEST(SdfJfa, TimingAt64) {
     const SeedGrid g = uniformSeeds(64, 64 * 64 * 64 / 20, 5);

@@ -1,0 +1,286 @@
+#include "gi/sdf/sdf_pass.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "debug_view.h"
+#include "gi/method.h"
+#include "gi/sdf/sdf_gi_uniforms.h"
+#include "services/scene_services.h"
+
+namespace gis {
+
+using namespace sdfgi;
+
+namespace {
+
+constexpr int kGroup = 8;  // local size of the 2D shaders/gi/sdf/*.comp
+
+void dispatch2D(int w, int h) { glDispatchCompute(GLuint((w + kGroup - 1) / kGroup), GLuint((h + kGroup - 1) / kGroup), 1); }
+
+int tracedSize(int fullSize, int scale) { return (fullSize + scale - 1) / scale; }
+
+ParamValue choiceValue(const char* name) {
+    ParamValue v;
+    v.text = name;
+    return v;
+}
+
+}  // namespace
+
+std::vector<ProgramDesc> SdfGiPass::programs() {
+    std::vector<ProgramDesc> all = Voxelizer::programs();
+    for (const auto& list : {VoxelRadiance::programs(), DistanceField::programs()})
+        all.insert(all.end(), list.begin(), list.end());
+    all.push_back({"sdf_gi_trace", {"gi/sdf/sdf_trace.comp"}, {}});
+    all.push_back({"sdf_gi_temporal", {"gi/sdf/sdf_temporal.comp"}, {}});
+    all.push_back({"sdf_gi_filter", {"gi/sdf/sdf_filter.comp"}, {}});
+    all.push_back({"sdf_gi_debug", {"gi/sdf/sdf_debug.comp"}, {}});
+    return all;
+}
+
+std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const RenderSettings& settings) {
+    const SdfGiSettings s = sdfParams().read("sdf", settings.params);
+    const int n = s.resolution, scale = s.halfResolution ? 2 : 1;
+    const uint64_t traced = uint64_t(tracedSize(settings.width, scale)) * uint64_t(tracedSize(settings.height, scale));
+    const uint64_t full = uint64_t(settings.width) * uint64_t(settings.height);
+    return {{"SDF voxels", uint64_t(voxelGridBytes(n) + voxelRadianceBytes(n, false, s.bounces))},
+            {"SDF field", uint64_t(distanceFieldBuildBytes(n))},
+            // raw, reflection, info, 2 histories (RGBA16F), occlusion (R16F), 2 distances (R32F);
+            // full resolution: diffuse, specular (RGBA16F), ao (R16F)
+            {"SDF trace", traced * (5 * 8 + 2 + 2 * 4) + full * (2 * 8 + 2)}};
+}
+
+SdfGiPass::SdfGiPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger)
+    : built_(sdfParams().read("sdf", settings.params)) {
+    const int n = built_.resolution;
+    const gl::MemoryScope scope{&ledger, name()};
+    // Refuse before allocating: voxels, radiance and the field's peak while it is built.
+    checkVoxelBudget(n, voxelGridBytes(n) + voxelRadianceBytes(n, false, built_.bounces) + distanceFieldBuildBytes(n),
+                     "sdf.resolution");
+    // The same fit as VCT (2.5 voxels of margin): the distance field and the voxel radiance share
+    // the grid, so a field cell is a voxel.
+    const VolumeFit fit = fitVolume(scene.cpu.bounds, n, 2.5f);
+    const ConservativeMode mode =
+        Voxelizer::hardwareConservativeAvailable() ? ConservativeMode::Hardware : ConservativeMode::Geometry;
+    voxelizer_ = std::make_unique<Voxelizer>(fit, mode, scope);
+    radiance_ = std::make_unique<VoxelRadiance>(n, false, built_.bounces, scope);
+    field_ = std::make_unique<DistanceField>(SdfVolume{fit.origin, fit.size, n}, scope);
+
+    scale_ = built_.halfResolution ? 2 : 1;
+    const int tw = tracedSize(settings.width, scale_), th = tracedSize(settings.height, scale_);
+    raw_ = gl::createTexture2D(scope, GL_RGBA16F, tw, th);
+    reflection_ = gl::createTexture2D(scope, GL_RGBA16F, tw, th);
+    occlusion_ = gl::createTexture2D(scope, GL_R16F, tw, th);
+    info_ = gl::createTexture2D(scope, GL_RGBA16F, tw, th);
+    for (int i = 0; i < 2; ++i) {
+        history_[i] = gl::createTexture2D(scope, GL_RGBA16F, tw, th);
+        historyDistance_[i] = gl::createTexture2D(scope, GL_R32F, tw, th);
+    }
+    diffuse_ = gl::createTexture2D(scope, GL_RGBA16F, settings.width, settings.height);
+    specular_ = gl::createTexture2D(scope, GL_RGBA16F, settings.width, settings.height);
+    ao_ = gl::createTexture2D(scope, GL_R16F, settings.width, settings.height);
+    // Filtered lookups (the lighting pass reads the contract's terms with texture()).
+    for (const gl::Texture* t : {&diffuse_, &specular_, &ao_}) {
+        glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    }
+    const auto all = programs();
+    const size_t last = all.size();
+    traceProgram_ = buildProgram(all[last - 4]);
+    temporalProgram_ = buildProgram(all[last - 3]);
+    filterProgram_ = buildProgram(all[last - 2]);
+    debugProgram_ = buildProgram(all[last - 1]);
+}
+
+void SdfGiPass::invalidate(Changes c) {
+    if (c & ChangeGeometry) voxelsValid_ = fieldValid_ = false;
+    if (c & ChangeMaterials) voxelsValid_ = false;  // albedo and emission; occupancy, so the field, stays
+    if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) radianceValid_ = false;
+    // The camera is handled by reprojection; anything that changes what a ray sees starts over.
+    if (c & (ChangeGeometry | ChangeMaterials | ChangeLights | ChangeLiveParams)) hasHistory_ = false;
+}
+
+void SdfGiPass::rebuildField(Frame& frame) {
+    const VoxelGrid& grid = voxelizer_->grid();
+    // Seeds: the voxelizer's occupancy (albedo alpha) and averaged normals (the field's sign).
+    field_->build({grid.albedo.id(), grid.normal.id()}, built_.jfaVariant(), frame.steps);
+    fieldValid_ = true;
+    ++fieldBuilds_;
+}
+
+void SdfGiPass::relight(Frame& frame) {
+    VoxelRadiance::Lights lights;
+    lights.buffer = frame.buffer("lights");
+    lights.shadowMaps = frame.texture("shadow.maps");
+    lights.shadowCubes = frame.texture("shadow.cubes");
+    lights.count = int(frame.scene.cpu.lights.size());
+    lights.shadows = frame.settings.shadows;
+    {
+        auto t = frame.step("inject");
+        radiance_->inject(voxelizer_->grid(), lights);
+    }
+    if (built_.bounces > 1) {  // further bounces gather by cone tracing in voxel space (the voxel module's)
+        auto t = frame.step("bounce");
+        radiance_->buildMips(voxelizer_->grid());
+        radiance_->bounce(voxelizer_->grid(), ConeSettings{}, frame.settings.background.value_or(frame.scene.cpu.background));
+    }
+    radianceValid_ = true;
+    ++radianceBuilds_;
+}
+
+void SdfGiPass::setCommonUniforms(GLuint p, const Frame& frame) const {
+    const SdfVolume& v = field_->volume();
+    glProgramUniformMatrix4fv(p, UG_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
+    glProgramUniform3fv(p, UG_CAMERA_POS, 1, &frame.camera.position[0]);
+    glProgramUniform4f(p, UG_VOLUME, v.origin.x, v.origin.y, v.origin.z, v.size);
+    glProgramUniform1i(p, UG_RESOLUTION, v.resolution);
+    glProgramUniform1i(p, UG_SCALE, scale_);
+    const GLuint gbuffer[3] = {frame.texture("gbuffer.depth"), frame.texture("gbuffer.normal"),
+                               frame.texture("gbuffer.material")};
+    glBindTextures(0, 3, gbuffer);
+    glBindSamplers(0, 7, nullptr);
+}
+
+void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
+    const GLuint p = traceProgram_.id();
+    glUseProgram(p);
+    setCommonUniforms(p, frame);
+    const glm::vec3 environment = frame.settings.background.value_or(frame.scene.cpu.background);
+    glProgramUniform4f(p, UG_MARCH, s.hitThreshold, s.relaxation, float(s.maxSteps), s.offset);
+    glProgramUniform1i(p, UG_RAYS, s.rays);
+    glProgramUniform1ui(p, UG_FRAME, GLuint(frame.index * 7919u + frame.settings.seed));
+    glProgramUniform3fv(p, UG_ENVIRONMENT, 1, &environment[0]);
+    glProgramUniform2f(p, UG_SPECULAR, s.specular ? 1.0f : 0.0f, s.specularRoughness);
+    glProgramUniform1f(p, UG_AO, s.aoStrength);
+    field_->bind(3);
+    glBindTextureUnit(5, radiance_->radiance().id());
+    glBindImageTexture(0, raw_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, reflection_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(2, occlusion_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    glBindImageTexture(3, info_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    dispatch2D(raw_.width, raw_.height);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+void SdfGiPass::accumulate(const Frame& frame, const SdfGiSettings& s) {
+    const GLuint p = temporalProgram_.id();
+    glUseProgram(p);
+    setCommonUniforms(p, frame);
+    glProgramUniformMatrix4fv(p, UG_PREV_VIEW_PROJ, 1, GL_FALSE, &prevViewProj_[0][0]);
+    glProgramUniform3fv(p, UG_PREV_CAMERA_POS, 1, &prevCameraPos_[0]);
+    const bool moved = frame.camera.viewProj != prevViewProj_;
+    glProgramUniform3f(p, UG_TEMPORAL, s.temporal, hasHistory_ ? 1.0f : 0.0f, moved ? 1.0f : 0.0f);
+    const GLuint inputs[3] = {raw_.id(), history_[current_].id(), historyDistance_[current_].id()};
+    glBindTextures(2, 3, inputs);
+    const int next = 1 - current_;
+    glBindImageTexture(0, history_[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, historyDistance_[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    dispatch2D(raw_.width, raw_.height);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    current_ = next;
+}
+
+void SdfGiPass::filter(const Frame& frame, const SdfGiSettings& s) {
+    const GLuint p = filterProgram_.id();
+    glUseProgram(p);
+    setCommonUniforms(p, frame);
+    glProgramUniform1i(p, UG_FILTER, s.filterRadius);
+    glProgramUniform1f(p, UG_INTENSITY, s.intensity);
+    const GLuint inputs[3] = {history_[current_].id(), reflection_.id(), occlusion_.id()};
+    glBindTextures(2, 3, inputs);
+    glBindImageTexture(0, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(2, ao_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    dispatch2D(diffuse_.width, diffuse_.height);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+void SdfGiPass::execute(Frame& frame) {
+    const SdfGiSettings live = sdfParams().read("sdf", frame.settings.params);
+    if (!voxelsValid_) {
+        auto t = frame.step("voxelize");
+        voxelizer_->voxelize(frame.scene);
+        voxelsValid_ = true;
+        radianceValid_ = false;
+    }
+    if (!fieldValid_) rebuildField(frame);
+    if (!radianceValid_) relight(frame);
+    {
+        auto t = frame.step("trace");
+        trace(frame, live);
+    }
+    {
+        auto t = frame.step("temporal");
+        accumulate(frame, live);
+    }
+    {
+        auto t = frame.step("filter");
+        filter(frame, live);
+    }
+    prevViewProj_ = frame.camera.viewProj;
+    prevCameraPos_ = frame.camera.position;
+    hasHistory_ = true;
+    frame.put("indirect.diffuse", diffuse_);
+    frame.put("indirect.specular", specular_);
+    frame.put("ao", ao_);
+}
+
+std::vector<DebugViewDesc> SdfGiPass::debugViews() const {
+    return {{"sdf.slice", "one slice of the signed distance field (sdf.slice-axis, sdf.slice-position): blue outside, "
+                          "red inside, a band per cell, black on the surface"},
+            {"sdf.steps", "sphere-tracing steps per diffuse ray, black 0 to white sdf.max-steps"},
+            {"sdf.normals", "the normal at the first diffuse ray's hit (x 0.5 + 0.5), black where it missed"},
+            {"ao", "the near-field soft occlusion written to \"ao\" (1 = open)"}};
+}
+
+void SdfGiPass::drawDebugView(const std::string& view, const Frame& frame, GLuint target) {
+    if (view == "ao") {
+        drawChannel(DisplayChannel::Grey, ao_.id(), frame, target);
+        return;
+    }
+    const SdfGiSettings live = sdfParams().read("sdf", frame.settings.params);
+    const GLuint p = debugProgram_.id();
+    const SdfVolume& v = field_->volume();
+    glUseProgram(p);
+    glProgramUniform4f(p, UG_VOLUME, v.origin.x, v.origin.y, v.origin.z, v.size);
+    glProgramUniform1i(p, UG_RESOLUTION, v.resolution);
+    const float kind = view == "sdf.slice" ? 0.0f : view == "sdf.steps" ? 1.0f : 2.0f;
+    glProgramUniform4f(p, UG_DEBUG, kind, float(live.sliceAxis), live.slicePosition, float(live.maxSteps));
+    glBindSamplers(0, 7, nullptr);
+    field_->bind(3);
+    glBindTextureUnit(6, info_.id());
+    glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    dispatch2D(diffuse_.width, diffuse_.height);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+GiMethod sdfMethod() {
+    GiMethod m;
+    m.name = "sdf";
+    m.summary = "SDF GI: jump-flooded distance field, sphere-traced rays shaded from voxel radiance, temporal + "
+                "edge-aware filter";
+    m.params = sdfParams().rows;
+    m.presets = {
+        {"low", "32^3, plain JFA, 2 rays at half resolution, 32 steps",
+         {{"sdf.resolution", {32.0}}, {"sdf.jfa", choiceValue("plain")}, {"sdf.rays", {2.0}}, {"sdf.max-steps", {32.0}}}},
+        {"medium", "64^3, JFA+2, 4 rays at half resolution, 64 steps", {}},
+        {"high", "128^3, JFA+2, 8 rays at full resolution, 128 steps",
+         {{"sdf.resolution", {128.0}},
+          {"sdf.rays", {8.0}},
+          {"sdf.half-res", {0.0}},
+          {"sdf.max-steps", {128.0}}}},
+    };
+    m.programs = &SdfGiPass::programs;
+    m.estimateMemory = [](const Scene&, const RenderSettings& s) { return SdfGiPass::estimateMemory(s); };
+    m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<SdfGiPass>(b.services.scene, b.settings, b.ledger)); };
+    // A static view's history is a running mean (up to 256 frames): after 4 / (1 - temporal) frames
+    // (40 at the default) the frame-to-frame change is below 1% (the convergence test).
+    m.framesToConverge = [](const RenderSettings& s) {
+        const float w = sdfParams().read("sdf", s.params).temporal;
+        return w <= 0.0f ? 1 : std::min(64, int(std::ceil(4.0f / (1.0f - w))));
+    };
+    return m;
+}
+
+}  // namespace gis

@@ -1,0 +1,41 @@
+#include "gi/sdf/sdf_settings.h"
+
+namespace gis {
+
+const ParamTable<SdfGiSettings>& sdfParams() {
+    using S = SdfGiSettings;
+    using U = ParamUpdate;
+    static const ParamTable<S> table = ParamTable<S>()
+        .integer(&S::resolution, "resolution", "Resolution", "cells per edge of the voxel grid and the distance field",
+                 8, 512, U::Rebuild)
+        .choice(&S::jfa, "jfa", "Jump flood", "plain JFA, or with a step-1 pass first (1+jfa) or steps 2 and 1 after (jfa+2)",
+                {"plain", "1+jfa", "jfa+2"}, U::Rebuild)
+        .integer(&S::bounces, "bounces", "Bounces",
+                 "1 = ray hits see direct light and emission; more gather in voxel space again", 1, 4, U::Rebuild)
+        .boolean(&S::halfResolution, "half-res", "Half resolution", "trace at half resolution, filter back up",
+                 U::Rebuild)
+        .integer(&S::rays, "rays", "Rays per pixel", "cosine-distributed diffuse rays per traced pixel and frame", 1,
+                 64, U::Live)
+        .integer(&S::maxSteps, "max-steps", "Max steps", "sphere-tracing steps before a ray counts as a miss", 4, 1024,
+                 U::Live)
+        .real(&S::relaxation, "relaxation", "Relaxation", "over-relaxed steps of w x distance, undone when too long",
+              1.0, 1.9, U::Live)
+        .real(&S::hitThreshold, "hit-threshold", "Hit threshold", "|distance| below this many cells is a hit", 0.05,
+              2.0, U::Live)
+        .real(&S::offset, "offset", "Start offset", "rays start this many cells above the surface", 0.0, 8.0, U::Live)
+        .real(&S::temporal, "temporal", "Temporal weight", "largest weight of the reprojected history while the camera moves (0 = none; a static view keeps averaging)", 0.0,
+              0.99, U::Live)
+        .integer(&S::filterRadius, "filter-radius", "Filter radius", "edge-aware filter half-width in traced pixels",
+                 0, 4, U::Live)
+        .boolean(&S::specular, "specular", "Reflection ray", "trace a mirror ray where roughness is low", U::Live)
+        .real(&S::specularRoughness, "specular-roughness", "Reflection roughness",
+              "above this roughness the specular term is the diffuse one", 0.0, 1.0, U::Live)
+        .real(&S::aoStrength, "ao", "Soft occlusion", "strength of the near-field occlusion written to \"ao\"", 0.0,
+              1.0, U::Live)
+        .real(&S::intensity, "intensity", "Intensity", "scales the indirect terms", 0.0, 16.0, U::Live)
+        .choice(&S::sliceAxis, "slice-axis", "Slice axis", "axis sdf.slice cuts across", {"x", "y", "z"}, U::Live)
+        .real(&S::slicePosition, "slice-position", "Slice position", "where along the axis, 0..1", 0.0, 1.0, U::Live);
+    return table;
+}
+
+}  // namespace gis

@@ -1,0 +1,35 @@
+// SDF GI's parameters: one row each in sdfParams() (issue 12's names: sdf.resolution, sdf.jfa,
+// sdf.rays), defaults in the initialisers below.
+#pragma once
+
+#include "gi/params.h"
+#include "sdf/distance_field.h"
+
+namespace gis {
+
+struct SdfGiSettings {
+    int resolution = 64;        // sdf.resolution: cells per edge of the voxel grid and the field (rebuild)
+    int jfa = 2;                // sdf.jfa: plain | 1+jfa | jfa+2 (JfaVariant order; rebuild)
+    int bounces = 1;            // sdf.bounces: 1 = hits see direct light and emission; more gather again (rebuild)
+    bool halfResolution = true; // sdf.half-res: trace at half the frame's resolution, filter back up (rebuild)
+    int rays = 4;               // sdf.rays: cosine-distributed diffuse rays per traced pixel per frame (live)
+    int maxSteps = 64;          // sdf.max-steps: marcher steps before a ray counts as a miss (live)
+    float relaxation = 1.2f;    // sdf.relaxation: over-relaxed step factor (live)
+    float hitThreshold = 0.5f;  // sdf.hit-threshold: |distance| below this many cells is a hit (live)
+    float offset = 1.5f;        // sdf.offset: rays start this many cells above the surface (live)
+    float temporal = 0.9f;      // sdf.temporal: largest weight of the reprojected history (live)
+    int filterRadius = 2;       // sdf.filter-radius: edge-aware filter half-width, traced pixels (live)
+    bool specular = true;       // sdf.specular: trace a reflection ray where roughness is low (live)
+    float specularRoughness = 0.5f;  // sdf.specular-roughness: above it, specular uses the diffuse term (live)
+    float aoStrength = 1.0f;    // sdf.ao: strength of the near-field soft occlusion written to "ao" (live)
+    float intensity = 1.0f;     // sdf.intensity: scales the indirect terms (live)
+    // What the debug views show (live).
+    int sliceAxis = 2;          // sdf.slice-axis: x | y | z
+    float slicePosition = 0.5f; // sdf.slice-position: 0..1 across the volume
+
+    JfaVariant jfaVariant() const { return JfaVariant(jfa); }
+};
+
+const ParamTable<SdfGiSettings>& sdfParams();
+
+}  // namespace gis

@@ -1,0 +1,58 @@
+// SDF GI temporal accumulation, per traced pixel: this frame's diffuse estimate blended into the
+// history found by reprojecting the pixel's world position into the previous frame. The history
+// is trusted only where the previous frame saw the same surface there: its stored distance from
+// the previous camera must match this point's within 2% (else disocclusion: start again). The
+// blend is a running mean: while the camera moves, of at most 1 / (1 - u_temporal.x) frames (an
+// exponential average beyond, so lighting seen from a new angle catches up); while it stands still,
+// of up to MAX_STATIC_FRAMES, so a static view keeps converging instead of flickering at the
+// exponential average's noise floor.
+#include "common.glsl"
+#include "gi/sdf/sdf_gi_uniforms.glsl"
+#include "gi/sdf/sdf_gbuffer.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 2) uniform sampler2D s_current;        // this frame's traced diffuse
+layout(binding = 3) uniform sampler2D s_history;        // rgb, a = frames accumulated
+layout(binding = 4) uniform sampler2D s_historyDistance; // distance from the previous camera, -1 = none
+layout(rgba16f, binding = 0) uniform writeonly image2D i_history;
+layout(r32f, binding = 1) uniform writeonly image2D i_historyDistance;
+
+layout(location = UG_PREV_VIEW_PROJ) uniform mat4 u_prevViewProj;
+layout(location = UG_TEMPORAL) uniform vec3 u_temporal;   // largest history weight, history valid, camera moved
+
+const float MAX_STATIC_FRAMES = 256.0;
+layout(location = UG_CAMERA_POS) uniform vec3 u_cameraPos;
+layout(location = UG_PREV_CAMERA_POS) uniform vec3 u_prevCameraPos;
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(i_history);
+    if (any(greaterThanEqual(pixel, size))) return;
+    Surface s = tracedSurface(pixel);
+    vec3 current = texelFetch(s_current, pixel, 0).rgb;
+    if (!s.valid) {
+        imageStore(i_history, pixel, vec4(0.0));
+        imageStore(i_historyDistance, pixel, vec4(-1.0));
+        return;
+    }
+    vec4 result = vec4(current, 1.0);
+    if (u_temporal.y > 0.5 && u_temporal.x > 0.0) {
+        vec4 clip = u_prevViewProj * vec4(s.position, 1.0);
+        if (clip.w > 0.0) {
+            vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+            ivec2 previous = ivec2(floor(uv * vec2(size)));
+            if (all(greaterThanEqual(previous, ivec2(0))) && all(lessThan(previous, size))) {
+                float expected = distance(s.position, u_prevCameraPos);
+                float stored = texelFetch(s_historyDistance, previous, 0).r;
+                if (stored > 0.0 && abs(stored - expected) < 0.02 * expected) {
+                    vec4 history = texelFetch(s_history, previous, 0);
+                    float cap = u_temporal.z > 0.5 ? 1.0 / (1.0 - u_temporal.x) : MAX_STATIC_FRAMES;
+                    float frames = min(history.a + 1.0, cap);
+                    result = vec4(mix(history.rgb, current, 1.0 / frames), frames);
+                }
+            }
+        }
+    }
+    imageStore(i_history, pixel, vec4(finiteOrZero(result.rgb), result.a));
+    imageStore(i_historyDistance, pixel, vec4(distance(s.position, u_cameraPos)));
+}

@@ -1,0 +1,112 @@
+// SDF GI, per traced pixel: u_rays cosine-distributed rays sphere-traced through the distance field
+// (sdf/sdf_march.glsl); a hit takes the radiance the voxelizer injected there (direct light and
+// emission, Lambertian, premultiplied by occupancy), a miss the environment. Their mean is this
+// frame's estimate of the cosine-weighted mean incoming radiance (E / pi: the lighting contract's
+// indirect.diffuse) before temporal accumulation and filtering. Also: one mirror ray where the
+// surface is smooth, the near-field soft occlusion, and the debug data (steps, first hit normal).
+#include "common.glsl"
+#include "random.glsl"
+#include "sampling.glsl"
+#include "gi/sdf/sdf_gi_uniforms.glsl"
+#include "gi/sdf/sdf_gbuffer.glsl"
+#include "sdf/sdf_march.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 2) uniform sampler2D s_gbufMaterial;  // metallic, roughness, occlusion, specular
+layout(binding = 3) uniform sampler3D s_distance;
+layout(binding = 4) uniform sampler3D s_coarse;
+layout(binding = 5) uniform sampler3D s_radiance;      // rgb = radiance x occupancy, a = occupancy
+layout(rgba16f, binding = 0) uniform writeonly image2D i_diffuse;
+layout(rgba16f, binding = 1) uniform writeonly image2D i_reflection;  // rgb, a = its weight against diffuse
+layout(r16f, binding = 2) uniform writeonly image2D i_ao;
+layout(rgba16f, binding = 3) uniform writeonly image2D i_info;        // mean steps, first hit normal
+
+layout(location = UG_CAMERA_POS) uniform vec3 u_cameraPos;
+layout(location = UG_VOLUME) uniform vec4 u_volume;
+layout(location = UG_RESOLUTION) uniform int u_resolution;
+layout(location = UG_MARCH) uniform vec4 u_march;
+layout(location = UG_RAYS) uniform int u_rays;
+layout(location = UG_FRAME) uniform uint u_frame;
+layout(location = UG_ENVIRONMENT) uniform vec3 u_environment;
+layout(location = UG_SPECULAR) uniform vec2 u_specular;
+layout(location = UG_AO) uniform float u_aoStrength;
+
+SdfVolume volume() { return SdfVolume(u_volume.xyz, u_volume.w, u_resolution); }
+
+SdfMarchParams marchParams() {
+    SdfMarchParams p = sdfDefaultParams(u_volume.w * 1.7320508);
+    p.hitThreshold = u_march.x;
+    p.relaxation = u_march.y;
+    p.maxSteps = int(u_march.z);
+    return p;
+}
+
+// What a ray brings back: the voxel radiance around its hit, or the environment.
+vec3 rayRadiance(SdfHit h) {
+    if (!h.hit) return u_environment;
+    // Half a cell into the surface: the level set runs through the centres of the outermost surface
+    // voxels, so the trilinear lookup mixes them with the voxels behind (occupied, or empty and
+    // divided out below) rather than with the empty ones in front of the surface.
+    vec3 p = h.position - h.normal * 0.5 * sdfCellSize(volume());
+    vec4 r = textureLod(s_radiance, (p - u_volume.xyz) / u_volume.w, 0.0);
+    return r.a > 1e-3 ? r.rgb / r.a : vec3(0.0);
+}
+
+// Occlusion closer than the rays' start offset, which the rays step over: the field a little way
+// out along the normal against the same field at the surface (so a plane, whatever its offset from
+// the level set, reads as open), Quilez-style, weighted towards the nearest samples.
+float nearFieldOcclusion(vec3 P, vec3 N, float reach) {
+    SdfVolume vol = volume();
+    float d0 = sdfSample(s_distance, vol, P);
+    float occlusion = 0.0, weight = 1.0, total = 0.0;
+    for (int k = 1; k <= 3; ++k) {
+        float s = reach * float(k) / 3.0;
+        float d = sdfSample(s_distance, vol, P + N * s) - d0;
+        occlusion += weight * saturate((s - d) / s);
+        total += weight;
+        weight *= 0.5;
+    }
+    return saturate(1.0 - u_aoStrength * occlusion / total);
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, imageSize(i_diffuse)))) return;
+    Surface s = tracedSurface(pixel);
+    if (!s.valid) {
+        imageStore(i_diffuse, pixel, vec4(0.0));
+        imageStore(i_reflection, pixel, vec4(0.0));
+        imageStore(i_ao, pixel, vec4(1.0));
+        imageStore(i_info, pixel, vec4(0.0));
+        return;
+    }
+    SdfVolume vol = volume();
+    float cell = sdfCellSize(vol);
+    vec3 origin = s.position + s.normal * (u_march.w * cell);
+    SdfMarchParams params = marchParams();
+    Rng rng = makeRng(uvec2(pixel), u_frame, 0x5df1u);
+
+    vec3 sum = vec3(0.0);
+    float steps = 0.0;
+    vec3 firstNormal = vec3(0.0);
+    for (int i = 0; i < u_rays; ++i) {
+        SdfHit h = sdfMarch(s_distance, s_coarse, vol, origin, cosineDirection(s.normal, nextFloat2(rng)), params);
+        sum += rayRadiance(h);
+        steps += float(h.steps);
+        if (i == 0 && h.hit) firstNormal = h.normal * 0.5 + 0.5;  // black: a miss
+    }
+
+    vec4 reflection = vec4(0.0);
+    float roughness = texelFetch(s_gbufMaterial, pixel * u_scale, 0).y;
+    if (u_specular.x > 0.5 && roughness < u_specular.y) {
+        vec3 R = reflect(normalize(s.position - u_cameraPos), s.normal);
+        SdfHit h = sdfMarch(s_distance, s_coarse, vol, origin, R, params);
+        // Blend towards the diffuse term as the lobe widens: a mirror ray is right only at 0.
+        reflection = vec4(rayRadiance(h), 1.0 - roughness / max(u_specular.y, 1e-6));
+    }
+
+    imageStore(i_diffuse, pixel, vec4(finiteOrZero(sum / float(u_rays)), 1.0));
+    imageStore(i_reflection, pixel, vec4(finiteOrZero(reflection.rgb), reflection.a));
+    imageStore(i_ao, pixel, vec4(nearFieldOcclusion(s.position, s.normal, max(u_march.w, 0.5) * cell)));
+    imageStore(i_info, pixel, vec4(steps / float(u_rays), firstNormal));
+}
