@@ -39,6 +39,8 @@ public:
     void openScene(const std::string& spec) override {
         if (!session_->openScene(state_, spec))
             std::fprintf(stderr, "gisandbox: warning: %s\n", session_->lastError().c_str());
+        else
+            scenePath_ = spec;  // the panel's scene field shows what the script opened
     }
     void loadSettings(const std::string& path) override {
         if (!session_->loadSettings(state_, path)) throw Error(session_->lastError());
@@ -293,15 +295,16 @@ int ViewApp::run() {
         const float viewW = std::max(1.0f, float(ww) - panelW), viewH = float(wh);
         const float sx = float(fbw) / float(ww);
         handleInput(viewW, viewH, dt);
-        view::PanelContext panel{state_, *session_, message_, scenePath_, settingsPath_, ctx_->renderer, cpuMs};
-        drawPanel(panel, viewW, 0.0f, float(ww) - viewW, viewH);
-        if (panel.screenshotRequested) screenshot_ = true;
-
         const int viewPixelsW = std::max(1, int(std::lround(viewW * sx))), viewPixelsH = fbh;
         state_.viewWidth = viewPixelsW;
         state_.viewHeight = viewPixelsH;
         session_->renderFrame(state_, viewPixelsW, viewPixelsH);
+        // Panel and overlay after the frame: both show the frame on screen (the same "5/16 spp"),
+        // and what the panel changes is rendered from the next frame on.
         drawViewOverlay(state_, *session_, 0.0f, 0.0f, viewW, viewH);
+        view::PanelContext panel{state_, *session_, message_, scenePath_, settingsPath_, ctx_->renderer, cpuMs};
+        drawPanel(panel, viewW, 0.0f, float(ww) - viewW, viewH);
+        if (panel.screenshotRequested) screenshot_ = true;
         ImGui::Render();
 
         glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -88,7 +88,10 @@ bool ViewSession::openScene(ViewState& state, const std::string& spec, const Cam
         lastError_.clear();
         return true;
     } catch (const std::exception& e) {
-        lastError_ = "cannot open " + spec + ": " + describe(e);
+        // The loader's messages already name the file; say it once.
+        const std::string why = describe(e);
+        const std::string name = spec.substr(spec.find_last_of("/:") + 1);
+        lastError_ = why.find(name) != std::string::npos ? "cannot open: " + why : "cannot open " + spec + ": " + why;
         return false;
     }
 }

@@ -245,8 +245,10 @@ TEST(Session, OpeningABadSceneKeepsThePreviousOne) {
     { std::ofstream(dir + "/broken.gltf") << "{\"asset\": "; }
     for (const std::string& bad : {dir + "/broken.gltf", dir + "/missing.glb", std::string("builtin:nothing")}) {
         EXPECT_FALSE(s.session->openScene(s.state, bad));
-        EXPECT_NE(s.session->lastError().find(bad.substr(bad.find_last_of("/:") + 1)), std::string::npos)
-            << s.session->lastError();
+        const std::string& error = s.session->lastError();
+        const std::string name = bad.substr(bad.find_last_of("/:") + 1);
+        EXPECT_NE(error.find(name), std::string::npos) << error;
+        EXPECT_EQ(error.find(name), error.rfind(name)) << "the path is said once: " << error;
         EXPECT_EQ(s.state.scene, "builtin:cornell");
         EXPECT_EQ(meanAbsDiff(s.view(32, 32), base), 0.0);
     }
