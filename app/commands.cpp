@@ -101,6 +101,8 @@ void printTimings(const Renderer& renderer, int frames, int warmup) {
     std::printf("%-22s %10.3f %10s %9.2f  (%dx%d, %d frames, median of the last %d)\n", "total", total, "",
                 mib(renderer.memory().total()), renderer.settings().width, renderer.settings().height, frames,
                 frames - warmup);
+    for (const auto& pass : renderer.passes())
+        for (const std::string& line : pass->stats()) std::printf("%-22s %s\n", pass->name(), line.c_str());
 }
 
 }  // namespace
@@ -313,6 +315,9 @@ void addInfoOptions(CLI::App& cmd, InfoOptions& o) {
         ->capture_default_str();
     cmd.add_flag("--json", o.json, "Print JSON instead of text");
     cmd.add_flag("--no-gpu", o.noGpu, "Skip the GPU memory figures (no OpenGL context needed)");
+    cmd.add_option("--gi", o.gi, "The GI method whose passes, memory and volumes (voxel size, probe count) to report")
+        ->capture_default_str();
+    cmd.add_option("--preset", o.preset, "Its preset: low, medium, high");
 }
 
 int runInfo(const InfoOptions& o) {
@@ -350,8 +355,13 @@ int runInfo(const InfoOptions& o) {
         RenderSettings s;
         s.width = w;
         s.height = h;
+        s.gi = o.gi;
+        if (!o.preset.empty()) applyPreset(s, o.gi, o.preset);
         Renderer renderer(scene, s);
-        j["gpu"] = {{"renderer", ctx->renderer}, {"size", o.size}};
+        renderer.renderFrame();  // what methods build on their first frame (volumes, probes) exists then
+        j["gpu"] = {{"renderer", ctx->renderer}, {"size", o.size}, {"gi", s.gi}};
+        for (const auto& pass : renderer.passes())
+            for (const std::string& line : pass->stats()) j["gpu"]["stats"][pass->name()].push_back(line);
         for (const auto& [owner, bytes] : renderer.memory().bytesByOwner) j["gpu"]["bytes"][owner] = bytes;
         j["gpu"]["total_bytes"] = renderer.memory().total();
     }
@@ -383,6 +393,9 @@ int runInfo(const InfoOptions& o) {
         for (const auto& [owner, bytes] : j["gpu"]["bytes"].items())
             std::printf("  %-10s %8.2f MiB\n", owner.c_str(), mib(bytes.get<int64_t>()));
         std::printf("  %-10s %8.2f MiB\n", "total", mib(j["gpu"]["total_bytes"].get<int64_t>()));
+        if (j["gpu"].contains("stats"))
+            for (const auto& [pass, lines] : j["gpu"]["stats"].items())
+                for (const auto& line : lines) std::printf("%-10s %s\n", pass.c_str(), line.get<std::string>().c_str());
     }
     return 0;
 }

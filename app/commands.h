@@ -48,6 +48,8 @@ struct RenderOptions {
 
 struct InfoOptions {
     std::string scene;
+    std::string gi = "none";
+    std::string preset;
     std::string size = "256x256";
     std::string backend = "auto";
     bool json = false;

@@ -272,6 +272,9 @@ void timingControls(PanelContext& ctx) {
             }
             ImGui::EndTable();
         }
+        if (p.renderer)  // what the method built: voxel size, probe count and storage
+            for (const auto& pass : p.renderer->passes())
+                for (const std::string& line : pass->stats()) ImGui::TextWrapped("%s: %s", pass->name(), line.c_str());
         ImGui::PopID();
     }
 }

@@ -156,6 +156,9 @@ public:
     // frame's passes ran.
     virtual std::vector<DebugViewDesc> debugViews() const { return {}; }
     virtual void drawDebugView(const std::string& /*view*/, const Frame& /*frame*/, GLuint /*target*/) {}
+    // Facts about what the pass built, one line each ("voxels 64^3, 3.4 cm each"): --timings, `info
+    // --gi METHOD` and the sandbox's timing table print them.
+    virtual std::vector<std::string> stats() const { return {}; }
     gl::GpuTimer timer;
     StepTimers steps;
 };

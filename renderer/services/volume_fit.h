@@ -2,6 +2,9 @@
 // place their grids in. Robust for empty, flat, single-triangle and very small or large scenes.
 #pragma once
 
+#include <cstdio>
+#include <string>
+
 #include <glm/glm.hpp>
 
 #include "gl/gl.h"
@@ -34,5 +37,13 @@ struct SceneVolume {
     Aabb bounds;
     VolumeFit fit(int resolution, float marginVoxels = 2.0f) const { return fitVolume(bounds, resolution, marginVoxels); }
 };
+
+// "64^3 voxels of 3.4 cm (2.2 m cube)": a volume in world units, for stats().
+inline std::string describeVolume(const VolumeFit& fit, const char* what) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%d^3 %s of %.4g world units (a %.4g cube)", fit.resolution, what,
+                  double(fit.voxelSize()), double(fit.size));
+    return text;
+}
 
 }  // namespace gis

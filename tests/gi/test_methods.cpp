@@ -406,3 +406,22 @@ TEST(Methods, ProgressiveTimingsReportTotalAndPerSample) {
 
 }  // namespace
 }  // namespace gis::test
+
+namespace gis::test {
+namespace {
+
+// What a method built is reported where memory is: `info --gi`, --timings (and the panel).
+TEST(Methods, VolumesAndProbesAreReportedInWorldUnits) {
+    const CliResult info = runCli("info --scene builtin:cornell --size 32x32 --gi probes --preset low");
+    ASSERT_EQ(info.status, 0) << info.err;
+    EXPECT_NE(info.out.find("bytes per probe"), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("world units"), std::string::npos) << info.out;
+    const std::string dir = tempDir("method_stats");
+    const CliResult timings = runCli("render --scene builtin:cornell --size 16x16 --gi vct --preset low --timings "
+                                     "--frames 2 --warmup 0 --out " + dir + "/v.png");
+    ASSERT_EQ(timings.status, 0) << timings.err;
+    EXPECT_NE(timings.out.find("32^3 voxels of"), std::string::npos) << timings.out;
+}
+
+}  // namespace
+}  // namespace gis::test

@@ -394,4 +394,14 @@ GiMethod probesMethod() {
     return m;
 }
 
+std::vector<std::string> ProbesPass::stats() const {
+    const probes::Storage storage = probes::Storage(built_.storage);
+    const int64_t perProbe = probes::bytesPerProbe(storage);
+    char line[200];
+    std::snprintf(line, sizeof line, "probes %dx%dx%d = %d, %s storage, %lld bytes per probe (%.1f KiB)",
+                  grid_.counts.x, grid_.counts.y, grid_.counts.z, grid_.count(), probes::storageName(storage),
+                  static_cast<long long>(perProbe), double(perProbe * grid_.count()) / 1024.0);
+    return {line, describeVolume(voxelizer_->grid().fit, "voxels / distance-field cells")};
+}
+
 }  // namespace gis

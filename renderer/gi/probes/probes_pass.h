@@ -39,6 +39,7 @@ public:
     Progress progress() const override;
     void invalidate(Changes c) override;
     bool writesImagesOrBuffers() const override { return true; }
+    std::vector<std::string> stats() const override;
     std::vector<DebugViewDesc> debugViews() const override;
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     static std::vector<ProgramDesc> programs();

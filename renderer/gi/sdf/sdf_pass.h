@@ -30,6 +30,9 @@ public:
     void execute(Frame& frame) override;
     void invalidate(Changes c) override;
     bool writesImagesOrBuffers() const override { return true; }
+    std::vector<std::string> stats() const override {
+        return {describeVolume(voxelizer_->grid().fit, "distance-field cells")};
+    }
     std::vector<DebugViewDesc> debugViews() const override;
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     static std::vector<ProgramDesc> programs();

@@ -35,6 +35,9 @@ public:
         if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) valid_ = false;
     }
     bool writesImagesOrBuffers() const override { return true; }
+    std::vector<std::string> stats() const override {
+        return {describeVolume(voxelizer_->grid().fit, "voxels")};
+    }
     std::vector<DebugViewDesc> debugViews() const override;
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     static std::vector<ProgramDesc> programs();
