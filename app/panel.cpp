@@ -393,7 +393,10 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
 
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) {
         const Scene& scene = ctx.session.scene();
-        ImGui::Text("%s: %zu triangles, %zu lights", s.scene.c_str(), scene.triangleCount(), scene.lights.size());
+        // Wrapped, and the path's tail when it is long: a deep path must not push the counts off the panel.
+        const std::string shown = s.scene.size() > 48 ? "..." + s.scene.substr(s.scene.size() - 45) : s.scene;
+        ImGui::TextWrapped("%s: %zu triangles, %zu lights", shown.c_str(), scene.triangleCount(), scene.lights.size());
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", s.scene.c_str());
         ImGui::InputText("##scene", &ctx.scenePath);
         ImGui::SameLine();
         if (ImGui::Button("Open")) {
@@ -440,7 +443,9 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
         ImGui::TextDisabled(s.camera.mode == CameraMode::Orbit
                                 ? "left drag: orbit, right/middle drag: pan, wheel: zoom"
                                 : "WASD/QE: move (shift: x4), drag: look, wheel: speed");
-        ImGui::TextDisabled("F: orbit/fly, R: reset, 1/2/3: single/split/grid, F12: screenshot");
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+        ImGui::TextWrapped("F: orbit/fly, R: reset, 1/2/3: single/split/grid, F12: screenshot");
+        ImGui::PopStyleColor();
     }
 
     for (int i = 0; i < paneCount(s.mode); ++i)
