@@ -283,9 +283,10 @@ int runRender(const RenderOptions& o) {
         wallMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
     if (!renderer.converged()) {
-        int target = 0;
-        for (const auto& pass : renderer.passes()) target = std::max(target, pass->progress().target);
-        ProgressBar progress(target);
+        Pass::Progress longest;
+        for (const auto& pass : renderer.passes())
+            if (pass->progress().target > longest.target) longest = pass->progress();
+        ProgressBar progress(longest.target, "", longest.unit);
         do {
             renderer.renderFrame();
             glFinish();

@@ -44,12 +44,12 @@ void push(std::deque<T>& d, T v) {
     while (d.size() > size_t(kHistoryFrames)) d.pop_front();
 }
 
-// "12/64 spp" for a progressive method, "64 spp" once converged, "" for the others.
+// "12/64 spp" (or "updates") for a progressive method, "64 spp" once converged, "" for the others.
 std::string progressText(const Renderer& r) {
     for (const auto& pass : r.passes()) {
         const Pass::Progress pr = pass->progress();
         if (pr.target <= 0) continue;
-        return (pr.done >= pr.target ? "" : std::to_string(pr.done) + "/") + std::to_string(pr.target) + " spp";
+        return (pr.done >= pr.target ? "" : std::to_string(pr.done) + "/") + std::to_string(pr.target) + " " + pr.unit;
     }
     return "";
 }

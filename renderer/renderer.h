@@ -149,6 +149,7 @@ public:
     // ({0, 0} for the others).
     struct Progress {
         int done = 0, target = 0;
+        const char* unit = "spp";  // what is counted: samples per pixel, probe updates ...
     };
     virtual Progress progress() const { return {}; }
     // Debug views: names offered, and drawing one of them (display values, linear, [0, 1] for

@@ -260,8 +260,8 @@ void ProbesPass::shade(const Frame& frame, const ProbeSettings& s) {
 Pass::Progress ProbesPass::progress() const {
     const int target = maxUpdates_ * ((grid_.count() + batch_ - 1) / batch_);
     // Converged early: the target becomes the updates done, so `--timings` divides by those.
-    if (converged_) return {finished_, finished_};
-    return {std::min(finished_, target - 1), target};
+    if (converged_) return {finished_, finished_, "updates"};
+    return {std::min(finished_, target - 1), target, "updates"};
 }
 
 void ProbesPass::execute(Frame& frame) {
