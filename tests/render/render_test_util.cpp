@@ -1,5 +1,8 @@
 #include "render_test_util.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <cstdlib>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -230,6 +233,39 @@ Scene scaledScene(const Scene& in, float scale) {
     }
     finalizeScene(s);
     return s;
+}
+
+bool allFinite(const ImageF& img) {
+    for (float v : img.rgba)
+        if (!std::isfinite(v)) return false;
+    return true;
+}
+
+double regionMean(const ImageF& img, const std::vector<PixelHit>& hits, const std::vector<bool>& interior, int region,
+                  int channel) {
+    double sum = 0.0;
+    int n = 0;
+    for (size_t i = 0; i < hits.size(); ++i) {
+        if (!interior[i] || hits[i].region != region) continue;
+        const float* p = &img.rgba[i * 4];
+        sum += channel < 0 ? (p[0] + p[1] + p[2]) / 3.0 : p[channel];
+        ++n;
+    }
+    return n ? sum / n : 0.0;
+}
+
+double interiorRmse(const ImageF& a, const ImageF& b, const std::vector<bool>& interior) {
+    double sum = 0.0;
+    int n = 0;
+    for (size_t i = 0; i < interior.size(); ++i) {
+        if (!interior[i]) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double d = a.rgba[i * 4 + c] - b.rgba[i * 4 + c];
+            sum += d * d;
+        }
+        n += 3;
+    }
+    return std::sqrt(sum / std::max(n, 1));
 }
 
 }  // namespace gis::test

@@ -56,6 +56,15 @@ std::vector<bool> interiorPixels(const std::vector<PixelHit>& hits, int width, i
 // does not depend on the unit of length: every method must render it the same.
 Scene scaledScene(const Scene& scene, float scale);
 
+// No NaN or Inf in any channel.
+bool allFinite(const ImageF& img);
+// The mean over the interior pixels that see `region` (castPixels' ids) of channel c, or of R, G, B
+// when c < 0.
+double regionMean(const ImageF& img, const std::vector<PixelHit>& hits, const std::vector<bool>& interior, int region,
+                  int channel = -1);
+// RMSE over R, G, B of the interior pixels.
+double interiorRmse(const ImageF& a, const ImageF& b, const std::vector<bool>& interior);
+
 // Box-filter downsampling by an integer factor.
 ImageF downsample(const ImageF& img, int factor);
 

@@ -123,12 +123,6 @@ RenderSettings small(int size = 32) {
     return r;
 }
 
-bool allFinite(const ImageF& img) {
-    for (float v : img.rgba)
-        if (!std::isfinite(v)) return false;
-    return true;
-}
-
 double meanRgb(const ImageF& img) {
     double s = 0.0;
     for (size_t i = 0; i < img.rgba.size(); i += 4) s += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2];

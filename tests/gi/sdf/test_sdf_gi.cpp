@@ -125,36 +125,10 @@ const Reference& reference(const std::string& name) {
 const std::map<std::string, int> kRegions = {{"floor", 0}, {"ceiling", 1}, {"back", 2}, {"red wall", 8}, {"green wall", 16}};
 
 double regionMean(const ImageF& img, const Reference& ref, int region) {
-    double sum = 0.0;
-    int n = 0;
-    for (int i = 0; i < kSize * kSize; ++i) {
-        if (!ref.interior[i] || ref.hits[i].region != region) continue;
-        const float* p = &img.rgba[size_t(i) * 4];
-        sum += (p[0] + p[1] + p[2]) / 3.0;
-        ++n;
-    }
-    return n ? sum / n : 0.0;
+    return test::regionMean(img, ref.hits, ref.interior, region);
 }
 
-double interiorRmse(const ImageF& a, const ImageF& b, const Reference& r) {
-    double sum = 0.0;
-    int n = 0;
-    for (int i = 0; i < kSize * kSize; ++i) {
-        if (!r.interior[i]) continue;
-        for (int c = 0; c < 3; ++c) {
-            const double d = a.rgba[size_t(i) * 4 + c] - b.rgba[size_t(i) * 4 + c];
-            sum += d * d;
-        }
-        n += 3;
-    }
-    return std::sqrt(sum / std::max(n, 1));
-}
-
-bool allFinite(const ImageF& img) {
-    for (float v : img.rgba)
-        if (!std::isfinite(v)) return false;
-    return true;
-}
+double interiorRmse(const ImageF& a, const ImageF& b, const Reference& r) { return test::interiorRmse(a, b, r.interior); }
 
 TEST(SdfGi, CornellIndirectEnergyPerWallAgainstPathTracer) {
     const Reference& ref = reference("cornell");

@@ -80,36 +80,12 @@ const Reference& reference(const std::string& name) {
 const std::map<std::string, int> kRegions = {{"floor", 0}, {"ceiling", 1}, {"back", 2}, {"red wall", 8}, {"green wall", 16}};
 
 double regionMean(const ImageF& img, const Reference& ref, int region, int channel = -1) {
-    double sum = 0.0;
-    int n = 0;
-    for (int i = 0; i < kSize * kSize; ++i) {
-        if (!ref.interior[i] || ref.hits[i].region != region) continue;
-        const float* p = &img.rgba[size_t(i) * 4];
-        sum += channel < 0 ? (p[0] + p[1] + p[2]) / 3.0 : p[channel];
-        ++n;
-    }
-    return n ? sum / n : 0.0;
+    return test::regionMean(img, ref.hits, ref.interior, region, channel);
 }
 
 // RMSE of the indirect term over the interior pixels of the room.
 double indirectRmse(const ImageF& test, const ImageF& ref, const Reference& r) {
-    double sum = 0.0;
-    int n = 0;
-    for (int i = 0; i < kSize * kSize; ++i) {
-        if (!r.interior[i]) continue;
-        for (int c = 0; c < 3; ++c) {
-            const double d = test.rgba[size_t(i) * 4 + c] - ref.rgba[size_t(i) * 4 + c];
-            sum += d * d;
-        }
-        n += 3;
-    }
-    return std::sqrt(sum / std::max(n, 1));
-}
-
-bool allFinite(const ImageF& img) {
-    for (float v : img.rgba)
-        if (!std::isfinite(v)) return false;
-    return true;
+    return interiorRmse(test, ref, r.interior);
 }
 
 double imageMax(const ImageF& img) {
