@@ -9,25 +9,6 @@ const float SHADOW_NORMAL_OFFSET_TEXELS = 1.5;
 // 3x3 taps, each a hardware 2x2 comparison (bilinear PCF): a soft edge about 4 texels wide.
 const int PCF_RADIUS = 1;
 
-// One hardware 2x2 comparison (bilinear PCF) at `tap`: the light's cube (point) or 2D layer.
-float shadowTap(GpuLight light, int type, int layer, vec3 tap) {
-    if (type == LIGHT_POINT) {
-        // Compare with the depth the cube face's perspective projection stores: its view depth is
-        // the distance along the dominant axis.
-        vec3 d = tap - light.positionType.xyz;
-        vec3 ad = abs(d);
-        float n = light.shadowParams.z, f = light.shadowParams.w;
-        float z = max(max(max(ad.x, ad.y), ad.z), n);
-        float depth = ((f + n) / (f - n) - 2.0 * f * n / ((f - n) * z)) * 0.5 + 0.5;
-        return texture(s_shadowCubes, vec4(d, float(layer)), depth);
-    }
-    vec4 clip = light.shadowMatrix * vec4(tap, 1.0);
-    vec3 p = clip.xyz / max(clip.w, 1e-20) * 0.5 + 0.5;
-    // Outside the map (or behind a spot light) nothing was rendered: lit.
-    bool outside = clip.w <= 0.0 || any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)));
-    return outside ? 1.0 : texture(s_shadowMaps, vec4(p.xy, float(layer), p.z));
-}
-
 float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
     int layer = int(light.cone.z);
     if (u_shadowsEnabled == 0 || layer < 0) return 1.0;
@@ -40,22 +21,27 @@ float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
     vec3 T = normalize(abs(N.y) < 0.99 ? cross(N, vec3(0.0, 1.0, 0.0)) : cross(N, vec3(1.0, 0.0, 0.0)));
     vec3 B = cross(N, T);
 
-    // The four corner taps first: where they agree on fully lit or fully shadowed (most of the
-    // image), the kernel's inner taps would too, short of an occluder smaller than the kernel
-    // lying wholly inside it, so the other five are skipped. The 9 lookups are ~60% of the
-    // lighting pass on llvmpipe (one tap instead of nine halves it); the image is unchanged
-    // (cornell_point 256x256: RMSE 9e-11 against the nine-tap pass).
-    float corners = 0.0;
-    for (int c = 0; c < 4; ++c) {
-        float i = (c & 1) == 0 ? -1.0 : 1.0, j = (c & 2) == 0 ? -1.0 : 1.0;
-        corners += shadowTap(light, type, layer, Po + (T * i + B * j) * (texel * float(PCF_RADIUS)));
-    }
-    if (PCF_RADIUS == 0 || corners == 0.0 || corners == 4.0) return corners * 0.25;
-    float sum = corners;
+    float sum = 0.0;
     for (int i = -PCF_RADIUS; i <= PCF_RADIUS; ++i)
-        for (int j = -PCF_RADIUS; j <= PCF_RADIUS; ++j)
-            if (abs(i) != PCF_RADIUS || abs(j) != PCF_RADIUS)
-                sum += shadowTap(light, type, layer, Po + (T * float(i) + B * float(j)) * texel);
+        for (int j = -PCF_RADIUS; j <= PCF_RADIUS; ++j) {
+            vec3 tap = Po + (T * float(i) + B * float(j)) * texel;
+            if (type == LIGHT_POINT) {
+                // Compare with the depth the cube face's perspective projection stores: its view
+                // depth is the distance along the dominant axis.
+                vec3 d = tap - light.positionType.xyz;
+                vec3 ad = abs(d);
+                float n = light.shadowParams.z, f = light.shadowParams.w;
+                float z = max(max(max(ad.x, ad.y), ad.z), n);
+                float depth = ((f + n) / (f - n) - 2.0 * f * n / ((f - n) * z)) * 0.5 + 0.5;
+                sum += texture(s_shadowCubes, vec4(d, float(layer)), depth);
+            } else {
+                vec4 clip = light.shadowMatrix * vec4(tap, 1.0);
+                vec3 p = clip.xyz / max(clip.w, 1e-20) * 0.5 + 0.5;
+                // Outside the map (or behind a spot light) nothing was rendered: lit.
+                bool outside = clip.w <= 0.0 || any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)));
+                sum += outside ? 1.0 : texture(s_shadowMaps, vec4(p.xy, float(layer), p.z));
+            }
+        }
     float taps = float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
     return sum / taps;
 }
