@@ -326,6 +326,11 @@ void ProbesPass::drawRays(const Frame& frame, GLuint target) {
     glProgramUniform1i(p, UP_FIRST_PROBE, slot < batch_ ? slot : -1);
     glProgramUniformMatrix3fv(p, UP_ROTATION, 1, GL_FALSE, &rotation_[0][0]);
     glProgramUniform1i(p, UP_MODE, probe);
+    dispatchDebugDraw(frame, target);
+}
+
+// The debug views' common end: depth and probe buffers bound, one thread per pixel into `target`.
+void ProbesPass::dispatchDebugDraw(const Frame& frame, GLuint target) {
     const GLuint depth = frame.texture("gbuffer.depth");
     glBindTextures(4, 1, &depth);
     glBindSamplers(4, 1, nullptr);
@@ -348,13 +353,7 @@ void ProbesPass::drawDebugView(const std::string& view, const Frame& frame, GLui
     glProgramUniform3fv(p, UP_CAMERA_POS, 1, &frame.camera.position[0]);
     const float radius = 0.15f * std::min(grid_.step.x, std::min(grid_.step.y, grid_.step.z));
     glProgramUniform4f(p, UP_SHADE_PARAMS, 0.0f, 0.0f, 0.0f, radius);
-    const GLuint depth = frame.texture("gbuffer.depth");
-    glBindTextures(4, 1, &depth);
-    glBindSamplers(4, 1, nullptr);
-    bindProbeBuffers();
-    glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(GLuint((diffuse_.width + 7) / 8), GLuint((diffuse_.height + 7) / 8), 1);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    dispatchDebugDraw(frame, target);
 }
 
 GiMethod probesMethod() {

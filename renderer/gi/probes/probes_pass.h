@@ -81,6 +81,7 @@ private:
     int batch_ = 1, firstProbe_ = 0, updates_ = 0, finished_ = 0, maxUpdates_ = 1;
     int lastFirst_ = -1;  // first probe of the last update's batch (-1: none yet), for probes.rays
     void drawRays(const Frame& frame, GLuint target);
+    void dispatchDebugDraw(const Frame& frame, GLuint target);
     float cycleChange_ = 0.0f, lastChange_ = 0.0f;
     bool volumesValid_ = false, needClassify_ = true, converged_ = false, updatedLastFrame_ = false,
          pendingChange_ = false, warnedAllOff_ = false;
