@@ -216,9 +216,7 @@ std::vector<DebugViewDesc> Renderer::views() const {
         for (const DebugViewDesc& v : pass->debugViews()) all.push_back(v);
     // G-buffer displays exist for every method: methods without a G-buffer build one on request.
     if (!std::any_of(passes_.begin(), passes_.end(), [](const auto& p) { return std::string(p->name()) == "gbuffer"; }))
-        for (const char* name : {"gbuffer.depth", "gbuffer.normal", "gbuffer.basecolor", "gbuffer.material",
-                                 "gbuffer.emissive"})
-            all.push_back({name, "G-buffer channel (see `render --gi none --view`)"});
+        for (const DebugViewDesc& v : GBufferPass::views()) all.push_back(v);
     return all;
 }
 

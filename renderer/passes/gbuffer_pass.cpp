@@ -82,7 +82,7 @@ const GBufferView kGBufferViews[] = {
 };
 }  // namespace
 
-std::vector<DebugViewDesc> GBufferPass::debugViews() const {
+std::vector<DebugViewDesc> GBufferPass::views() {
     std::vector<DebugViewDesc> views;
     for (const GBufferView& v : kGBufferViews) views.push_back({v.name, v.help});
     return views;

@@ -13,7 +13,9 @@ public:
         return {"gbuffer.depth", "gbuffer.baseColor", "gbuffer.normal", "gbuffer.material", "gbuffer.emissive"};
     }
     void execute(Frame& frame) override;
-    std::vector<DebugViewDesc> debugViews() const override;
+    std::vector<DebugViewDesc> debugViews() const override { return views(); }
+    // The G-buffer views, also listed for methods that build a G-buffer only when one is asked for.
+    static std::vector<DebugViewDesc> views();
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     static std::vector<ProgramDesc> programs();
 
