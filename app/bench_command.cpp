@@ -84,9 +84,7 @@ void measure(Renderer& renderer, const GiMethod& method, int frames, int warmup,
         for (double w : wall) row.wallMs += w;
     } else {
         for (int i = 0; i < converge - 1 + frames; ++i) frame();
-        std::vector<double> steady(wall.begin() + std::min<size_t>(size_t(converge - 1 + warmup), wall.size()), wall.end());
-        std::nth_element(steady.begin(), steady.begin() + steady.size() / 2, steady.end());
-        row.wallMs = steady.empty() ? 0.0 : steady[steady.size() / 2];
+        row.wallMs = medianAfter(wall, converge - 1 + warmup);
     }
     for (const PassTiming& t : renderer.timings(progressive ? 0 : converge - 1 + warmup)) {
         if (t.step) continue;  // the pass's own figure already holds its steps

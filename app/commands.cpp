@@ -300,10 +300,8 @@ int runRender(const RenderOptions& o) {
 
     if (o.timings) {
         printTimings(renderer, frames, o.warmup);
-        std::vector<double> steady(wallMs.begin() + std::min<size_t>(size_t(o.warmup), wallMs.size()), wallMs.end());
-        std::nth_element(steady.begin(), steady.begin() + steady.size() / 2, steady.end());
         std::printf("%-22s %10.3f %10.3f %9s  (wall clock per frame with glFinish, median after warm-up)\n", "wall",
-                    steady[steady.size() / 2], wallMs.front(), "");
+                    medianAfter(wallMs, o.warmup), wallMs.front(), "");
     }
     std::printf("wrote %s\n", o.out.c_str());
     return 0;

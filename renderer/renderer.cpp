@@ -350,6 +350,16 @@ ImageU8 Renderer::readLdr() const {
     return readTextureBytes(ldr_, settings_.width, settings_.height);
 }
 
+double median(std::vector<double> values) {
+    if (values.empty()) return 0.0;
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    return values[values.size() / 2];
+}
+
+double medianAfter(const std::vector<double>& values, int skip) {
+    return median({values.begin() + std::min<size_t>(size_t(std::max(skip, 0)), values.size()), values.end()});
+}
+
 namespace {
 // Median over the frames after warm-up in which the timer's pass did work, total over all of them.
 PassTiming summarize(const std::string& name, const gl::GpuTimer& timer, int warmup) {
@@ -365,10 +375,7 @@ PassTiming summarize(const std::string& name, const gl::GpuTimer& timer, int war
         ++t.workedFrames;
         if (int(i) >= warmup) steady.push_back(s[i]);
     }
-    if (!steady.empty()) {
-        std::nth_element(steady.begin(), steady.begin() + steady.size() / 2, steady.end());
-        t.medianMs = steady[steady.size() / 2];
-    }
+    t.medianMs = median(steady);
     t.cached = steady.empty();
     return t;
 }

@@ -164,6 +164,11 @@ public:
     StepTimers steps;
 };
 
+// The median of `values` (the upper one of an even count; 0 for none): how every timing here is summarised.
+double median(std::vector<double> values);
+// The median of the values after the first `skip` (warm-up frames).
+double medianAfter(const std::vector<double>& values, int skip);
+
 struct PassTiming {
     std::string pass;                // "vct" or, for a step, "vct/inject"
     double medianMs = 0.0;   // over frames after warm-up in which the pass worked
