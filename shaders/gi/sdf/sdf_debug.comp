@@ -1,5 +1,6 @@
 // SDF GI's debug views, written into the frame-sized target:
-//   0 sdf.slice:   one slice of the distance field across the whole image (axis, position 0..1),
+//   0 sdf.slice:   one slice of the distance field (its finest cascade, layer 0) across the whole
+//                  image (axis, position 0..1),
 //                  colour-mapped: blue-white outside, red-orange inside (negative), a band every
 //                  cell, black on the zero level set;
 //   1 sdf.steps:   the marcher's steps per diffuse ray as a heatmap (black 0 ... white max steps);
@@ -46,6 +47,10 @@ void main() {
     if (view == 0) {
         int axis = int(u_debug.y);
         vec3 uvw = axis == 0 ? vec3(u_debug.z, uv.x, uv.y) : axis == 1 ? vec3(uv.x, u_debug.z, uv.y) : vec3(uv, u_debug.z);
+        // Layer 0 of the cascades stacked along z, clamped half a cell inside it.
+        int layers = max(textureSize(s_distance, 0).z / u_resolution, 1);
+        float halfCell = 0.5 / float(u_resolution);
+        uvw.z = clamp(uvw.z, halfCell, 1.0 - halfCell) / float(layers);
         colour = sliceColour(textureLod(s_distance, uvw, 0.0).r);
     } else {
         ivec2 traced = min(pixel * textureSize(s_info, 0) / size, textureSize(s_info, 0) - 1);

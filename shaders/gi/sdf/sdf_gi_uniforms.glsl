@@ -16,3 +16,5 @@
 #define UG_FILTER 434
 #define UG_PREV_CAMERA_POS 435
 #define UG_DEBUG 436
+#define UG_CASCADES 437
+#define UG_CASCADE_COUNT 441
