@@ -167,7 +167,7 @@ void SdfGiPass::place(const glm::vec3& camera) {
 void SdfGiPass::refresh(Frame& frame, int i) {
     Cascade& c = cascades_[size_t(i)];
     const std::string prefix = stepPrefix(i);
-    c.rebuiltLastFrame = !c.voxelsValid || !c.fieldValid;
+    c.lastFrame = !c.voxelsValid || !c.fieldValid ? "rebuilt" : !c.radianceValid ? "relit" : "cached";
     if (!c.voxelsValid) {
         auto t = frame.step(prefix + "voxelize");
         c.voxelizer->voxelize(frame.scene);
@@ -324,7 +324,7 @@ std::vector<std::string> SdfGiPass::stats() const {
                       "%d times, radiance %d; last frame %s",
                       i, v.resolution, double(v.cellSize()), double(v.size), double(v.origin.x), double(v.origin.y),
                       double(v.origin.z), double(bytes) / (1024.0 * 1024.0), c.fieldBuilds, c.radianceBuilds,
-                      c.rebuiltLastFrame ? "rebuilt" : "cached");
+                      c.lastFrame);
         out.push_back(line);
     }
     return out;

@@ -62,7 +62,7 @@ private:
         std::unique_ptr<VoxelRadiance> radiance;
         glm::ivec3 offset{0};                   // in the cascade's cells from the scene cube's corner
         bool placed = false, voxelsValid = false, fieldValid = false, radianceValid = false;
-        bool rebuiltLastFrame = false;
+        const char* lastFrame = "cached";      // what refresh() did: "rebuilt" (voxels/field), "relit", "cached"
         int fieldBuilds = 0, radianceBuilds = 0;
     };
     void place(const glm::vec3& camera);

