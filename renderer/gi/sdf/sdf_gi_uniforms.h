@@ -24,5 +24,6 @@ enum SdfGiUniform : int {
     UG_DEBUG = 436,         // view (0 slice, 1 steps, 2 normals), slice axis, slice position, max steps
     UG_CASCADES = 437,      // vec4[kSdfMaxCascades] (437-440): origin xyz, edge; finest first
     UG_CASCADE_COUNT = 441,
+    UG_SLICE_CASCADE = 442, // the cascade (layer) sdf.slice shows
 };
 }  // namespace gis::sdfgi

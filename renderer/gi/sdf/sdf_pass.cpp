@@ -345,10 +345,12 @@ void SdfGiPass::drawDebugView(const std::string& view, const Frame& frame, GLuin
     }
     const SdfGiSettings live = sdfParams().read("sdf", frame.settings.params);
     const GLuint p = debugProgram_.id();
-    const SdfVolume& v = field_->volume(0);
+    const int cascade = std::min(live.sliceCascade, layout_.count - 1);
+    const SdfVolume& v = field_->volume(cascade);
     glUseProgram(p);
     glProgramUniform4f(p, UG_VOLUME, v.origin.x, v.origin.y, v.origin.z, v.size);
     glProgramUniform1i(p, UG_RESOLUTION, v.resolution);
+    glProgramUniform1i(p, UG_SLICE_CASCADE, cascade);
     const float kind = view == "sdf.slice" ? 0.0f : view == "sdf.steps" ? 1.0f : 2.0f;
     glProgramUniform4f(p, UG_DEBUG, kind, float(live.sliceAxis), live.slicePosition, float(live.maxSteps));
     glBindSamplers(0, 7, nullptr);

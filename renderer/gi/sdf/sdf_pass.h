@@ -5,9 +5,9 @@
 // filtered edge-aware into the lighting contract's indirect.diffuse; a mirror ray for smooth
 // surfaces into indirect.specular; near-field soft occlusion from the field into ao.
 //
-// Cascades (renderer/sdf/sdf_cascades.h): a scene whose mean free path is short against one
-// volume's cells gets up to four nested volumes around the camera, each with its own voxels,
-// radiance and a layer of the field; a small scene (the Cornell box) gets one, the scene's cube.
+// Cascades (renderer/sdf/sdf_cascades.h): a scene whose cube is larger than sdf.cascade-extent
+// gets up to four nested volumes around the camera, each with its own voxels, radiance and a
+// layer of the field; a small scene (the Cornell box) gets one, the scene's cube.
 //
 // What is cached: each cascade's voxels and field depend on geometry and on where the cascade lies,
 // and are rebuilt only after invalidate(ChangeGeometry) or when the camera takes that cascade with

@@ -42,7 +42,9 @@ const ParamTable<SdfGiSettings>& sdfParams() {
               1.0, U::Live)
         .real(&S::intensity, "intensity", "Intensity", "scales the indirect terms", 0.0, 16.0, U::Live)
         .choice(&S::sliceAxis, "slice-axis", "Slice axis", "axis sdf.slice cuts across", {"x", "y", "z"}, U::Live)
-        .real(&S::slicePosition, "slice-position", "Slice position", "where along the axis, 0..1", 0.0, 1.0, U::Live);
+        .real(&S::slicePosition, "slice-position", "Slice position", "where along the axis, 0..1", 0.0, 1.0, U::Live)
+        .integer(&S::sliceCascade, "slice-cascade", "Slice cascade", "which cascade sdf.slice shows (0 = the finest)", 0,
+                 kSdfMaxCascades - 1, U::Live);
     return table;
 }
 

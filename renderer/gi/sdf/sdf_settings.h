@@ -28,6 +28,7 @@ struct SdfGiSettings {
     // What the debug views show (live).
     int sliceAxis = 2;          // sdf.slice-axis: x | y | z
     float slicePosition = 0.5f; // sdf.slice-position: 0..1 across the volume
+    int sliceCascade = 0;       // sdf.slice-cascade: which cascade sdf.slice cuts (clamped to the count)
 
     JfaVariant jfaVariant() const { return JfaVariant(jfa); }
 };
