@@ -151,6 +151,10 @@ void voxelizeAndInject(Frame& frame, Voxelizer& voxelizer, VoxelRadiance& radian
         auto t = frame.step("voxelize");
         voxelizer.voxelize(frame.scene);
     }
+    injectFrameLights(frame, voxelizer.grid(), radiance);
+}
+
+void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance) {
     VoxelRadiance::Lights lights;
     lights.buffer = frame.buffer("lights");
     lights.shadowMaps = frame.texture("shadow.maps");
@@ -158,7 +162,7 @@ void voxelizeAndInject(Frame& frame, Voxelizer& voxelizer, VoxelRadiance& radian
     lights.count = int(frame.scene.cpu.lights.size());
     lights.shadows = frame.settings.shadows;
     auto t = frame.step("inject");
-    radiance.inject(voxelizer.grid(), lights);
+    radiance.inject(grid, lights);
 }
 
 }  // namespace gis

@@ -56,5 +56,7 @@ private:
 // inject the frame's punctual lights (through the shadow pass's maps) and emission, timed as the
 // pass's "voxelize" and "inject" steps.
 void voxelizeAndInject(Frame& frame, Voxelizer& voxelizer, VoxelRadiance& radiance);
+// The second step alone, for a light edit: the voxels stay, only their light is injected again.
+void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance);
 
 }  // namespace gis

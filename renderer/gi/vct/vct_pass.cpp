@@ -54,8 +54,9 @@ VctPass::VctPass(const GpuScene& scene, const RenderSettings& settings, gl::Memo
     debugProgram_ = buildProgram(all[all.size() - 2]);
 }
 
-void VctPass::rebuildVoxels(Frame& frame) {
-    voxelizeAndInject(frame, *voxelizer_, *radiance_);
+void VctPass::relight(Frame& frame) {
+    injectFrameLights(frame, voxelizer_->grid(), *radiance_);
+    ++injections_;
     {
         auto t = frame.step("mips");
         radiance_->buildMips(voxelizer_->grid());
@@ -130,9 +131,16 @@ void VctPass::drawDebugView(const std::string& view, const Frame& frame, GLuint 
 
 void VctPass::execute(Frame& frame) {
     live_ = vctParams().read("vct", frame.settings.params);
-    reused_ = valid_;
-    if (!valid_) rebuildVoxels(frame);
-    valid_ = true;
+    reused_ = voxelsValid_ && radianceValid_;
+    if (!voxelsValid_) {
+        auto t = frame.step("voxelize");
+        voxelizer_->voxelize(frame.scene);
+        ++voxelizations_;
+        voxelsValid_ = true;
+        radianceValid_ = false;
+    }
+    if (!radianceValid_) relight(frame);
+    radianceValid_ = true;
     {
         auto t = frame.step("trace");
         trace(frame, live_);

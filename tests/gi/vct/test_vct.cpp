@@ -14,6 +14,7 @@
 #include "gi/method.h"
 #include "render_test_util.h"
 #include "vct_test_util.h"
+#include "voxel_test_util.h"
 
 namespace gis::test {
 namespace {
@@ -213,6 +214,13 @@ TEST(Vct, DISABLED_ErrorFallsWithResolution) {
         setVct(s, "resolution", std::to_string(res));
         const VctImages v = renderVct(makeBuiltinScene("cornell"), s);
         err[i++] = indirectRmse(v.indirect, pt, ref);
+        for (const auto& [name, region] : kRegions) {
+            std::vector<bool> only = ref.interior;
+            for (size_t p = 0; p < only.size(); ++p) only[p] = only[p] && ref.hits[p].region == region;
+            std::printf("VCT-TABLE convergence %d^3 %-10s mean %.0f%% of the path tracer, RMSE %.5f\n", res, name.c_str(),
+                        100.0 * regionMean(v.indirect, ref, region) / regionMean(pt, ref, region),
+                        interiorRmse(v.indirect, pt, only));
+        }
     }
     std::printf("VCT-TABLE convergence cornell indirect RMSE: 32^3 %.5f, 64^3 %.5f\n", err[0], err[1]);
     EXPECT_LT(err[1], err[0]);
@@ -221,6 +229,40 @@ TEST(Vct, DISABLED_ErrorFallsWithResolution) {
 TEST(Vct, CameraMoveReusesVoxels) {
     const VctImages v = renderVct(makeBuiltinScene("cornell"), vctSettings(), 2);
     EXPECT_TRUE(v.cachedSecondFrame);
+}
+
+// A light edit keeps the voxels (occupancy, albedo, normals) and injects the light again: the
+// voxelizer ran once, the injection twice, and the injected radiance follows the new intensity.
+TEST(Vct, LightEditReinjectsWithoutRevoxelizing) {
+    context();
+    RenderSettings s = vctSettings();
+    setVct(s, "resolution", "32");
+    s.gi = "vct";
+    Scene scene = makeBuiltinScene("cornell");  // the renderer keeps a reference to it
+    Renderer r(scene, s);
+    const VctPass* pass = nullptr;
+    for (const auto& p : r.passes())
+        if (auto* v = dynamic_cast<const VctPass*>(p.get())) pass = v;
+    ASSERT_NE(pass, nullptr);
+    auto radianceSum = [&] {  // RGB of every voxel (alpha is occupancy, the same before and after)
+        const std::vector<float> v = readVoxelsRgba16f(pass->voxelRadiance().radiance());
+        double sum = 0.0;
+        for (size_t i = 0; i < v.size(); ++i) sum += i % 4 == 3 ? 0.0 : double(v[i]);
+        return sum;
+    };
+    r.renderFrame();
+    const double before = radianceSum();
+    scene.lights[0].intensity *= 2.0f;
+    r.lightsChanged();
+    r.renderFrame();
+    EXPECT_EQ(pass->voxelizations(), 1) << "a light edit re-voxelized the scene";
+    EXPECT_EQ(pass->injections(), 2) << "a light edit did not re-inject";
+    EXPECT_FALSE(pass->voxelsReusedLastFrame());
+    EXPECT_NEAR(radianceSum() / before, 2.0, 0.02) << "the injected light did not follow the edit";
+    r.invalidate(ChangeGeometry);
+    r.renderFrame();
+    EXPECT_EQ(pass->voxelizations(), 2);
+    EXPECT_EQ(pass->injections(), 3);
 }
 
 TEST(Vct, EmitterLightsTheRoom) {
