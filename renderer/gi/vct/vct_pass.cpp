@@ -45,7 +45,7 @@ VctPass::VctPass(const GpuScene& scene, const RenderSettings& settings, gl::Memo
     // a voxel boundary, where float rounding at another scene scale would flip them between one
     // and two voxel layers (and change the light by a few percent).
     voxelizer_ = std::make_unique<Voxelizer>(fitVolume(scene.cpu.bounds, n, 2.5f), built_.conservativeMode(), voxels);
-    radiance_ = std::make_unique<VoxelRadiance>(n, built_.anisotropic, built_.bounces, radiance);
+    radiance_ = std::make_unique<VoxelRadiance>(n, built_.anisotropic, built_.bounces, radiance, built_.backfaces == 1);
     diffuse_ = gl::createTexture2D(trace, GL_RGBA16F, settings.width, settings.height);
     specular_ = gl::createTexture2D(trace, GL_RGBA16F, settings.width, settings.height);
     ao_ = gl::createTexture2D(trace, GL_R16F, settings.width, settings.height);
@@ -84,7 +84,7 @@ void VctPass::trace(const Frame& frame, const VctSettings& s) {
     glProgramUniform4f(p, UV_TRACE_PARAMS, s.stepFactor, s.maxDistance * float(fit.resolution), s.offset,
                        s.specular ? 1.0f : 0.0f);
     glProgramUniform3fv(p, UV_ENVIRONMENT, 1, &environment[0]);
-    glProgramUniform1i(p, UV_ANISOTROPIC, radiance_->anisotropic() ? 1 : 0);
+    glProgramUniform1i(p, UV_ANISOTROPIC, radiance_->mipMode());
     glProgramUniform1f(p, UV_INTENSITY, s.intensity);
     const GLuint gbuffer[3] = {frame.texture("gbuffer.depth"), frame.texture("gbuffer.normal"),
                                frame.texture("gbuffer.material")};
