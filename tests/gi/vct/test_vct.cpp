@@ -202,12 +202,13 @@ TEST(Vct, ColourBleedsFromTheWallsOntoTheFloor) {
 }
 
 // Issue 11 asks that the error fall from 32^3 to 64^3. Measured on llvmpipe it does not (indirect
-// RMSE 0.0269 at 32^3, 0.0355 at 64^3 by default; 0.0347 and 0.0364 with vct.backfaces=cull; see
+// RMSE 0.0269 at 32^3, 0.0355 at 64^3 by default; 0.0353 and 0.0368 with vct.backfaces=cull; see
 // the README). The per-face lines this prints locate it: by default almost all of the rise is the
 // ceiling (146% -> 209% of the path tracer), whose cones see its own lamp hot spot (their footprint
-// reaches the ceiling's voxels), more sharply the finer the voxels; culling back faces removes that
-// (ceiling 75% -> 89%) but then the floor gains with resolution (113% -> 129%) and the walls keep
-// 50-63%. Disabled rather than weakened; run it with --gtest_also_run_disabled_tests.
+// reaches the ceiling's voxels), more sharply the finer the voxels. Culling back faces removes
+// that and makes every face's mean the same at both sizes (floor 136/137%, walls 67%, back wall
+// 53/50%, ceiling 97/103%): the error left is the cones' bias, which the voxel size does not
+// control. Disabled rather than weakened; run it with --gtest_also_run_disabled_tests.
 TEST(Vct, DISABLED_ErrorFallsWithResolution) {
     const Reference& ref = reference("cornell");
     const ImageF pt = ref.ptIndirect();
@@ -406,9 +407,9 @@ TEST(Vct, OpenFloorSeesTheSkyWithBackfacesCulled) {
 // The cone tracer's energy balance apart from any light's shape: inside a closed box whose walls
 // all emit radiance L (and reflect nothing), every surface sees L in every direction, so
 // indirect.diffuse (E / pi) must be L on every wall, at the centre of a face as near its edges.
-// (It cannot see self-occlusion: a cone that sees its own wall sees L there too.) With back faces
-// culled about 13% escapes: coarse texels that straddle a wall and the volume's empty margin are
-// only partly covered, and no voxel behind the wall backs them up any more.
+// (It cannot see self-occlusion: a cone that sees its own wall sees L there too.) What it does see
+// is light escaping through coarse texels that straddle a wall and the volume's empty margin
+// (VctPass's margin comment): 12% at 32^3, 4% at 64^3 by default.
 TEST(Vct, ClosedEmissiveBoxIsAFurnace) {
     Scene s;
     Material glow = lambert(glm::vec3(0.0f));
@@ -434,7 +435,7 @@ TEST(Vct, ClosedEmissiveBoxIsAFurnace) {
             const float e = v.diffuse.at(p.x, p.y)[0];
             std::printf("VCT-TABLE furnace backfaces %-6s %-12s indirect.diffuse %.3f of the walls' 0.5 (%.0f%%)\n",
                         backfaces, p.name, e, 200.0 * e);
-            EXPECT_NEAR(e, 0.5f, std::string(backfaces) == "cull" ? 0.1f : 0.05f) << backfaces << " " << p.name;
+            EXPECT_NEAR(e, 0.5f, 0.075f * 0.5f) << backfaces << " " << p.name;
         }
     }
 }
