@@ -65,9 +65,10 @@ RenderSettings resolveChecked(const BenchJob& job, PreparedScene& prepared) {
     return settings;
 }
 
-void runReference(const BenchJob& job, const SweepDirs& dirs, const nlohmann::ordered_json& machine) {
+void runReference(const BenchJob& job, const SweepDirs& dirs, const GlOpener& openGl) {
     PreparedScene prepared;
     const RenderSettings settings = resolveChecked(job, prepared);
+    const nlohmann::ordered_json machine = openGl();
     const bool ao = job.method == "ao-reference";
     std::fprintf(stderr, "%s: rendering the %sreference (%d spp)...\n", job.sceneName.c_str(), ao ? "AO " : "",
                  job.referenceSpp);
@@ -96,11 +97,12 @@ ImageF loadReference(const BenchJob& cell, const std::string& refId, const Sweep
     return readExr(dirs.cacheDir + "/" + refId + ".exr");
 }
 
-void runCell(const BenchJob& job, const SweepDirs& dirs, const nlohmann::ordered_json& machine) {
+void runCell(const BenchJob& job, const SweepDirs& dirs, const GlOpener& openGl) {
     const ImageF reference = loadReference(job, job.reference, dirs);
     const ImageF aoReference = job.aoReference.empty() ? ImageF{} : loadReference(job, job.aoReference, dirs);
     PreparedScene prepared;
     const RenderSettings settings = resolveChecked(job, prepared);
+    const nlohmann::ordered_json machine = openGl();
     const GiMethod& method = giMethod(job.method);
     BenchRow row;
     row.scene = job.sceneName;
@@ -155,7 +157,7 @@ nlohmann::ordered_json currentMachine(const std::string& backend) {
             {"backend", backend}};
 }
 
-JobOutcome runJob(const BenchJob& job, const SweepDirs& dirs, bool force, const nlohmann::ordered_json& machine) {
+JobOutcome runJob(const BenchJob& job, const SweepDirs& dirs, bool force, const GlOpener& openGl) {
     const std::string record = recordPath(dirs, job);
     if (!force && readRecord(record, job.id).ok) {
         if (job.kind == JobKind::Reference)
@@ -167,9 +169,9 @@ JobOutcome runJob(const BenchJob& job, const SweepDirs& dirs, bool force, const 
     }
     try {
         if (job.kind == JobKind::Reference)
-            runReference(job, dirs, machine);
+            runReference(job, dirs, openGl);
         else
-            runCell(job, dirs, machine);
+            runCell(job, dirs, openGl);
     } catch (const std::exception& e) {
         writeFailure(record, e.what());
         throw;

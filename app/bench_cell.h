@@ -3,6 +3,7 @@
 // (ID.png + ID.json). The same function serves `bench --cell ID` and the in-process `bench`.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,7 +31,10 @@ enum class JobOutcome { Ran, AlreadyDone };
 // Runs `job` unless its valid result is there already (then a no-op, unless `force`). A cell needs
 // its references' valid results in the cache and throws gis::Error naming the missing one. A job
 // whose id no longer matches its scene file and settings (changed since --plan) is refused. On
-// failure the message is left in ID.failed for --merge.
-JobOutcome runJob(const BenchJob& job, const SweepDirs& dirs, bool force, const nlohmann::ordered_json& machine);
+// failure the message is left in ID.failed for --merge. `openGl` makes a GL context current (once
+// per process is enough) and returns currentMachine; it is called only once the job will render,
+// so a job that is done, or a cell without its reference, never starts one.
+using GlOpener = std::function<nlohmann::ordered_json()>;
+JobOutcome runJob(const BenchJob& job, const SweepDirs& dirs, bool force, const GlOpener& openGl);
 
 }  // namespace gis

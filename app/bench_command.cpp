@@ -53,23 +53,29 @@ void addBenchOptions(CLI::App& cmd, BenchOptions& o) {
 
 namespace {
 
-struct ContextHolder {
-    std::unique_ptr<GlContext> ctx;
-    nlohmann::ordered_json machine;
-};
+// The GL context of this process, opened on first use. In-process callers (tests) that already
+// hold a current context pass useCurrentContext: a second EGL context on the same display would
+// tear theirs down with it.
+class LazyContext {
+public:
+    explicit LazyContext(const BenchOptions& o) : o_(o) {}
+    nlohmann::ordered_json operator()() {
+        if (machine_.is_null()) {
+            ContextOptions co;
+            co.backend = parseBackend(o_.backend);
+            if (!o_.useCurrentContext) ctx_ = createContext(co);
+            machine_ = currentMachine(ctx_ ? backendName(ctx_->backend()) : "caller's context");
+            std::fprintf(stderr, "bench on %s (%s)\n", machine_["gl_renderer"].get<std::string>().c_str(),
+                         machine_["backend"].get<std::string>().c_str());
+        }
+        return machine_;
+    }
 
-// In-process callers (tests) that already hold a current context pass useCurrentContext: a second
-// EGL context on the same display would tear theirs down with it.
-ContextHolder openContext(const BenchOptions& o, const std::string& size) {
-    ContextHolder h;
-    ContextOptions co;
-    co.backend = parseBackend(o.backend);
-    if (!o.useCurrentContext) h.ctx = createContext(co);
-    h.machine = currentMachine(h.ctx ? backendName(h.ctx->backend()) : "caller's context");
-    std::fprintf(stderr, "bench on %s (%s), %s\n", h.machine["gl_renderer"].get<std::string>().c_str(),
-                 h.machine["backend"].get<std::string>().c_str(), size.c_str());
-    return h;
-}
+private:
+    const BenchOptions& o_;
+    std::unique_ptr<GlContext> ctx_;
+    nlohmann::ordered_json machine_;
+};
 
 int printIds(const BenchOptions& o) {
     if (o.ids != "references" && o.ids != "cells" && o.ids != "all")
@@ -84,8 +90,8 @@ int runOneJob(const BenchOptions& o) {
     const BenchJob& job = findJob(jobs, o.cell, o.manifest);
     const SweepDirs dirs = sweepDirs(o.outDir, o.cacheDir);
     createSweepDirs(dirs);
-    const ContextHolder context = openContext(o, job.size);
-    runJob(job, dirs, o.force, context.machine);
+    LazyContext context(o);
+    runJob(job, dirs, o.force, std::ref(context));
     return 0;
 }
 
@@ -105,8 +111,9 @@ int runInProcess(const BenchOptions& o) {
         writeManifest(f, jobs);
         if (!f) throw Error(o.outDir + "/manifest.jsonl: cannot write");
     });
-    const ContextHolder context = openContext(o, o.size);
-    for (const BenchJob& job : jobs) runJob(job, dirs, /*force=*/job.kind == JobKind::Cell, context.machine);
+    LazyContext context(o);
+    context();  // the machine line first, as before
+    for (const BenchJob& job : jobs) runJob(job, dirs, /*force=*/job.kind == JobKind::Cell, std::ref(context));
     return mergeBench(jobs, dirs, o.metric);
 }
 

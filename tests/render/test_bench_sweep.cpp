@@ -19,7 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kSelection = "--scenes builtin:cornell --size 24x24 --frames 3 --warmup 1 --reference-spp 8 ";
+const std::string kFlags = "--size 24x24 --frames 3 --warmup 1 --reference-spp 8 ";
+const std::string kSelection = "--scenes builtin:cornell " + kFlags;
 
 std::string slurp(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -228,13 +229,22 @@ TEST(BenchSweep, SlurmScriptRunsTheJobItsTaskIdPicks) {
 
 TEST(BenchSweep, IdsFollowTheSceneBytesAndTheSettingsOnly) {
     const std::string dir = tempDir("sweep_ids");
+    fs::create_directories(dir + "/a");
     ASSERT_EQ(runCli("export --scene builtin:cornell --out '" + dir + "/a/box.gltf'").status, 0);
     fs::create_directories(dir + "/b");
     fs::copy(dir + "/a", dir + "/b", fs::copy_options::recursive);
     fs::rename(dir + "/b/box.gltf", dir + "/b/renamed.gltf");  // its .bin keeps the name the .gltf gives it
-    auto ids = [&](const std::string& flags) {
+    // The ids of a one-method plan of `scene`: --frames, --reference-spp, --size and --presets as
+    // given (else 3, 8, 24x24, low), plus `extra` flags.
+    struct Flags {
+        Flags(std::string s) : scene(std::move(s)) {}  // NOLINT: a scene alone is a plan's flags
+        std::string scene, frames = "3", spp = "8", size = "24x24", presets = "low", extra;
+    };
+    auto ids = [&](const Flags& f) {
         std::vector<std::string> out;
-        for (const auto& j : plan(dir, kSelection + "--methods none --presets low " + flags)) out.push_back(j["id"]);
+        const std::string flags = "--scenes '" + f.scene + "' --frames " + f.frames + " --warmup 1 --reference-spp " + f.spp +
+                                  " --size " + f.size + " --presets " + f.presets + " --methods none " + f.extra;
+        for (const auto& j : plan(dir, flags)) out.push_back(j["id"]);
         return out;
     };
     auto common = [](const std::vector<std::string>& a, const std::vector<std::string>& b) {
@@ -242,28 +252,34 @@ TEST(BenchSweep, IdsFollowTheSceneBytesAndTheSettingsOnly) {
         for (const std::string& id : a) n += std::count(b.begin(), b.end(), id);
         return n;
     };
-    const std::vector<std::string> base = ids("--scenes '" + dir + "/a/box.gltf'");
+    const std::string a = dir + "/a/box.gltf", b = dir + "/b/renamed.gltf";
+    auto with = [&](std::string Flags::*field, const std::string& value) {  // scene a, one flag changed
+        Flags f{a};
+        f.*field = value;
+        return f;
+    };
+    const std::vector<std::string> base = ids({a});
     ASSERT_EQ(base.size(), 2u);  // reference, cell
-    EXPECT_EQ(ids("--scenes '" + dir + "/a/box.gltf'"), base);          // stable
-    EXPECT_EQ(ids("--scenes '" + dir + "/b/renamed.gltf'"), base);      // path and name are not content
-    EXPECT_EQ(ids("--scenes '" + dir + "/a/box.gltf' --metric rmse"), base);  // the chart's axis is not a cell's
+    EXPECT_EQ(ids({a}), base);                                    // stable
+    EXPECT_EQ(ids({b}), base);                                    // path and name are not content
+    EXPECT_EQ(ids(with(&Flags::extra, "--metric rmse")), base);          // the chart's axis is not a cell's
 
     std::string bytes = slurp(dir + "/b/box.bin");  // one byte of the geometry buffer
     bytes[bytes.size() / 2] ^= 1;
     spit(dir + "/b/box.bin", bytes);
-    EXPECT_EQ(common(ids("--scenes '" + dir + "/b/renamed.gltf'"), base), 0u);
+    EXPECT_EQ(common(ids({b}), base), 0u);
 
-    const std::string a = "--scenes '" + dir + "/a/box.gltf' ";
-    std::vector<std::string> changed = ids(a + "--frames 4");  // a cell setting: the cell only
+    std::vector<std::string> changed = ids(with(&Flags::frames, "4"));  // a cell setting: the cell only
     EXPECT_EQ(changed[0], base[0]);
     EXPECT_NE(changed[1], base[1]);
-    for (const std::string& flags : {"--reference-spp 9", "--size 24x16", "--ambient 0.1", "--lighting default",
-                                     "--camera-pos 0,1,3 --look-at 0,1,0"})
-        EXPECT_EQ(common(ids(a + flags), base), 0u) << flags;  // references and cells alike
-    changed = ids(a + "--presets low,high");  // one more cell; the others keep their ids
+    for (const Flags& f : {with(&Flags::spp, "9"), with(&Flags::size, "24x16"), with(&Flags::extra, "--ambient 0.1"),
+                           with(&Flags::extra, "--lighting default"),
+                           with(&Flags::extra, "--camera-pos 0,1,3 --look-at 0,1,0")})
+        EXPECT_EQ(common(ids(f), base), 0u) << f.spp << " " << f.size << " " << f.extra;  // references and cells alike
+    changed = ids(with(&Flags::presets, "low,high"));  // one more cell; the others keep their ids
     EXPECT_EQ(changed.size(), 3u);
     EXPECT_EQ(common(changed, base), 2u);
-    EXPECT_EQ(common(ids("--scenes builtin:cornell"), ids("--scenes builtin:cornell-area")), 0u);
+    EXPECT_EQ(common(ids({"builtin:cornell"}), ids({"builtin:cornell-area"})), 0u);
 }
 
 }  // namespace
