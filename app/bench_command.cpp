@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <set>
 
 #include "bench_cell.h"
 #include "bench_merge.h"
@@ -80,8 +81,10 @@ private:
 int printIds(const BenchOptions& o) {
     if (o.ids != "references" && o.ids != "cells" && o.ids != "all")
         throw Error("--ids '" + o.ids + "' must be references, cells or all");
+    std::set<std::string> printed;  // two scenes with the same bytes share their jobs: each runs once
     for (const BenchJob& job : readManifest(o.manifest))
-        if (o.ids == "all" || (o.ids == "cells") == (job.kind == JobKind::Cell)) std::printf("%s\n", job.id.c_str());
+        if ((o.ids == "all" || (o.ids == "cells") == (job.kind == JobKind::Cell)) && printed.insert(job.id).second)
+            std::printf("%s\n", job.id.c_str());
     return 0;
 }
 
@@ -113,7 +116,9 @@ int runInProcess(const BenchOptions& o) {
     });
     LazyContext context(o);
     context();  // the machine line first, as before
-    for (const BenchJob& job : jobs) runJob(job, dirs, /*force=*/job.kind == JobKind::Cell, std::ref(context));
+    std::set<std::string> done;  // two scenes with the same bytes share their jobs: each runs once
+    for (const BenchJob& job : jobs)
+        if (done.insert(job.id).second) runJob(job, dirs, /*force=*/job.kind == JobKind::Cell, std::ref(context));
     return mergeBench(jobs, dirs, o.metric);
 }
 

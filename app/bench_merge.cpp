@@ -49,7 +49,12 @@ std::vector<MergedCell> gatherCells(const std::vector<BenchJob>& jobs, const Swe
         cell.row.scene = job.sceneName;
         cell.row.method = job.method;
         cell.row.preset = job.preset;
-        if (machine.is_null()) machine = check.body.value("machine", ojson());
+        const ojson cellMachine = check.body.value("machine", ojson());
+        if (machine.is_null()) machine = cellMachine;
+        if (cellMachine != machine)
+            std::fprintf(stderr, "gisandbox: warning: cell %s ran on %s, not %s like the first: its timings are not "
+                                 "comparable with theirs\n",
+                         job.id.c_str(), cellMachine.dump().c_str(), machine.dump().c_str());
         cells.push_back(cell);
     }
     return cells;
