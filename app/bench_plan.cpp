@@ -205,15 +205,14 @@ std::vector<BenchJob> planBench(const BenchOptions& o) {
             to.back().id = contentId(to.back(), jobSettings(to.back(), prepared.base));
             return to.back().id;
         };
-        common.reference = add(references, JobKind::Reference, "pathtrace", "");
-        if (wantsAo) common.aoReference = add(references, JobKind::Reference, "ao-reference", "");
+        const std::string reference = add(references, JobKind::Reference, "pathtrace", "");
+        const std::string aoReference = wantsAo ? add(references, JobKind::Reference, "ao-reference", "") : "";
         common.frames = o.frames;
         common.warmup = o.warmup;
+        common.reference = reference;
         for (const std::string& method : methods) {
-            const std::string aoRef = common.aoReference;
-            if (method != "ssao") common.aoReference.clear();  // only SSAO is scored against AO
+            common.aoReference = method == "ssao" ? aoReference : "";  // only SSAO is scored against AO
             for (const std::string& preset : o.presets) add(cells, JobKind::Cell, method, preset);
-            common.aoReference = aoRef;
         }
     }
     references.insert(references.end(), cells.begin(), cells.end());
