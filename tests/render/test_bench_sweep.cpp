@@ -213,6 +213,21 @@ TEST(BenchSweep, ACellWithoutItsReferenceSaysSoAndMergeReportsIt) {
     EXPECT_NE(r.err.find("no such id"), std::string::npos) << r.err;
 }
 
+TEST(BenchSweep, AJobWhoseSceneChangedSinceThePlanIsRefused) {
+    const std::string dir = tempDir("sweep_changed");
+    ASSERT_EQ(runCli("export --scene builtin:cornell --out '" + dir + "/box.gltf'").status, 0);
+    const std::vector<nlohmann::json> jobs = plan(dir, "--scenes '" + dir + "/box.gltf' " + kFlags + "--methods none --presets low");
+    std::string bytes = slurp(dir + "/box.bin");
+    bytes[bytes.size() / 2] ^= 1;
+    spit(dir + "/box.bin", bytes);
+    const std::string ref = idsOf(jobs, "reference").at(0);
+    const CliResult r = runCli("bench --out-dir '" + dir + "' --cell " + ref + " --manifest '" + dir + "/sweep.jsonl'");
+    EXPECT_NE(r.status, 0);
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("box.gltf changed since --plan"), std::string::npos) << r.err;
+    EXPECT_FALSE(fileExists(dir + "/cache/" + ref + ".exr"));
+}
+
 // The Slurm array script picks its job by SLURM_ARRAY_TASK_ID; run here as Slurm would run a task.
 TEST(BenchSweep, SlurmScriptRunsTheJobItsTaskIdPicks) {
     const std::string dir = tempDir("sweep_slurm");
