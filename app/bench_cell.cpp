@@ -41,10 +41,14 @@ void measure(Renderer& renderer, const GiMethod& method, int frames, int warmup,
         row.wallMs = medianAfter(wall, converge - 1 + warmup);
     }
     for (const PassTiming& t : renderer.timings(progressive ? 0 : converge - 1 + warmup)) {
-        if (t.step) continue;  // the pass's own figure already holds its steps
         const double ms = progressive ? t.totalMs : t.medianMs;
+        if (t.step) {  // listed apart: the pass's own figure already holds its steps
+            row.stepMs.emplace_back(t.pass, ms);
+            continue;
+        }
         row.passMs.emplace_back(t.pass, ms);
         row.ms += ms;
+        if (t.rays) row.megaRaysPerSecond = t.megaRaysPerSecond();
     }
     row.bytes = renderer.memory().total();
 }

@@ -32,6 +32,10 @@ const std::vector<CsvColumn>& csvColumns() {
         {"flip", false, [](std::ostream& f, const BenchRow& r) { f << r.error.flip; }},
         {"ao_rmse", false,
          [](std::ostream& f, const BenchRow& r) { f << (r.aoRmse >= 0.0 ? std::to_string(r.aoRmse) : std::string()); }},
+        {"mrays_per_s", true,
+         [](std::ostream& f, const BenchRow& r) {
+             if (r.megaRaysPerSecond >= 0.0) f << r.megaRaysPerSecond;
+         }},
     };
     return columns;
 }
@@ -49,7 +53,9 @@ nlohmann::ordered_json rowToJson(const BenchRow& r) {
                              {"rmse", r.error.rmse}, {"relmse", r.error.relMse}, {"psnr_linear", r.error.psnrLinear},
                              {"psnr_srgb", r.error.psnrSrgb}, {"ssim", r.error.ssim}, {"flip", r.error.flip}};
     for (const auto& [pass, ms] : r.passMs) e["pass_ms"][pass] = ms;
+    for (const auto& [step, ms] : r.stepMs) e["step_ms"][step] = ms;
     if (r.aoRmse >= 0.0) e["ao_rmse_vs_raytraced"] = r.aoRmse;
+    if (r.megaRaysPerSecond >= 0.0) e["mrays_per_s"] = r.megaRaysPerSecond;
     return e;
 }
 
@@ -70,7 +76,10 @@ BenchRow rowFromJson(const nlohmann::ordered_json& j) {
     r.error.flip = j.at("flip").get<double>();
     if (j.contains("pass_ms"))
         for (const auto& [pass, ms] : j.at("pass_ms").items()) r.passMs.emplace_back(pass, ms.get<double>());
+    if (j.contains("step_ms"))
+        for (const auto& [step, ms] : j.at("step_ms").items()) r.stepMs.emplace_back(step, ms.get<double>());
     if (j.contains("ao_rmse_vs_raytraced")) r.aoRmse = j.at("ao_rmse_vs_raytraced").get<double>();
+    if (j.contains("mrays_per_s")) r.megaRaysPerSecond = j.at("mrays_per_s").get<double>();
     return r;
 }
 

@@ -20,9 +20,11 @@ struct BenchRow {
     double ms = 0.0;                          // per frame; for progressive methods, to converge
     double wallMs = 0.0;                      // wall clock with glFinish, the same way
     std::vector<std::pair<std::string, double>> passMs;
+    std::vector<std::pair<std::string, double>> stepMs;  // "sdf/c0.jfa.1.16": a pass's steps, within passMs
     int64_t bytes = 0;
     ImageMetrics error;
     double aoRmse = -1.0;                     // SSAO only: its AO term against ray-traced AO
+    double megaRaysPerSecond = -1.0;          // passes that count their rays (the path tracer); -1: none
 };
 
 nlohmann::ordered_json rowToJson(const BenchRow& row);
