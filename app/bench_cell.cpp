@@ -43,7 +43,7 @@ void measure(Renderer& renderer, const GiMethod& method, int frames, int warmup,
     for (const PassTiming& t : renderer.timings(progressive ? 0 : converge - 1 + warmup)) {
         const double ms = progressive ? t.totalMs : t.medianMs;
         if (t.step) {  // listed apart: the pass's own figure already holds its steps
-            row.stepMs.emplace_back(t.pass, ms);
+            row.steps.push_back({t.pass, ms, t.firstMs});
             continue;
         }
         row.passMs.emplace_back(t.pass, ms);

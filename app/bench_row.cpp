@@ -53,7 +53,7 @@ nlohmann::ordered_json rowToJson(const BenchRow& r) {
                              {"rmse", r.error.rmse}, {"relmse", r.error.relMse}, {"psnr_linear", r.error.psnrLinear},
                              {"psnr_srgb", r.error.psnrSrgb}, {"ssim", r.error.ssim}, {"flip", r.error.flip}};
     for (const auto& [pass, ms] : r.passMs) e["pass_ms"][pass] = ms;
-    for (const auto& [step, ms] : r.stepMs) e["step_ms"][step] = ms;
+    for (const BenchRow::StepTime& t : r.steps) e["step_ms"][t.step] = {{"frame", t.ms}, {"first", t.firstMs}};
     if (r.aoRmse >= 0.0) e["ao_rmse_vs_raytraced"] = r.aoRmse;
     if (r.megaRaysPerSecond >= 0.0) e["mrays_per_s"] = r.megaRaysPerSecond;
     return e;
@@ -77,7 +77,8 @@ BenchRow rowFromJson(const nlohmann::ordered_json& j) {
     if (j.contains("pass_ms"))
         for (const auto& [pass, ms] : j.at("pass_ms").items()) r.passMs.emplace_back(pass, ms.get<double>());
     if (j.contains("step_ms"))
-        for (const auto& [step, ms] : j.at("step_ms").items()) r.stepMs.emplace_back(step, ms.get<double>());
+        for (const auto& [step, t] : j.at("step_ms").items())
+            r.steps.push_back({step, t.at("frame").get<double>(), t.at("first").get<double>()});
     if (j.contains("ao_rmse_vs_raytraced")) r.aoRmse = j.at("ao_rmse_vs_raytraced").get<double>();
     if (j.contains("mrays_per_s")) r.megaRaysPerSecond = j.at("mrays_per_s").get<double>();
     return r;

@@ -20,7 +20,13 @@ struct BenchRow {
     double ms = 0.0;                          // per frame; for progressive methods, to converge
     double wallMs = 0.0;                      // wall clock with glFinish, the same way
     std::vector<std::pair<std::string, double>> passMs;
-    std::vector<std::pair<std::string, double>> stepMs;  // "sdf/c0.jfa.1.16": a pass's steps, within passMs
+    // A pass's steps ("sdf/c0.jfa.1.16"), within passMs: per measured frame (0 when cached then) and
+    // in the first frame, which builds what later frames reuse.
+    struct StepTime {
+        std::string step;
+        double ms = 0.0, firstMs = 0.0;
+    };
+    std::vector<StepTime> steps;
     int64_t bytes = 0;
     ImageMetrics error;
     double aoRmse = -1.0;                     // SSAO only: its AO term against ray-traced AO
