@@ -35,7 +35,9 @@ TEST(Bench, RunsEndToEndAndCachesTheReference) {
         EXPECT_TRUE(row["pass_ms"].is_object());
         // Throughput only where rays are counted (the path tracer).
         EXPECT_EQ(row.contains("mrays_per_s"), row["method"] == "pathtrace") << row.dump();
-        if (row["method"] == "pathtrace") EXPECT_GT(row["mrays_per_s"].get<double>(), 0.0);
+        if (row["method"] == "pathtrace") {
+            EXPECT_GT(row["mrays_per_s"].get<double>(), 0.0);
+        }
         if (row["method"] == "ssao") {
             EXPECT_GT(row["ao_rmse_vs_raytraced"].get<double>(), 0.0);
             EXPECT_LT(row["ao_rmse_vs_raytraced"].get<double>(), 0.5);
