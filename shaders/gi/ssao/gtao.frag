@@ -6,8 +6,8 @@
 // analytically against the normal projected into the slice (the paper's inner integral, eq. 10):
 //   a(h) = (cos n + 2 h sin n - cos(2h - n)) / 4 per side,  slice visibility = |N_proj| (a(h0) + a(h1)),
 // and the mean over slices is the cosine-weighted visibility the ray-traced reference estimates
-// (the |N_proj| weight and the uniform slice angles make the outer integral cosine-correct: an open
-// plane gives exactly 1). Samples farther than the radius from the shading point do not raise the
+// (the |N_proj| weight and the uniform slice angles make the outer integral cosine-correct),
+// divided by what the same slices give unoccluded, so that an open plane is exactly 1. Samples farther than the radius from the shading point do not raise the
 // horizon (the reference's rays end there: no halo around distant occluders); off-screen samples
 // end the march on that side (nothing known: counted as open, as the hemisphere kernel leaves
 // such directions out).
@@ -18,8 +18,9 @@ layout(location = U_AO_KERNEL_SIZE) uniform int u_slices;   // this kernel's siz
 in vec2 v_uv;
 layout(location = 0) out vec4 o_ao;   // r = AO, g = view-space depth (for the bilateral blur)
 
-// Normals this close to perpendicular to a slice project to nothing there: the slice adds 0.
-const float MIN_PROJECTED_NORMAL = 1e-4;
+// Normals this close to perpendicular to a slice add next to nothing there, and sliding samples
+// back onto such a slice (below) would divide by almost 0: the slice is left out of both sums.
+const float MIN_PROJECTED_NORMAL = 0.05;
 #define FALLOFF_END 1.5
 
 // A 4x4 ordered-dither (Bayer) matrix: per-pixel offsets of the march's first step that the blur
@@ -30,7 +31,7 @@ const float BAYER4[16] = float[](0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0, 3.0,
 // tangent plane's, `lowCos`. Samples are whole texels along `dirPx` so each is a surface the
 // depth buffer really holds (no interpolated depth across silhouettes).
 float horizonCos(ivec2 pixel, vec2 dirPx, float radiusPx, int steps, float jitter, vec3 P, vec3 origin, vec3 V,
-                 float radius, float lowCos) {
+                 vec3 side, vec3 axis, vec3 slide, float radius, float lowCos) {
     ivec2 size = textureSize(s_depth, 0);
     float best = lowCos;
     for (int s = 0; s < steps; ++s) {
@@ -45,9 +46,17 @@ float horizonCos(ivec2 pixel, vec2 dirPx, float radiusPx, int steps, float jitte
         vec3 S = viewPosition((vec2(q) + 0.5) / vec2(size), depth);
         float weight = saturate((FALLOFF_END - distance(S, P) / radius) / (FALLOFF_END - 1.0));
         if (weight <= 0.0) continue;   // beyond the reference's rays
+        // The angle from V within the slice, from its two in-slice coordinates. A cosine alone
+        // cannot tell an angle past pi (the far side of a plane seen at a grazing angle, whose
+        // tangent there is almost -V) from one above the horizon.
+        // A whole-texel sample lies up to half a texel off the slice plane; slid back onto it
+        // along the shading point's tangent plane, a sample on that plane stays on it (else the
+        // offset shows as height: an open plane seen at a grazing angle would be 7% occluded).
         vec3 toS = S - origin;
-        float len2 = dot(toS, toS);
-        if (len2 > 0.0) best = max(best, mix(lowCos, dot(toS, V) * inversesqrt(len2), weight));
+        toS -= slide * dot(toS, axis);
+        float x = dot(toS, V), y = dot(toS, side);
+        if (y <= 0.0) continue;   // at or past -V: below any horizon on this side
+        best = max(best, mix(lowCos, x * inversesqrt(x * x + y * y), weight));
     }
     return best;
 }
@@ -91,7 +100,7 @@ void main() {
     vec3 T2 = cross(V, T1);
     vec2 pixelScale = vec2(u_proj[0][0], u_proj[1][1]) * 0.5 * vec2(size);
 
-    float visibility = 0.0;
+    float visibility = 0.0, open = 0.0;
     for (int i = 0; i < slices; ++i) {
         float phi = (float(i) + sliceOffset) * PI / float(slices);
         vec3 orthoDir = cos(phi) * T1 + sin(phi) * T2;   // the slice's direction perpendicular to V
@@ -104,13 +113,20 @@ void main() {
         float cosN = clamp(dot(projN, V) / projLen, -1.0, 1.0);
         float n = (dot(orthoDir, projN) < 0.0 ? -1.0 : 1.0) * acos(cosN);
         float sinN = sin(n);
+        // The direction within N's tangent plane that moves a point across the slice by one unit.
+        vec3 slide = (axis - N * dot(N, axis)) / (projLen * projLen);
         // Horizons start at the tangent plane (n +- pi/2): below it the cosine is 0 anyway.
-        float cos1 = horizonCos(pixel, dirPx, radiusPx, steps, jitter, P, origin, V, radius, cos(n + 0.5 * PI));
-        float cos0 = horizonCos(pixel, -dirPx, radiusPx, steps, jitter, P, origin, V, radius, cos(n - 0.5 * PI));
+        float cos1 = horizonCos(pixel, dirPx, radiusPx, steps, jitter, P, origin, V, orthoDir, axis, slide, radius, cos(n + 0.5 * PI));
+        float cos0 = horizonCos(pixel, -dirPx, radiusPx, steps, jitter, P, origin, V, -orthoDir, axis, slide, radius, cos(n - 0.5 * PI));
         float h0 = n + max(-acos(clamp(cos0, -1.0, 1.0)) - n, -0.5 * PI);
         float h1 = n + min(acos(clamp(cos1, -1.0, 1.0)) - n, 0.5 * PI);
         visibility += projLen * (innerIntegral(h0, n, cosN, sinN) + innerIntegral(h1, n, cosN, sinN));
+        // The same slice unoccluded (horizons at n -+ pi/2): cos n + n sin n.
+        open += projLen * (cosN + n * sinN);
     }
-    float ao = visibility / float(slices);
+    // The mean over slices of the open slices' value is 1 only as slices -> infinity: with a few,
+    // at grazing angles it strays by 5%. Dividing by it (a ratio estimator) keeps an open
+    // plane at exactly 1 with any slice count and converges to the same integral.
+    float ao = open > 0.0 ? visibility / open : 1.0;
     o_ao = vec4(pow(saturate(ao), max(u_aoParams.y, 1e-3)), P.z, 0.0, 1.0);
 }
