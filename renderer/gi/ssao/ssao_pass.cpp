@@ -82,6 +82,7 @@ float resolveAoRadius(float radius, const Scene& scene) {
     return scene.bounds.empty() ? 1.0f : std::max(0.15f * glm::length(scene.bounds.extent()), 1e-6f);
 }
 
+// In this order: the hemisphere kernel, the blur, temporal accumulation, the GTAO kernel.
 std::vector<ProgramDesc> SsaoPass::programs() {
     return {{"ssao", {"fullscreen.vert", "gi/ssao/ssao.frag"}, {}},
             {"ssao_blur", {"fullscreen.vert", "gi/ssao/ssao_blur.frag"}, {}},
@@ -121,7 +122,7 @@ SsaoPass::SsaoPass(const RenderSettings& s, gl::MemoryLedger& ledger)
     glTextureSubImage2D(noise_.id(), 0, 0, 0, 4, 4, GL_RG, GL_FLOAT, rotations);
     setTextureFilter(noise_.id(), GL_NEAREST);
     const auto progs = programs();
-    aoProgram_ = buildProgram(progs[gtao() ? 3 : 0]);
+    aoProgram_ = buildProgram(progs[gtao() ? 3 : 0]);  // only the kernel this pass runs
     blurProgram_ = buildProgram(progs[1]);
     temporalProgram_ = buildProgram(progs[2]);
     vao_ = gl::createVertexArray();
