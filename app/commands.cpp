@@ -89,6 +89,10 @@ void printTimings(const Renderer& renderer, int frames, int warmup) {
         if (t.samples > 0) {
             std::printf("%-22s %10s %10.3f %9.2f  total %.1f ms for %d samples: %.3f ms/sample\n", name.c_str(), "",
                         t.firstMs, mib(t.bytes), t.totalMs, t.samples, t.totalMs / t.samples);
+            if (t.rays)
+                std::printf("%-22s %.3g Mrays/s: %.3g M rays (primary %.3g M, bounce %.3g M, shadow %.3g M) in %.1f ms\n",
+                            "  rays", t.megaRaysPerSecond(), t.rays->total() * 1e-6, t.rays->primary * 1e-6,
+                            t.rays->bounce * 1e-6, t.rays->shadow * 1e-6, t.totalMs);
             total += t.totalMs;
             continue;
         }

@@ -88,6 +88,11 @@ struct BenchOptions {
     std::vector<float> ambient;
     std::vector<float> background;
     bool useCurrentContext = false;   // in-process callers (tests) that hold a current GL context
+    // A sweep spread over processes (app/bench_command.cpp): --plan prints the jobs, --cell ID
+    // runs one of --manifest, --merge DIR gathers their results, --ids KIND lists job ids.
+    bool plan = false;
+    std::string cell, manifest, merge, ids;
+    bool force = false;
 };
 
 // "WxH" -> width, height; throws gis::Error naming the flag value.

@@ -127,7 +127,11 @@ void writeAtomically(const std::string& path, const std::function<void(const std
     fs::path target(path);
     if (target.has_parent_path() && !fs::is_directory(target.parent_path()))
         throw Error(path + ": directory " + target.parent_path().string() + " does not exist");
-    const std::string tmp = path + ".tmp" + std::to_string(::getpid());
+    // Host and process in the temporary's name: two machines writing one file on a shared file
+    // system (a bench sweep's cache) may well have the same process id.
+    char host[256] = "";
+    if (::gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
+    const std::string tmp = path + ".tmp." + host + "." + std::to_string(::getpid());
     std::lock_guard<std::mutex> lock(gWriteMutex);
     TmpFileGuard guard(tmp);
     try {

@@ -12,7 +12,7 @@ namespace gis {
 
 constexpr int kLightDirectional = 0, kLightPoint = 1, kLightSpot = 2;
 
-struct GpuLight {  // std430, mirrors shaders/lights.glsl
+struct GpuLight {  // std430 and std140 alike (vec4s and a mat4), mirrors shaders/lights.glsl
     glm::vec4 positionType;    // xyz world position, w = type
     glm::vec4 directionRange;  // xyz unit direction the light travels, w = range (0: infinite)
     glm::vec4 radiance;        // rgb colour * intensity
@@ -20,6 +20,12 @@ struct GpuLight {  // std430, mirrors shaders/lights.glsl
     glm::vec4 shadowParams;    // filled by the shadow pass
     glm::mat4 shadowMatrix;    // filled by the shadow pass
 };
+
+// Lights the lighting pass reads as a uniform block (lights.glsl's LIGHTS_UNIFORM_BLOCK_CAPACITY):
+// 100 x 160 bytes fits the 16 KiB every GL 4.5 driver must allow a block. The light buffer holds at
+// least this many entries so the block is always backed; scenes with more use the storage buffer.
+constexpr int kUniformBlockLights = 100;
+static_assert(kUniformBlockLights * sizeof(GpuLight) <= 16384, "GL_MAX_UNIFORM_BLOCK_SIZE is at least 16 KiB");
 
 // One GpuLight per scene light, with no shadow map.
 std::vector<GpuLight> makeGpuLights(const Scene& scene);

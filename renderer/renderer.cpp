@@ -391,6 +391,7 @@ std::vector<PassTiming> Renderer::timings(int warmup) const {
         auto it = ledger_.bytesByOwner.find(t.pass);
         t.bytes = it == ledger_.bytesByOwner.end() ? 0 : it->second;
         t.samples = pass->progress().target > 0 ? pass->progress().done : 0;
+        t.rays = pass->raysTraced();
         out.push_back(t);
         for (const auto& [step, timer] : pass->steps.steps) {
             timer->collect(true);

@@ -130,6 +130,13 @@ struct DebugViewDesc {
     std::string name, help;
 };
 
+// Rays a ray-tracing pass traced, by kind: primary (from the camera), bounce (path continuation),
+// shadow (visibility towards a light or emitter).
+struct RayCounts {
+    uint64_t primary = 0, bounce = 0, shadow = 0;
+    uint64_t total() const { return primary + bounce + shadow; }
+};
+
 // The memory-barrier rule between passes: the renderer issues one glMemoryBarrier with every bit
 // after each pass that declares writesImagesOrBuffers(); within a pass, the pass orders its steps.
 class Pass {
@@ -160,6 +167,9 @@ public:
     // Facts about what the pass built, one line each ("voxels 64^3, 3.4 cm each"): --timings, `info
     // --gi METHOD` and the sandbox's timing table print them.
     virtual std::vector<std::string> stats() const { return {}; }
+    // Passes that count the rays they trace: the count over every frame the pass worked in (the
+    // frames PassTiming::totalMs covers), so rays / totalMs is its throughput. nullopt: not counted.
+    virtual std::optional<RayCounts> raysTraced() const { return std::nullopt; }
     gl::GpuTimer timer;
     StepTimers steps;
 };
@@ -177,6 +187,9 @@ struct PassTiming {
     int workedFrames = 0;    // frames in which it did work (progressive: batches of samples)
     int samples = 0;         // progressive passes: samples accumulated (0 for the others)
     int64_t bytes = 0;       // GPU memory the pass holds
+    std::optional<RayCounts> rays;  // rays traced in those frames, for passes that count them
+    // Millions of rays per second of the pass's GPU time (0 when not counted or no time).
+    double megaRaysPerSecond() const { return rays && totalMs > 0.0 ? double(rays->total()) / (totalMs * 1e3) : 0.0; }
     bool cached = false;     // no measured frame did work: every one reused the pass's results
     bool step = false;       // a sub-step of the pass before it
 };

@@ -11,6 +11,10 @@ PACKAGES=(
   python3-glad glslang-tools
   # libraries
   libglm-dev libimgui-dev libtinygltf-dev libstb-dev libtinyexr-dev libcli11-dev nlohmann-json3-dev libembree-dev
+  # SHA-256 for bench content ids (libcrypto)
+  libssl-dev
+  # bench sweeps over local cores or machines (README, Benchmark)
+  parallel
   # tests (xvfb: the GLFW window backend runs under a virtual X server)
   libgtest-dev xvfb xauth
 )

@@ -32,3 +32,8 @@ row "+ SSAO (Godot default / our medium)" ssao --gi ssao --preset medium
 row "+ SSAO (our low: 8x2, half resolution)" ssao --gi ssao --preset low
 row "voxel GI (GIProbe 128 / our vct high)" gi128 --gi vct --preset high
 row "voxel GI (GIProbe 64 / our vct medium)" gi64 --gi vct --preset medium
+# Godot 3 has no SDF or probe GI: GIProbe is the GI it has, so both compare with it.
+row "SDF GI (GIProbe 128 / our sdf high)" gi128 --gi sdf --preset high
+row "SDF GI (GIProbe 64 / our sdf medium)" gi64 --gi sdf --preset medium
+row "probe GI (GIProbe 128 / our probes high)" gi128 --gi probes --preset high
+row "probe GI (GIProbe 64 / our probes medium)" gi64 --gi probes --preset medium

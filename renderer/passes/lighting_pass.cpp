@@ -3,6 +3,7 @@
 #include <cmath>
 #include <set>
 
+#include "lights.h"
 #include "uniforms.h"
 
 namespace gis {
@@ -14,8 +15,11 @@ constexpr float kMaxHalf = 65504.0f;
 constexpr float kMaxFloat = 3.0e38f;
 }  // namespace
 
+// The lights as a uniform block when they fit (lights.glsl), else as a storage buffer.
 std::vector<ProgramDesc> LightingPass::programs() {
-    return {{"lighting", {"fullscreen.vert", "lighting.frag"}, {}}};
+    return {{"lighting", {"fullscreen.vert", "lighting.frag"},
+             {{"LIGHTS_UNIFORM_BLOCK_CAPACITY", std::to_string(kUniformBlockLights)}}},
+            {"lighting-many-lights", {"fullscreen.vert", "lighting.frag"}, {}}};
 }
 
 LightingPass::LightingPass(int width, int height, bool hdr32, const std::set<std::string>& produced,
@@ -32,6 +36,12 @@ LightingPass::LightingPass(int width, int height, bool hdr32, const std::set<std
     vao_ = gl::createVertexArray();
 }
 
+GLuint LightingPass::programFor(size_t lightCount) {
+    if (lightCount <= size_t(kUniformBlockLights)) return program_.id();
+    if (!manyLightsProgram_.id()) manyLightsProgram_ = buildProgram(programs()[1]);
+    return manyLightsProgram_.id();
+}
+
 std::vector<std::string> LightingPass::inputs() const {
     std::vector<std::string> in{"gbuffer.depth", "gbuffer.baseColor", "gbuffer.normal", "gbuffer.material",
                                 "gbuffer.emissive", "lights", "shadow.maps", "shadow.cubes"};
@@ -43,7 +53,7 @@ std::vector<std::string> LightingPass::inputs() const {
 
 void LightingPass::execute(Frame& frame) {
     const RenderSettings& s = frame.settings;
-    const GLuint p = program_.id();
+    const GLuint p = programFor(frame.scene.cpu.lights.size());
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
     glViewport(0, 0, radiance_.width, radiance_.height);
     glDisable(GL_DEPTH_TEST);
@@ -62,6 +72,7 @@ void LightingPass::execute(Frame& frame) {
     glBindTextures(0, 10, textures);
     glBindSamplers(0, 10, nullptr);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame.buffer("lights"));
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, frame.buffer("lights"));
     glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, U_CAMERA_POS, 1, &frame.camera.position[0]);
     glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));

@@ -28,8 +28,10 @@ public:
     static std::vector<ProgramDesc> programs();
 
 private:
+    GLuint programFor(size_t lightCount);  // built on first need: most scenes never need the second
+
     gl::Texture radiance_, unit_;   // unit_: a 1x1 stand-in (ao = 1) for terms no method gives
-    gl::Object fbo_, program_, vao_;
+    gl::Object fbo_, program_, manyLightsProgram_, vao_;
     bool hasAo_, hasDiffuse_, hasSpecular_;
 };
 

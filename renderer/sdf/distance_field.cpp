@@ -23,7 +23,7 @@ void dispatch(int n) { glDispatchCompute(groups(n), groups(n), groups(n)); }
 int coarseSize(int resolution) { return (resolution + kSdfCoarseFactor - 1) / kSdfCoarseFactor; }
 
 // A timed step when the caller gave timers (the pass's frame.step), nothing otherwise.
-std::optional<StepTimers::Scope> timed(StepTimers* timers, const char* step) {
+std::optional<StepTimers::Scope> timed(StepTimers* timers, const std::string& step) {
     if (!timers) return std::nullopt;
     return timers->scope(step);
 }
@@ -67,27 +67,36 @@ std::vector<int> jfaSteps(int resolution, JfaVariant v) {
     return steps;
 }
 
-int64_t distanceFieldBytes(int resolution) {
+int64_t distanceFieldBytes(int resolution, int layers) {
     const int64_t n = resolution, c = coarseSize(resolution);
-    return 4 * (n * n * n + c * c * c);
+    return 4 * (n * n * n + c * c * c) * layers;
 }
 
-int64_t distanceFieldBuildBytes(int resolution) {
+int64_t distanceFieldBuildBytes(int resolution, int layers) {
     const int64_t n = resolution;
-    return distanceFieldBytes(resolution) + 2 * 4 * n * n * n;
+    return distanceFieldBytes(resolution, layers) + 2 * 4 * n * n * n;  // layers are built one at a time
 }
 
-DistanceField::DistanceField(const SdfVolume& volume, const gl::MemoryScope& scope) : volume_(volume), scope_(scope) {
+namespace {
+void checkVolume(const SdfVolume& volume) {
     const int n = volume.resolution;
     if (n < 1 || n > kSdfMaxResolution)
         throw Error("distance field resolution " + std::to_string(n) + " is out of range [1, " +
                     std::to_string(kSdfMaxResolution) + "]");
     if (!(volume.size > 0.0f) || !std::isfinite(volume.size))
         throw Error("distance field volume has no size");
-    distance_ = gl::createTexture3D(scope, GL_R32F, n, n, n);
+}
+}  // namespace
+
+DistanceField::DistanceField(const SdfVolume& volume, const gl::MemoryScope& scope, int layers) : scope_(scope) {
+    checkVolume(volume);
+    if (layers < 1 || layers > 64) throw Error("distance field layers " + std::to_string(layers) + " out of range [1, 64]");
+    volumes_.assign(size_t(layers), volume);
+    const int n = volume.resolution;
+    distance_ = gl::createTexture3D(scope, GL_R32F, n, n, n * layers);
     setSampling(distance_, GL_LINEAR);
     const int c = coarseSize(n);
-    coarse_ = gl::createTexture3D(scope, GL_R32F, c, c, c);
+    coarse_ = gl::createTexture3D(scope, GL_R32F, c, c, c * layers);
     setSampling(coarse_, GL_NEAREST);
     seedProgram_ = buildProgram({"sdf_seed", {"sdf/jfa_seed.comp"}, {}});
     stepProgram_ = buildProgram({"sdf_jfa", {"sdf/jfa_step.comp"}, {}});
@@ -102,13 +111,22 @@ std::vector<ProgramDesc> DistanceField::programs() {
             {"sdf_coarse", {"sdf/sdf_coarse.comp"}, {}}};
 }
 
-void DistanceField::build(const SdfSeeds& seeds, JfaVariant variant, StepTimers* timers) {
-    const int n = volume_.resolution;
+void DistanceField::setVolume(int layer, const SdfVolume& volume) {
+    checkVolume(volume);
+    if (volume.resolution != volumes_.at(size_t(layer)).resolution)
+        throw Error("distance field layer: resolution differs from the field's");
+    volumes_[size_t(layer)] = volume;
+}
+
+void DistanceField::build(const SdfSeeds& seeds, JfaVariant variant, StepTimers* timers, int layer,
+                          const std::string& prefix) {
+    const SdfVolume& volume = volumes_.at(size_t(layer));
+    const int n = volume.resolution;
     // Transient: two nearest-seed images, released when the field is resolved.
     gl::Texture ping = gl::createTexture3D(scope_, GL_R32UI, n, n, n);
     gl::Texture pong = gl::createTexture3D(scope_, GL_R32UI, n, n, n);
     {
-        auto t = timed(timers, "seed");
+        auto t = timed(timers, prefix + "seed");
         glUseProgram(seedProgram_.id());
         glProgramUniform1i(seedProgram_.id(), US_RESOLUTION, n);
         glBindTextureUnit(0, seeds.occupancy);
@@ -116,60 +134,66 @@ void DistanceField::build(const SdfSeeds& seeds, JfaVariant variant, StepTimers*
         dispatch(n);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    {
-        auto t = timed(timers, "jfa");
-        glUseProgram(stepProgram_.id());
-        glProgramUniform1i(stepProgram_.id(), US_RESOLUTION, n);
-        for (int step : jfaSteps(n, variant)) {
-            glProgramUniform1i(stepProgram_.id(), US_JFA_STEP, step);
-            glBindImageTexture(0, ping.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-            glBindImageTexture(1, pong.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
-            dispatch(n);
-            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-            std::swap(ping, pong);  // the result is always in `ping`
-        }
+    glUseProgram(stepProgram_.id());
+    glProgramUniform1i(stepProgram_.id(), US_RESOLUTION, n);
+    const std::vector<int> steps = jfaSteps(n, variant);
+    for (size_t k = 0; k < steps.size(); ++k) {
+        // One timed step per pass ("jfa.1.32" ... "jfa.6.1"): every pass reads 27 cells per cell,
+        // whatever its jump, so they should cost the same; the rows show whether the long jumps
+        // (scattered reads) cost more in practice.
+        auto t = timed(timers, prefix + "jfa." + std::to_string(k + 1) + "." + std::to_string(steps[k]));
+        glProgramUniform1i(stepProgram_.id(), US_JFA_STEP, steps[k]);
+        glBindImageTexture(0, ping.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(1, pong.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+        dispatch(n);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        std::swap(ping, pong);  // the result is always in `ping`
     }
     {
-        auto t = timed(timers, "resolve");
+        auto t = timed(timers, prefix + "resolve");
         const GLuint p = resolveProgram_.id();
         glUseProgram(p);
         glProgramUniform1i(p, US_RESOLUTION, n);
-        glProgramUniform1f(p, US_CELL_SIZE, volume_.cellSize());
-        glProgramUniform1f(p, US_FAR, volume_.farValue());
+        glProgramUniform1i(p, US_LAYER, layer);
+        glProgramUniform1f(p, US_CELL_SIZE, volume.cellSize());
+        glProgramUniform1f(p, US_FAR, volume.farValue());
         glProgramUniform1i(p, US_HAS_NORMALS, seeds.normals ? 1 : 0);
         glBindTextureUnit(1, seeds.normals);
         glBindImageTexture(0, ping.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         glBindImageTexture(1, distance_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
         dispatch(n);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        buildCoarse();
+        buildCoarse(layer);
     }
     for (GLuint unit : {0u, 1u}) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
 }
 
-void DistanceField::buildCoarse() {
+void DistanceField::buildCoarse(int layer) {
+    const SdfVolume& volume = volumes_.at(size_t(layer));
     const GLuint p = coarseProgram_.id();
     glUseProgram(p);
-    glProgramUniform1i(p, US_RESOLUTION, volume_.resolution);
-    glProgramUniform1f(p, US_CELL_SIZE, volume_.cellSize());
+    glProgramUniform1i(p, US_RESOLUTION, volume.resolution);
+    glProgramUniform1i(p, US_LAYER, layer);
+    glProgramUniform1f(p, US_CELL_SIZE, volume.cellSize());
     glProgramUniform1i(p, US_COARSE_FACTOR, kSdfCoarseFactor);
     glBindTextureUnit(0, distance_.id());
     glBindImageTexture(0, coarse_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
-    dispatch(coarse_.width);
+    dispatch(coarse_.width);  // one layer: the coarse texture is width^3 per layer
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
-void DistanceField::upload(const std::vector<float>& distances) {
-    const int n = volume_.resolution;
+void DistanceField::upload(const std::vector<float>& distances, int layer) {
+    const int n = volume(layer).resolution;
     if (distances.size() != size_t(n) * n * n) throw Error("distance field upload: wrong number of cells");
-    glTextureSubImage3D(distance_.id(), 0, 0, 0, 0, n, n, n, GL_RED, GL_FLOAT, distances.data());
-    buildCoarse();
+    glTextureSubImage3D(distance_.id(), 0, 0, 0, layer * n, n, n, n, GL_RED, GL_FLOAT, distances.data());
+    buildCoarse(layer);
 }
 
-std::vector<float> DistanceField::readBack() const {
-    const int n = volume_.resolution;
+std::vector<float> DistanceField::readBack(int layer) const {
+    const int n = volume(layer).resolution;
     std::vector<float> out(size_t(n) * n * n);
-    glGetTextureImage(distance_.id(), 0, GL_RED, GL_FLOAT, GLsizei(out.size() * sizeof(float)), out.data());
+    glGetTextureSubImage(distance_.id(), 0, 0, 0, layer * n, n, n, n, GL_RED, GL_FLOAT,
+                         GLsizei(out.size() * sizeof(float)), out.data());
     return out;
 }
 

@@ -11,6 +11,11 @@
 //
 // Takes seeds, not the voxelizer, so it can be tested and reused on any seed set. The field is
 // view-independent: build() again only when the geometry changes.
+//
+// Layers: one field can hold several volumes of the same resolution (the cascades of
+// sdf_cascades.h), stacked along z in one texture - layer k's cells are z in [k*n, (k+1)*n) - so
+// a marcher switches cascade by changing a coordinate, not a sampler (indexing an array of
+// samplers per ray is not allowed in GLSL). Each layer is built on its own.
 #pragma once
 
 #include <cstdint>
@@ -56,30 +61,36 @@ constexpr int kSdfMaxResolution = 1024;   // the seed packing has 10 bits per ax
 
 // GPU bytes the field holds (distance + coarse), and the peak while building (plus the two
 // transient nearest-seed images).
-int64_t distanceFieldBytes(int resolution);
-int64_t distanceFieldBuildBytes(int resolution);
+int64_t distanceFieldBytes(int resolution, int layers = 1);
+int64_t distanceFieldBuildBytes(int resolution, int layers = 1);
 
 class DistanceField {
 public:
-    // Allocates the distance and coarse textures (charged to scope.owner). Throws gis::Error for a
-    // resolution outside [1, kSdfMaxResolution].
-    DistanceField(const SdfVolume& volume, const gl::MemoryScope& scope);
-    // Seed, flood, resolve, coarse. Timed as steps "seed", "jfa", "resolve" when timers are given.
+    // Allocates the distance and coarse textures for `layers` volumes (charged to scope.owner), each
+    // at `volume` until setVolume(). Throws gis::Error for a resolution outside
+    // [1, kSdfMaxResolution] or layers outside [1, 64].
+    DistanceField(const SdfVolume& volume, const gl::MemoryScope& scope, int layers = 1);
+    // Where layer `layer` lies from now on (same resolution; build() it again).
+    void setVolume(int layer, const SdfVolume& volume);
+    // Seed, flood, resolve, coarse into `layer`. Timed when timers are given, as steps
+    // prefix + "seed", prefix + "jfa.K.STEP" (pass K, 1-based, of jump STEP) and prefix + "resolve".
     // The nearest-seed images exist only during the call.
-    void build(const SdfSeeds& seeds, JfaVariant variant, StepTimers* timers = nullptr);
+    void build(const SdfSeeds& seeds, JfaVariant variant, StepTimers* timers = nullptr, int layer = 0,
+               const std::string& prefix = "");
     // A field computed elsewhere (tests, analytic shapes): distances at cell centres, x fastest.
-    void upload(const std::vector<float>& distances);
-    std::vector<float> readBack() const;  // the distance texture, x fastest
+    void upload(const std::vector<float>& distances, int layer = 0);
+    std::vector<float> readBack(int layer = 0) const;  // one layer of the distance texture, x fastest
     // The field at `unit` and the coarse level at unit + 1 (what sdf_march.glsl reads).
     void bind(GLuint unit) const;
     const gl::Texture& distance() const { return distance_; }
     const gl::Texture& coarse() const { return coarse_; }
-    const SdfVolume& volume() const { return volume_; }
+    const SdfVolume& volume(int layer = 0) const { return volumes_.at(size_t(layer)); }
+    int layers() const { return int(volumes_.size()); }
     static std::vector<ProgramDesc> programs();
 
 private:
-    void buildCoarse();
-    SdfVolume volume_;
+    void buildCoarse(int layer);
+    std::vector<SdfVolume> volumes_;
     gl::MemoryScope scope_;
     gl::Texture distance_, coarse_;
     gl::Object seedProgram_, stepProgram_, resolveProgram_, coarseProgram_;

@@ -12,5 +12,6 @@ enum SdfUniform : int {
     US_FAR = 404,           // the value of cells no seed reaches
     US_HAS_NORMALS = 405,   // 1: sign from the seeds' normals; 0: unsigned
     US_COARSE_FACTOR = 406, // fine cells per coarse cell along an edge
+    US_LAYER = 407,         // the layer (cascade) of a layered field written by this dispatch
 };
 }  // namespace gis::sdf

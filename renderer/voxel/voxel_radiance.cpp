@@ -46,8 +46,8 @@ std::vector<ProgramDesc> VoxelRadiance::programs() {
             {"voxel_bounce", {"voxel/bounce.comp"}, {}}};
 }
 
-VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::MemoryScope& scope)
-    : scope_(scope), anisotropic_(anisotropic && n >= 2), bounces_(bounces) {
+VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::MemoryScope& scope, bool cullBackfaces)
+    : scope_(scope), anisotropic_(anisotropic && n >= 2), cullBackfaces_(cullBackfaces && anisotropic_), bounces_(bounces) {
     checkVoxelBudget(n, voxelRadianceBytes(n, anisotropic_, bounces), scope.owner);
     radiance_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n, levelsFor(n));
     setVolumeSampling(radiance_);
@@ -91,7 +91,7 @@ void VoxelRadiance::downsample(const gl::Texture& source, int sourceLevel, const
     const GLuint p = mipProgram_.id();
     glProgramUniform1i(p, UV_MIP_LEVEL, sourceLevel);
     glProgramUniform1i(p, UV_DIRECTION, direction);
-    glProgramUniform1i(p, UV_NORMAL_WEIGHT, normals ? 1 : 0);
+    glProgramUniform1i(p, UV_NORMAL_WEIGHT, !normals ? 0 : cullBackfaces_ ? 2 : 1);
     glBindTextureUnit(0, source.id());
     glBindTextureUnit(1, normals ? normals : source.id());
     glBindImageTexture(0, target.id(), targetLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -120,7 +120,7 @@ void VoxelRadiance::bounce(const VoxelGrid& grid, const ConeSettings& cones, glm
     glProgramUniform1i(p, UV_CONE_SET, cones.coneSet);
     glProgramUniform4f(p, UV_TRACE_PARAMS, cones.stepFactor, maxDistance, cones.offset, 0.0f);
     glProgramUniform3fv(p, UV_ENVIRONMENT, 1, &environment[0]);
-    glProgramUniform1i(p, UV_ANISOTROPIC, anisotropic_ ? 1 : 0);
+    glProgramUniform1i(p, UV_ANISOTROPIC, mipMode());
     for (int b = 1; b < bounces_; ++b) {
         // Cones read the whole chain while the result is written: write to a scratch volume,
         // then copy it over level 0.
@@ -151,6 +151,10 @@ void voxelizeAndInject(Frame& frame, Voxelizer& voxelizer, VoxelRadiance& radian
         auto t = frame.step("voxelize");
         voxelizer.voxelize(frame.scene);
     }
+    injectFrameLights(frame, voxelizer.grid(), radiance);
+}
+
+void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance) {
     VoxelRadiance::Lights lights;
     lights.buffer = frame.buffer("lights");
     lights.shadowMaps = frame.texture("shadow.maps");
@@ -158,7 +162,7 @@ void voxelizeAndInject(Frame& frame, Voxelizer& voxelizer, VoxelRadiance& radian
     lights.count = int(frame.scene.cpu.lights.size());
     lights.shadows = frame.settings.shadows;
     auto t = frame.step("inject");
-    radiance.inject(voxelizer.grid(), lights);
+    radiance.inject(grid, lights);
 }
 
 }  // namespace gis

@@ -21,7 +21,10 @@ int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces);
 
 class VoxelRadiance {
 public:
-    VoxelRadiance(int resolution, bool anisotropic, int bounces, const gl::MemoryScope& scope);
+    // cullBackfaces: the directional chains leave out the voxels a cone meets from behind, so a
+    // cone never sees the surface it leaves (only with anisotropic).
+    VoxelRadiance(int resolution, bool anisotropic, int bounces, const gl::MemoryScope& scope,
+                  bool cullBackfaces = false);
     struct Lights {
         GLuint buffer = 0, shadowMaps = 0, shadowCubes = 0;
         int count = 0;
@@ -38,6 +41,8 @@ public:
     void bind(GLuint unit) const;
     const gl::Texture& radiance() const { return radiance_; }
     bool anisotropic() const { return anisotropic_; }
+    // UV_ANISOTROPIC for shaders/voxel/cone_trace.glsl's makeConeTracer (VOXEL_ISOTROPIC ...).
+    int mipMode() const { return !anisotropic_ ? 0 : cullBackfaces_ ? 2 : 1; }
     int resolution() const { return radiance_.width; }
     static std::vector<ProgramDesc> programs();
 
@@ -48,7 +53,7 @@ private:
     gl::Texture directional_[6];
     gl::Object injectProgram_, mipProgram_, bounceProgram_;
     gl::MemoryScope scope_;
-    bool anisotropic_;
+    bool anisotropic_, cullBackfaces_;
     int bounces_;
 };
 
@@ -56,5 +61,7 @@ private:
 // inject the frame's punctual lights (through the shadow pass's maps) and emission, timed as the
 // pass's "voxelize" and "inject" steps.
 void voxelizeAndInject(Frame& frame, Voxelizer& voxelizer, VoxelRadiance& radiance);
+// The second step alone, for a light edit: the voxels stay, only their light is injected again.
+void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance);
 
 }  // namespace gis

@@ -18,10 +18,10 @@ enum VoxelUniform : int {
     UV_CONE_SET = 112,         // 0 = six cones (60 degrees), 1 = four cones
     UV_TRACE_PARAMS = 113,     // step factor, max distance (voxels), start offset (voxels), specular scale
     UV_ENVIRONMENT = 114,
-    UV_ANISOTROPIC = 115,
+    UV_ANISOTROPIC = 115,      // 0 isotropic, 1 directional mips, 2 directional without back faces
     UV_INTENSITY = 116,
     UV_DEBUG_PARAMS = 117,     // channel, mip level, slice axis, slice position
     UV_BOUNCE = 118,
-    UV_NORMAL_WEIGHT = 119,    // directional mip from level 0: weigh voxels by |normal . axis|
+    UV_NORMAL_WEIGHT = 119,    // directional mip from level 0: 1 weigh voxels by |normal . axis|, 2 cull back faces
 };
 }  // namespace gis::voxel

@@ -11,17 +11,18 @@ layout(binding = 0, r32f) uniform writeonly image3D i_coarse;
 layout(location = US_RESOLUTION) uniform int u_resolution;
 layout(location = US_CELL_SIZE) uniform float u_cellSize;
 layout(location = US_COARSE_FACTOR) uniform int u_factor;
+layout(location = US_LAYER) uniform int u_layer;   // which of the stacked volumes (renderer/sdf/distance_field.h)
 
 void main() {
     ivec3 c = ivec3(gl_GlobalInvocationID);
-    ivec3 size = imageSize(i_coarse);
-    if (any(greaterThanEqual(c, size))) return;
+    int size = imageSize(i_coarse).x;   // per layer: the layers stack along z
+    if (any(greaterThanEqual(c, ivec3(size)))) return;
     float lowest = 3.4e38;
     for (int z = 0; z < u_factor; ++z)
         for (int y = 0; y < u_factor; ++y)
             for (int x = 0; x < u_factor; ++x) {
                 ivec3 f = min(c * u_factor + ivec3(x, y, z), ivec3(u_resolution - 1));
-                lowest = min(lowest, abs(texelFetch(s_distance, f, 0).r));
+                lowest = min(lowest, abs(texelFetch(s_distance, f + ivec3(0, 0, u_layer * u_resolution), 0).r));
             }
-    imageStore(i_coarse, c, vec4(max(lowest - 0.8660254 * u_cellSize, 0.0)));
+    imageStore(i_coarse, c + ivec3(0, 0, u_layer * size), vec4(max(lowest - 0.8660254 * u_cellSize, 0.0)));
 }

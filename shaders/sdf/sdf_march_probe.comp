@@ -9,7 +9,7 @@ struct ProbeRay {
     vec4 direction;  // xyz (normalized), w unused
 };
 layout(std430, binding = 0) readonly buffer Rays { ProbeRay rays[]; };
-// Two vec4 per ray: position + hit (1/0), normal + steps.
+// Two vec4 per ray: position + hit (1 + cascade, 0 = miss), normal + steps.
 layout(std430, binding = 1) writeonly buffer Hits { vec4 hits[]; };
 layout(binding = 0) uniform sampler3D s_distance;
 layout(binding = 1) uniform sampler3D s_coarse;
@@ -18,6 +18,8 @@ layout(location = 0) uniform uint u_count;
 layout(location = 1) uniform vec4 u_volume;   // origin xyz, size
 layout(location = 2) uniform int u_resolution;
 layout(location = 3) uniform vec4 u_march;    // hit threshold (cells), relaxation, max steps, start offset
+layout(location = 4) uniform int u_cascadeCount;   // 0: one volume (u_volume); else the cascades below
+layout(location = 5) uniform vec4 u_cascades[SDF_MAX_CASCADES];   // origin xyz, edge; finest first
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -28,7 +30,11 @@ void main() {
     p.relaxation = u_march.y;
     p.maxSteps = int(u_march.z);
     p.startOffset = u_march.w;
-    SdfHit h = sdfMarch(s_distance, s_coarse, vol, rays[i].origin.xyz, rays[i].direction.xyz, p);
-    hits[2 * i] = vec4(h.position, h.hit ? 1.0 : 0.0);
+    SdfHit h = u_cascadeCount > 0
+        ? sdfMarchCascades(s_distance, s_coarse, SdfCascades(u_cascades, u_cascadeCount, u_resolution),
+                           rays[i].origin.xyz, rays[i].direction.xyz, p)
+        : sdfMarch(s_distance, s_coarse, vol, rays[i].origin.xyz, rays[i].direction.xyz, p);
+    // hit: 1 + the cascade it was found in; 0 for a miss
+    hits[2 * i] = vec4(h.position, h.hit ? 1.0 + float(h.cascade) : 0.0);
     hits[2 * i + 1] = vec4(h.normal, float(h.steps));
 }

@@ -22,6 +22,7 @@ layout(binding = 1) uniform sampler3D s_normals;   // RGBA8: mean normal * 0.5 +
 layout(location = US_CELL_SIZE) uniform float u_cellSize;
 layout(location = US_FAR) uniform float u_far;
 layout(location = US_HAS_NORMALS) uniform int u_hasNormals;
+layout(location = US_LAYER) uniform int u_layer;   // cells z in [layer * n, (layer + 1) * n) of the target
 
 // Averaged normals shorter than this do not decide a sign (three faces of a corner average to
 // 0.58, two of an edge to 0.71; both sides of a thin wall to about 0).
@@ -40,5 +41,5 @@ void main() {
             if (length(n) > MIN_NORMAL_LENGTH && dot(offset, n) < 0.0) d = -d;
         }
     }
-    imageStore(i_distance, c, vec4(d));
+    imageStore(i_distance, c + ivec3(0, 0, u_layer * u_resolution), vec4(d));
 }

@@ -6,3 +6,4 @@
 #define US_FAR 404
 #define US_HAS_NORMALS 405
 #define US_COARSE_FACTOR 406
+#define US_LAYER 407

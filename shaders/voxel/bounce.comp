@@ -29,7 +29,7 @@ void main() {
         imageStore(i_radiance, v, direct);
         return;
     }
-    ConeTracer t = ConeTracer(float(u_resolution), u_traceParams.x, u_traceParams.y, u_anisotropic != 0);
+    ConeTracer t = makeConeTracer(u_resolution, u_traceParams.x, u_traceParams.y, u_anisotropic);
     vec3 n = meanNormal / len;
     vec3 origin = vec3(v) + 0.5 + n * u_traceParams.z;
     vec4 gathered = traceDiffuse(t, origin, n, u_coneSet, 1.0, u_environment, 0.0);

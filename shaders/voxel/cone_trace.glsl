@@ -16,7 +16,19 @@ struct ConeTracer {
     float stepFactor;   // step length as a fraction of the cone's diameter there
     float maxDistance;  // voxels
     bool anisotropic;
+    // Lift samples off the surface the cone leaves (below). Off where the directional chains
+    // already leave out the voxels a cone sees from behind (VOXEL_CULL_BACKFACES): the cone's
+    // own surface is then invisible to it and lifting would only bend the cone towards the normal.
+    bool lift;
 };
+
+// The mip modes (UV_ANISOTROPIC; VoxelRadiance::mipMode): isotropic mips (0), directional mips
+// (1), directional mips without back faces (2).
+#define VOXEL_ISOTROPIC 0
+#define VOXEL_CULL_BACKFACES 2
+ConeTracer makeConeTracer(int resolution, float stepFactor, float maxDistance, int mips) {
+    return ConeTracer(float(resolution), stepFactor, maxDistance, mips != VOXEL_ISOTROPIC, mips != VOXEL_CULL_BACKFACES);
+}
 
 // Radiance and opacity seen through the voxels around p (voxel units) at level lod, travelling dir.
 vec4 sampleVoxels(ConeTracer t, vec3 p, vec3 dir, float lod) {
@@ -40,26 +52,41 @@ vec4 sampleVoxels(ConeTracer t, vec3 p, vec3 dir, float lod) {
     return lod < 1.0 ? mix(textureLod(s_voxelRadiance, uvw, 0.0), s, lod) : s;
 }
 
+// The fraction of the segment a -> b (a inside [lo, hi]^3) at which it leaves that box.
+float boundaryCrossing(vec3 a, vec3 b, float lo, float hi) {
+    vec3 d = b - a;
+    vec3 bound = mix(vec3(lo), vec3(hi), greaterThan(d, vec3(0.0)));
+    vec3 f = mix(vec3(1.0), (bound - a) / d, greaterThan(abs(d), vec3(1e-6)));
+    return clamp(min(f.x, min(f.y, f.z)), 0.0, 1.0);
+}
+
 // Front-to-back accumulation along a cone from `origin` (voxel units) with tan(half aperture)
 // `tanHalf`, starting `start` voxels out. `surfaceNormal` (unit, or 0 for none) is the normal of
-// the surface the cone leaves: each sample is lifted along it until the sample's footprint (about
-// one diameter around its centre, what a trilinear mip lookup blends) clears the surface's
-// tangent plane, so a wide cone never filters in the surface's own voxels (a lit floor lighting
-// itself). Returns premultiplied radiance and opacity; `escaped` says the cone left the volume
-// (the caller adds the environment for what is left); a cone that runs out of distance inside the
-// volume adds nothing more (indoors, the environment would leak).
+// the surface the cone leaves: with t.lift each sample is lifted along it until the sample's
+// footprint (about one diameter around its centre, what a trilinear mip lookup blends) clears the
+// surface's tangent plane, so a wide cone filters in less of the surface's own voxels (a lit
+// floor lighting itself; it still sees them over part of its footprint, see the README). Returns
+// premultiplied radiance and opacity; `escaped` says the cone left the volume (the caller adds the
+// environment for what is left); a cone that runs out of distance inside the volume adds nothing
+// more (indoors, the environment would leak).
 vec4 traceCone(ConeTracer t, vec3 origin, vec3 dir, float tanHalf, float start, vec3 surfaceNormal, out bool escaped) {
     vec4 acc = vec4(0.0);
-    float dist = start;
+    float dist = start, previousDist = 0.0;
+    vec3 previous = origin;
     escaped = false;
     for (int i = 0; i < 4096 && dist < t.maxDistance && acc.a < 0.99; ++i) {
         float diameter = max(1.0, 2.0 * tanHalf * dist);
         float height = dot(dir, surfaceNormal) * dist;
-        vec3 p = origin + dir * dist + surfaceNormal * max(diameter - height, 0.0);
-        // Leaving the volume: one last sample at its boundary, so a surface in the outermost
-        // voxels (the scene's bounds are fitted tightly) is not stepped over.
+        vec3 p = origin + dir * dist + (t.lift ? surfaceNormal * max(diameter - height, 0.0) : vec3(0.0));
+        // Leaving the volume: one last sample where the path from the previous sample crosses the
+        // boundary (half a voxel inside), so a surface in the outermost voxels (the scene's bounds
+        // are fitted tightly) is not stepped over, and nothing off the cone's path is sampled.
         bool leaving = any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(t.resolution)));
-        if (leaving) p = clamp(p, vec3(0.5), vec3(t.resolution - 0.5));
+        if (leaving) {
+            float f = boundaryCrossing(previous, p, 0.5, t.resolution - 0.5);
+            p = clamp(mix(previous, p, f), vec3(0.5), vec3(t.resolution - 0.5));
+            diameter = max(1.0, 2.0 * tanHalf * mix(previousDist, dist, f));
+        }
         float stepLength = max(diameter * t.stepFactor, 0.05);
         vec4 s = sampleVoxels(t, p, dir, log2(diameter));
         // A mip's opacity is for a path one diameter long; this step covers stepLength.
@@ -67,11 +94,13 @@ vec4 traceCone(ConeTracer t, vec3 origin, vec3 dir, float tanHalf, float start, 
         vec3 radiance = s.a > 1e-6 ? s.rgb / s.a : vec3(0.0);
         acc.rgb += (1.0 - acc.a) * alpha * radiance;
         acc.a += (1.0 - acc.a) * alpha;
-        dist += stepLength;
         if (leaving) {
             escaped = true;
             break;
         }
+        previous = p;
+        previousDist = dist;
+        dist += stepLength;
     }
     return acc;
 }

@@ -14,17 +14,22 @@ layout(binding = 1) uniform sampler3D s_normal;  // the voxel grid's mean normal
 layout(rgba16f, binding = 0) uniform writeonly image3D i_target;
 layout(location = UV_MIP_LEVEL) uniform int u_sourceLevel;
 layout(location = UV_DIRECTION) uniform int u_direction;  // -1: isotropic
-layout(location = UV_NORMAL_WEIGHT) uniform int u_weightByNormal;
+layout(location = UV_NORMAL_WEIGHT) uniform int u_weightByNormal;  // 0 none, 1 |n.axis|, 2 cull back faces
 
-// A child voxel as seen by a cone travelling along `axis`: scaled by |n.axis|, how much of the
-// voxel's surface a cone along that axis sees. (Showing a voxel's light only to cones that face
-// its front was tried too: it darkened every wall to half of the path tracer's light.)
-vec4 child(ivec3 c, int axis) {
+// A child voxel as seen by a cone travelling along `axis` (travel = +1 or -1): scaled by |n.axis|,
+// how much of the voxel's surface a cone along that axis sees, or (u_weightByNormal 2, culling)
+// by max(-travel n.axis, 0), nothing of a surface the cone meets from behind. A cone leaving a
+// surface then never meets that surface's own voxels (they occluded the sky over an open floor and
+// lit a ceiling with its own hot spot). (Culling the light alone and keeping the opacity was tried
+// too: every cone then sees its own surface as black, half the light on every wall.)
+vec4 child(ivec3 c, int axis, float travel) {
     vec4 v = texelFetch(s_source, c, u_sourceLevel);
     if (u_weightByNormal == 0) return v;
     vec3 n = texelFetch(s_normal, c, 0).xyz * 2.0 - 1.0;
     float len = length(n);
-    return len > 0.3 ? v * (abs(n[axis]) / len) : v;
+    if (len <= 0.3) return v;  // opposite faces in one voxel: seen from every side
+    float cosine = n[axis] / len;
+    return v * (u_weightByNormal == 2 ? max(-travel * cosine, 0.0) : abs(cosine));
 }
 
 void main() {
@@ -44,7 +49,7 @@ void main() {
         w[(axis + 2) % 3] = 1;
         for (int i = 0; i < 4; ++i) {
             ivec3 lo = base + u * (i & 1) + w * (i >> 1);
-            vec4 a = child(lo, axis), b = child(lo + along, axis);
+            vec4 a = child(lo, axis, positive ? 1.0 : -1.0), b = child(lo + along, axis, positive ? 1.0 : -1.0);
             vec4 front = positive ? a : b, back = positive ? b : a;
             sum += front + (1.0 - front.a) * back;
         }

@@ -3,6 +3,7 @@
 // where E is the irradiance the light delivers to it.
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "lights.h"
 #include "memory_budget.h"
 #include "render_test_util.h"
 
@@ -108,6 +109,29 @@ TEST(Physics, PointLightFallsOffAsInverseSquare) {
         centre[k] = img.at(c.x, c.y)[0] / pointLightRadiance(lightPos, 2.0f, p) * (2.0 / (height * height) / kPi);
     }
     EXPECT_NEAR(centre[0] / centre[1], 4.0, 0.04);  // twice the distance, a quarter of the light
+}
+
+// The lighting pass reads up to kUniformBlockLights lights from a uniform block and more from a
+// storage buffer: n point lights of intensity I/n at one spot light the floor as one light of I,
+// on both sides of that switch (the sum of n terms, within float rounding).
+TEST(Physics, ManyLightsSumToOneOnBothLightBufferPaths) {
+    auto render = [](int n) {
+        Scene s = floorScene();
+        for (int i = 0; i < n; ++i) s.lights.push_back(pointLight(glm::vec3(0, 1.5f, 0), 2.0f / float(n)));
+        finalizeScene(s);
+        RenderSettings r = plainSettings();
+        r.width = r.height = 48;
+        r.shadows = false;  // 6 cube layers per light would only slow this down
+        return renderHdr(s, r);
+    };
+    const ImageF one = render(1);
+    for (int n : {kUniformBlockLights, kUniformBlockLights + 20}) {
+        const ImageF many = render(n);
+        double worst = 0.0;
+        for (size_t i = 0; i < one.rgba.size(); ++i)
+            worst = std::max(worst, std::abs(double(many.rgba[i]) - one.rgba[i]) / std::max(1e-3, double(one.rgba[i])));
+        EXPECT_LT(worst, 1e-3) << n << " lights";
+    }
 }
 
 // An occluder between light and floor: the point under it receives no direct light while a point

@@ -1,6 +1,7 @@
 // The sphere tracer (shaders/sdf/sdf_march.glsl) through shaders/sdf/sdf_march_probe.comp: a plane
 // and a sphere at their analytic distances, from head-on to grazing, on exact fields and on fields
-// jump-flooded from voxelized seeds; misses are misses.
+// jump-flooded from voxelized seeds; misses are misses; the cascade hand-over finds planes outside
+// the fine cascades.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <functional>
 
 #include "render_test_util.h"
+#include "sdf/sdf_cascades.h"
 #include "sdf_test_util.h"
 
 namespace gis::test {
@@ -22,6 +24,7 @@ struct Hit {
     bool hit = false;
     glm::vec3 normal;
     int steps = 0;
+    int cascade = -1;   // the layer the hit was found in (-1: a miss)
 };
 
 struct MarchSettings {
@@ -43,6 +46,11 @@ std::vector<Hit> march(const DistanceField& field, const std::vector<Ray>& rays,
     glProgramUniform4f(p, 1, v.origin.x, v.origin.y, v.origin.z, v.size);
     glProgramUniform1i(p, 2, v.resolution);
     glProgramUniform4f(p, 3, m.threshold, m.relaxation, float(m.maxSteps), m.startOffset);
+    // A layered field is marched as cascades (layer 0 the finest), a single one as one volume.
+    std::vector<glm::vec4> cascades;
+    for (int i = 0; i < field.layers(); ++i) cascades.emplace_back(field.volume(i).origin, field.volume(i).size);
+    glProgramUniform1i(p, 4, field.layers() > 1 ? field.layers() : 0);
+    glProgramUniform4fv(p, 5, GLsizei(cascades.size()), &cascades[0][0]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
     field.bind(0);
@@ -52,7 +60,8 @@ std::vector<Hit> march(const DistanceField& field, const std::vector<Ray>& rays,
     glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(raw.size() * sizeof(glm::vec4)), raw.data());
     std::vector<Hit> hits(rays.size());
     for (size_t i = 0; i < hits.size(); ++i)
-        hits[i] = {glm::vec3(raw[2 * i]), raw[2 * i].w > 0.5f, glm::vec3(raw[2 * i + 1]), int(raw[2 * i + 1].w)};
+        hits[i] = {glm::vec3(raw[2 * i]), raw[2 * i].w > 0.5f, glm::vec3(raw[2 * i + 1]), int(raw[2 * i + 1].w),
+                   int(raw[2 * i].w) - 1};
     return hits;
 }
 
@@ -218,6 +227,119 @@ TEST(SdfMarch, FindsAJumpFloodedSphereWithinACell) {
         worst = std::max(worst, err);
     }
     std::printf("jump-flooded sphere: worst distance of a hit from the surface %.3f cells\n", worst);
+}
+
+// Three cascades centred on the origin (edges 2, 4 and 8, 32 cells each, as sdf_cascades.h places
+// them), each layer holding the exact distance to the part of the plane y = planeY inside its cube
+// and the "far" value where the plane misses the cube - what a cascade jump-flooded from its own
+// voxels holds.
+struct PlaneCascades {
+    SdfCascadeLayout layout;
+    std::unique_ptr<DistanceField> field;
+};
+
+PlaneCascades planeCascades(float planeY, gl::MemoryLedger& ledger) {
+    context();
+    PlaneCascades c;
+    c.layout.scene.origin = glm::vec3(-4.0f);
+    c.layout.scene.size = 8.0f;
+    c.layout.scene.resolution = 32;
+    c.layout.count = 3;
+    const int n = 32;
+    for (int i = 0; i < c.layout.count; ++i) {
+        const SdfVolume v = c.layout.volume(i, c.layout.centredOffset(i, glm::vec3(0.0f)));
+        if (!c.field) c.field = std::make_unique<DistanceField>(v, gl::MemoryScope{&ledger, "sdf_test"}, c.layout.count);
+        c.field->setVolume(i, v);
+        const bool crosses = planeY > v.origin.y && planeY < v.origin.y + v.size;
+        std::vector<float> d(size_t(n) * n * n);
+        for (int z = 0; z < n; ++z)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x)
+                    d[(size_t(z) * n + y) * n + x] =
+                        crosses ? v.origin.y + (float(y) + 0.5f) * v.cellSize() - planeY : v.farValue();
+        c.field->upload(d, i);
+    }
+    return c;
+}
+
+// Rays from near the camera down to the plane, from head-on to 45 degrees.
+std::vector<Ray> downRays() {
+    std::vector<Ray> rays;
+    for (float e : {90.0f, 70.0f, 55.0f, 45.0f})
+        for (float azimuth : {0.3f, 1.9f, 3.3f, 4.8f}) {
+            const float el = glm::radians(e);
+            const glm::vec3 dir(std::cos(el) * std::cos(azimuth), -std::sin(el), std::cos(el) * std::sin(azimuth));
+            rays.push_back({glm::vec4(0.05f, 0.3f, -0.02f, 20.0f), glm::vec4(dir, 0.0f)});
+        }
+    return rays;
+}
+
+// Hands over: a plane outside the two fine cascades is found in the coarsest, within half of its
+// cell, relaxed or not; one inside the finest is found there, within half of its (finer) cell.
+TEST(SdfMarch, CascadeHandOverFindsAFarPlaneWithinHalfACoarseCell) {
+    for (const auto& [planeY, cascade] : {std::pair<float, int>{-3.1f, 2}, {-0.437f, 0}}) {
+        gl::MemoryLedger ledger;
+        PlaneCascades c = planeCascades(planeY, ledger);
+        const std::vector<Ray> rays = downRays();
+        const float cell = c.layout.cellSize(cascade);
+        for (float relaxation : {1.0f, 1.6f}) {
+            MarchSettings m;
+            m.relaxation = relaxation;
+            const auto hits = march(*c.field, rays, m);
+            double worst = 0.0, steps = 0.0;
+            for (size_t i = 0; i < rays.size(); ++i) {
+                const float t = (planeY - rays[i].origin.y) / rays[i].direction.y;
+                const glm::vec3 expected = glm::vec3(rays[i].origin) + glm::vec3(rays[i].direction) * t;
+                ASSERT_TRUE(hits[i].hit) << "plane " << planeY << " ray " << i;
+                EXPECT_EQ(hits[i].cascade, cascade) << "plane " << planeY << " ray " << i;
+                const float err = glm::length(hits[i].position - expected);
+                EXPECT_LE(err, 0.5f * cell) << "plane " << planeY << " ray " << i;
+                EXPECT_GT(hits[i].normal.y, 0.999f);
+                worst = std::max(worst, double(err));
+                steps += hits[i].steps;
+            }
+            std::printf("cascades, plane at y=%g (cascade %d), relaxation %.1f: worst hit error %.3f of its cells, "
+                        "%.1f steps per ray\n",
+                        planeY, cascade, relaxation, worst / cell, steps / double(rays.size()));
+        }
+    }
+}
+
+// A plane just beyond the finest cascade, which that cascade's field does not contain (its value
+// there is "far"): the marcher may not step by that value past the cube's faces, so the plane is
+// found in the next cascade rather than jumped over.
+TEST(SdfMarch, CascadeHandOverDoesNotJumpSurfacesJustOutsideAFineCascade) {
+    gl::MemoryLedger ledger;
+    const float planeY = -1.05f;  // the finest cascade spans [-1, 1]
+    PlaneCascades c = planeCascades(planeY, ledger);
+    const std::vector<Ray> rays = downRays();
+    const auto hits = march(*c.field, rays);
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const float t = (planeY - rays[i].origin.y) / rays[i].direction.y;
+        const glm::vec3 expected = glm::vec3(rays[i].origin) + glm::vec3(rays[i].direction) * t;
+        ASSERT_TRUE(hits[i].hit) << "ray " << i;
+        EXPECT_EQ(hits[i].cascade, 1) << "ray " << i;
+        EXPECT_LE(glm::length(hits[i].position - expected), 0.5f * c.layout.cellSize(1)) << "ray " << i;
+    }
+}
+
+// Rays that leave every cascade are misses; nothing a ray returns through cascades is NaN or Inf,
+// including rays starting outside all of them and along the cubes' faces.
+TEST(SdfMarch, CascadesGiveFiniteResultsAndMisses) {
+    gl::MemoryLedger ledger;
+    PlaneCascades c = planeCascades(-3.1f, ledger);
+    std::vector<Ray> rays = {{glm::vec4(0.0f, 0.3f, 0.0f, 20.0f), glm::vec4(0, 1, 0, 0)},     // up: nothing
+                             {glm::vec4(9.0f, 9.0f, 9.0f, 20.0f), glm::vec4(0, 1, 0, 0)},     // outside all
+                             {glm::vec4(-1.0f, -1.0f, 0.0f, 20.0f), glm::vec4(1, 0, 0, 0)},   // along faces
+                             {glm::vec4(-9.0f, -2.0f, 0.1f, 20.0f), glm::vec4(1, -0.2f, 0, 0)}};
+    rays.back().direction = glm::vec4(glm::normalize(glm::vec3(rays.back().direction)), 0.0f);
+    const auto hits = march(*c.field, rays);
+    EXPECT_FALSE(hits[0].hit);
+    EXPECT_FALSE(hits[1].hit);
+    EXPECT_FALSE(hits[2].hit);
+    EXPECT_TRUE(hits[3].hit);   // enters the coarsest cascade from outside and meets the plane
+    for (const Hit& h : hits)
+        for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isfinite(h.position[k]) && std::isfinite(h.normal[k]));
 }
 
 }  // namespace

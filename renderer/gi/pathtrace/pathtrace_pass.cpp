@@ -7,6 +7,10 @@
 
 namespace gis {
 
+namespace {
+constexpr GLuint RAY_COUNTS_BINDING = 6;  // pathtrace.comp's RayCounts
+}
+
 const ParamTable<PathTraceSettings>& pathTraceParams() {
     using S = PathTraceSettings;
     static const ParamTable<S> table = ParamTable<S>()
@@ -30,6 +34,16 @@ PathTracePass::PathTracePass(SceneServices& services, const RenderSettings& sett
       params_(pathTraceParams().read("pathtrace", settings.params)) {
     samples_.target = params_.spp;
     program_ = buildProgram(programs()[0]);
+    const uint32_t zeros[6] = {};
+    rayCounts_ = gl::createBuffer({&ledger, name()}, sizeof(zeros), zeros);
+}
+
+std::optional<RayCounts> PathTracePass::raysTraced() const {
+    uint32_t words[6] = {};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(rayCounts_.id(), 0, sizeof(words), words);
+    auto count = [&](int k) { return uint64_t(words[2 * k]) | uint64_t(words[2 * k + 1]) << 32; };
+    return RayCounts{count(0), count(1), count(2)};
 }
 
 void PathTracePass::execute(Frame& frame) {
@@ -49,6 +63,7 @@ void PathTracePass::execute(Frame& frame) {
     const GLuint p = program_.id();
     glUseProgram(p);
     rays_.bind();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RAY_COUNTS_BINDING, rayCounts_.id());
     const glm::vec3 background = s.background.value_or(frame.scene.cpu.background);
     glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));

@@ -33,12 +33,14 @@ public:
         if (c & ~Changes(ChangeLiveParams)) samples_.done = 0;
     }
     const Bvh& bvh() const { return rays_.bvh; }
+    std::optional<RayCounts> raysTraced() const override;
 
 private:
     RayScene& rays_;
     SampleAccumulator samples_;
     PathTraceSettings params_;
     gl::Object program_;
+    gl::Buffer rayCounts_;  // 3 x (low, high) uint: primary, bounce, shadow rays (pathtrace.comp)
 };
 
 }  // namespace gis

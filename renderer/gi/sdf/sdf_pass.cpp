@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "debug_view.h"
 #include "gi/method.h"
@@ -39,47 +40,70 @@ std::vector<ProgramDesc> SdfGiPass::programs() {
     return all;
 }
 
-std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const RenderSettings& settings) {
+namespace {
+// Bytes of one cascade's voxels and radiance.
+int64_t cascadeVoxelBytes(const SdfGiSettings& s) {
+    return voxelGridBytes(s.resolution) + voxelRadianceBytes(s.resolution, false, s.bounces);
+}
+// Radiance level 0 of every cascade in one RGBA16F texture, when there is more than one.
+int64_t radianceAtlasBytes(int resolution, int count) {
+    const int64_t n = resolution;
+    return count > 1 ? 8 * n * n * n * count : 0;
+}
+}  // namespace
+
+std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Scene& scene, const RenderSettings& settings) {
     const SdfGiSettings s = sdfParams().read("sdf", settings.params);
     const int n = s.resolution, scale = s.halfResolution ? 2 : 1;
+    const int count = layoutCascades(scene, n, s.cascadeExtent, s.cascades).count;
     const uint64_t traced = uint64_t(tracedSize(settings.width, scale)) * uint64_t(tracedSize(settings.height, scale));
     const uint64_t full = uint64_t(settings.width) * uint64_t(settings.height);
-    return {{"SDF voxels", uint64_t(voxelGridBytes(n) + voxelRadianceBytes(n, false, s.bounces))},
-            {"SDF field", uint64_t(distanceFieldBuildBytes(n))},
-            // raw, reflection, info, 2 histories (RGBA16F), occlusion (R16F), 2 distances (R32F);
-            // full resolution: diffuse, specular (RGBA16F), ao (R16F)
-            {"SDF trace", traced * (5 * 8 + 2 + 2 * 4) + full * (2 * 8 + 2)}};
+    std::vector<std::pair<std::string, uint64_t>> rows;
+    for (int i = 0; i < count; ++i)
+        rows.push_back({"SDF voxels, cascade " + std::to_string(i), uint64_t(cascadeVoxelBytes(s))});
+    rows.push_back({"SDF field (" + std::to_string(count) + " layers)", uint64_t(distanceFieldBuildBytes(n, count))});
+    if (count > 1) rows.push_back({"SDF radiance layers", uint64_t(radianceAtlasBytes(n, count))});
+    // raw, reflection, info, 2 histories (RGBA16F), occlusion (R16F), 2 distances (R32F);
+    // full resolution: diffuse, specular (RGBA16F), ao (R16F)
+    rows.push_back({"SDF trace", traced * (5 * 8 + 2 + 2 * 4) + full * (2 * 8 + 2)});
+    return rows;
 }
 
 SdfGiPass::SdfGiPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger)
-    : built_(sdfParams().read("sdf", settings.params)) {
+    : built_(sdfParams().read("sdf", settings.params)), scope_{&ledger, name()} {
     const int n = built_.resolution;
-    const gl::MemoryScope scope{&ledger, name()};
-    // Refuse before allocating: voxels, radiance and the field's peak while it is built.
-    checkVoxelBudget(n, voxelGridBytes(n) + voxelRadianceBytes(n, false, built_.bounces) + distanceFieldBuildBytes(n),
+    // The voxels and the field share the grid (a field cell is a voxel); the scene's cube is VCT's
+    // fit (2.5 voxels of margin) and the coarsest cascade.
+    layout_ = layoutCascades(scene.cpu, n, built_.cascadeExtent, built_.cascades);
+    const int count = layout_.count;
+    // Refuse before allocating: voxels and radiance per cascade, the field's peak while it is built.
+    checkVoxelBudget(n, count * cascadeVoxelBytes(built_) + distanceFieldBuildBytes(n, count) + radianceAtlasBytes(n, count),
                      "sdf.resolution");
-    // The same fit as VCT (2.5 voxels of margin): the distance field and the voxel radiance share
-    // the grid, so a field cell is a voxel.
-    const VolumeFit fit = fitVolume(scene.cpu.bounds, n, 2.5f);
-    const ConservativeMode mode =
-        Voxelizer::hardwareConservativeAvailable() ? ConservativeMode::Hardware : ConservativeMode::Geometry;
-    voxelizer_ = std::make_unique<Voxelizer>(fit, mode, scope);
-    radiance_ = std::make_unique<VoxelRadiance>(n, false, built_.bounces, scope);
-    field_ = std::make_unique<DistanceField>(SdfVolume{fit.origin, fit.size, n}, scope);
+    mode_ = Voxelizer::hardwareConservativeAvailable() ? ConservativeMode::Hardware : ConservativeMode::Geometry;
+    cascades_.resize(size_t(count));
+    for (Cascade& c : cascades_) c.radiance = std::make_unique<VoxelRadiance>(n, false, built_.bounces, scope_);
+    field_ = std::make_unique<DistanceField>(layout_.volume(count - 1, glm::ivec3(0)), scope_, count);
+    if (count > 1) {
+        radianceAtlas_ = gl::createTexture3D(scope_, GL_RGBA16F, n, n, n * count);
+        glTextureParameteri(radianceAtlas_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(radianceAtlas_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+            glTextureParameteri(radianceAtlas_.id(), wrap, GL_CLAMP_TO_EDGE);
+    }
 
     scale_ = built_.halfResolution ? 2 : 1;
     const int tw = tracedSize(settings.width, scale_), th = tracedSize(settings.height, scale_);
-    raw_ = gl::createTexture2D(scope, GL_RGBA16F, tw, th);
-    reflection_ = gl::createTexture2D(scope, GL_RGBA16F, tw, th);
-    occlusion_ = gl::createTexture2D(scope, GL_R16F, tw, th);
-    info_ = gl::createTexture2D(scope, GL_RGBA16F, tw, th);
+    raw_ = gl::createTexture2D(scope_, GL_RGBA16F, tw, th);
+    reflection_ = gl::createTexture2D(scope_, GL_RGBA16F, tw, th);
+    occlusion_ = gl::createTexture2D(scope_, GL_R16F, tw, th);
+    info_ = gl::createTexture2D(scope_, GL_RGBA16F, tw, th);
     for (int i = 0; i < 2; ++i) {
-        history_[i] = gl::createTexture2D(scope, GL_RGBA16F, tw, th);
-        historyDistance_[i] = gl::createTexture2D(scope, GL_R32F, tw, th);
+        history_[i] = gl::createTexture2D(scope_, GL_RGBA16F, tw, th);
+        historyDistance_[i] = gl::createTexture2D(scope_, GL_R32F, tw, th);
     }
-    diffuse_ = gl::createTexture2D(scope, GL_RGBA16F, settings.width, settings.height);
-    specular_ = gl::createTexture2D(scope, GL_RGBA16F, settings.width, settings.height);
-    ao_ = gl::createTexture2D(scope, GL_R16F, settings.width, settings.height);
+    diffuse_ = gl::createTexture2D(scope_, GL_RGBA16F, settings.width, settings.height);
+    specular_ = gl::createTexture2D(scope_, GL_RGBA16F, settings.width, settings.height);
+    ao_ = gl::createTexture2D(scope_, GL_R16F, settings.width, settings.height);
     // Filtered lookups (the lighting pass reads the contract's terms with texture()).
     for (const gl::Texture* t : {&diffuse_, &specular_, &ao_}) {
         glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -93,23 +117,76 @@ SdfGiPass::SdfGiPass(const GpuScene& scene, const RenderSettings& settings, gl::
     debugProgram_ = buildProgram(all[last - 1]);
 }
 
+int SdfGiPass::fieldBuilds() const {
+    int sum = 0;
+    for (const Cascade& c : cascades_) sum += c.fieldBuilds;
+    return sum;
+}
+
+int SdfGiPass::radianceBuilds() const {
+    int sum = 0;
+    for (const Cascade& c : cascades_) sum += c.radianceBuilds;
+    return sum;
+}
+
 void SdfGiPass::invalidate(Changes c) {
-    if (c & ChangeGeometry) voxelsValid_ = fieldValid_ = false;
-    if (c & ChangeMaterials) voxelsValid_ = false;  // albedo and emission; occupancy, so the field, stays
-    if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) radianceValid_ = false;
+    for (Cascade& k : cascades_) {
+        if (c & ChangeGeometry) k.voxelsValid = k.fieldValid = false;
+        if (c & ChangeMaterials) k.voxelsValid = false;  // albedo and emission; occupancy, so the field, stays
+        if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) k.radianceValid = false;
+    }
     // The camera is handled by reprojection; anything that changes what a ray sees starts over.
     if (c & (ChangeGeometry | ChangeMaterials | ChangeLights | ChangeLiveParams)) hasHistory_ = false;
 }
 
-void SdfGiPass::rebuildField(Frame& frame) {
-    const VoxelGrid& grid = voxelizer_->grid();
-    // Seeds: the voxelizer's occupancy (albedo alpha) and averaged normals (the field's sign).
-    field_->build({grid.albedo.id(), grid.normal.id()}, built_.jfaVariant(), frame.steps);
-    fieldValid_ = true;
-    ++fieldBuilds_;
+std::string SdfGiPass::stepPrefix(int cascade) const {
+    return layout_.count > 1 ? "c" + std::to_string(cascade) + "." : "";
 }
 
-void SdfGiPass::relight(Frame& frame) {
+// Cascades follow the camera beyond the snap distance. A moved one gets a voxelizer for its new
+// cube (the voxelizer's grid is fixed at construction) and is rebuilt whole.
+void SdfGiPass::place(const glm::vec3& camera) {
+    for (int i = 0; i < layout_.count; ++i) {
+        Cascade& c = cascades_[size_t(i)];
+        const glm::ivec3 centred = layout_.centredOffset(i, camera);
+        if (c.placed && !layout_.mustMove(c.offset, centred)) continue;
+        c.offset = centred;
+        c.placed = true;
+        const SdfVolume v = layout_.volume(i, centred);
+        c.voxelizer.reset();  // release the old grid before allocating the new one
+        VolumeFit fit;
+        fit.origin = v.origin;
+        fit.size = v.size;
+        fit.resolution = v.resolution;
+        c.voxelizer = std::make_unique<Voxelizer>(fit, mode_, scope_);
+        field_->setVolume(i, v);
+        c.voxelsValid = c.fieldValid = c.radianceValid = false;
+    }
+}
+
+void SdfGiPass::refresh(Frame& frame, int i) {
+    Cascade& c = cascades_[size_t(i)];
+    const std::string prefix = stepPrefix(i);
+    c.lastFrame = !c.voxelsValid || !c.fieldValid ? "rebuilt" : !c.radianceValid ? "relit" : "cached";
+    if (!c.voxelsValid) {
+        auto t = frame.step(prefix + "voxelize");
+        c.voxelizer->voxelize(frame.scene);
+        c.voxelsValid = true;
+        c.radianceValid = false;
+    }
+    if (!c.fieldValid) {
+        const VoxelGrid& grid = c.voxelizer->grid();
+        // Seeds: the voxelizer's occupancy (albedo alpha) and averaged normals (the field's sign).
+        field_->build({grid.albedo.id(), grid.normal.id()}, built_.jfaVariant(), frame.steps, i, prefix);
+        c.fieldValid = true;
+        ++c.fieldBuilds;
+    }
+    if (!c.radianceValid) relight(frame, i, prefix);
+}
+
+void SdfGiPass::relight(Frame& frame, int i, const std::string& prefix) {
+    Cascade& c = cascades_[size_t(i)];
+    const VoxelGrid& grid = c.voxelizer->grid();
     VoxelRadiance::Lights lights;
     lights.buffer = frame.buffer("lights");
     lights.shadowMaps = frame.texture("shadow.maps");
@@ -117,24 +194,27 @@ void SdfGiPass::relight(Frame& frame) {
     lights.count = int(frame.scene.cpu.lights.size());
     lights.shadows = frame.settings.shadows;
     {
-        auto t = frame.step("inject");
-        radiance_->inject(voxelizer_->grid(), lights);
+        auto t = frame.step(prefix + "inject");
+        c.radiance->inject(grid, lights);
     }
     if (built_.bounces > 1) {  // further bounces gather by cone tracing in voxel space (the voxel module's)
-        auto t = frame.step("bounce");
-        radiance_->buildMips(voxelizer_->grid());
-        radiance_->bounce(voxelizer_->grid(), ConeSettings{}, frame.settings.background.value_or(frame.scene.cpu.background));
+        auto t = frame.step(prefix + "bounce");
+        c.radiance->buildMips(grid);
+        c.radiance->bounce(grid, ConeSettings{}, frame.settings.background.value_or(frame.scene.cpu.background));
     }
-    radianceValid_ = true;
-    ++radianceBuilds_;
+    if (layout_.count > 1) {  // into this cascade's layer, where the trace shader reads it
+        const int n = layout_.resolution();
+        glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glCopyImageSubData(c.radiance->radiance().id(), GL_TEXTURE_3D, 0, 0, 0, 0, radianceAtlas_.id(), GL_TEXTURE_3D,
+                           0, 0, 0, i * n, n, n, n);
+    }
+    c.radianceValid = true;
+    ++c.radianceBuilds;
 }
 
 void SdfGiPass::setCommonUniforms(GLuint p, const Frame& frame) const {
-    const SdfVolume& v = field_->volume();
     glProgramUniformMatrix4fv(p, UG_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UG_CAMERA_POS, 1, &frame.camera.position[0]);
-    glProgramUniform4f(p, UG_VOLUME, v.origin.x, v.origin.y, v.origin.z, v.size);
-    glProgramUniform1i(p, UG_RESOLUTION, v.resolution);
     glProgramUniform1i(p, UG_SCALE, scale_);
     const GLuint gbuffer[3] = {frame.texture("gbuffer.depth"), frame.texture("gbuffer.normal"),
                                frame.texture("gbuffer.material")};
@@ -153,8 +233,16 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     glProgramUniform3fv(p, UG_ENVIRONMENT, 1, &environment[0]);
     glProgramUniform2f(p, UG_SPECULAR, s.specular ? 1.0f : 0.0f, s.specularRoughness);
     glProgramUniform1f(p, UG_AO, s.aoStrength);
+    std::vector<glm::vec4> volumes;
+    for (int i = 0; i < layout_.count; ++i) {
+        const SdfVolume& v = field_->volume(i);
+        volumes.emplace_back(v.origin, v.size);
+    }
+    glProgramUniform4fv(p, UG_CASCADES, GLsizei(volumes.size()), &volumes[0][0]);
+    glProgramUniform1i(p, UG_CASCADE_COUNT, layout_.count);
+    glProgramUniform1i(p, UG_RESOLUTION, layout_.resolution());
     field_->bind(3);
-    glBindTextureUnit(5, radiance_->radiance().id());
+    glBindTextureUnit(5, layout_.count > 1 ? radianceAtlas_.id() : cascades_[0].radiance->radiance().id());
     glBindImageTexture(0, raw_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, reflection_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(2, occlusion_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
@@ -198,14 +286,8 @@ void SdfGiPass::filter(const Frame& frame, const SdfGiSettings& s) {
 
 void SdfGiPass::execute(Frame& frame) {
     const SdfGiSettings live = sdfParams().read("sdf", frame.settings.params);
-    if (!voxelsValid_) {
-        auto t = frame.step("voxelize");
-        voxelizer_->voxelize(frame.scene);
-        voxelsValid_ = true;
-        radianceValid_ = false;
-    }
-    if (!fieldValid_) rebuildField(frame);
-    if (!radianceValid_) relight(frame);
+    place(frame.camera.position);
+    for (int i = 0; i < layout_.count; ++i) refresh(frame, i);
     {
         auto t = frame.step("trace");
         trace(frame, live);
@@ -226,6 +308,28 @@ void SdfGiPass::execute(Frame& frame) {
     frame.put("ao", ao_);
 }
 
+std::vector<std::string> SdfGiPass::stats() const {
+    char line[200];
+    std::snprintf(line, sizeof line, "%d cascade%s (%s; scene cube %.4g world units, sdf.cascade-extent %.4g)",
+                  layout_.count, layout_.count > 1 ? "s" : "", built_.cascades > 0 ? "sdf.cascades" : "auto",
+                  double(layout_.scene.size), double(built_.cascadeExtent));
+    std::vector<std::string> out = {line};
+    const int64_t bytes = cascadeVoxelBytes(built_) + distanceFieldBytes(layout_.resolution()) +
+                          radianceAtlasBytes(layout_.resolution(), layout_.count) / layout_.count;
+    for (int i = 0; i < layout_.count; ++i) {
+        const Cascade& c = cascades_[size_t(i)];
+        const SdfVolume& v = field_->volume(i);
+        std::snprintf(line, sizeof line,
+                      "cascade %d: %d^3 cells of %.4g (a %.4g cube from %.4g, %.4g, %.4g), up to %.2f MiB; field built "
+                      "%d times, radiance %d; last frame %s",
+                      i, v.resolution, double(v.cellSize()), double(v.size), double(v.origin.x), double(v.origin.y),
+                      double(v.origin.z), double(bytes) / (1024.0 * 1024.0), c.fieldBuilds, c.radianceBuilds,
+                      c.lastFrame);
+        out.push_back(line);
+    }
+    return out;
+}
+
 std::vector<DebugViewDesc> SdfGiPass::debugViews() const {
     return {{"sdf.slice", "one slice of the signed distance field (sdf.slice-axis, sdf.slice-position): blue outside, "
                           "red inside, a band per cell, black on the surface"},
@@ -241,10 +345,12 @@ void SdfGiPass::drawDebugView(const std::string& view, const Frame& frame, GLuin
     }
     const SdfGiSettings live = sdfParams().read("sdf", frame.settings.params);
     const GLuint p = debugProgram_.id();
-    const SdfVolume& v = field_->volume();
+    const int cascade = std::min(live.sliceCascade, layout_.count - 1);
+    const SdfVolume& v = field_->volume(cascade);
     glUseProgram(p);
     glProgramUniform4f(p, UG_VOLUME, v.origin.x, v.origin.y, v.origin.z, v.size);
     glProgramUniform1i(p, UG_RESOLUTION, v.resolution);
+    glProgramUniform1i(p, UG_SLICE_CASCADE, cascade);
     const float kind = view == "sdf.slice" ? 0.0f : view == "sdf.steps" ? 1.0f : 2.0f;
     glProgramUniform4f(p, UG_DEBUG, kind, float(live.sliceAxis), live.slicePosition, float(live.maxSteps));
     glBindSamplers(0, 7, nullptr);
@@ -262,8 +368,12 @@ GiMethod sdfMethod() {
                 "edge-aware filter";
     m.params = sdfParams().rows;
     m.presets = {
-        {"low", "32^3, plain JFA, 2 rays at half resolution, 32 steps",
-         {{"sdf.resolution", {32.0}}, {"sdf.jfa", choiceValue("plain")}, {"sdf.rays", {2.0}}, {"sdf.max-steps", {32.0}}}},
+        {"low", "32^3, one volume, plain JFA, 2 rays at half resolution, 32 steps",
+         {{"sdf.resolution", {32.0}},
+          {"sdf.cascades", {1.0}},
+          {"sdf.jfa", choiceValue("plain")},
+          {"sdf.rays", {2.0}},
+          {"sdf.max-steps", {32.0}}}},
         {"medium", "64^3, JFA+2, 4 rays at half resolution, 64 steps", {}},
         {"high", "128^3, JFA+2, 8 rays at full resolution, 128 steps",
          {{"sdf.resolution", {128.0}},
@@ -272,7 +382,7 @@ GiMethod sdfMethod() {
           {"sdf.max-steps", {128.0}}}},
     };
     m.programs = &SdfGiPass::programs;
-    m.estimateMemory = [](const Scene&, const RenderSettings& s) { return SdfGiPass::estimateMemory(s); };
+    m.estimateMemory = [](const Scene& scene, const RenderSettings& s) { return SdfGiPass::estimateMemory(scene, s); };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<SdfGiPass>(b.services.scene, b.settings, b.ledger)); };
     // A static view's history is a running mean (up to 256 frames): after 4 / (1 - temporal) frames
     // (40 at the default) the frame-to-frame change is below 1% (the convergence test).

@@ -5,9 +5,15 @@
 // filtered edge-aware into the lighting contract's indirect.diffuse; a mirror ray for smooth
 // surfaces into indirect.specular; near-field soft occlusion from the field into ao.
 //
-// What is cached: the distance field depends on geometry alone and is rebuilt only after
-// invalidate(ChangeGeometry); the voxel radiance after geometry, materials or lights change. A
-// camera move costs the trace, temporal and filter steps only.
+// Cascades (renderer/sdf/sdf_cascades.h): a scene whose cube is larger than sdf.cascade-extent
+// gets up to four nested volumes around the camera, each with its own voxels, radiance and a
+// layer of the field; a small scene (the Cornell box) gets one, the scene's cube.
+//
+// What is cached: each cascade's voxels and field depend on geometry and on where the cascade lies,
+// and are rebuilt only after invalidate(ChangeGeometry) or when the camera takes that cascade with
+// it (beyond the snap distance); its radiance also after materials or lights change. A shifted
+// cascade is rebuilt whole (voxelize, seed, every flood pass, inject): see the README for why. A
+// camera move within the snap costs the trace, temporal and filter steps only.
 #pragma once
 
 #include <memory>
@@ -15,6 +21,7 @@
 #include "gi/sdf/sdf_settings.h"
 #include "renderer.h"
 #include "sdf/distance_field.h"
+#include "sdf/sdf_cascades.h"
 #include "voxel/voxel_radiance.h"
 
 namespace gis {
@@ -30,31 +37,50 @@ public:
     void execute(Frame& frame) override;
     void invalidate(Changes c) override;
     bool writesImagesOrBuffers() const override { return true; }
-    std::vector<std::string> stats() const override {
-        return {describeVolume(voxelizer_->grid().fit, "distance-field cells")};
-    }
+    std::vector<std::string> stats() const override;
     std::vector<DebugViewDesc> debugViews() const override;
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     static std::vector<ProgramDesc> programs();
     // GPU bytes the pass will hold at these settings (the memory budget asks before allocating).
-    static std::vector<std::pair<std::string, uint64_t>> estimateMemory(const RenderSettings& settings);
+    static std::vector<std::pair<std::string, uint64_t>> estimateMemory(const Scene& scene,
+                                                                        const RenderSettings& settings);
 
     const DistanceField& field() const { return *field_; }
-    int fieldBuilds() const { return fieldBuilds_; }       // how often the field was rebuilt
-    int radianceBuilds() const { return radianceBuilds_; }
+    const SdfCascadeLayout& layout() const { return layout_; }
+    int cascadeCount() const { return layout_.count; }
+    // Builds of each cascade's field (voxelize + seed + flood + resolve) and radiance (inject), and
+    // of all cascades together.
+    int fieldBuilds(int cascade) const { return cascades_.at(size_t(cascade)).fieldBuilds; }
+    int radianceBuilds(int cascade) const { return cascades_.at(size_t(cascade)).radianceBuilds; }
+    int fieldBuilds() const;
+    int radianceBuilds() const;
+    glm::ivec3 cascadeOffset(int cascade) const { return cascades_.at(size_t(cascade)).offset; }
 
 private:
-    void rebuildField(Frame& frame);
-    void relight(Frame& frame);
+    struct Cascade {
+        std::unique_ptr<Voxelizer> voxelizer;   // made (again) where the cascade is placed
+        std::unique_ptr<VoxelRadiance> radiance;
+        glm::ivec3 offset{0};                   // in the cascade's cells from the scene cube's corner
+        bool placed = false, voxelsValid = false, fieldValid = false, radianceValid = false;
+        const char* lastFrame = "cached";      // what refresh() did: "rebuilt" (voxels/field), "relit", "cached"
+        int fieldBuilds = 0, radianceBuilds = 0;
+    };
+    void place(const glm::vec3& camera);
+    void refresh(Frame& frame, int cascade);
+    void relight(Frame& frame, int cascade, const std::string& prefix);
+    std::string stepPrefix(int cascade) const;
     void trace(const Frame& frame, const SdfGiSettings& s);
     void accumulate(const Frame& frame, const SdfGiSettings& s);
     void filter(const Frame& frame, const SdfGiSettings& s);
     void setCommonUniforms(GLuint program, const Frame& frame) const;
 
     SdfGiSettings built_;
-    std::unique_ptr<Voxelizer> voxelizer_;
-    std::unique_ptr<VoxelRadiance> radiance_;
-    std::unique_ptr<DistanceField> field_;
+    gl::MemoryScope scope_;
+    ConservativeMode mode_;
+    SdfCascadeLayout layout_;
+    std::vector<Cascade> cascades_;
+    std::unique_ptr<DistanceField> field_;   // one layer per cascade
+    gl::Texture radianceAtlas_;              // more than one cascade: their radiance, a layer each
     int scale_ = 1;  // full-resolution pixels per traced pixel
     // Traced resolution: this frame's diffuse, mirror ray, occlusion, debug data; the history
     // and each history pixel's distance from its camera, ping-ponged.
@@ -65,8 +91,7 @@ private:
     glm::mat4 prevViewProj_{1.0f};
     glm::vec3 prevCameraPos_{0.0f};
     int current_ = 0;
-    bool voxelsValid_ = false, fieldValid_ = false, radianceValid_ = false, hasHistory_ = false;
-    int fieldBuilds_ = 0, radianceBuilds_ = 0;
+    bool hasHistory_ = false;
 };
 
 }  // namespace gis

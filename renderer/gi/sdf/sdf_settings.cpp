@@ -1,5 +1,7 @@
 #include "gi/sdf/sdf_settings.h"
 
+#include "sdf/sdf_cascades.h"
+
 namespace gis {
 
 const ParamTable<SdfGiSettings>& sdfParams() {
@@ -10,6 +12,12 @@ const ParamTable<SdfGiSettings>& sdfParams() {
                  8, 512, U::Rebuild)
         .choice(&S::jfa, "jfa", "Jump flood", "plain JFA, or with a step-1 pass first (1+jfa) or steps 2 and 1 after (jfa+2)",
                 {"plain", "1+jfa", "jfa+2"}, U::Rebuild)
+        .integer(&S::cascades, "cascades", "Cascades",
+                 "nested volumes around the camera, each twice the last; 0 = from the scene's extent and sdf.cascade-extent",
+                 0, kSdfMaxCascades, U::Rebuild)
+        .real(&S::cascadeExtent, "cascade-extent", "Finest cascade extent",
+              "world units: a scene cube up to this edge gets one volume; each doubling beyond it one more cascade",
+              1e-6, 1e9, U::Rebuild)
         .integer(&S::bounces, "bounces", "Bounces",
                  "1 = ray hits see direct light and emission; more gather in voxel space again", 1, 4, U::Rebuild)
         .boolean(&S::halfResolution, "half-res", "Half resolution", "trace at half resolution, filter back up",
@@ -34,7 +42,9 @@ const ParamTable<SdfGiSettings>& sdfParams() {
               1.0, U::Live)
         .real(&S::intensity, "intensity", "Intensity", "scales the indirect terms", 0.0, 16.0, U::Live)
         .choice(&S::sliceAxis, "slice-axis", "Slice axis", "axis sdf.slice cuts across", {"x", "y", "z"}, U::Live)
-        .real(&S::slicePosition, "slice-position", "Slice position", "where along the axis, 0..1", 0.0, 1.0, U::Live);
+        .real(&S::slicePosition, "slice-position", "Slice position", "where along the axis, 0..1", 0.0, 1.0, U::Live)
+        .integer(&S::sliceCascade, "slice-cascade", "Slice cascade", "which cascade sdf.slice shows (0 = the finest)", 0,
+                 kSdfMaxCascades - 1, U::Live);
     return table;
 }
 

@@ -10,6 +10,8 @@ namespace gis {
 struct SdfGiSettings {
     int resolution = 64;        // sdf.resolution: cells per edge of the voxel grid and the field (rebuild)
     int jfa = 2;                // sdf.jfa: plain | 1+jfa | jfa+2 (JfaVariant order; rebuild)
+    int cascades = 0;           // sdf.cascades: 0 = from the scene's extent, else 1..4 (rebuild)
+    float cascadeExtent = 8.0f; // sdf.cascade-extent: the finest cascade's largest edge, world units (rebuild)
     int bounces = 1;            // sdf.bounces: 1 = hits see direct light and emission; more gather again (rebuild)
     bool halfResolution = true; // sdf.half-res: trace at half the frame's resolution, filter back up (rebuild)
     int rays = 4;               // sdf.rays: cosine-distributed diffuse rays per traced pixel per frame (live)
@@ -26,6 +28,7 @@ struct SdfGiSettings {
     // What the debug views show (live).
     int sliceAxis = 2;          // sdf.slice-axis: x | y | z
     float slicePosition = 0.5f; // sdf.slice-position: 0..1 across the volume
+    int sliceCascade = 0;       // sdf.slice-cascade: which cascade sdf.slice cuts (clamped to the count)
 
     JfaVariant jfaVariant() const { return JfaVariant(jfa); }
 };

@@ -1,8 +1,8 @@
 // Voxel cone tracing (`--gi vct`): voxelize the scene (renderer/voxel), inject direct light and
 // emission, build the mip chains, then trace cones per pixel into the lighting contract's
 // "indirect.diffuse" and "indirect.specular". Voxels, injection and mips are view independent:
-// they are rebuilt only after invalidate() with geometry, materials or lights, so a camera move
-// costs the trace alone. The cones' occlusion is already in indirect.diffuse, so the pass does
+// the voxels are rebuilt only after invalidate() with geometry or materials, injection and mips
+// also after a light edit, so a camera move costs the trace alone. The cones' occlusion is already in indirect.diffuse, so the pass does
 // not write "ao" (the lighting pass would multiply it in a second time); it is the debug view
 // "vct.ao".
 #pragma once
@@ -31,9 +31,14 @@ public:
     // inject and mips steps do (they show as cached in --timings).
     bool reusedLastFrame() const override { return false; }
     bool voxelsReusedLastFrame() const { return reused_; }
+    // Geometry and materials change the voxels (occupancy, albedo, emission); a light edit only the
+    // light injected into them (and the mips and bounces built from it).
     void invalidate(Changes c) override {
-        if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) valid_ = false;
+        if (c & (ChangeGeometry | ChangeMaterials)) voxelsValid_ = false;
+        if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) radianceValid_ = false;
     }
+    int voxelizations() const { return voxelizations_; }  // how often the scene was voxelized
+    int injections() const { return injections_; }        // how often light was injected
     bool writesImagesOrBuffers() const override { return true; }
     std::vector<std::string> stats() const override {
         return {describeVolume(voxelizer_->grid().fit, "voxels")};
@@ -47,7 +52,7 @@ public:
     const VctSettings& rebuildSettings() const { return built_; }
 
 private:
-    void rebuildVoxels(Frame& frame);
+    void relight(Frame& frame);
     void trace(const Frame& frame, const VctSettings& live);
     VctSettings built_;    // the rebuild parameters this pass was made with
     VctSettings live_;     // the live parameters of the last frame
@@ -55,7 +60,8 @@ private:
     std::unique_ptr<VoxelRadiance> radiance_;
     gl::Texture diffuse_, specular_, ao_;
     gl::Object traceProgram_, debugProgram_;
-    bool valid_ = false, reused_ = false;
+    bool voxelsValid_ = false, radianceValid_ = false, reused_ = false;
+    int voxelizations_ = 0, injections_ = 0;
 };
 
 }  // namespace gis

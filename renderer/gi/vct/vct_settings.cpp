@@ -12,6 +12,10 @@ const ParamTable<VctSettings>& vctParams() {
                 "geometry shader, off = plain rasterization",
                 {"hardware", "geometry", "off"}, U::Rebuild)
         .boolean(&S::anisotropic, "anisotropic", "Anisotropic mips", "six directional mip chains", U::Rebuild)
+        .choice(&S::backfaces, "backfaces", "Back faces",
+                "opaque = a voxel occludes and shows its light to cones from every side (a cone sees part of its own "
+                "surface); cull = the directional mips leave out voxels a cone meets from behind (needs anisotropic)",
+                {"opaque", "cull"}, U::Rebuild)
         .integer(&S::bounces, "bounces", "Bounces", "1 = direct light and emission; more gather in voxel space again", 1,
                  4, U::Rebuild)
         .choice(&S::coneSet, "cones", "Diffuse cones", "six 60-degree cones (Godot's set) or four 90-degree cones",

@@ -13,6 +13,7 @@ struct VctSettings {
     int resolution = 64;       // vct.resolution: voxels per edge, a power of two (rebuild)
     int conservative = 0;      // vct.conservative: hardware | geometry | off (ConservativeMode order; rebuild)
     bool anisotropic = true;   // vct.anisotropic: six directional mip chains (rebuild)
+    int backfaces = 0;         // vct.backfaces: opaque | cull, what directional mips do with back faces (rebuild)
     int bounces = 1;           // vct.bounces: 1 = direct light re-emitted once; more gather again (rebuild)
     int coneSet = 0;           // vct.cones: six (60-degree, Godot's) | four (90-degree) (live)
     float stepFactor = 0.5f;   // vct.step: step as a fraction of the cone diameter (live)

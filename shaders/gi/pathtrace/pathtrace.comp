@@ -29,6 +29,23 @@ layout(location = U_RR_START) uniform int u_rrStart;
 // light paths. Real-time methods produce no caustics; references are often rendered without.
 layout(location = U_CAUSTICS) uniform int u_caustics;
 
+// Throughput figures (`--timings`' rays/s): rays traced, as 64-bit counts kept in pairs of uints
+// (low, high) since core GL has no 64-bit atomics. Each invocation counts in registers and adds
+// once at the end; the one add whose low word wraps carries into the high word.
+#define RAYS_PRIMARY 0
+#define RAYS_BOUNCE 1
+#define RAYS_SHADOW 2
+layout(std430, binding = 6) coherent buffer RayCounts { uint u_rayCounts[6]; };
+uint g_rays[3] = uint[3](0u, 0u, 0u);
+
+void publishRayCounts() {
+    for (int k = 0; k < 3; ++k) {
+        if (g_rays[k] == 0u) continue;
+        uint before = atomicAdd(u_rayCounts[2 * k], g_rays[k]);
+        if (before > 0xFFFFFFFFu - g_rays[k]) atomicAdd(u_rayCounts[2 * k + 1], 1u);
+    }
+}
+
 // The largest finite float: path radiance is clamped here so that it never becomes Inf.
 const float MAX_RADIANCE = 3.4028e38;
 // Throughput below this ends a path: nothing it could still carry would show.
@@ -171,6 +188,7 @@ uint pickEmitter(float u) {
 
 bool visible(vec3 from, vec3 dir, float dist) {
     Hit h;
+    ++g_rays[RAYS_SHADOW];
     return !traceRay(from, dir, dist, true, h);
 }
 
@@ -229,6 +247,7 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
     bool afterDiffuse = false; // the path has made a diffuse bounce (caustics switch)
     for (int depth = 0;; ++depth) {
         Hit hit;
+        ++g_rays[depth == 0 ? RAYS_PRIMARY : RAYS_BOUNCE];
         // Camera rays pass through single-sided back faces, which the rasterizer culls: every
         // method sees the same surfaces. Shadow and bounce rays meet both sides, as shadow maps
         // (and Cycles) do.
@@ -300,4 +319,5 @@ void main() {
     acc.rgb = min(acc.rgb + (radiance - acc.rgb) / acc.w, vec3(MAX_RADIANCE));
     imageStore(u_accumulation, pixel, acc);
     imageStore(u_output, pixel, vec4(acc.rgb, 1.0));
+    publishRayCounts();
 }

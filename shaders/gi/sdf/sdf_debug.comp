@@ -1,5 +1,6 @@
 // SDF GI's debug views, written into the frame-sized target:
-//   0 sdf.slice:   one slice of the distance field across the whole image (axis, position 0..1),
+//   0 sdf.slice:   one slice of the distance field (cascade sdf.slice-cascade, a layer of the
+//                  field) across the whole image (axis, position 0..1),
 //                  colour-mapped: blue-white outside, red-orange inside (negative), a band every
 //                  cell, black on the zero level set;
 //   1 sdf.steps:   the marcher's steps per diffuse ray as a heatmap (black 0 ... white max steps);
@@ -15,6 +16,7 @@ layout(rgba16f, binding = 0) uniform writeonly image2D i_target;
 layout(location = UG_VOLUME) uniform vec4 u_volume;
 layout(location = UG_RESOLUTION) uniform int u_resolution;
 layout(location = UG_DEBUG) uniform vec4 u_debug;   // view, slice axis, slice position, max steps
+layout(location = UG_SLICE_CASCADE) uniform int u_layer;
 
 vec3 sliceColour(float d) {
     float cell = u_volume.w / float(u_resolution);
@@ -46,6 +48,10 @@ void main() {
     if (view == 0) {
         int axis = int(u_debug.y);
         vec3 uvw = axis == 0 ? vec3(u_debug.z, uv.x, uv.y) : axis == 1 ? vec3(uv.x, u_debug.z, uv.y) : vec3(uv, u_debug.z);
+        // The cascade's layer of the field (layers stack along z), clamped half a cell inside it.
+        int layers = max(textureSize(s_distance, 0).z / u_resolution, 1);
+        float halfCell = 0.5 / float(u_resolution);
+        uvw.z = (float(u_layer) + clamp(uvw.z, halfCell, 1.0 - halfCell)) / float(layers);
         colour = sliceColour(textureLod(s_distance, uvw, 0.0).r);
     } else {
         ivec2 traced = min(pixel * textureSize(s_info, 0) / size, textureSize(s_info, 0) - 1);

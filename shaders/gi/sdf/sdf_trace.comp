@@ -4,6 +4,8 @@
 // frame's estimate of the cosine-weighted mean incoming radiance (E / pi: the lighting contract's
 // indirect.diffuse) before temporal accumulation and filtering. Also: one mirror ray where the
 // surface is smooth, the near-field soft occlusion, and the debug data (steps, first hit normal).
+// With cascades (renderer/sdf/sdf_cascades.h) the field and the radiance hold one layer per
+// cascade; a ray starts in the finest cascade around its pixel's surface and hands over outwards.
 #include "common.glsl"
 #include "random.glsl"
 #include "sampling.glsl"
@@ -15,15 +17,16 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 2) uniform sampler2D s_gbufMaterial;  // metallic, roughness, occlusion, specular
 layout(binding = 3) uniform sampler3D s_distance;
 layout(binding = 4) uniform sampler3D s_coarse;
-layout(binding = 5) uniform sampler3D s_radiance;      // rgb = radiance x occupancy, a = occupancy
+layout(binding = 5) uniform sampler3D s_radiance;      // rgb = radiance x occupancy, a = occupancy; a layer per cascade
 layout(rgba16f, binding = 0) uniform writeonly image2D i_diffuse;
 layout(rgba16f, binding = 1) uniform writeonly image2D i_reflection;  // rgb, a = its weight against diffuse
 layout(r16f, binding = 2) uniform writeonly image2D i_ao;
 layout(rgba16f, binding = 3) uniform writeonly image2D i_info;        // mean steps, first hit normal
 
 layout(location = UG_CAMERA_POS) uniform vec3 u_cameraPos;
-layout(location = UG_VOLUME) uniform vec4 u_volume;
 layout(location = UG_RESOLUTION) uniform int u_resolution;
+layout(location = UG_CASCADES) uniform vec4 u_cascades[SDF_MAX_CASCADES];   // origin xyz, edge; finest first
+layout(location = UG_CASCADE_COUNT) uniform int u_cascadeCount;
 layout(location = UG_MARCH) uniform vec4 u_march;
 layout(location = UG_RAYS) uniform int u_rays;
 layout(location = UG_FRAME) uniform uint u_frame;
@@ -31,10 +34,11 @@ layout(location = UG_ENVIRONMENT) uniform vec3 u_environment;
 layout(location = UG_SPECULAR) uniform vec2 u_specular;
 layout(location = UG_AO) uniform float u_aoStrength;
 
-SdfVolume volume() { return SdfVolume(u_volume.xyz, u_volume.w, u_resolution); }
+SdfCascades cascades() { return SdfCascades(u_cascades, u_cascadeCount, u_resolution); }
 
 SdfMarchParams marchParams() {
-    SdfMarchParams p = sdfDefaultParams(u_volume.w * 1.7320508);
+    // The coarsest cascade is the scene's cube: no ray inside it goes further than its diagonal.
+    SdfMarchParams p = sdfDefaultParams(u_cascades[u_cascadeCount - 1].w * 1.7320508);
     p.hitThreshold = u_march.x;
     p.relaxation = u_march.y;
     p.maxSteps = int(u_march.z);
@@ -46,22 +50,23 @@ vec3 rayRadiance(SdfHit h) {
     if (!h.hit) return u_environment;
     // Half a cell into the surface: the level set runs through the centres of the outermost surface
     // voxels, so the trilinear lookup mixes them with the voxels behind (occupied, or empty and
-    // divided out below) rather than with the empty ones in front of the surface.
-    vec3 p = h.position - h.normal * 0.5 * sdfCellSize(volume());
-    vec4 r = textureLod(s_radiance, (p - u_volume.xyz) / u_volume.w, 0.0);
+    // divided out below) rather than with the empty ones in front of the surface. The radiance of
+    // the cascade the hit was found in, whose voxels made its field.
+    SdfVolume vol = sdfCascadeVolume(cascades(), h.cascade);
+    vec3 p = h.position - h.normal * 0.5 * sdfCellSize(vol);
+    vec4 r = textureLod(s_radiance, sdfLayerCoord(vol, h.cascade, u_cascadeCount, p), 0.0);
     return r.a > 1e-3 ? r.rgb / r.a : vec3(0.0);
 }
 
 // Occlusion closer than the rays' start offset, which the rays step over: the field a little way
 // out along the normal against the same field at the surface (so a plane, whatever its offset from
 // the level set, reads as open), Quilez-style, weighted towards the nearest samples.
-float nearFieldOcclusion(vec3 P, vec3 N, float reach) {
-    SdfVolume vol = volume();
-    float d0 = sdfSample(s_distance, vol, P);
+float nearFieldOcclusion(SdfVolume vol, int layer, vec3 P, vec3 N, float reach) {
+    float d0 = sdfSample(s_distance, vol, layer, P);
     float occlusion = 0.0, weight = 1.0, total = 0.0;
     for (int k = 1; k <= 3; ++k) {
         float s = reach * float(k) / 3.0;
-        float d = sdfSample(s_distance, vol, P + N * s) - d0;
+        float d = sdfSample(s_distance, vol, layer, P + N * s) - d0;
         occlusion += weight * saturate((s - d) / s);
         total += weight;
         weight *= 0.5;
@@ -80,7 +85,11 @@ void main() {
         imageStore(i_info, pixel, vec4(0.0));
         return;
     }
-    SdfVolume vol = volume();
+    // Offsets in cells of the finest cascade that holds the surface: a surface far from the camera
+    // lies in a coarser cascade, whose level set is further from the true surface.
+    SdfCascades cs = cascades();
+    int home = sdfCascadeAt(cs, s.position);
+    SdfVolume vol = sdfCascadeVolume(cs, home);
     float cell = sdfCellSize(vol);
     vec3 origin = s.position + s.normal * (u_march.w * cell);
     SdfMarchParams params = marchParams();
@@ -90,7 +99,7 @@ void main() {
     float steps = 0.0;
     vec3 firstNormal = vec3(0.0);
     for (int i = 0; i < u_rays; ++i) {
-        SdfHit h = sdfMarch(s_distance, s_coarse, vol, origin, cosineDirection(s.normal, nextFloat2(rng)), params);
+        SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, cosineDirection(s.normal, nextFloat2(rng)), params);
         sum += rayRadiance(h);
         steps += float(h.steps);
         if (i == 0 && h.hit) firstNormal = h.normal * 0.5 + 0.5;  // black: a miss
@@ -100,13 +109,13 @@ void main() {
     float roughness = texelFetch(s_gbufMaterial, pixel * u_scale, 0).y;
     if (u_specular.x > 0.5 && roughness < u_specular.y) {
         vec3 R = reflect(normalize(s.position - u_cameraPos), s.normal);
-        SdfHit h = sdfMarch(s_distance, s_coarse, vol, origin, R, params);
+        SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, R, params);
         // Blend towards the diffuse term as the lobe widens: a mirror ray is right only at 0.
         reflection = vec4(rayRadiance(h), 1.0 - roughness / max(u_specular.y, 1e-6));
     }
 
     imageStore(i_diffuse, pixel, vec4(finiteOrZero(sum / float(u_rays)), 1.0));
     imageStore(i_reflection, pixel, vec4(finiteOrZero(reflection.rgb), reflection.a));
-    imageStore(i_ao, pixel, vec4(nearFieldOcclusion(s.position, s.normal, max(u_march.w, 0.5) * cell)));
+    imageStore(i_ao, pixel, vec4(nearFieldOcclusion(vol, home, s.position, s.normal, max(u_march.w, 0.5) * cell)));
     imageStore(i_info, pixel, vec4(steps / float(u_rays), firstNormal));
 }

@@ -44,7 +44,7 @@ void main() {
     vec3 P = world.xyz / world.w;
     vec3 N = normalize(texelFetch(s_gbufNormal, pixel, 0).xyz);
     vec4 material = texelFetch(s_gbufMaterial, pixel, 0);
-    ConeTracer t = ConeTracer(float(u_resolution), u_traceParams.x, u_traceParams.y, u_anisotropic != 0);
+    ConeTracer t = makeConeTracer(u_resolution, u_traceParams.x, u_traceParams.y, u_anisotropic);
     vec3 origin = (u_worldToVoxel * vec4(P, 1.0)).xyz + N * u_traceParams.z;
 
     vec4 diffuse = traceDiffuse(t, origin, N, u_coneSet, 1.0, u_environment, 0.0);

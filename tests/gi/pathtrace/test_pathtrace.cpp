@@ -220,3 +220,58 @@ TEST(PathTrace, DamagedHelmetUnderWhiteSkyAgainstCycles) {
 
 }  // namespace
 }  // namespace gis::test
+
+namespace gis::test {
+namespace {
+
+RayCounts pathTracerRays(const Scene& scene, int size, int spp, int bounces, double* mraysPerSecond = nullptr) {
+    context();
+    RenderSettings r;
+    r.width = r.height = size;
+    r.gi = "pathtrace";
+    setParam(r, "pathtrace.spp", std::to_string(spp));
+    setParam(r, "pathtrace.bounces", std::to_string(bounces));
+    r.samplesPerFrame = 2;
+    Renderer renderer(scene, r);
+    do renderer.renderFrame();
+    while (!renderer.converged());
+    for (const PassTiming& t : renderer.timings(0))
+        if (t.pass == "pathtrace" && t.rays) {
+            if (mraysPerSecond) *mraysPerSecond = t.megaRaysPerSecond();
+            return *t.rays;
+        }
+    ADD_FAILURE() << "the pathtrace pass reported no ray counts";
+    return {};
+}
+
+// Throughput (`--timings`' Mrays/s) is only as honest as its counts: one camera ray per pixel and
+// sample exactly, and shadow and bounce rays within what the path's structure allows.
+TEST(PathTrace, CountsTheRaysItTraces) {
+    const Scene cornell = makeBuiltinScene("cornell");  // closed box, one point light, no emitters
+    double mrays = 0.0;
+    const RayCounts direct = pathTracerRays(cornell, 16, 4, 0, &mrays);
+    const uint64_t samples = 16 * 16 * 4;
+    EXPECT_EQ(direct.primary, samples);
+    // bounces = 0: every camera ray hits the box; its one shadow ray goes where N.L > 0, and the
+    // continuation ray is traced only to look for emission.
+    EXPECT_GT(direct.shadow, samples / 2);
+    EXPECT_LE(direct.shadow, samples);
+    EXPECT_LE(direct.bounce, samples);
+    EXPECT_GT(mrays, 0.0);
+
+    const RayCounts deep = pathTracerRays(cornell, 16, 4, 8);
+    EXPECT_EQ(deep.primary, samples);
+    EXPECT_GT(deep.bounce, 2 * direct.bounce);  // paths go on bouncing in a closed box
+    EXPECT_LE(deep.shadow, samples * 9);        // at most one per vertex: one light, no emitters
+    EXPECT_LE(deep.bounce, samples * 9);
+
+    Scene empty = makeBuiltinScene("cornell");
+    empty.cameras[0] = lookAtCamera(glm::vec3(0, 0, 100), glm::vec3(0, 0, 200));  // looking away: all miss
+    const RayCounts miss = pathTracerRays(empty, 8, 2, 4);
+    EXPECT_EQ(miss.primary, 8u * 8u * 2u);
+    EXPECT_EQ(miss.bounce, 0u);
+    EXPECT_EQ(miss.shadow, 0u);
+}
+
+}  // namespace
+}  // namespace gis::test

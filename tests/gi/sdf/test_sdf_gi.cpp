@@ -4,6 +4,7 @@
 // README's measurements ("SDF-TABLE" lines).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 
 #include "gi/method.h"
 #include "gi/sdf/sdf_pass.h"
+#include "sdf/sdf_cascades.h"
 #include "gl/gl.h"
 #include "metrics.h"
 #include "render_test_util.h"
@@ -153,6 +155,32 @@ TEST(SdfGi, CornellIndirectEnergyPerWallAgainstPathTracer) {
                 compareImages(v.frame, ref.ptOneBounce).psnrSrgb);
 }
 
+// Cascades forced onto the Cornell box (its front half then lies in finer cascades, the rest is
+// handed over to the coarsest) keep every wall's indirect energy against the path tracer in the
+// same 80-120% band as one volume, and change the image little: the hand-over neither loses nor
+// doubles light.
+TEST(SdfGi, ForcedCascadesKeepTheCornellEnergy) {
+    const Reference& ref = reference("cornell");
+    const ImageF pt = subtract(ref.ptOneBounce, ref.ptDirect);
+    RenderSettings s = base("sdf");
+    setSdf(s, "resolution", "32");
+    const SdfImages one = renderSdf(makeBuiltinScene("cornell"), s);
+    setSdf(s, "cascades", "3");
+    const SdfImages three = renderSdf(makeBuiltinScene("cornell"), s);
+    const ImageF a = subtract(one.frame, ref.direct), b = subtract(three.frame, ref.direct);
+    ASSERT_TRUE(allFinite(b));
+    for (const auto& [name, region] : kRegions) {
+        const double mOne = regionMean(a, ref, region), mThree = regionMean(b, ref, region), mPt = regionMean(pt, ref, region);
+        std::printf("SDF-TABLE cascades cornell %-10s one volume %.0f%%, three cascades %.0f%% of the path tracer\n",
+                    name.c_str(), 100.0 * mOne / mPt, 100.0 * mThree / mPt);
+        if (name == "ceiling") continue;
+        EXPECT_GE(mThree / mPt, 0.8) << name;
+        EXPECT_LE(mThree / mPt, 1.2) << name;
+    }
+    const double rel = interiorRmse(b, a, ref) / regionMean(a, ref, 0);
+    std::printf("SDF-TABLE cascades cornell: indirect RMSE three cascades vs one = %.3f of the floor's mean\n", rel);
+}
+
 TEST(SdfGi, ColourBleedsFromTheWallsOntoTheFloor) {
     const Reference& ref = reference("cornell");
     const SdfImages v = renderSdf(makeBuiltinScene("cornell"), base("sdf"));
@@ -202,9 +230,103 @@ TEST(SdfGi, FieldIsRebuiltOnlyWhenGeometryChanges) {
     std::map<std::string, int> steps;
     for (const PassTiming& t : r.timings(0))
         if (t.step) steps[t.pass] = 1;
-    for (const char* step : {"sdf/voxelize", "sdf/seed", "sdf/jfa", "sdf/resolve", "sdf/inject", "sdf/trace",
-                             "sdf/temporal", "sdf/filter"})
-        EXPECT_TRUE(steps.count(step)) << step;
+    // One cascade (the Cornell box): steps without a cascade prefix, a row per flood pass.
+    EXPECT_EQ(sdfPass(r).cascadeCount(), 1);
+    std::vector<std::string> expected = {"sdf/voxelize", "sdf/seed", "sdf/resolve", "sdf/inject",
+                                         "sdf/trace", "sdf/temporal", "sdf/filter"};
+    const std::vector<int> jumps = jfaSteps(32, JfaVariant::JfaPlusTwo);
+    for (size_t k = 0; k < jumps.size(); ++k)
+        expected.push_back("sdf/jfa." + std::to_string(k + 1) + "." + std::to_string(jumps[k]));
+    for (const std::string& step : expected) EXPECT_TRUE(steps.count(step)) << step;
+}
+
+// A camera that stands where `position` is and looks along -z, with `base`'s projection.
+CameraMatrices cameraAt(const CameraMatrices& base, const glm::vec3& position) {
+    CameraMatrices c = base;
+    c.view = glm::lookAt(position, position + glm::vec3(0.0f, -0.2f, -1.0f), glm::vec3(0, 1, 0));
+    c.viewProj = c.proj * c.view;
+    c.invViewProj = glm::inverse(c.viewProj);
+    c.position = position;
+    return c;
+}
+
+bool statsSay(const SdfGiPass& pass, int cascade, const std::string& what) {
+    const std::string head = "cascade " + std::to_string(cascade) + ":";
+    for (const std::string& line : pass.stats())
+        if (line.rfind(head, 0) == 0) return line.find(what) != std::string::npos;
+    return false;
+}
+
+// The atrium gets several cascades. A camera move within the snap rebuilds none of them (the stats
+// say "cached"); a move of 1.5 snaps of the finest cascade rebuilds exactly the cascades whose
+// position changed - the finest, not the coarsest. Every step has its row per cascade, the images
+// stay finite.
+TEST(SdfGi, CascadesFollowTheCameraAndRebuildOnlyWhatMoved) {
+    context();
+    const Scene scene = makeBuiltinScene("atrium");
+    RenderSettings s = base("sdf");
+    s.width = s.height = 48;
+    setSdf(s, "resolution", "32");
+    setSdf(s, "rays", "1");
+    Renderer r(scene, s);
+    const SdfGiPass& pass = sdfPass(r);
+    const SdfCascadeLayout& layout = pass.layout();
+    const int count = pass.cascadeCount();
+    ASSERT_GT(count, 1);
+    // In the courtyard, a fifth of the way up.
+    const glm::vec3 start = scene.bounds.center() + glm::vec3(0.0f, -0.3f * scene.bounds.extent().y, 0.0f);
+    const CameraMatrices initial = r.camera();
+    r.setCamera(cameraAt(initial, start));
+    r.renderFrame();
+    for (int i = 0; i < count; ++i) EXPECT_EQ(pass.fieldBuilds(i), 1) << i;
+    const float snap0 = float(layout.snapCells()) * layout.cellSize(0);
+
+    // Wall clock of a frame, glFinish included.
+    auto timedFrame = [&r] {
+        const auto begin = std::chrono::steady_clock::now();
+        r.renderFrame();
+        glFinish();
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
+    };
+    r.setCamera(cameraAt(initial, start + glm::vec3(0.6f * snap0, 0.0f, -0.4f * snap0)));
+    const double cachedMs = timedFrame();
+    for (int i = 0; i < count; ++i) {
+        EXPECT_EQ(pass.fieldBuilds(i), 1) << i;
+        EXPECT_EQ(pass.radianceBuilds(i), 1) << i;
+        EXPECT_TRUE(statsSay(pass, i, "last frame cached")) << i;
+    }
+
+    const glm::vec3 far = start + glm::vec3(1.5f * snap0, 0.0f, 0.0f);
+    std::vector<bool> moves;
+    for (int i = 0; i < count; ++i) moves.push_back(layout.mustMove(pass.cascadeOffset(i), layout.centredOffset(i, far)));
+    ASSERT_TRUE(moves.front());
+    ASSERT_FALSE(moves.back());
+    r.setCamera(cameraAt(initial, far));
+    const double movedMs = timedFrame();
+    for (int i = 0; i < count; ++i) {
+        EXPECT_EQ(pass.fieldBuilds(i), moves[size_t(i)] ? 2 : 1) << i;
+        EXPECT_TRUE(statsSay(pass, i, moves[size_t(i)] ? "last frame rebuilt" : "last frame cached")) << i;
+    }
+    const SdfImages img = read(r);
+    EXPECT_TRUE(allFinite(img.frame) && allFinite(img.diffuse) && allFinite(img.specular) && allFinite(img.ao));
+    double mean = 0.0;
+    for (size_t k = 0; k < img.diffuse.rgba.size(); k += 4) mean += img.diffuse.rgba[k + 1];
+    EXPECT_GT(mean, 0.0) << "no indirect light at all";
+    std::map<std::string, int> steps;
+    for (const PassTiming& t : r.timings(0))
+        if (t.step) steps[t.pass] = 1;
+    for (int i = 0; i < count; ++i)
+        for (const char* step : {"voxelize", "seed", "jfa.1.16", "jfa.7.1", "resolve", "inject"})
+            EXPECT_TRUE(steps.count("sdf/c" + std::to_string(i) + "." + step)) << i << " " << step;
+    for (const std::string& line : pass.stats()) std::printf("SDF-TABLE atrium stats: %s\n", line.c_str());
+    // What the move cost: the frame's wall clock (with the new voxelizer's program link) and the
+    // GPU time of each step in it (the README's table).
+    std::printf("SDF-TABLE atrium frames: %.1f ms wall within the snap, %.1f ms when cascade 0 moved\n", cachedMs,
+                movedMs);
+    for (const auto& [step, timer] : pass.steps.steps)
+        if (!timer->samples.empty())
+            std::printf("SDF-TABLE atrium step %s: %.2f ms in its last run (%zu runs)\n", step.c_str(),
+                        timer->samples.back(), timer->samples.size());
 }
 
 // A static camera converges: the mean frame-to-frame change of indirect.diffuse falls below 1%
@@ -373,7 +495,10 @@ TEST(SdfGi, Extremes) {
     const Reference& ref = reference("cornell");
     const SdfImages unit = renderSdf(scaledScene(makeBuiltinScene("cornell"), 1.0f), s);
     for (float scale : {1e-3f, 1e3f}) {
-        const SdfImages v = renderSdf(scaledScene(makeBuiltinScene("cornell"), scale), s);
+        // sdf.cascade-extent is in world units: it scales with the scene (one volume at every scale).
+        RenderSettings scaled = s;
+        setSdf(scaled, "cascade-extent", std::to_string(8.0f * scale));
+        const SdfImages v = renderSdf(scaledScene(makeBuiltinScene("cornell"), scale), scaled);
         ASSERT_TRUE(allFinite(v.indirect));
         const double rel = interiorRmse(v.indirect, unit.indirect, ref) / regionMean(unit.indirect, ref, 0);
         std::printf("SDF-TABLE scale %g: indirect RMSE vs x1 = %.4f of the floor's mean\n", scale, rel);

@@ -14,6 +14,7 @@
 #include "gi/method.h"
 #include "render_test_util.h"
 #include "vct_test_util.h"
+#include "voxel_test_util.h"
 
 namespace gis::test {
 namespace {
@@ -94,11 +95,12 @@ double imageMax(const ImageF& img) {
     return m;
 }
 
-// --gi vct at the defaults (64^3), VCT_RES / VCT_BOUNCES overriding for measurements by hand.
+// --gi vct at the defaults (64^3), VCT_RES / VCT_BOUNCES / VCT_BACKFACES overriding for measurements by hand.
 RenderSettings vctSettings() {
     RenderSettings r = baseSettings("vct");
     if (const char* e = std::getenv("VCT_RES")) setVct(r, "resolution", e);
     if (const char* e = std::getenv("VCT_BOUNCES")) setVct(r, "bounces", e);
+    if (const char* e = std::getenv("VCT_BACKFACES")) setVct(r, "backfaces", e);
     return r;
 }
 
@@ -200,9 +202,13 @@ TEST(Vct, ColourBleedsFromTheWallsOntoTheFloor) {
 }
 
 // Issue 11 asks that the error fall from 32^3 to 64^3. Measured on llvmpipe it does not (indirect
-// RMSE 0.0273 at 32^3, 0.0363 at 64^3, see the README): the remaining error is the cones' bias
-// (the back wall gets about half its light at both sizes), not resolution. Disabled rather than
-// weakened; run it with --gtest_also_run_disabled_tests.
+// RMSE 0.0269 at 32^3, 0.0355 at 64^3 by default; 0.0353 and 0.0368 with vct.backfaces=cull; see
+// the README). The per-face lines this prints locate it: by default almost all of the rise is the
+// ceiling (146% -> 209% of the path tracer), whose cones see its own lamp hot spot (their footprint
+// reaches the ceiling's voxels), more sharply the finer the voxels. Culling back faces removes
+// that and makes every face's mean the same at both sizes (floor 136/137%, walls 67%, back wall
+// 53/50%, ceiling 97/103%): the error left is the cones' bias, which the voxel size does not
+// control. Disabled rather than weakened; run it with --gtest_also_run_disabled_tests.
 TEST(Vct, DISABLED_ErrorFallsWithResolution) {
     const Reference& ref = reference("cornell");
     const ImageF pt = ref.ptIndirect();
@@ -213,6 +219,13 @@ TEST(Vct, DISABLED_ErrorFallsWithResolution) {
         setVct(s, "resolution", std::to_string(res));
         const VctImages v = renderVct(makeBuiltinScene("cornell"), s);
         err[i++] = indirectRmse(v.indirect, pt, ref);
+        for (const auto& [name, region] : kRegions) {
+            std::vector<bool> only = ref.interior;
+            for (size_t p = 0; p < only.size(); ++p) only[p] = only[p] && ref.hits[p].region == region;
+            std::printf("VCT-TABLE convergence %d^3 %-10s mean %.0f%% of the path tracer, RMSE %.5f\n", res, name.c_str(),
+                        100.0 * regionMean(v.indirect, ref, region) / regionMean(pt, ref, region),
+                        interiorRmse(v.indirect, pt, only));
+        }
     }
     std::printf("VCT-TABLE convergence cornell indirect RMSE: 32^3 %.5f, 64^3 %.5f\n", err[0], err[1]);
     EXPECT_LT(err[1], err[0]);
@@ -221,6 +234,40 @@ TEST(Vct, DISABLED_ErrorFallsWithResolution) {
 TEST(Vct, CameraMoveReusesVoxels) {
     const VctImages v = renderVct(makeBuiltinScene("cornell"), vctSettings(), 2);
     EXPECT_TRUE(v.cachedSecondFrame);
+}
+
+// A light edit keeps the voxels (occupancy, albedo, normals) and injects the light again: the
+// voxelizer ran once, the injection twice, and the injected radiance follows the new intensity.
+TEST(Vct, LightEditReinjectsWithoutRevoxelizing) {
+    context();
+    RenderSettings s = vctSettings();
+    setVct(s, "resolution", "32");
+    s.gi = "vct";
+    Scene scene = makeBuiltinScene("cornell");  // the renderer keeps a reference to it
+    Renderer r(scene, s);
+    const VctPass* pass = nullptr;
+    for (const auto& p : r.passes())
+        if (auto* v = dynamic_cast<const VctPass*>(p.get())) pass = v;
+    ASSERT_NE(pass, nullptr);
+    auto radianceSum = [&] {  // RGB of every voxel (alpha is occupancy, the same before and after)
+        const std::vector<float> v = readVoxelsRgba16f(pass->voxelRadiance().radiance());
+        double sum = 0.0;
+        for (size_t i = 0; i < v.size(); ++i) sum += i % 4 == 3 ? 0.0 : double(v[i]);
+        return sum;
+    };
+    r.renderFrame();
+    const double before = radianceSum();
+    scene.lights[0].intensity *= 2.0f;
+    r.lightsChanged();
+    r.renderFrame();
+    EXPECT_EQ(pass->voxelizations(), 1) << "a light edit re-voxelized the scene";
+    EXPECT_EQ(pass->injections(), 2) << "a light edit did not re-inject";
+    EXPECT_FALSE(pass->voxelsReusedLastFrame());
+    EXPECT_NEAR(radianceSum() / before, 2.0, 0.02) << "the injected light did not follow the edit";
+    r.invalidate(ChangeGeometry);
+    r.renderFrame();
+    EXPECT_EQ(pass->voxelizations(), 2);
+    EXPECT_EQ(pass->injections(), 3);
 }
 
 TEST(Vct, EmitterLightsTheRoom) {
@@ -308,49 +355,89 @@ TEST(Vct, ThinWallLeakIsMeasured) {
     s.lights.push_back(l);
     s.cameras.push_back(lookAtCamera({0, 1, 5.5f}, {0, 1, 0}, 45.0f));
     finalizeScene(s);
-    for (bool anisotropic : {false, true})
-        for (float offset : {1.5f, 3.0f}) {
-            RenderSettings v = vctSettings();
-            setVct(v, "anisotropic", anisotropic ? "true" : "false");
-            setVct(v, "offset", std::to_string(offset));
-            const VctImages img = renderVct(s, v);
-            ASSERT_TRUE(allFinite(img.indirect));
-            double sums[2] = {0, 0};
-            for (int y = 0; y < kSize; ++y)
-                for (int x = 0; x < kSize; ++x) {
-                    const int side = x < kSize * 45 / 100 ? 0 : x > kSize * 55 / 100 ? 1 : -1;
-                    if (side >= 0) sums[side] += img.indirect.at(x, y)[0] + img.indirect.at(x, y)[1] + img.indirect.at(x, y)[2];
-                }
-            const double leak = sums[1] / sums[0];
-            std::printf("VCT-TABLE leak 64^3 anisotropic %s offset %.1f: dark room / lit room = %.4f\n",
-                        anisotropic ? "on " : "off", offset, leak);
-            EXPECT_GT(sums[0], 0.0);
-            EXPECT_LT(leak, 0.5);
-        }
+    struct Knobs { bool anisotropic; float offset; const char* backfaces; };
+    const Knobs knobs[] = {{false, 1.5f, "opaque"}, {false, 3.0f, "opaque"}, {true, 1.5f, "opaque"},
+                           {true, 3.0f, "opaque"},  {true, 1.5f, "cull"}};
+    for (const auto& [anisotropic, offset, backfaces] : knobs) {
+        RenderSettings v = vctSettings();
+        setVct(v, "anisotropic", anisotropic ? "true" : "false");
+        setVct(v, "offset", std::to_string(offset));
+        setVct(v, "backfaces", backfaces);
+        const VctImages img = renderVct(s, v);
+        ASSERT_TRUE(allFinite(img.indirect));
+        double sums[2] = {0, 0};
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x) {
+                const int side = x < kSize * 45 / 100 ? 0 : x > kSize * 55 / 100 ? 1 : -1;
+                if (side >= 0) sums[side] += img.indirect.at(x, y)[0] + img.indirect.at(x, y)[1] + img.indirect.at(x, y)[2];
+            }
+        const double leak = sums[1] / sums[0];
+        std::printf("VCT-TABLE leak 64^3 anisotropic %s offset %.1f backfaces %s: dark room / lit room = %.4f\n",
+                    anisotropic ? "on " : "off", offset, backfaces, leak);
+        EXPECT_GT(sums[0], 0.0);
+        EXPECT_LT(leak, 0.5);
+    }
 }
 
 // Cones that leave the volume read the environment: a lone floor under a uniform sky of radiance
-// L sees L in every direction, so indirect.diffuse (E / pi) should be L there. It is not: 41% of
-// it at the defaults. A coarse sample's trilinear footprint reaches about 1.5 diameters, and the
-// lift keeps only one diameter between it and the surface, so the floor's own voxels occlude the
-// sky. Lifting by 2 diameters gives 96% here but bends the side cones towards the normal (the
-// Cornell floor then gets 172% of its light); capping the diameter at half the height instead
-// gives 92% here and 52% on the Cornell back wall. With isotropic mips it is 80%: most of the loss
-// is the directional chains, whose first level already has two-voxel texels. Disabled until one
-// scheme does both.
-TEST(Vct, DISABLED_OpenFloorSeesTheSky) {
+// L sees L in every direction, so indirect.diffuse (E / pi) should be L there. With
+// vct.backfaces=cull it is (the directional mips leave out the floor's voxels for cones leaving it
+// upwards). With the default (opaque) the floor's own voxels, which a cone's trilinear footprint
+// reaches over part of its path despite the lift, absorb more than half of the sky: printed, not
+// asserted (README, "Known wrong").
+TEST(Vct, OpenFloorSeesTheSkyWithBackfacesCulled) {
     Scene s;
     s.materials.push_back(lambert(glm::vec3(0.5f)));
     addQuad(s, {0, 0, 0}, {0, 1, 0}, 4.0f, 0);
     s.cameras.push_back(lookAtCamera({0, 3, 3}, {0, 0, 0}, 40.0f));
     finalizeScene(s);
-    RenderSettings r = vctSettings();
-    r.background = glm::vec3(0.2f, 0.4f, 0.8f);
-    const VctImages v = renderVct(s, r);
-    const float* centre = v.diffuse.at(kSize / 2, kSize / 2);
-    std::printf("VCT-TABLE open floor under a (0.2, 0.4, 0.8) sky: indirect.diffuse (%.3f, %.3f, %.3f)\n", centre[0],
-                centre[1], centre[2]);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(centre[c], (*r.background)[c], 0.05 * (*r.background)[c]) << c;
+    for (const char* backfaces : {"opaque", "cull"}) {
+        RenderSettings r = vctSettings();
+        r.background = glm::vec3(0.2f, 0.4f, 0.8f);
+        setVct(r, "backfaces", backfaces);
+        const VctImages v = renderVct(s, r);
+        const float* centre = v.diffuse.at(kSize / 2, kSize / 2);
+        std::printf("VCT-TABLE open floor under a (0.2, 0.4, 0.8) sky, backfaces %s: indirect.diffuse (%.3f, %.3f, %.3f), "
+                    "%.0f%%\n", backfaces, centre[0], centre[1], centre[2], 100.0 * centre[2] / 0.8);
+        if (std::string(backfaces) != "cull") continue;
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(centre[c], (*r.background)[c], 0.05 * (*r.background)[c]) << c;
+    }
+}
+
+// The cone tracer's energy balance apart from any light's shape: inside a closed box whose walls
+// all emit radiance L (and reflect nothing), every surface sees L in every direction, so
+// indirect.diffuse (E / pi) must be L on every wall, at the centre of a face as near its edges.
+// (It cannot see self-occlusion: a cone that sees its own wall sees L there too.) What it does see
+// is light escaping through coarse texels that straddle a wall and the volume's empty margin
+// (VctPass's margin comment): 12% at 32^3, 4% at 64^3 by default.
+TEST(Vct, ClosedEmissiveBoxIsAFurnace) {
+    Scene s;
+    Material glow = lambert(glm::vec3(0.0f));
+    glow.emissive = glm::vec3(0.5f);
+    s.materials.push_back(glow);
+    for (int axis = 0; axis < 3; ++axis)
+        for (float side : {-1.0f, 1.0f}) {
+            glm::vec3 n(0.0f);
+            n[axis] = -side;
+            addQuad(s, -n, n, 2.0f, 0);
+        }
+    s.cameras.push_back(lookAtCamera({0.0f, 0.0f, 0.95f}, {0.0f, 0.0f, -1.0f}, 90.0f));
+    finalizeScene(s);
+    for (const char* backfaces : {"opaque", "cull"}) {
+        RenderSettings r = vctSettings();
+        setVct(r, "backfaces", backfaces);
+        const VctImages v = renderVct(s, r);
+        struct Spot { const char* name; int x, y; };
+        const Spot spots[] = {{"back", kSize / 2, kSize / 2}, {"floor", kSize / 2, kSize * 15 / 16},
+                              {"ceiling", kSize / 2, kSize / 16}, {"left", kSize / 16, kSize / 2},
+                              {"back corner", kSize * 3 / 8, kSize * 5 / 8}};
+        for (const Spot& p : spots) {
+            const float e = v.diffuse.at(p.x, p.y)[0];
+            std::printf("VCT-TABLE furnace backfaces %-6s %-12s indirect.diffuse %.3f of the walls' 0.5 (%.0f%%)\n",
+                        backfaces, p.name, e, 200.0 * e);
+            EXPECT_NEAR(e, 0.5f, 0.075f * 0.5f) << backfaces << " " << p.name;
+        }
+    }
 }
 
 // The specular cone: a glossy metal floor in front of a red emissive wall reflects red, and a
@@ -416,6 +503,7 @@ TEST(Vct, BadParametersAreOneClearError) {
     EXPECT_THROW(setVct(s, "bounces", "9"), Error);
     EXPECT_THROW(setVct(s, "step", "nan"), Error);
     EXPECT_THROW(setVct(s, "conservative", "sometimes"), Error);
+    EXPECT_THROW(setVct(s, "backfaces", "sometimes"), Error);
     try {
         setVct(s, "resolution", "1024");
         FAIL() << "vct.resolution 1024 accepted";

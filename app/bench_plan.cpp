@@ -1,0 +1,309 @@
+#include "bench_plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <unistd.h>
+
+#include "content_hash.h"
+#include "gi/method.h"
+#include "metrics.h"
+#include "settings_io.h"
+
+namespace gis {
+
+namespace {
+
+namespace fs = std::filesystem;
+using ojson = nlohmann::ordered_json;
+
+constexpr int kReferenceBounces = 64;
+constexpr int kReferenceSamplesPerFrame = 16;
+constexpr int kAoReferenceSamplesPerFrame = 64;
+constexpr size_t kIdHexDigits = 16;
+
+glm::vec3 colourFlag(const std::vector<float>& v, const char* flag) {
+    if (v.size() != 1 && v.size() != 3) throw Error(std::string(flag) + " takes one value or R,G,B");
+    for (float x : v)
+        if (!std::isfinite(x) || x < 0.0f) throw Error(std::string(flag) + " must be finite and non-negative");
+    return v.size() == 3 ? glm::vec3(v[0], v[1], v[2]) : glm::vec3(v[0]);
+}
+
+// Results are named by the scene's file stem (or builtin name), made unique within the run: two
+// files whose glTF scene is called "Scene" no longer overwrite each other's chart and rows.
+std::vector<std::string> uniqueSceneNames(const std::vector<std::string>& specs) {
+    std::vector<std::string> names;
+    for (const std::string& spec : specs) {
+        std::string base = spec.rfind("builtin:", 0) == 0 ? spec.substr(8) : fs::path(spec).stem().string();
+        if (base.empty()) base = "scene";
+        std::string name = base;
+        for (int k = 2; std::find(names.begin(), names.end(), name) != names.end(); ++k) name = base + "-" + std::to_string(k);
+        names.push_back(name);
+    }
+    return names;
+}
+
+// The methods measured: --methods, else every benchmarked one; each must score against radiance.
+std::vector<std::string> selectMethods(const BenchOptions& o) {
+    std::vector<std::string> methods = o.methods;
+    if (methods.empty())
+        for (const GiMethod& m : giMethods())
+            if (m.benchmarked) methods.push_back(m.name);
+    for (const std::string& m : methods) {
+        const GiMethod& method = giMethod(m);
+        if (method.image != MethodImage::Radiance)
+            throw Error("--methods " + m + ": its image is not radiance, so it cannot be scored against the "
+                        "path-traced reference (it is the AO reference itself)");
+        for (const std::string& p : o.presets) method.preset(p);  // validates the name
+    }
+    return methods;
+}
+
+void validateFlags(const BenchOptions& o) {
+    RenderSettings s;
+    parseRenderSize(o.size, s.width, s.height);
+    if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
+    if (o.warmup < 0 || o.warmup >= o.frames)
+        throw Error("--warmup " + std::to_string(o.warmup) + " must be in [0, --frames " + std::to_string(o.frames) +
+                    ") (the default warm-up is 5 frames: with fewer --frames, lower --warmup too)");
+    if (!o.ambient.empty()) colourFlag(o.ambient, "--ambient");
+    if (!o.background.empty()) colourFlag(o.background, "--background");
+    cameraRequest(o.setup);  // validates the camera flags before any work
+    parseLightingMode(o.setup.lighting);
+    if (o.referenceSpp < 1 || o.referenceSpp > (1 << 20)) throw Error("--reference-spp must be in [1, 1048576]");
+    parseErrorMetric(o.metric);
+    if (o.scenes.empty()) throw Error("--scenes needs at least one scene");
+    if (o.presets.empty()) throw Error("--presets needs at least one preset");
+}
+
+// A .gltf names its buffers and images by URI; their bytes are the scene as much as its own.
+void hashGltfResources(const std::string& path, Sha256& h) {
+    std::ifstream in(path);
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+    if (j.is_discarded()) return;  // the loader already accepted it; nothing more to add
+    for (const char* list : {"buffers", "images"}) {
+        if (!j.contains(list) || !j[list].is_array()) continue;
+        for (const auto& entry : j[list]) {
+            if (!entry.contains("uri") || !entry["uri"].is_string()) continue;
+            const std::string uri = entry["uri"].get<std::string>();
+            if (uri.rfind("data:", 0) == 0) continue;  // embedded: already in the file's bytes
+            const fs::path file = fs::path(path).parent_path() / uri;
+            h.update("|" + uri + "|");
+            if (fs::is_regular_file(file)) h.updateFile(file.string());
+        }
+    }
+}
+
+std::string vecText(const glm::vec3& v) {
+    return nlohmann::json::array({v.x, v.y, v.z}).dump();
+}
+
+}  // namespace
+
+std::string sceneDigest(const std::string& spec, const Scene& loaded) {
+    Sha256 h;
+    if (spec.rfind("builtin:", 0) != 0) {
+        h.update("file|");
+        h.updateFile(spec);
+        if (fs::path(spec).extension() == ".gltf") hashGltfResources(spec, h);
+        return h.hex();
+    }
+    // A builtin has no file: hash what its generator makes, exported as glTF (and the sky, which
+    // glTF cannot hold).
+    static int counter = 0;
+    const fs::path dir = fs::temp_directory_path() /
+                         ("gisandbox-digest-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    fs::create_directories(dir);
+    try {
+        writeGltf(loaded, (dir / "scene.gltf").string());
+        h.update("builtin|" + spec + "|sky" + vecText(loaded.background) + "|");
+        for (const auto& entry : {"scene.gltf", "scene.bin"})
+            if (fs::exists(dir / entry)) h.updateFile((dir / entry).string());
+    } catch (...) {
+        fs::remove_all(dir);
+        throw;
+    }
+    fs::remove_all(dir);
+    return h.hex();
+}
+
+PreparedScene prepareBenchScene(const BenchJob& job) {
+    PreparedScene p;
+    parseRenderSize(job.size, p.base.width, p.base.height);
+    if (!job.ambient.empty()) p.base.ambient = colourFlag(job.ambient, "--ambient");
+    if (!job.background.empty()) p.base.background = colourFlag(job.background, "--background");
+    p.scene = loadScene(job.scene);
+    p.sha256 = sceneDigest(job.scene, p.scene);
+    p.base.camera = prepareScene(p.scene, job.setup, float(p.base.width) / float(p.base.height), &p.base,
+                                 !job.ambient.empty());
+    return p;
+}
+
+RenderSettings jobSettings(const BenchJob& job, const RenderSettings& sceneBase) {
+    RenderSettings s = sceneBase;
+    if (job.kind == JobKind::Cell) {
+        applyPreset(s, job.method, job.preset);
+    } else if (job.method == "pathtrace") {
+        s.gi = "pathtrace";
+        setParam(s, "pathtrace.spp", std::to_string(job.referenceSpp));
+        setParam(s, "pathtrace.bounces", std::to_string(kReferenceBounces));
+        s.samplesPerFrame = kReferenceSamplesPerFrame;
+    } else {
+        s.gi = "ao-reference";
+        setParam(s, "ao-reference.spp", std::to_string(job.referenceSpp));
+        s.samplesPerFrame = kAoReferenceSamplesPerFrame;
+    }
+    return s;
+}
+
+std::string contentId(const BenchJob& job, const RenderSettings& settings) {
+    ojson key{{"version", kBenchIdVersion},
+              {"kind", job.kind == JobKind::Cell ? "cell" : "reference"},
+              {"method", job.method},
+              {"preset", job.preset},
+              {"scene_sha256", job.sceneSha256},
+              {"lighting", job.setup.lighting},
+              {"camera", job.setup.camera},
+              {"camera_pos", job.setup.cameraPos},
+              {"look_at", job.setup.lookAt},
+              {"fov", job.setup.fov},
+              {"settings", view::renderSettingsToJson(settings)}};
+    if (job.kind == JobKind::Cell) {
+        key["frames"] = job.frames;
+        key["warmup"] = job.warmup;
+        key["reference"] = job.reference;
+        key["ao_reference"] = job.aoReference;
+    }
+    return sha256Hex(key.dump()).substr(0, kIdHexDigits);
+}
+
+std::vector<BenchJob> planBench(const BenchOptions& o) {
+    validateFlags(o);
+    const std::vector<std::string> methods = selectMethods(o);
+    const bool wantsAo = std::find(methods.begin(), methods.end(), "ssao") != methods.end();
+    const std::vector<std::string> names = uniqueSceneNames(o.scenes);
+    std::vector<BenchJob> references, cells;
+    for (size_t si = 0; si < o.scenes.size(); ++si) {
+        BenchJob common;
+        common.scene = o.scenes[si];
+        common.sceneName = names[si];
+        common.size = o.size;
+        common.setup = o.setup;
+        common.ambient = o.ambient;
+        common.background = o.background;
+        common.referenceSpp = o.referenceSpp;
+        const PreparedScene prepared = prepareBenchScene(common);  // fails early on a bad scene
+        common.sceneSha256 = prepared.sha256;
+        auto add = [&](std::vector<BenchJob>& to, JobKind kind, const std::string& method, const std::string& preset) {
+            BenchJob job = common;
+            job.kind = kind;
+            job.method = method;
+            job.preset = preset;
+            to.push_back(job);
+            to.back().id = contentId(to.back(), jobSettings(to.back(), prepared.base));
+            return to.back().id;
+        };
+        const std::string reference = add(references, JobKind::Reference, "pathtrace", "");
+        const std::string aoReference = wantsAo ? add(references, JobKind::Reference, "ao-reference", "") : "";
+        common.frames = o.frames;
+        common.warmup = o.warmup;
+        common.reference = reference;
+        for (const std::string& method : methods) {
+            common.aoReference = method == "ssao" ? aoReference : "";  // only SSAO is scored against AO
+            for (const std::string& preset : o.presets) add(cells, JobKind::Cell, method, preset);
+        }
+    }
+    references.insert(references.end(), cells.begin(), cells.end());
+    return references;
+}
+
+ojson jobToJson(const BenchJob& job) {
+    ojson j{{"id", job.id}, {"kind", job.kind == JobKind::Cell ? "cell" : "reference"}};
+    j["scene"] = job.scene;
+    j["scene_name"] = job.sceneName;
+    j["scene_sha256"] = job.sceneSha256;
+    j["method"] = job.method;
+    if (job.kind == JobKind::Cell) j["preset"] = job.preset;
+    j["size"] = job.size;
+    j["lighting"] = job.setup.lighting;
+    j["camera"] = job.setup.camera;
+    j["camera_pos"] = job.setup.cameraPos;
+    j["look_at"] = job.setup.lookAt;
+    j["fov"] = job.setup.fov;
+    j["ambient"] = job.ambient;
+    j["background"] = job.background;
+    j["reference_spp"] = job.referenceSpp;
+    if (job.kind == JobKind::Cell) {
+        j["frames"] = job.frames;
+        j["warmup"] = job.warmup;
+        j["reference"] = job.reference;
+        if (!job.aoReference.empty()) j["ao_reference"] = job.aoReference;
+    }
+    return j;
+}
+
+BenchJob jobFromJson(const nlohmann::json& j) {
+    BenchJob job;
+    try {
+        job.id = j.at("id").get<std::string>();
+        const std::string kind = j.at("kind").get<std::string>();
+        if (kind != "cell" && kind != "reference") throw Error("kind '" + kind + "' is not cell or reference");
+        job.kind = kind == "cell" ? JobKind::Cell : JobKind::Reference;
+        job.scene = j.at("scene").get<std::string>();
+        job.sceneName = j.at("scene_name").get<std::string>();
+        job.sceneSha256 = j.at("scene_sha256").get<std::string>();
+        job.method = j.at("method").get<std::string>();
+        job.size = j.at("size").get<std::string>();
+        job.setup.lighting = j.at("lighting").get<std::string>();
+        job.setup.camera = j.at("camera").get<std::string>();
+        job.setup.cameraPos = j.at("camera_pos").get<std::vector<float>>();
+        job.setup.lookAt = j.at("look_at").get<std::vector<float>>();
+        job.setup.fov = j.at("fov").get<float>();
+        job.ambient = j.at("ambient").get<std::vector<float>>();
+        job.background = j.at("background").get<std::vector<float>>();
+        job.referenceSpp = j.at("reference_spp").get<int>();
+        if (job.kind == JobKind::Cell) {
+            job.preset = j.at("preset").get<std::string>();
+            job.frames = j.at("frames").get<int>();
+            job.warmup = j.at("warmup").get<int>();
+            job.reference = j.at("reference").get<std::string>();
+            job.aoReference = j.value("ao_reference", std::string());
+        }
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(std::string("not a bench job: ") + e.what());
+    }
+    return job;
+}
+
+void writeManifest(std::ostream& out, const std::vector<BenchJob>& jobs) {
+    for (const BenchJob& job : jobs) out << jobToJson(job).dump() << "\n";
+}
+
+std::vector<BenchJob> readManifest(const std::string& path) {
+    if (path.empty()) throw Error("--manifest FILE is needed (the output of bench --plan)");
+    std::ifstream in(path);
+    if (!in) throw Error("--manifest '" + path + "': cannot read");
+    std::vector<BenchJob> jobs;
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        try {
+            const nlohmann::json j = nlohmann::json::parse(line);
+            jobs.push_back(jobFromJson(j));
+        } catch (const std::exception& e) {
+            throw Error(path + ":" + std::to_string(number) + ": " + e.what());
+        }
+    }
+    if (jobs.empty()) throw Error("--manifest '" + path + "' has no jobs");
+    return jobs;
+}
+
+const BenchJob& findJob(const std::vector<BenchJob>& jobs, const std::string& id, const std::string& manifest) {
+    for (const BenchJob& job : jobs)
+        if (job.id == id) return job;
+    throw Error("--cell " + id + ": no such id in " + manifest);
+}
+
+}  // namespace gis

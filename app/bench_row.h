@@ -1,0 +1,38 @@
+// One row of `gisandbox bench`: a method at a preset on a scene. bench.json holds rowToJson of
+// each, bench.csv one line per row through the column table in bench_row.cpp; a cell's result file
+// carries the same JSON, so a new figure is one field here and one column there.
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "metrics.h"
+
+namespace gis {
+
+struct BenchRow {
+    std::string scene, method, preset, description;
+    double ms = 0.0;                          // per frame; for progressive methods, to converge
+    double wallMs = 0.0;                      // wall clock with glFinish, the same way
+    std::vector<std::pair<std::string, double>> passMs;
+    int64_t bytes = 0;
+    ImageMetrics error;
+    double aoRmse = -1.0;                     // SSAO only: its AO term against ray-traced AO
+};
+
+nlohmann::ordered_json rowToJson(const BenchRow& row);
+// Throws gis::Error (via nlohmann) when a field is missing or of the wrong type.
+BenchRow rowFromJson(const nlohmann::ordered_json& json);  // ordered: pass_ms keeps pass order
+
+void writeCsvHeader(std::ostream& out);
+void writeCsvRow(std::ostream& out, const BenchRow& row);
+
+// The CSV columns that measure time (they differ between runs of the same cell).
+bool isTimingColumn(const std::string& name);
+
+}  // namespace gis

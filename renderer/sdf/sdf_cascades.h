@@ -1,0 +1,59 @@
+// Where the distance field's cascades lie (renderer/sdf/): for a scene too large for one volume,
+// nested cubes around the camera, each twice the edge of the one inside it, all with the same
+// number of cells. CPU-only placement, so tests can check it without a GPU.
+//
+// How many: from the scene's extent against the finest cascade's largest edge (sdf.cascade-extent,
+// world units, like Godot's SDFGI cell size): a scene cube within it gets one volume; each
+// doubling beyond it one more cascade, up to kSdfMaxCascades. The coarsest is always the scene's
+// cube, so the finest is that cube halved count - 1 times. This is the one choice of the method
+// that depends on the unit of length (glTF's is the metre); unit-free measures of "large" were
+// tried and rejected (see the README).
+//
+// Where: the coarsest cascade is the scene's fitted cube and never moves. Cascade i < last is
+// centred on the camera, on the grid of its own cells (aligned with the scene cube, so a finer
+// cascade's cells nest in the coarser ones) and kept inside the scene cube. It moves only when the
+// camera is more than snapCells() of its cells from where it was placed, so small camera moves
+// rebuild nothing and a coarser cascade (cells twice as large) moves half as often.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+#include "sdf/distance_field.h"
+#include "services/volume_fit.h"
+
+namespace gis {
+
+constexpr int kSdfMaxCascades = 4;          // shaders/sdf/sdf_march.glsl's SDF_MAX_CASCADES
+// A cascade moves when the camera is more than resolution / kSdfSnapDivisor of its cells away.
+constexpr int kSdfSnapDivisor = 8;
+
+// 1 when the scene cube's edge is within `finestExtent`, else 1 + the halvings that bring it
+// there, at most kSdfMaxCascades. `requested` > 0 overrides it (sdf.cascades). Throws gis::Error
+// for a request outside [0, kSdfMaxCascades] or an extent that is not positive.
+int chooseCascadeCount(const VolumeFit& sceneCube, float finestExtent, int requested);
+
+struct SdfCascadeLayout {
+    VolumeFit scene;   // the scene's fitted cube: the coarsest cascade
+    int count = 1;
+
+    int resolution() const { return scene.resolution; }
+    float extent(int i) const { return scene.size / float(1 << (count - 1 - i)); }
+    float cellSize(int i) const { return extent(i) / float(scene.resolution); }
+    int snapCells() const { return std::max(1, scene.resolution / kSdfSnapDivisor); }
+    // The offset (in cascade i's cells, from the scene cube's corner) that centres cascade i on
+    // `camera`, kept inside the scene cube.
+    glm::ivec3 centredOffset(int i, const glm::vec3& camera) const;
+    // Whether a cascade at `current` must move to `centred` (more than snapCells() on some axis).
+    bool mustMove(const glm::ivec3& current, const glm::ivec3& centred) const;
+    SdfVolume volume(int i, const glm::ivec3& offset) const;
+};
+
+// The layout for a scene: its cube (VCT's fit with 2.5 cells of margin, shared with the voxels),
+// and the count from its extent (or `requested`).
+SdfCascadeLayout layoutCascades(const Scene& scene, int resolution, float finestExtent, int requested);
+
+}  // namespace gis

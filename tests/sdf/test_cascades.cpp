@@ -1,0 +1,117 @@
+// Where the distance field's cascades lie (renderer/sdf/sdf_cascades.h), on the CPU: how many a
+// scene gets, that they nest, that a camera move within the snap moves none of them and a longer
+// one moves only those whose position changed.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "render_test_util.h"
+#include "sdf/sdf_cascades.h"
+
+namespace gis::test {
+namespace {
+
+constexpr float kExtent = 8.0f;  // sdf.cascade-extent's default
+
+// The Cornell box, the room and the two rooms of the leak scene fit in one volume; the atrium's
+// 29 m cube gets three cascades (7.2, 14.4 and 28.9 m at 64^3). Prints the README's table
+// ("SDF-TABLE cascades").
+TEST(SdfCascades, OneForSmallScenesSeveralForTheAtrium) {
+    for (const char* name : {"cornell", "room", "leak", "atrium"}) {
+        const Scene scene = makeBuiltinScene(name);
+        for (int n : {32, 64}) {
+            const SdfCascadeLayout l = layoutCascades(scene, n, kExtent, 0);
+            std::printf("SDF-TABLE cascades %s at %d^3: %d (scene cube %.3f; finest cascade %.3f, cells of %.4f)\n",
+                        name, n, l.count, double(l.scene.size), double(l.extent(0)), double(l.cellSize(0)));
+            EXPECT_EQ(l.count, std::string(name) == "atrium" ? 3 : 1) << name << " " << n;
+            EXPECT_LE(l.extent(0), kExtent) << name;
+        }
+    }
+}
+
+// The count follows the scene's extent against sdf.cascade-extent: scaling both together changes
+// nothing; capped; sdf.cascades forces it; bad requests are one clear error.
+TEST(SdfCascades, CountFollowsTheExtentCappedAndCanBeForced) {
+    const Scene atrium = makeBuiltinScene("atrium");
+    const int unit = layoutCascades(atrium, 64, kExtent, 0).count;
+    for (float scale : {1e-3f, 1e3f})
+        EXPECT_EQ(layoutCascades(scaledScene(atrium, scale), 64, kExtent * scale, 0).count, unit) << scale;
+    VolumeFit cube;
+    cube.size = 100.0f;
+    cube.resolution = 32;
+    EXPECT_EQ(chooseCascadeCount(cube, 100.0f, 0), 1);
+    EXPECT_EQ(chooseCascadeCount(cube, 99.0f, 0), 2);
+    EXPECT_EQ(chooseCascadeCount(cube, 50.0f, 0), 2);
+    EXPECT_EQ(chooseCascadeCount(cube, 1.0f, 0), kSdfMaxCascades);  // capped
+    EXPECT_EQ(chooseCascadeCount(cube, 1.0f, 2), 2);                // sdf.cascades
+    EXPECT_THROW(chooseCascadeCount(cube, 1.0f, kSdfMaxCascades + 1), Error);
+    EXPECT_THROW(chooseCascadeCount(cube, 1.0f, -1), Error);
+    EXPECT_THROW(chooseCascadeCount(cube, 0.0f, 0), Error);
+    Scene empty;
+    finalizeScene(empty);
+    EXPECT_EQ(layoutCascades(empty, 32, kExtent, 0).count, 1);
+}
+
+SdfCascadeLayout testLayout() {
+    SdfCascadeLayout l;
+    l.scene.origin = glm::vec3(-10.0f);
+    l.scene.size = 20.0f;
+    l.scene.resolution = 32;
+    l.count = 4;
+    return l;
+}
+
+bool inside(const SdfVolume& inner, const SdfVolume& outer) {
+    for (int a = 0; a < 3; ++a)
+        if (inner.origin[a] < outer.origin[a] - 1e-4f || inner.origin[a] + inner.size > outer.origin[a] + outer.size + 1e-4f)
+            return false;
+    return true;
+}
+
+// Each cascade lies inside the next and the coarsest is the scene's cube, wherever the camera is
+// and however the snap left the cascades (placed for an earlier camera position within the snap).
+TEST(SdfCascades, CascadesNestInsideTheSceneCube) {
+    const SdfCascadeLayout l = testLayout();
+    uint32_t rng = 7;
+    auto uniform = [&rng] {
+        rng = rng * 1664525u + 1013904223u;
+        return float(rng >> 8) / 16777216.0f;
+    };
+    for (int trial = 0; trial < 500; ++trial) {
+        const glm::vec3 camera = glm::vec3(uniform(), uniform(), uniform()) * 24.0f - 12.0f;  // some outside
+        std::vector<glm::ivec3> offsets;
+        for (int i = 0; i < l.count; ++i) {
+            // Placed for a camera up to the snap away, then not moved.
+            const glm::vec3 earlier = camera + (glm::vec3(uniform(), uniform(), uniform()) * 2.0f - 1.0f) *
+                                                   (float(l.snapCells()) * l.cellSize(i));
+            glm::ivec3 o = l.centredOffset(i, earlier);
+            if (l.mustMove(o, l.centredOffset(i, camera))) o = l.centredOffset(i, camera);
+            offsets.push_back(o);
+        }
+        EXPECT_EQ(l.volume(l.count - 1, offsets.back()).origin, l.scene.origin);
+        for (int i = 0; i + 1 < l.count; ++i)
+            ASSERT_TRUE(inside(l.volume(i, offsets[size_t(i)]), l.volume(i + 1, offsets[size_t(i) + 1])))
+                << "trial " << trial << " cascade " << i;
+    }
+}
+
+TEST(SdfCascades, SmallMovesKeepEveryCascadeLongerOnesMoveOnlyTheFineOnes) {
+    const SdfCascadeLayout l = testLayout();
+    const glm::vec3 start(0.3f, -0.2f, 0.1f);
+    std::vector<glm::ivec3> placed;
+    for (int i = 0; i < l.count; ++i) placed.push_back(l.centredOffset(i, start));
+    const float snap0 = float(l.snapCells()) * l.cellSize(0);
+    // Within the snap of the finest cascade: nothing moves.
+    for (const glm::vec3 d : {glm::vec3(0.9f * snap0, 0, 0), glm::vec3(0, -0.9f * snap0, 0.5f * snap0)})
+        for (int i = 0; i < l.count; ++i) EXPECT_FALSE(l.mustMove(placed[size_t(i)], l.centredOffset(i, start + d))) << i;
+    // 1.5 snaps of the finest: it moves; cascade 1's cells are twice as large, so for it that is
+    // 0.75 of its snap: it stays, and so do the coarser ones.
+    const glm::vec3 moved = start + glm::vec3(1.5f * snap0, 0, 0);
+    EXPECT_TRUE(l.mustMove(placed[0], l.centredOffset(0, moved)));
+    for (int i = 1; i < l.count; ++i) EXPECT_FALSE(l.mustMove(placed[size_t(i)], l.centredOffset(i, moved))) << i;
+    // The coarsest never moves.
+    EXPECT_EQ(l.centredOffset(l.count - 1, glm::vec3(1e6f)), glm::ivec3(0));
+}
+
+}  // namespace
+}  // namespace gis::test
