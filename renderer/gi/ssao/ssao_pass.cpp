@@ -12,9 +12,16 @@
 namespace gis {
 
 namespace {
-constexpr int kMaxKernel = 256;         // shaders/ssao.frag MAX_AO_KERNEL
+constexpr int kMaxKernel = 256;         // shaders/gi/ssao/ssao.frag MAX_AO_KERNEL
+constexpr int kMaxSlices = 64;
 constexpr float kTemporalFrames = 16;   // running mean over at most this many frames
 constexpr float kTemporalDepthTolerance = 0.02f;
+
+ParamValue choiceValue(const char* name) {
+    ParamValue v;
+    v.text = name;
+    return v;
+}
 
 float radicalInverse(uint32_t bits) {  // van der Corput in base 2
     bits = (bits << 16u) | (bits >> 16u);
@@ -50,7 +57,8 @@ const ParamTable<SsaoSettings>& ssaoParams() {
     static const ParamTable<S> table = ParamTable<S>()
         .integer(&S::samples, "samples", "Directions", "directions in the hemisphere kernel", 1, kMaxKernel, U::Rebuild,
                  "--ao-samples")
-        .integer(&S::steps, "steps", "Steps", "points tested along each direction", 1, 64, U::Live, "--ao-steps")
+        .integer(&S::steps, "steps", "Steps", "points tested along each direction (gtao: per side of a slice)", 1, 64,
+                 U::Live, "--ao-steps")
         .real(&S::radius, "radius", "Radius", "world units; 0 = 15% of the scene's diagonal", 0.0, 1e30, U::Live,
               "--ao-radius")
         .real(&S::bias, "bias", "Bias", "depth bias as a fraction of the radius", 0.0, 0.999, U::Live, "--ao-bias")
@@ -59,7 +67,13 @@ const ParamTable<SsaoSettings>& ssaoParams() {
         .boolean(&S::halfResolution, "half-res", "Half resolution", "compute AO at half resolution", U::Rebuild,
                  "--ao-half-res")
         .boolean(&S::temporal, "temporal", "Temporal", "reprojected accumulation, per-frame noise rotation",
-                 U::Rebuild, "--ao-temporal");
+                 U::Rebuild, "--ao-temporal")
+        .choice(&S::kernel, "kernel", "Kernel",
+                "hemisphere: normal-oriented directions marched through the depth buffer; gtao: horizons per slice "
+                "with the analytic cosine integral (Jimenez et al. 2016)",
+                {"hemisphere", "gtao"}, U::Rebuild)
+        .integer(&S::slices, "slices", "Slices", "gtao: slices through the view vector per pixel", 1, kMaxSlices,
+                 U::Live);
     return table;
 }
 
@@ -68,17 +82,19 @@ float resolveAoRadius(float radius, const Scene& scene) {
     return scene.bounds.empty() ? 1.0f : std::max(0.15f * glm::length(scene.bounds.extent()), 1e-6f);
 }
 
+// In this order: the hemisphere kernel, the blur, temporal accumulation, the GTAO kernel.
 std::vector<ProgramDesc> SsaoPass::programs() {
     return {{"ssao", {"fullscreen.vert", "gi/ssao/ssao.frag"}, {}},
             {"ssao_blur", {"fullscreen.vert", "gi/ssao/ssao_blur.frag"}, {}},
-            {"ssao_temporal", {"fullscreen.vert", "gi/ssao/ssao_temporal.frag"}, {}}};
+            {"ssao_temporal", {"fullscreen.vert", "gi/ssao/ssao_temporal.frag"}, {}},
+            {"ssao_gtao", {"fullscreen.vert", "gi/ssao/gtao.frag"}, {}}};
 }
 
 SsaoPass::SsaoPass(const RenderSettings& s, gl::MemoryLedger& ledger)
     : params_(ssaoParams().read("ssao", s.params)),
       width_(params_.halfResolution ? std::max(1, s.width / 2) : s.width),
       height_(params_.halfResolution ? std::max(1, s.height / 2) : s.height),
-      kernel_(kernel(std::min(params_.samples, kMaxKernel))) {
+      kernel_(gtao() ? std::vector<glm::vec4>{} : kernel(std::min(params_.samples, kMaxKernel))) {
     const gl::MemoryScope scope{&ledger, name()};
     raw_ = gl::createTexture2D(scope, GL_RG16F, width_, height_);
     rawFbo_ = gl::createColorTarget(raw_, "SSAO");
@@ -106,7 +122,7 @@ SsaoPass::SsaoPass(const RenderSettings& s, gl::MemoryLedger& ledger)
     glTextureSubImage2D(noise_.id(), 0, 0, 0, 4, 4, GL_RG, GL_FLOAT, rotations);
     setTextureFilter(noise_.id(), GL_NEAREST);
     const auto progs = programs();
-    ssaoProgram_ = buildProgram(progs[0]);
+    aoProgram_ = buildProgram(progs[gtao() ? 3 : 0]);  // only the kernel this pass runs
     blurProgram_ = buildProgram(progs[1]);
     temporalProgram_ = buildProgram(progs[2]);
     vao_ = gl::createVertexArray();
@@ -127,7 +143,7 @@ void SsaoPass::execute(Frame& frame) {
     glBindSamplers(0, 3, samplers);
 
     // 1. Raw AO.
-    GLuint p = ssaoProgram_.id();
+    GLuint p = aoProgram_.id();
     glUseProgram(p);
     glBindFramebuffer(GL_FRAMEBUFFER, rawFbo_.id());
     const GLuint inputs[3] = {frame.texture("gbuffer.depth"), frame.texture("gbuffer.normal"), noise_.id()};
@@ -141,8 +157,12 @@ void SsaoPass::execute(Frame& frame) {
     // every rotation; without it the pattern stays put (no flicker on a still camera).
     const float noiseOffset = params_.temporal ? float(frame.index % 16) : 0.0f;
     glProgramUniform4f(p, U_AO_PARAMS, live.bias, live.power, float(live.steps), noiseOffset);
-    glProgramUniform1i(p, U_AO_KERNEL_SIZE, int(kernel_.size()));
-    glProgramUniform4fv(p, U_AO_KERNEL, GLsizei(kernel_.size()), &kernel_[0][0]);
+    if (gtao()) {
+        glProgramUniform1i(p, U_AO_KERNEL_SIZE, live.slices);
+    } else {
+        glProgramUniform1i(p, U_AO_KERNEL_SIZE, int(kernel_.size()));
+        glProgramUniform4fv(p, U_AO_KERNEL, GLsizei(kernel_.size()), &kernel_[0][0]);
+    }
     glDrawArrays(GL_TRIANGLES, 0, 3);
     const gl::Texture* result = &raw_;
 
@@ -184,21 +204,39 @@ void SsaoPass::drawDebugView(const std::string&, const Frame& frame, GLuint targ
     drawChannel(DisplayChannel::Grey, result_->id(), frame, target);
 }
 
+namespace {
+// The kernel the plain low/medium/high presets use; the other kernel's presets carry its name
+// as a prefix ("hemisphere-medium"), so `bench --presets` can set the two side by side. GTAO:
+// each of its presets is both faster and closer to ray-traced AO than the hemisphere's preset of
+// the same name (README, "SSAO and ray-traced AO").
+constexpr SsaoKernel kPresetKernel = SsaoKernel::Gtao;
+
+void addPresets(GiMethod& m, SsaoKernel kernel, const std::string& prefix) {
+    const bool gtao = kernel == SsaoKernel::Gtao;
+    // Directions (hemisphere) or slices (gtao) x points per direction or side, and resolution.
+    const int counts[3] = {gtao ? 3 : 8, gtao ? 3 : 16, gtao ? 8 : 64};
+    const int steps[3] = {gtao ? 4 : 2, gtao ? 4 : 4, gtao ? 8 : 8};
+    const bool half[3] = {true, false, false};
+    for (int i = 0; i < 3; ++i)
+        m.presets.push_back({prefix + presetNames()[i],
+                             std::string(gtao ? "GTAO, " : "hemisphere, ") + std::to_string(counts[i]) +
+                                 (gtao ? " slices x " : " directions x ") + std::to_string(steps[i]) +
+                                 (gtao ? " steps per side" : " steps") + (half[i] ? ", half resolution" : ""),
+                             {{"ssao.kernel", choiceValue(gtao ? "gtao" : "hemisphere")},
+                              {gtao ? "ssao.slices" : "ssao.samples", {double(counts[i])}},
+                              {"ssao.steps", {double(steps[i])}},
+                              {"ssao.half-res", {half[i] ? 1.0 : 0.0}}}});
+}
+}  // namespace
+
 GiMethod ssaoMethod() {
     GiMethod m;
     m.name = "ssao";
-    m.summary = "screen-space ambient occlusion of the constant ambient term (hemisphere kernel, blur, temporal)";
+    m.summary = "screen-space ambient occlusion of the constant ambient term (hemisphere or GTAO kernel, blur, temporal)";
     m.params = ssaoParams().rows;
-    // Directions x points per direction, and resolution.
-    const int samples[3] = {8, 16, 64}, steps[3] = {2, 4, 8};
-    const bool half[3] = {true, false, false};
-    for (int i = 0; i < 3; ++i)
-        m.presets.push_back({presetNames()[i],
-                             std::to_string(samples[i]) + " directions x " + std::to_string(steps[i]) + " steps" +
-                                 (half[i] ? ", half resolution" : ""),
-                             {{"ssao.samples", {double(samples[i])}},
-                              {"ssao.steps", {double(steps[i])}},
-                              {"ssao.half-res", {half[i] ? 1.0 : 0.0}}}});
+    const SsaoKernel other = kPresetKernel == SsaoKernel::Gtao ? SsaoKernel::Hemisphere : SsaoKernel::Gtao;
+    addPresets(m, kPresetKernel, "");
+    addPresets(m, other, other == SsaoKernel::Gtao ? "gtao-" : "hemisphere-");
     m.programs = &SsaoPass::programs;
     m.estimateMemory = [](const Scene&, const RenderSettings& s) {
         // RG16F raw (+ blurred) AO and two RGBA16F history images when temporal, at the pass's

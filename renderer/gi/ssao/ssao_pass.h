@@ -7,9 +7,13 @@
 
 namespace gis {
 
+enum class SsaoKernel { Hemisphere, Gtao };
+
 struct SsaoSettings {
+    int kernel = int(SsaoKernel::Hemisphere);  // which estimator: shaders/gi/ssao/ssao.frag or gtao.frag
     int samples = 16;            // directions in the hemisphere kernel
-    int steps = 4;               // points tested along each direction
+    int slices = 4;              // GTAO: slices through the view vector
+    int steps = 4;               // points tested along each direction (GTAO: per side of a slice)
     float radius = 0.0f;         // world units; 0 = 15% of the scene's bounding-box diagonal
     float bias = 0.03f;          // depth bias as a fraction of the radius
     float power = 1.0f;          // AO^power (contrast)
@@ -43,10 +47,12 @@ public:
     static std::vector<glm::vec4> kernel(int count);
 
 private:
+    bool gtao() const { return params_.kernel == int(SsaoKernel::Gtao); }
+
     SsaoSettings params_;
     int width_, height_;
     gl::Texture raw_, blurred_, history_[2], noise_;
-    gl::Object rawFbo_, blurFbo_, historyFbo_[2], ssaoProgram_, blurProgram_, temporalProgram_, vao_, sampler_;
+    gl::Object rawFbo_, blurFbo_, historyFbo_[2], aoProgram_, blurProgram_, temporalProgram_, vao_, sampler_;
     const gl::Texture* result_ = nullptr;
     std::vector<glm::vec4> kernel_;
     glm::mat4 prevViewProj_{1.0f};

@@ -6,29 +6,14 @@
 // check: surfaces farther in front are other objects the direction passes behind - no halos). AO = unoccluded directions / usable directions, which estimates the same
 // cosine-weighted visibility the ray-traced reference computes. Directions that leave the screen
 // before hitting anything carry no information and are left out (no darkening at the borders).
-#include "common.glsl"
-#include "uniforms.glsl"
+#include "gi/ssao/ssao_common.glsl"
 
-layout(binding = 0) uniform sampler2D s_depth;
-layout(binding = 1) uniform sampler2D s_gbufNormal;
-layout(binding = 2) uniform sampler2D s_noise;      // 4x4 tile of random rotation vectors (xy)
-
-layout(location = U_PROJ) uniform mat4 u_proj;
-layout(location = U_INV_PROJ) uniform mat4 u_invProj;
-layout(location = U_VIEW) uniform mat4 u_view;
-layout(location = U_AO_RADIUS) uniform float u_aoRadius;
-layout(location = U_AO_PARAMS) uniform vec4 u_aoParams;   // bias (fraction of radius), power, steps, noise offset
 layout(location = U_AO_KERNEL_SIZE) uniform int u_kernelSize;
 #define MAX_AO_KERNEL 256
 layout(location = U_AO_KERNEL) uniform vec4 u_kernel[MAX_AO_KERNEL];  // xyz unit direction (+Z = normal)
 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_ao;   // r = AO, g = view-space depth (for the bilateral blur)
-
-vec3 viewPosition(vec2 uv, float depth) {
-    vec4 p = u_invProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
-    return p.xyz / p.w;
-}
 
 void main() {
     float depth = texture(s_depth, v_uv).r;
@@ -39,9 +24,7 @@ void main() {
     vec3 P = viewPosition(v_uv, depth);
     vec3 N = normalize(mat3(u_view) * texture(s_gbufNormal, v_uv).xyz);
     // Rotate the kernel about the normal by the tiled noise: banding becomes 4x4 noise the blur removes.
-    int shift = int(u_aoParams.w);  // 0..15: which of the 16 tile offsets this frame uses
-    ivec2 noisePixel = (ivec2(gl_FragCoord.xy) + ivec2(shift & 3, (shift >> 2) & 3)) & 3;
-    vec3 r = vec3(texelFetch(s_noise, noisePixel, 0).xy, 0.0);
+    vec3 r = vec3(noiseRotation(), 0.0);
     vec3 T = r - N * dot(r, N);
     T = dot(T, T) > 1e-8 ? normalize(T) : normalize(abs(N.y) < 0.99 ? cross(N, vec3(0, 1, 0)) : cross(N, vec3(1, 0, 0)));
     vec3 B = cross(N, T);
