@@ -18,18 +18,22 @@ ours() {  # flags -> median wall ms per frame
   "$bin" render --scene "$scene" --size 256x256 --timings --frames 40 --warmup 10 --out /tmp/gis_compare.png "$@" |
     awk '$1 == "wall" {print $2}'
 }
+g0="" o0=""  # the direct frames: what each variant adds is measured over them
 row() {  # label, godot variant, our flags...
   local label=$1 variant=$2; shift 2
   local g o
   g=$(godot "$variant"); o=$(ours "$@")
-  awk -v l="$label" -v v="$variant" -v g="$g" -v f="$*" -v o="$o" \
-    'BEGIN { printf "| %s | %s: %.1f | `%s`: %.1f | %.2f |\n", l, v, g, f, o, o / g }'
+  [ -n "$g0" ] || { g0=$g; o0=$o; }
+  awk -v l="$label" -v v="$variant" -v g="$g" -v f="$*" -v o="$o" -v g0="$g0" -v o0="$o0" 'BEGIN {
+    added = (g > g0 && v != "direct") ? sprintf("+%.1f / +%.1f = %.2f", o - o0, g - g0, (o - o0) / (g - g0)) : "";
+    printf "| %s | %s: %.1f | `%s`: %.1f | %.2f | %s |\n", l, v, g, f, o, o / g, added }'
 }
-echo "| frame | Godot 3.2.3 GLES3 (wall ms) | gisandbox (wall ms, glFinish) | ours / Godot |"
-echo "|---|---|---|---|"
+echo "| frame | Godot 3.2.3 GLES3 (wall ms) | gisandbox (wall ms, glFinish) | ours / Godot | added over direct: ours / Godot |"
+echo "|---|---|---|---|---|"
 row "direct light, one shadowed point light" direct --gi none
-row "+ SSAO (Godot default / our medium)" ssao --gi ssao --preset medium
-row "+ SSAO (our low: 8x2, half resolution)" ssao --gi ssao --preset low
+row "+ SSAO (Godot default / our medium: GTAO 3 slices x 4 steps)" ssao --gi ssao --preset medium
+row "+ SSAO (our low: GTAO 3x4 at half resolution)" ssao --gi ssao --preset low
+row "+ SSAO (our previous medium: hemisphere 16x4)" ssao --gi ssao --preset hemisphere-medium
 row "voxel GI (GIProbe 128 / our vct high)" gi128 --gi vct --preset high
 row "voxel GI (GIProbe 64 / our vct medium)" gi64 --gi vct --preset medium
 # Godot 3 has no SDF or probe GI: GIProbe is the GI it has, so both compare with it.

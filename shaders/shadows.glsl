@@ -8,6 +8,15 @@
 const float SHADOW_NORMAL_OFFSET_TEXELS = 1.5;
 // 3x3 taps, each a hardware 2x2 comparison (bilinear PCF): a soft edge about 4 texels wide.
 const int PCF_RADIUS = 1;
+// The kinds of light the including shader meets: point (cube maps) and directional or spot (2D
+// maps), both unless it says. The lighting pass compiles the mix the scene has, since on llvmpipe
+// even a branch no pixel takes costs a masked pass through its loop (~12% of that pass).
+#ifndef SHADOW_CUBES
+#define SHADOW_CUBES 1
+#endif
+#ifndef SHADOW_MAPS
+#define SHADOW_MAPS 1
+#endif
 
 float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
     int layer = int(light.cone.z);
@@ -28,6 +37,7 @@ float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
     // faster on cornell_point and the atrium (interleaved runs, README "Speed against Godot 3").
     int radius = PCF_RADIUS * u_shadowsEnabled;
     float sum = 0.0;
+#if SHADOW_CUBES
     if (type == LIGHT_POINT) {
         // Compare with the depth the cube face's perspective projection stores: its view depth is
         // the distance along the dominant axis.
@@ -40,7 +50,10 @@ float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
                 float depth = ((f + n) / (f - n) - 2.0 * f * n / ((f - n) * z)) * 0.5 + 0.5;
                 sum += texture(s_shadowCubes, vec4(d, float(layer)), depth);
             }
-    } else {
+    }
+#endif
+#if SHADOW_MAPS
+    if (type != LIGHT_POINT) {
         for (int i = -radius; i <= radius; ++i)
             for (int j = -radius; j <= radius; ++j) {
                 vec4 clip = light.shadowMatrix * vec4(Po + (T * float(i) + B * float(j)) * texel, 1.0);
@@ -50,6 +63,7 @@ float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
                 sum += outside ? 1.0 : texture(s_shadowMaps, vec4(p.xy, float(layer), p.z));
             }
     }
+#endif
     float taps = float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
     return sum / taps;
 }

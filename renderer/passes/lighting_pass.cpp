@@ -15,11 +15,33 @@ constexpr float kMaxHalf = 65504.0f;
 constexpr float kMaxFloat = 3.0e38f;
 }  // namespace
 
-// The lights as a uniform block when they fit (lights.glsl), else as a storage buffer.
+namespace {
+// The kinds of shadow map a scene's lights need (shadows.glsl's SHADOW_CUBES / SHADOW_MAPS).
+enum ShadowKinds { kCubesOnly, kMapsOnly, kBothKinds, kShadowKindCount };
+
+ShadowKinds shadowKinds(const std::vector<Light>& lights) {
+    bool points = false, others = false;
+    for (const Light& l : lights) (l.type == LightType::Point ? points : others) = true;
+    return others ? (points ? kBothKinds : kMapsOnly) : kCubesOnly;
+}
+
+// Variant i: lights as a uniform block when they fit (lights.glsl) or as a storage buffer, times
+// the kinds of shadow map compiled in.
+ProgramDesc lightingProgram(bool uniformBlock, ShadowKinds kinds) {
+    static const char* kindNames[] = {"-cubes", "-maps", ""};
+    ProgramDesc d{std::string(uniformBlock ? "lighting" : "lighting-many-lights") + kindNames[kinds],
+                  {"fullscreen.vert", "lighting.frag"},
+                  {{"SHADOW_CUBES", kinds == kMapsOnly ? "0" : "1"}, {"SHADOW_MAPS", kinds == kCubesOnly ? "0" : "1"}}};
+    if (uniformBlock) d.defines.push_back({"LIGHTS_UNIFORM_BLOCK_CAPACITY", std::to_string(kUniformBlockLights)});
+    return d;
+}
+}  // namespace
+
 std::vector<ProgramDesc> LightingPass::programs() {
-    return {{"lighting", {"fullscreen.vert", "lighting.frag"},
-             {{"LIGHTS_UNIFORM_BLOCK_CAPACITY", std::to_string(kUniformBlockLights)}}},
-            {"lighting-many-lights", {"fullscreen.vert", "lighting.frag"}, {}}};
+    std::vector<ProgramDesc> all;
+    for (bool uniformBlock : {true, false})
+        for (int k = 0; k < kShadowKindCount; ++k) all.push_back(lightingProgram(uniformBlock, ShadowKinds(k)));
+    return all;
 }
 
 LightingPass::LightingPass(int width, int height, bool hdr32, const std::set<std::string>& produced,
@@ -32,14 +54,16 @@ LightingPass::LightingPass(int width, int height, bool hdr32, const std::set<std
     const float one[2] = {1.0f, 0.0f};
     glTextureSubImage2D(unit_.id(), 0, 0, 0, 1, 1, GL_RG, GL_FLOAT, one);
     fbo_ = gl::createColorTarget(radiance_, "lighting");
-    program_ = buildProgram(programs()[0]);
     vao_ = gl::createVertexArray();
 }
 
-GLuint LightingPass::programFor(size_t lightCount) {
-    if (lightCount <= size_t(kUniformBlockLights)) return program_.id();
-    if (!manyLightsProgram_.id()) manyLightsProgram_ = buildProgram(programs()[1]);
-    return manyLightsProgram_.id();
+// Built on first need: a scene uses one variant, and light edits keep each light's kind.
+GLuint LightingPass::programFor(const std::vector<Light>& lights) {
+    const bool uniformBlock = lights.size() <= size_t(kUniformBlockLights);
+    const ShadowKinds kinds = shadowKinds(lights);
+    gl::Object& program = programs_[(uniformBlock ? 0 : kShadowKindCount) + kinds];
+    if (!program.id()) program = buildProgram(lightingProgram(uniformBlock, kinds));
+    return program.id();
 }
 
 std::vector<std::string> LightingPass::inputs() const {
@@ -53,7 +77,7 @@ std::vector<std::string> LightingPass::inputs() const {
 
 void LightingPass::execute(Frame& frame) {
     const RenderSettings& s = frame.settings;
-    const GLuint p = programFor(frame.scene.cpu.lights.size());
+    const GLuint p = programFor(frame.scene.cpu.lights);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
     glViewport(0, 0, radiance_.width, radiance_.height);
     glDisable(GL_DEPTH_TEST);

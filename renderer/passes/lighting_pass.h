@@ -11,6 +11,7 @@
 // pass or lighting.frag.
 #pragma once
 
+#include <array>
 #include <set>
 
 #include "renderer.h"
@@ -28,10 +29,11 @@ public:
     static std::vector<ProgramDesc> programs();
 
 private:
-    GLuint programFor(size_t lightCount);  // built on first need: most scenes never need the second
+    GLuint programFor(const std::vector<Light>& lights);  // the variant the lights need (programs())
 
     gl::Texture radiance_, unit_;   // unit_: a 1x1 stand-in (ao = 1) for terms no method gives
-    gl::Object fbo_, program_, manyLightsProgram_, vao_;
+    gl::Object fbo_, vao_;
+    std::array<gl::Object, 6> programs_;  // programs() order, built on first need
     bool hasAo_, hasDiffuse_, hasSpecular_;
 };
 
