@@ -29,7 +29,7 @@ case ${1:-} in
     # Path tracer throughput against triangle count on the atrium (detail 1, 4, 10: ~14k to 1.2M).
     for d in 1 4 10; do
       "$bin" render --backend egl --scene "builtin:atrium?detail=$d" --size 1920x1080 --gi pathtrace --spp 16 \
-        --timings --frames 4 --warmup 0 --out "$out/atrium_d$d.png" | grep -E "pathtrace|wall" | sed "s/^/detail $d: /"
+        --timings --frames 4 --warmup 0 --out "$out/atrium_d$d.png" | grep -E "pathtrace|rays|wall" | sed "s/^/detail $d: /"
     done
     ;;
   *)
