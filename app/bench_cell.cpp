@@ -78,12 +78,7 @@ void runReference(const BenchJob& job, const SweepDirs& dirs, const GlOpener& op
                  job.referenceSpp);
     Renderer renderer(prepared.scene, settings);
     ProgressBar progress(job.referenceSpp, job.sceneName + (ao ? " AO reference" : " reference"));
-    do {
-        renderer.renderFrame();
-        glFinish();
-        progress.update(renderer.samplesDone());
-    } while (!renderer.converged());
-    progress.finish();
+    renderToConvergence(renderer, progress);
     const std::string exr = imagePath(dirs, job);
     writeExr(exr, renderer.readHdr());
     nlohmann::ordered_json body{{"id", job.id},          {"kind", "reference"},      {"method", job.method},

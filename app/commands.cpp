@@ -291,12 +291,7 @@ int runRender(const RenderOptions& o) {
         for (const auto& pass : renderer.passes())
             if (pass->progress().target > longest.target) longest = pass->progress();
         ProgressBar progress(longest.target, "", longest.unit);
-        do {
-            renderer.renderFrame();
-            glFinish();
-            progress.update(renderer.samplesDone());
-        } while (!renderer.converged());
-        progress.finish();
+        renderToConvergence(renderer, progress);
     }
 
     if (exr) writeExr(o.out, renderer.readHdr());

@@ -10,6 +10,8 @@
 
 #include <unistd.h>
 
+#include "renderer.h"
+
 namespace gis {
 
 class ProgressBar {
@@ -48,5 +50,15 @@ private:
     bool tty_;
     double lastPrint_ = 0.0;
 };
+
+// Renders frames (each finished, so the bar follows the GPU) until every progressive pass is done.
+inline void renderToConvergence(Renderer& renderer, ProgressBar& progress) {
+    do {
+        renderer.renderFrame();
+        glFinish();
+        progress.update(renderer.samplesDone());
+    } while (!renderer.converged());
+    progress.finish();
+}
 
 }  // namespace gis

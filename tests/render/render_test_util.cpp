@@ -254,6 +254,17 @@ double regionMean(const ImageF& img, const std::vector<PixelHit>& hits, const st
     return n ? sum / n : 0.0;
 }
 
+double darkOverLitRoom(const ImageF& img, double* litSum) {
+    double sums[2] = {0.0, 0.0};
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const int side = x < img.width * 45 / 100 ? 0 : x > img.width * 55 / 100 ? 1 : -1;
+            if (side >= 0) sums[side] += double(img.at(x, y)[0]) + img.at(x, y)[1] + img.at(x, y)[2];
+        }
+    if (litSum) *litSum = sums[0];
+    return sums[0] > 0.0 ? sums[1] / sums[0] : 0.0;
+}
+
 double interiorRmse(const ImageF& a, const ImageF& b, const std::vector<bool>& interior) {
     double sum = 0.0;
     int n = 0;

@@ -65,6 +65,11 @@ double regionMean(const ImageF& img, const std::vector<PixelHit>& hits, const st
 // RMSE over R, G, B of the interior pixels.
 double interiorRmse(const ImageF& a, const ImageF& b, const std::vector<bool>& interior);
 
+// The thin-wall leak number every GI method reports: summed R+G+B of the image's right part
+// (x > 55% of the width, the dark room) over its left part (x < 45%, the lit room); the middle,
+// where the wall is seen, is left out. Writes the left sum to `litSum` if given.
+double darkOverLitRoom(const ImageF& img, double* litSum = nullptr);
+
 // Box-filter downsampling by an integer factor.
 ImageF downsample(const ImageF& img, int factor);
 

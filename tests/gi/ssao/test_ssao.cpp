@@ -80,12 +80,18 @@ std::vector<std::string> kernelPresets(const std::string& kernel) {
 
 class SsaoKernels : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(SsaoKernels, OpenPlaneIsUnoccludedEverywhereIncludingBorders) {
+// A 400 m grey plane at y = 0 seen from `eye`: nothing occludes it anywhere.
+Scene openPlane(glm::vec3 eye, glm::vec3 target) {
     Scene s;
     s.materials.push_back(lambert(glm::vec3(0.8f)));
     addQuad(s, glm::vec3(0), glm::vec3(0, 1, 0), 400.0f, 0);
-    s.cameras.push_back(lookAtCamera(glm::vec3(0, 2, 3), glm::vec3(0, 0, -1), 60.0f));
+    s.cameras.push_back(lookAtCamera(eye, target, 60.0f));
     finalizeScene(s);
+    return s;
+}
+
+TEST_P(SsaoKernels, OpenPlaneIsUnoccludedEverywhereIncludingBorders) {
+    const Scene s = openPlane(glm::vec3(0, 2, 3), glm::vec3(0, 0, -1));
     const RenderSettings r = ssaoSettings(GetParam());
     const ImageF img = renderHdr(s, r);
     float lo = 1.0f;
@@ -105,11 +111,7 @@ TEST_P(SsaoKernels, OpenPlaneIsUnoccludedEverywhereIncludingBorders) {
 // The same plane seen from 2 cm above it, out to the horizon: depth round-off at grazing angles
 // must not shadow the plane, and nothing may turn NaN.
 TEST_P(SsaoKernels, PlaneAtGrazingAnglesStaysOpenAndFinite) {
-    Scene s;
-    s.materials.push_back(lambert(glm::vec3(0.8f)));
-    addQuad(s, glm::vec3(0), glm::vec3(0, 1, 0), 400.0f, 0);
-    s.cameras.push_back(lookAtCamera(glm::vec3(0, 0.02f, 0), glm::vec3(0, 0.0f, -10.0f), 60.0f));
-    finalizeScene(s);
+    const Scene s = openPlane(glm::vec3(0, 0.02f, 0), glm::vec3(0, 0.0f, -10.0f));
     const RenderSettings r = ssaoSettings(GetParam());
     const ImageF img = renderHdr(s, r);
     ASSERT_TRUE(allFinite(img));
