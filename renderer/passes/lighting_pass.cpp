@@ -13,9 +13,7 @@ namespace {
 // turning into Inf (which tone mapping would show as black).
 constexpr float kMaxHalf = 65504.0f;
 constexpr float kMaxFloat = 3.0e38f;
-}  // namespace
 
-namespace {
 // The kinds of shadow map a scene's lights need (shadows.glsl's SHADOW_CUBES / SHADOW_MAPS).
 enum ShadowKinds { kCubesOnly, kMapsOnly, kBothKinds, kShadowKindCount };
 

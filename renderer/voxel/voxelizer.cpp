@@ -94,6 +94,13 @@ Voxelizer::Voxelizer(const VolumeFit& fit, ConservativeMode mode, const gl::Memo
     glNamedFramebufferParameteri(fbo_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, n);
 }
 
+void Voxelizer::moveTo(const VolumeFit& fit) {
+    if (fit.resolution != grid_.fit.resolution)
+        throw Error("voxelizer: cannot move a " + std::to_string(grid_.fit.resolution) + "^3 grid to a " +
+                    std::to_string(fit.resolution) + "^3 volume");
+    grid_.fit = fit;
+}
+
 void Voxelizer::voxelize(const GpuScene& scene) {
     const int n = grid_.fit.resolution;
     // The sums live only while voxelizing: at 256^3 they are 640 MiB that nothing else needs.

@@ -39,6 +39,10 @@ public:
     // Allocates the grid (charged to scope.owner) after checking its size. `hardware` without
     // GL_NV_conservative_raster falls back to `geometry` with one warning on stderr.
     Voxelizer(const VolumeFit& fit, ConservativeMode mode, const gl::MemoryScope& scope);
+    // Places the grid over another cube of the same resolution (a cascade that follows the camera):
+    // textures and programs are kept; the next voxelize() fills it. Throws gis::Error for another
+    // resolution.
+    void moveTo(const VolumeFit& fit);
     // Clears the grid and voxelizes every draw of the scene.
     void voxelize(const GpuScene& scene);
     const VoxelGrid& grid() const { return grid_; }

@@ -193,6 +193,28 @@ TEST(Voxelizer, Deterministic) {
     EXPECT_EQ(first, readVoxelsRgba8(v.grid().albedo));
 }
 
+// A grid moved to another cube (an SDF cascade following the camera) voxelizes exactly as a new
+// voxelizer made for that cube; another resolution is refused.
+TEST(Voxelizer, MovedGridMatchesAFreshOne) {
+    const Scene scene = triangleScene(randomTriangles(7), glm::vec3(0.2f, 0.7f, 0.4f));
+    context();
+    gl::MemoryLedger ledger;
+    GpuScene gpu(scene, ledger);
+    VolumeFit shifted = unitVoxels(kN);
+    shifted.origin = glm::vec3(4.0f, -3.0f, 2.0f);
+    Voxelizer moved(unitVoxels(kN), ConservativeMode::Geometry, {&ledger, "test.voxels"});
+    moved.voxelize(gpu);
+    const auto before = readVoxelsRgba8(moved.grid().albedo);
+    moved.moveTo(shifted);
+    moved.voxelize(gpu);
+    Voxelizer fresh(shifted, ConservativeMode::Geometry, {&ledger, "test.voxels"});
+    fresh.voxelize(gpu);
+    const auto after = readVoxelsRgba8(moved.grid().albedo);
+    EXPECT_EQ(after, readVoxelsRgba8(fresh.grid().albedo));
+    EXPECT_NE(after, before);
+    EXPECT_THROW(moved.moveTo(unitVoxels(kN / 2)), Error);
+}
+
 TEST(Voxelizer, RefusesGridsThatDoNotFitBeforeAllocating) {
     context();
     gl::MemoryLedger ledger;

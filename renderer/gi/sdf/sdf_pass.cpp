@@ -143,8 +143,8 @@ std::string SdfGiPass::stepPrefix(int cascade) const {
     return layout_.count > 1 ? "c" + std::to_string(cascade) + "." : "";
 }
 
-// Cascades follow the camera beyond the snap distance. A moved one gets a voxelizer for its new
-// cube (the voxelizer's grid is fixed at construction) and is rebuilt whole.
+// Cascades follow the camera beyond the snap distance. A moved one keeps its voxelizer, moved to
+// its new cube, and is rebuilt whole.
 void SdfGiPass::place(const glm::vec3& camera) {
     for (int i = 0; i < layout_.count; ++i) {
         Cascade& c = cascades_[size_t(i)];
@@ -153,12 +153,12 @@ void SdfGiPass::place(const glm::vec3& camera) {
         c.offset = centred;
         c.placed = true;
         const SdfVolume v = layout_.volume(i, centred);
-        c.voxelizer.reset();  // release the old grid before allocating the new one
         VolumeFit fit;
         fit.origin = v.origin;
         fit.size = v.size;
         fit.resolution = v.resolution;
-        c.voxelizer = std::make_unique<Voxelizer>(fit, mode_, scope_);
+        if (c.voxelizer) c.voxelizer->moveTo(fit);
+        else c.voxelizer = std::make_unique<Voxelizer>(fit, mode_, scope_);
         field_->setVolume(i, v);
         c.voxelsValid = c.fieldValid = c.radianceValid = false;
     }

@@ -58,7 +58,7 @@ public:
 
 private:
     struct Cascade {
-        std::unique_ptr<Voxelizer> voxelizer;   // made (again) where the cascade is placed
+        std::unique_ptr<Voxelizer> voxelizer;   // made where the cascade is first placed, moved after
         std::unique_ptr<VoxelRadiance> radiance;
         glm::ivec3 offset{0};                   // in the cascade's cells from the scene cube's corner
         bool placed = false, voxelsValid = false, fieldValid = false, radianceValid = false;
