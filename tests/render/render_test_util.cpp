@@ -279,4 +279,25 @@ double interiorRmse(const ImageF& a, const ImageF& b, const std::vector<bool>& i
     return std::sqrt(sum / std::max(n, 1));
 }
 
+double blockRmse(const ImageF& a, const ImageF& b, const std::vector<bool>& interior, int block) {
+    double sum = 0.0;
+    int weight = 0;
+    for (int by = 0; by < a.height; by += block)
+        for (int bx = 0; bx < a.width; bx += block) {
+            double d[3] = {0.0, 0.0, 0.0};
+            int n = 0;
+            for (int y = by; y < std::min(by + block, a.height); ++y)
+                for (int x = bx; x < std::min(bx + block, a.width); ++x) {
+                    const size_t i = size_t(y) * a.width + x;
+                    if (!interior[i]) continue;
+                    for (int c = 0; c < 3; ++c) d[c] += a.rgba[i * 4 + c] - b.rgba[i * 4 + c];
+                    ++n;
+                }
+            if (n == 0) continue;
+            for (double e : d) sum += n * (e / n) * (e / n);
+            weight += 3 * n;
+        }
+    return std::sqrt(sum / std::max(weight, 1));
+}
+
 }  // namespace gis::test

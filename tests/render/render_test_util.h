@@ -64,6 +64,11 @@ double regionMean(const ImageF& img, const std::vector<PixelHit>& hits, const st
                   int channel = -1);
 // RMSE over R, G, B of the interior pixels.
 double interiorRmse(const ImageF& a, const ImageF& b, const std::vector<bool>& interior);
+// RMSE over R, G, B of block x block means of the interior pixels (blocks weighed by how many
+// interior pixels they hold): the error of a method's low frequencies, with a Monte Carlo
+// reference's per-pixel noise averaged down by the block's pixel count (it otherwise dominates a
+// 64-spp reference's RMSE and hides a method's bias).
+double blockRmse(const ImageF& a, const ImageF& b, const std::vector<bool>& interior, int block);
 
 // The thin-wall leak number every GI method reports: summed R+G+B of the image's right part
 // (x > 55% of the width, the dark room) over its left part (x < 45%, the lit room); the middle,
