@@ -10,7 +10,7 @@
 namespace gis {
 
 struct ConeSettings {
-    int coneSet = 0;             // 0: 6 cones of 60 degrees (Godot's set), 1: 4 cones of 90 degrees
+    int coneSet = 0;             // 0: 6 cones of 60 degrees (Godot's set), 1: 4 of 90 degrees, 2: 32 of 14
     float stepFactor = 0.5f;     // step as a fraction of the cone diameter
     float maxDistance = 0.0f;    // voxels; 0 = the volume's diagonal
     float offset = 1.0f;         // self-occlusion offset along the normal, voxels

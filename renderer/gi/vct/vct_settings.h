@@ -15,7 +15,7 @@ struct VctSettings {
     bool anisotropic = true;   // vct.anisotropic: six directional mip chains (rebuild)
     int backfaces = 0;         // vct.backfaces: opaque | cull, what directional mips do with back faces (rebuild)
     int bounces = 1;           // vct.bounces: 1 = direct light re-emitted once; more gather again (rebuild)
-    int coneSet = 0;           // vct.cones: six (60-degree, Godot's) | four (90-degree) (live)
+    int coneSet = 0;           // vct.cones: six (60-degree, Godot's) | four (90-degree) | many (32) (live)
     float stepFactor = 0.5f;   // vct.step: step as a fraction of the cone diameter (live)
     float maxDistance = 1.0f;  // vct.max-distance: fraction of the volume's edge (live)
     float offset = 1.5f;       // vct.offset: self-occlusion offset along the normal, voxels (live)

@@ -95,12 +95,14 @@ double imageMax(const ImageF& img) {
     return m;
 }
 
-// --gi vct at the defaults (64^3), VCT_RES / VCT_BOUNCES / VCT_BACKFACES overriding for measurements by hand.
+// --gi vct at the defaults (64^3), VCT_RES / VCT_BOUNCES / VCT_BACKFACES / VCT_CONES overriding for
+// measurements by hand.
 RenderSettings vctSettings() {
     RenderSettings r = baseSettings("vct");
     if (const char* e = std::getenv("VCT_RES")) setVct(r, "resolution", e);
     if (const char* e = std::getenv("VCT_BOUNCES")) setVct(r, "bounces", e);
     if (const char* e = std::getenv("VCT_BACKFACES")) setVct(r, "backfaces", e);
+    if (const char* e = std::getenv("VCT_CONES")) setVct(r, "cones", e);
     return r;
 }
 
@@ -418,17 +420,20 @@ TEST(Vct, OpenFloorSeesTheSkyWithBackfacesCulled) {
     addQuad(s, {0, 0, 0}, {0, 1, 0}, 4.0f, 0);
     s.cameras.push_back(lookAtCamera({0, 3, 3}, {0, 0, 0}, 40.0f));
     finalizeScene(s);
-    for (const char* backfaces : {"opaque", "cull"}) {
-        RenderSettings r = vctSettings();
-        r.background = glm::vec3(0.2f, 0.4f, 0.8f);
-        setVct(r, "backfaces", backfaces);
-        const VctImages v = renderVct(s, r);
-        const float* centre = v.diffuse.at(kSize / 2, kSize / 2);
-        std::printf("VCT-TABLE open floor under a (0.2, 0.4, 0.8) sky, backfaces %s: indirect.diffuse (%.3f, %.3f, %.3f), "
-                    "%.0f%%\n", backfaces, centre[0], centre[1], centre[2], 100.0 * centre[2] / 0.8);
-        if (std::string(backfaces) != "cull") continue;
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(centre[c], (*r.background)[c], 0.05 * (*r.background)[c]) << c;
-    }
+    // Every cone set's weights must add up to the sky's radiance once nothing is in the way.
+    for (const char* backfaces : {"opaque", "cull"})
+        for (const char* cones : {"six", "four", "many"}) {
+            RenderSettings r = vctSettings();
+            r.background = glm::vec3(0.2f, 0.4f, 0.8f);
+            setVct(r, "backfaces", backfaces);
+            setVct(r, "cones", cones);
+            const VctImages v = renderVct(s, r);
+            const float* centre = v.diffuse.at(kSize / 2, kSize / 2);
+            std::printf("VCT-TABLE open floor under a (0.2, 0.4, 0.8) sky, backfaces %s, cones %s: indirect.diffuse "
+                        "(%.3f, %.3f, %.3f), %.0f%%\n", backfaces, cones, centre[0], centre[1], centre[2], 100.0 * centre[2] / 0.8);
+            if (std::string(backfaces) != "cull") continue;
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(centre[c], (*r.background)[c], 0.05 * (*r.background)[c]) << cones << c;
+        }
 }
 
 // The cone tracer's energy balance apart from any light's shape: inside a closed box whose walls
