@@ -42,7 +42,6 @@ enum UniformLocation : int {
     U_PREV_VIEW_PROJ = 57,
     U_TEMPORAL_PARAMS = 58,  // max frames, has history, depth tolerance
     U_AO_KERNEL = 64,        // array of 256 vec4: locations 64..319
-    U_INDIRECT_INPUTS = 28,  // lighting pass: has indirect.diffuse, has indirect.specular (the contract)
     // tonemap pass
     U_EXPOSURE = 30,
     U_TONEMAPPER = 31,

@@ -26,7 +26,17 @@ layout(location = U_BACKGROUND) uniform vec3 u_background;
 layout(location = U_BRDF_MODELS) uniform ivec2 u_brdfModels;  // diffuse, specular: --diffuse, --specular
 layout(location = U_SHADOWS_ENABLED) uniform int u_shadowsEnabled;
 layout(location = U_MAX_RADIANCE) uniform float u_maxRadiance;  // 65504 for an RGBA16F target: no Inf
-layout(location = U_INDIRECT_INPUTS) uniform ivec2 u_indirectInputs;  // indirect.diffuse, indirect.specular given
+// The contract's terms the method gives (indirect.diffuse, indirect.specular, ao), compiled in: a
+// branch on a uniform would still cost every pixel a masked pass on llvmpipe.
+#ifndef INDIRECT_DIFFUSE
+#define INDIRECT_DIFFUSE 0
+#endif
+#ifndef INDIRECT_SPECULAR
+#define INDIRECT_SPECULAR 0
+#endif
+#ifndef AO_INPUT
+#define AO_INPUT 0
+#endif
 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_radiance;
@@ -41,7 +51,11 @@ void main() {
         return;
     }
     // Methods may work at a lower resolution: bilinear upsampling of their (already filtered) terms.
+#if AO_INPUT
     float ao = texture(s_ao, v_uv).r;
+#else
+    const float ao = 1.0;
+#endif
     vec4 world = u_invViewProj * vec4(v_uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
     vec3 P = world.xyz / world.w;
     vec4 normalAndModels = texelFetch(s_gbufNormal, pixel, 0);
@@ -83,18 +97,18 @@ void main() {
     //   specular: specularAlbedoSplitSum(F0, F90, roughness, N.V) * indirect.specular (the split-sum
     //             approximation: the lobe's radiance times the lobe's directional albedo).
     // AO (material occlusion x the method's "ao") multiplies only these terms, never direct light.
-    if (u_indirectInputs == ivec2(0)) {
-        radiance += u_ambient * (surface.diffuseColor + surface.f0) * material.z * ao;
-    } else {
-        vec3 diffuseIndirect = u_indirectInputs.x != 0 ? texture(s_indirectDiffuse, v_uv).rgb : u_ambient;
-        vec3 indirect = diffuseIndirect * surface.diffuseColor;
-        if (u_indirectInputs.y != 0) {
-            float NoV = max(dot(N, V), MIN_N_DOT_V);
-            indirect += texture(s_indirectSpecular, v_uv).rgb * specularAlbedoSplitSum(surface, NoV, models.y);
-        } else {
-            indirect += u_ambient * surface.f0;
-        }
-        radiance += indirect * (material.z * ao);
-    }
+#if INDIRECT_DIFFUSE || INDIRECT_SPECULAR
+    vec3 diffuseIndirect = INDIRECT_DIFFUSE != 0 ? texture(s_indirectDiffuse, v_uv).rgb : u_ambient;
+    vec3 indirect = diffuseIndirect * surface.diffuseColor;
+#if INDIRECT_SPECULAR
+    float NoV = max(dot(N, V), MIN_N_DOT_V);
+    indirect += texture(s_indirectSpecular, v_uv).rgb * specularAlbedoSplitSum(surface, NoV, models.y);
+#else
+    indirect += u_ambient * surface.f0;
+#endif
+    radiance += indirect * (material.z * ao);
+#else
+    radiance += u_ambient * (surface.diffuseColor + surface.f0) * material.z * ao;
+#endif
     o_radiance = vec4(min(finiteOrZero(radiance), vec3(u_maxRadiance)), 1.0);
 }

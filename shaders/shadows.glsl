@@ -6,9 +6,8 @@
 // Receiver-side bias: move the lookup along the normal by a few shadow-map texels, more at grazing
 // light, so a lit plane never shadows itself (acne) and contact shadows stay (little peter-panning).
 const float SHADOW_NORMAL_OFFSET_TEXELS = 1.5;
-// 2x2 taps half a texel either side of the point, each a hardware 2x2 comparison (bilinear PCF):
-// together a tent over 3x3 texels, a soft edge about 3 texels wide.
-const int PCF_TAPS = 2;
+// 3x3 taps, each a hardware 2x2 comparison (bilinear PCF): a soft edge about 4 texels wide.
+const int PCF_RADIUS = 1;
 // The kinds of light the including shader meets: point (cube maps) and directional or spot (2D
 // maps), both unless it says. The lighting pass compiles the mix the scene has, since on llvmpipe
 // even a branch no pixel takes costs a masked pass through its loop (~12% of that pass).
@@ -36,17 +35,16 @@ float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
     // kinds' lookups for every tap (it runs both sides of a branch it cannot prove uniform); this
     // way the other kind's loop ends after one masked pass: same image, the lighting pass ~20%
     // faster on cornell_point and the atrium (interleaved runs, README "Speed against Godot 3").
-    int taps = PCF_TAPS * u_shadowsEnabled;
-    const float first = -0.5 * float(PCF_TAPS - 1);
+    int radius = PCF_RADIUS * u_shadowsEnabled;
     float sum = 0.0;
 #if SHADOW_CUBES
     if (type == LIGHT_POINT) {
         // Compare with the depth the cube face's perspective projection stores: its view depth is
         // the distance along the dominant axis.
         float n = light.shadowParams.z, f = light.shadowParams.w;
-        for (int i = 0; i < taps; ++i)
-            for (int j = 0; j < taps; ++j) {
-                vec3 d = Po + (T * (first + float(i)) + B * (first + float(j))) * texel - light.positionType.xyz;
+        for (int i = -radius; i <= radius; ++i)
+            for (int j = -radius; j <= radius; ++j) {
+                vec3 d = Po + (T * float(i) + B * float(j)) * texel - light.positionType.xyz;
                 vec3 ad = abs(d);
                 float z = max(max(max(ad.x, ad.y), ad.z), n);
                 float depth = ((f + n) / (f - n) - 2.0 * f * n / ((f - n) * z)) * 0.5 + 0.5;
@@ -56,9 +54,9 @@ float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
 #endif
 #if SHADOW_MAPS
     if (type != LIGHT_POINT) {
-        for (int i = 0; i < taps; ++i)
-            for (int j = 0; j < taps; ++j) {
-                vec4 clip = light.shadowMatrix * vec4(Po + (T * (first + float(i)) + B * (first + float(j))) * texel, 1.0);
+        for (int i = -radius; i <= radius; ++i)
+            for (int j = -radius; j <= radius; ++j) {
+                vec4 clip = light.shadowMatrix * vec4(Po + (T * float(i) + B * float(j)) * texel, 1.0);
                 vec3 p = clip.xyz / max(clip.w, 1e-20) * 0.5 + 0.5;
                 // Outside the map (or behind a spot light) nothing was rendered: lit.
                 bool outside = clip.w <= 0.0 || any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)));
@@ -66,5 +64,6 @@ float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
             }
     }
 #endif
-    return sum / float(PCF_TAPS * PCF_TAPS);
+    float taps = float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
+    return sum / taps;
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <set>
+#include <string>
 
 #include "lights.h"
 #include "uniforms.h"
@@ -23,22 +24,67 @@ ShadowKinds shadowKinds(const std::vector<Light>& lights) {
     return others ? (points ? kBothKinds : kMapsOnly) : kCubesOnly;
 }
 
-// Variant i: lights as a uniform block when they fit (lights.glsl) or as a storage buffer, times
-// the kinds of shadow map compiled in.
-ProgramDesc lightingProgram(bool uniformBlock, ShadowKinds kinds) {
-    static const char* kindNames[] = {"-cubes", "-maps", ""};
-    ProgramDesc d{std::string(uniformBlock ? "lighting" : "lighting-many-lights") + kindNames[kinds],
-                  {"fullscreen.vert", "lighting.frag"},
-                  {{"SHADOW_CUBES", kinds == kMapsOnly ? "0" : "1"}, {"SHADOW_MAPS", kinds == kCubesOnly ? "0" : "1"}}};
-    if (uniformBlock) d.defines.push_back({"LIGHTS_UNIFORM_BLOCK_CAPACITY", std::to_string(kUniformBlockLights)});
-    return d;
+constexpr unsigned kAllModels = (1u << kDiffuseModelCount) - 1;
+static_assert(kDiffuseModelCount == kSpecularModelCount, "one mask width for both");
+
+// What one compiled lighting program holds. On llvmpipe a branch no pixel takes still costs every
+// pixel a masked pass through its body, so the pass compiles only what its frame can meet: the
+// lights as a uniform block when they fit (lights.glsl) or as a storage buffer, the kinds of shadow
+// map, the BRDF models (brdf.glsl's BRDF_*_MODELS bits: the render's pair and every material's
+// override) and the contract's terms the method gives. Each cut is the same image (tests).
+struct LightingVariant {
+    bool uniformBlock = true;
+    ShadowKinds kinds = kBothKinds;
+    unsigned diffuseModels = kAllModels, specularModels = kAllModels;
+    bool ao = true, indirectDiffuse = true, indirectSpecular = true;
+
+    std::string name() const {
+        static const char* kindNames[] = {"-cubes", "-maps", ""};
+        return std::string(uniformBlock ? "lighting" : "lighting-many-lights") + kindNames[kinds] + "-d" +
+               std::to_string(diffuseModels) + "s" + std::to_string(specularModels) + (ao ? "-ao" : "") +
+               (indirectDiffuse ? "-id" : "") + (indirectSpecular ? "-is" : "");
+    }
+    ProgramDesc program() const {
+        auto flag = [](bool b) { return std::string(b ? "1" : "0"); };
+        ProgramDesc d{name(),
+                      {"fullscreen.vert", "lighting.frag"},
+                      {{"SHADOW_CUBES", flag(kinds != kMapsOnly)},
+                       {"SHADOW_MAPS", flag(kinds != kCubesOnly)},
+                       {"BRDF_DIFFUSE_MODELS", std::to_string(diffuseModels)},
+                       {"BRDF_SPECULAR_MODELS", std::to_string(specularModels)},
+                       {"AO_INPUT", flag(ao)},
+                       {"INDIRECT_DIFFUSE", flag(indirectDiffuse)},
+                       {"INDIRECT_SPECULAR", flag(indirectSpecular)}}};
+        if (uniformBlock) d.defines.push_back({"LIGHTS_UNIFORM_BLOCK_CAPACITY", std::to_string(kUniformBlockLights)});
+        return d;
+    }
+};
+
+// The BRDF models a frame can meet: the render's pair and each material's own.
+void addModels(const Scene& scene, const RenderSettings& s, LightingVariant& v) {
+    v.diffuseModels = 1u << int(s.diffuse);
+    v.specularModels = 1u << int(s.specular);
+    for (const Material& m : scene.materials) {
+        if (m.diffuseModel >= 0) v.diffuseModels |= 1u << m.diffuseModel;
+        if (m.specularModel >= 0) v.specularModels |= 1u << m.specularModel;
+    }
 }
 }  // namespace
 
+// Every kind of variant, each with every model and term compiled in (for `gisandbox shaders`: a
+// variant with fewer only leaves branches out).
 std::vector<ProgramDesc> LightingPass::programs() {
     std::vector<ProgramDesc> all;
     for (bool uniformBlock : {true, false})
-        for (int k = 0; k < kShadowKindCount; ++k) all.push_back(lightingProgram(uniformBlock, ShadowKinds(k)));
+        for (int k = 0; k < kShadowKindCount; ++k) {
+            LightingVariant v;
+            v.uniformBlock = uniformBlock;
+            v.kinds = ShadowKinds(k);
+            all.push_back(v.program());
+        }
+    LightingVariant none;
+    none.ao = none.indirectDiffuse = none.indirectSpecular = false;
+    all.push_back(none.program());
     return all;
 }
 
@@ -55,12 +101,18 @@ LightingPass::LightingPass(int width, int height, bool hdr32, const std::set<std
     vao_ = gl::createVertexArray();
 }
 
-// Built on first need: a scene uses one variant, and light edits keep each light's kind.
-GLuint LightingPass::programFor(const std::vector<Light>& lights) {
-    const bool uniformBlock = lights.size() <= size_t(kUniformBlockLights);
-    const ShadowKinds kinds = shadowKinds(lights);
-    gl::Object& program = programs_[(uniformBlock ? 0 : kShadowKindCount) + kinds];
-    if (!program.id()) program = buildProgram(lightingProgram(uniformBlock, kinds));
+// Built on first need: a scene uses one variant, and a light or BRDF edit builds at most one more.
+GLuint LightingPass::programFor(const Frame& frame) {
+    const std::vector<Light>& lights = frame.scene.cpu.lights;
+    LightingVariant v;
+    v.uniformBlock = lights.size() <= size_t(kUniformBlockLights);
+    v.kinds = shadowKinds(lights);
+    addModels(frame.scene.cpu, frame.settings, v);
+    v.ao = hasAo_;
+    v.indirectDiffuse = hasDiffuse_;
+    v.indirectSpecular = hasSpecular_;
+    gl::Object& program = programs_[v.name()];
+    if (!program.id()) program = buildProgram(v.program());
     return program.id();
 }
 
@@ -75,7 +127,7 @@ std::vector<std::string> LightingPass::inputs() const {
 
 void LightingPass::execute(Frame& frame) {
     const RenderSettings& s = frame.settings;
-    const GLuint p = programFor(frame.scene.cpu.lights);
+    const GLuint p = programFor(frame);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
     glViewport(0, 0, radiance_.width, radiance_.height);
     glDisable(GL_DEPTH_TEST);
@@ -103,7 +155,6 @@ void LightingPass::execute(Frame& frame) {
     glProgramUniform3fv(p, U_BACKGROUND, 1, &background[0]);
     glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));
     glProgramUniform1i(p, U_SHADOWS_ENABLED, s.shadows ? 1 : 0);
-    glProgramUniform2i(p, U_INDIRECT_INPUTS, hasDiffuse_ ? 1 : 0, hasSpecular_ ? 1 : 0);
     glProgramUniform1f(p, U_MAX_RADIANCE, radiance_.format == GL_RGBA16F ? kMaxHalf : kMaxFloat);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     frame.put("radiance", radiance_);

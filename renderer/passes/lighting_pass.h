@@ -11,7 +11,7 @@
 // pass or lighting.frag.
 #pragma once
 
-#include <array>
+#include <map>
 #include <set>
 
 #include "renderer.h"
@@ -29,11 +29,11 @@ public:
     static std::vector<ProgramDesc> programs();
 
 private:
-    GLuint programFor(const std::vector<Light>& lights);  // the variant the lights need (programs())
+    GLuint programFor(const Frame& frame);  // the variant the frame needs (LightingVariant)
 
     gl::Texture radiance_, unit_;   // unit_: a 1x1 stand-in (ao = 1) for terms no method gives
     gl::Object fbo_, vao_;
-    std::array<gl::Object, 6> programs_;  // programs() order, built on first need
+    std::map<std::string, gl::Object> programs_;  // by variant name, built on first need
     bool hasAo_, hasDiffuse_, hasSpecular_;
 };
 
