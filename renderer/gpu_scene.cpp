@@ -74,7 +74,10 @@ GpuScene::GpuScene(const Scene& scene, gl::MemoryLedger& ledger) : cpu(scene) {
         g.normal = tex(m.normalTexture);
         g.emissive = tex(m.emissiveTexture);
         g.occlusion = tex(m.occlusionTexture);
-        g.hasNormalMap = m.normalTexture >= 0 && m.normalTexture < int(scene.images.size());
+        const int given[5] = {m.baseColorTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture,
+                              m.occlusionTexture};
+        for (int bit = 0; bit < 5; ++bit)
+            if (given[bit] >= 0 && given[bit] < int(scene.images.size())) g.textures |= 1u << bit;
         materials.push_back(g);
     }
     const int defaultMaterial = int(materials.size()) - 1;
@@ -109,8 +112,7 @@ void GpuScene::setDrawUniforms(GLuint program, const GpuDraw& draw) const {
                        m.occlusionStrength);
     glProgramUniform3fv(program, U_EMISSIVE, 1, &m.emissive[0]);
     glProgramUniform4f(program, U_ALPHA_PARAMS, m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f,
-                       m.normalScale, materials[draw.material].hasNormalMap ? 1.0f : 0.0f,
-                       m.doubleSided ? 1.0f : 0.0f);
+                       m.normalScale, 0.0f, m.doubleSided ? 1.0f : 0.0f);
     glProgramUniform2i(program, U_BRDF_OVERRIDE, m.diffuseModel, m.specularModel);
 }
 

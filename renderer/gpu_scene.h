@@ -23,7 +23,9 @@ struct GpuDraw {
 struct GpuMaterial {
     Material params;
     GLuint baseColor = 0, metallicRoughness = 0, normal = 0, emissive = 0, occlusion = 0;  // never 0 after upload
-    bool hasNormalMap = false;
+    // The textures the material has (the others are a 1x1 white), one bit each in material.glsl's
+    // MATERIAL_*_TEXTURE order: base colour 1, metallic-roughness 2, normal 4, emissive 8, occlusion 16.
+    unsigned textures = 0;
 };
 
 struct GpuScene {

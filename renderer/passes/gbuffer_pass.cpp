@@ -1,6 +1,7 @@
 #include "passes/gbuffer_pass.h"
 
 #include <iterator>
+#include <string>
 
 #include "debug_view.h"
 
@@ -8,7 +9,26 @@
 
 namespace gis {
 
-std::vector<ProgramDesc> GBufferPass::programs() { return {{"gbuffer", {"scene.vert", "gbuffer.frag"}, {}}}; }
+namespace {
+constexpr unsigned kAllTextures = 31;  // GpuMaterial::textures
+
+// The G-buffer program for materials with the textures in `textures` (material.glsl's
+// MATERIAL_TEXTURES): a texture the material lacks is not sampled at all.
+ProgramDesc gbufferProgram(unsigned textures) {
+    return {"gbuffer-t" + std::to_string(textures), {"scene.vert", "gbuffer.frag"},
+            {{"MATERIAL_TEXTURES", std::to_string(textures)}}};
+}
+}  // namespace
+
+// Every texture and none (for `gisandbox shaders`; the others only leave lookups out).
+std::vector<ProgramDesc> GBufferPass::programs() { return {gbufferProgram(kAllTextures), gbufferProgram(0)}; }
+
+// Built on first need: one per set of textures the scene's materials have.
+GLuint GBufferPass::programFor(const GpuMaterial& material) {
+    gl::Object& program = programs_[material.textures];
+    if (!program.id()) program = buildProgram(gbufferProgram(material.textures));
+    return program.id();
+}
 
 GBufferPass::GBufferPass(int width, int height, gl::MemoryLedger& ledger) {
     const gl::MemoryScope scope{&ledger, name()};
@@ -28,7 +48,6 @@ GBufferPass::GBufferPass(int width, int height, gl::MemoryLedger& ledger) {
     const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
     glNamedFramebufferDrawBuffers(f, 4, buffers);
     gl::checkFramebuffer(f, "G-buffer");
-    program_ = buildProgram(programs()[0]);
 }
 
 void GBufferPass::execute(Frame& frame) {
@@ -43,16 +62,17 @@ void GBufferPass::execute(Frame& frame) {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glFrontFace(GL_CCW);
-    glUseProgram(program_.id());
     glBindVertexArray(scene.vao.id());
-    glProgramUniformMatrix4fv(program_.id(), U_VIEW_PROJ, 1, GL_FALSE, &frame.camera.viewProj[0][0]);
     for (const GpuDraw& d : scene.draws) {
         const GpuMaterial& m = scene.materials[d.material];
+        const GLuint program = programFor(m);
+        glUseProgram(program);
+        glProgramUniformMatrix4fv(program, U_VIEW_PROJ, 1, GL_FALSE, &frame.camera.viewProj[0][0]);
         if (m.params.doubleSided) glDisable(GL_CULL_FACE);
         else glEnable(GL_CULL_FACE);
         // A mirroring transform (negative determinant) flips the winding.
         glFrontFace(glm::determinant(glm::mat3(d.world)) < 0.0f ? GL_CW : GL_CCW);
-        scene.setDrawUniforms(program_.id(), d);
+        scene.setDrawUniforms(program, d);
         scene.bindMaterial(m);
         glDrawElementsBaseVertex(GL_TRIANGLES, d.indexCount, GL_UNSIGNED_INT,
                                  reinterpret_cast<const void*>(uintptr_t(d.firstIndex) * 4), d.baseVertex);

@@ -1,6 +1,8 @@
 // G-buffer: depth plus four colour targets (base colour, normal, material, emission).
 #pragma once
 
+#include <map>
+
 #include "renderer.h"
 
 namespace gis {
@@ -20,8 +22,11 @@ public:
     static std::vector<ProgramDesc> programs();
 
 private:
+    GLuint programFor(const GpuMaterial& material);  // the program for the material's textures
+
     gl::Texture depth_, baseColor_, normal_, material_, emissive_;
-    gl::Object fbo_, program_;
+    gl::Object fbo_;
+    std::map<unsigned, gl::Object> programs_;  // by GpuMaterial::textures, built on first need
 };
 
 }  // namespace gis
