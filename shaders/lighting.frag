@@ -13,7 +13,7 @@ layout(binding = 2) uniform sampler2D s_gbufNormal;
 layout(binding = 3) uniform sampler2D s_gbufMaterial;
 layout(binding = 4) uniform sampler2D s_gbufEmissive;
 layout(binding = 5) uniform sampler2DArrayShadow s_shadowMaps;
-layout(binding = 6) uniform samplerCubeArrayShadow s_shadowCubes;
+layout(binding = 6) uniform sampler2DArrayShadow s_shadowCubes;  // cube faces, 6 layers per cube
 layout(binding = 7) uniform sampler2D s_ao;   // r = occlusion of the ambient term ("ao"), or a 1x1 one
 layout(binding = 8) uniform sampler2D s_indirectDiffuse;   // "indirect.diffuse" (or the 1x1 one)
 layout(binding = 9) uniform sampler2D s_indirectSpecular;  // "indirect.specular" (or the 1x1 one)

@@ -1,7 +1,8 @@
 // Shadow-map visibility of a punctual light (shaders/lights.glsl) at a surface point, shared by the
 // lighting pass and voxel light injection. The including shader declares, before this include,
-// `sampler2DArrayShadow s_shadowMaps`, `samplerCubeArrayShadow s_shadowCubes` (the shadow pass's
-// "shadow.maps" and "shadow.cubes") and `int u_shadowsEnabled`.
+// `sampler2DArrayShadow s_shadowMaps`, `sampler2DArrayShadow s_shadowCubes` (the shadow pass's
+// "shadow.maps" and "shadow.cubes", the latter the cube faces as 2D layers, 6 per point light) and
+// `int u_shadowsEnabled`.
 
 // Receiver-side bias: move the lookup along the normal by a few shadow-map texels, more at grazing
 // light, so a lit plane never shadows itself (acne) and contact shadows stay (little peter-panning).
@@ -17,6 +18,17 @@ const int PCF_RADIUS = 1;
 #ifndef SHADOW_MAPS
 #define SHADOW_MAPS 1
 #endif
+
+// Where direction d meets the cube map: (s, t, face) by the GL's face selection (the major axis, then
+// the face's own s and t axes; OpenGL 4.5 core, table 8.19), for the faces as 2D layers. A tap
+// near an edge reads its own face's texels only (clamped), where the cube map filtered across the
+// seam: a difference within a texel of the edges, inside the PCF taps.
+vec3 cubeFaceCoordinates(vec3 d) {
+    vec3 a = abs(d);
+    if (a.x >= a.y && a.x >= a.z) return vec3(0.5 * vec2(d.x > 0.0 ? -d.z : d.z, -d.y) / a.x + 0.5, d.x > 0.0 ? 0.0 : 1.0);
+    if (a.y >= a.z) return vec3(0.5 * vec2(d.x, d.y > 0.0 ? d.z : -d.z) / a.y + 0.5, d.y > 0.0 ? 2.0 : 3.0);
+    return vec3(0.5 * vec2(d.z > 0.0 ? d.x : -d.x, -d.y) / a.z + 0.5, d.z > 0.0 ? 4.0 : 5.0);
+}
 
 float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
     int layer = int(light.cone.z);
@@ -48,7 +60,8 @@ float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
                 vec3 ad = abs(d);
                 float z = max(max(max(ad.x, ad.y), ad.z), n);
                 float depth = ((f + n) / (f - n) - 2.0 * f * n / ((f - n) * z)) * 0.5 + 0.5;
-                sum += texture(s_shadowCubes, vec4(d, float(layer)), depth);
+                vec3 face = cubeFaceCoordinates(d);
+                sum += texture(s_shadowCubes, vec4(face.xy, float(layer * 6) + face.z, depth));
             }
     }
 #endif

@@ -139,6 +139,21 @@ Texture createTexture3D(const MemoryScope& scope, GLenum format, int width, int 
     return t;
 }
 
+Texture createTextureView(const Texture& source, GLenum target) {
+    GLuint id = 0;
+    glGenTextures(1, &id);  // a view needs a name no target has been given yet
+    glTextureView(id, target, source.id(), source.format, 0, source.levels, 0, source.depth);
+    Texture t;
+    t.object = Object(id, deleteTexture);
+    t.target = target;
+    t.format = source.format;
+    t.width = source.width;
+    t.height = source.height;
+    t.depth = source.depth;
+    t.levels = source.levels;
+    return t;
+}
+
 Buffer createBuffer(const MemoryScope& scope, int64_t size, const void* data, GLbitfield flags) {
     Buffer b;
     GLuint id = 0;

@@ -62,6 +62,9 @@ Texture createTexture2D(const MemoryScope& scope, GLenum format, int width, int 
 Texture createTexture2DArray(const MemoryScope& scope, GLenum format, int width, int height, int layers);
 Texture createTextureCubeArray(const MemoryScope& scope, GLenum format, int size, int cubes);
 Texture createTexture3D(const MemoryScope& scope, GLenum format, int width, int height, int depth, int levels = 1);
+// Another view of `source`'s storage (glTextureView): all its levels and layers, seen as `target`
+// (a cube map array as a 2D array of its faces, say). Holds no memory of its own.
+Texture createTextureView(const Texture& source, GLenum target);
 int64_t bytesPerTexel(GLenum format);
 int mipLevelsFor(int width, int height);
 

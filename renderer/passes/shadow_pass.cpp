@@ -127,7 +127,10 @@ void ShadowPass::layoutLights() {
                    : gl::createTexture2DArray(scope, GL_DEPTH_COMPONENT32F, 1, 1, 1);
     cubes_ = cubes ? gl::createTextureCubeArray(scope, GL_DEPTH_COMPONENT32F, cubeSize_, cubes)
                    : gl::createTextureCubeArray(scope, GL_DEPTH_COMPONENT32F, 1, 1);
-    for (const gl::Texture* t : {&maps_, &cubes_}) {
+    // The lookups read the cube faces as 2D layers (shadows.glsl): sampling the cube map array
+    // itself cost the lighting pass more on llvmpipe for the same texels.
+    cubeFaces_ = gl::createTextureView(cubes_, GL_TEXTURE_2D_ARRAY);
+    for (const gl::Texture* t : {&maps_, &cubeFaces_}) {
         glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTextureParameteri(t->id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -146,7 +149,7 @@ void ShadowPass::layoutLights() {
 void ShadowPass::execute(Frame& frame) {
     frame.put("lights", lightBuffer_);
     frame.put("shadow.maps", maps_);
-    frame.put("shadow.cubes", cubes_);
+    frame.put("shadow.cubes", cubeFaces_);
     reused_ = valid_;
     if (valid_) return;
     const GpuScene& scene = frame.scene;

@@ -32,6 +32,7 @@ private:
     std::vector<View> views_;          // one per 2D layer or cube face
     gl::Buffer lightBuffer_;
     gl::Texture maps_, cubes_;         // 1-layer placeholders when the scene needs none
+    gl::Texture cubeFaces_;            // cubes_ seen as a 2D array of faces: "shadow.cubes"
     gl::Object fbo_, program_;
     int mapSize_, cubeSize_;
     bool shadows_;

@@ -10,7 +10,7 @@ layout(binding = 0) uniform sampler3D s_albedo;
 layout(binding = 1) uniform sampler3D s_normal;
 layout(binding = 2) uniform sampler3D s_emission;
 layout(binding = 5) uniform sampler2DArrayShadow s_shadowMaps;
-layout(binding = 6) uniform samplerCubeArrayShadow s_shadowCubes;
+layout(binding = 6) uniform sampler2DArrayShadow s_shadowCubes;  // cube faces, 6 layers per cube
 layout(rgba16f, binding = 0) uniform writeonly image3D i_radiance;
 
 layout(location = UV_RESOLUTION) uniform int u_resolution;

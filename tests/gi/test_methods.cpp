@@ -359,7 +359,7 @@ TEST(Methods, StepTimersAndFrameResourcesCarryTheirShape) {
     EXPECT_EQ(indirect.height, 5);
     EXPECT_EQ(indirect.format, GLenum(GL_RGBA32F));
     EXPECT_EQ(r.frameResources().at("lights").kind, ResourceKind::Buffer);
-    EXPECT_EQ(r.frameResources().at("shadow.cubes").kind, ResourceKind::TextureCubeArray);
+    EXPECT_EQ(r.frameResources().at("shadow.cubes").kind, ResourceKind::Texture2DArray);  // the cube faces as layers
     bool stepSeen = false;
     for (const PassTiming& t : r.timings(1))
         if (t.pass == "test-constant/fill") {
