@@ -147,21 +147,23 @@ void VoxelRadiance::bind(GLuint unit) const {
 }
 
 void voxelizeAndInject(Frame& frame, Voxelizer& voxelizer, VoxelRadiance& radiance) {
-    {
-        auto t = frame.step("voxelize");
-        voxelizer.voxelize(frame.scene);
-    }
+    voxelizeFrame(frame, voxelizer);
     injectFrameLights(frame, voxelizer.grid(), radiance);
 }
 
-void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance) {
+void voxelizeFrame(Frame& frame, Voxelizer& voxelizer, const std::string& prefix) {
+    auto t = frame.step(prefix + "voxelize");
+    voxelizer.voxelize(frame.scene);
+}
+
+void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance, const std::string& prefix) {
     VoxelRadiance::Lights lights;
     lights.buffer = frame.buffer("lights");
     lights.shadowMaps = frame.texture("shadow.maps");
     lights.shadowCubes = frame.texture("shadow.cubes");
     lights.count = int(frame.scene.cpu.lights.size());
     lights.shadows = frame.settings.shadows;
-    auto t = frame.step("inject");
+    auto t = frame.step(prefix + "inject");
     radiance.inject(grid, lights);
 }
 

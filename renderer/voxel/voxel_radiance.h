@@ -4,6 +4,8 @@
 // Probe GI and the SDF method shade their ray hits from the same radiance.
 #pragma once
 
+#include <string>
+
 #include "renderer.h"
 #include "voxel/voxelizer.h"
 
@@ -61,7 +63,9 @@ private:
 // inject the frame's punctual lights (through the shadow pass's maps) and emission, timed as the
 // pass's "voxelize" and "inject" steps.
 void voxelizeAndInject(Frame& frame, Voxelizer& voxelizer, VoxelRadiance& radiance);
-// The second step alone, for a light edit: the voxels stay, only their light is injected again.
-void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance);
+// Each step alone, for passes that redo only one (a light edit keeps the voxels and injects their
+// light again), timed as the pass's `prefix` + "voxelize" and `prefix` + "inject" steps.
+void voxelizeFrame(Frame& frame, Voxelizer& voxelizer, const std::string& prefix = "");
+void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance, const std::string& prefix = "");
 
 }  // namespace gis

@@ -15,7 +15,7 @@ enum VoxelUniform : int {
     UV_DIRECTION = 109,        // anisotropic mip: 0..5 = +X -X +Y -Y +Z -Z
     UV_INV_VIEW_PROJ = 110,
     UV_CAMERA_POS = 111,
-    UV_CONE_SET = 112,         // 0 = six cones (60 degrees), 1 = four cones
+    UV_CONE_SET = 112,         // 0 = six cones (60 degrees), 1 = four (90), 2 = many (32 of 14)
     UV_TRACE_PARAMS = 113,     // step factor, max distance (voxels), start offset (voxels), specular scale
     UV_ENVIRONMENT = 114,
     UV_ANISOTROPIC = 115,      // 0 isotropic, 1 directional mips, 2 directional without back faces

@@ -169,8 +169,7 @@ void SdfGiPass::refresh(Frame& frame, int i) {
     const std::string prefix = stepPrefix(i);
     c.lastFrame = !c.voxelsValid || !c.fieldValid ? "rebuilt" : !c.radianceValid ? "relit" : "cached";
     if (!c.voxelsValid) {
-        auto t = frame.step(prefix + "voxelize");
-        c.voxelizer->voxelize(frame.scene);
+        voxelizeFrame(frame, *c.voxelizer, prefix);
         c.voxelsValid = true;
         c.radianceValid = false;
     }
@@ -187,16 +186,7 @@ void SdfGiPass::refresh(Frame& frame, int i) {
 void SdfGiPass::relight(Frame& frame, int i, const std::string& prefix) {
     Cascade& c = cascades_[size_t(i)];
     const VoxelGrid& grid = c.voxelizer->grid();
-    VoxelRadiance::Lights lights;
-    lights.buffer = frame.buffer("lights");
-    lights.shadowMaps = frame.texture("shadow.maps");
-    lights.shadowCubes = frame.texture("shadow.cubes");
-    lights.count = int(frame.scene.cpu.lights.size());
-    lights.shadows = frame.settings.shadows;
-    {
-        auto t = frame.step(prefix + "inject");
-        c.radiance->inject(grid, lights);
-    }
+    injectFrameLights(frame, grid, *c.radiance, prefix);
     if (built_.bounces > 1) {  // further bounces gather by cone tracing in voxel space (the voxel module's)
         auto t = frame.step(prefix + "bounce");
         c.radiance->buildMips(grid);

@@ -139,8 +139,7 @@ void VctPass::execute(Frame& frame) {
     live_ = vctParams().read("vct", frame.settings.params);
     reused_ = voxelsValid_ && radianceValid_;
     if (!voxelsValid_) {
-        auto t = frame.step("voxelize");
-        voxelizer_->voxelize(frame.scene);
+        voxelizeFrame(frame, *voxelizer_);
         ++voxelizations_;
         voxelsValid_ = true;
         radianceValid_ = false;

@@ -2,9 +2,9 @@
 // emission, build the mip chains, then trace cones per pixel into the lighting contract's
 // "indirect.diffuse" and "indirect.specular". Voxels, injection and mips are view independent:
 // the voxels are rebuilt only after invalidate() with geometry or materials, injection and mips
-// also after a light edit, so a camera move costs the trace alone. The cones' occlusion is already in indirect.diffuse, so the pass does
-// not write "ao" (the lighting pass would multiply it in a second time); it is the debug view
-// "vct.ao".
+// also after a light edit, so a camera move costs the trace alone. The cones' occlusion is already
+// in indirect.diffuse, so the pass does not write "ao" (the lighting pass would multiply it in a
+// second time); it is the debug view "vct.ao".
 #pragma once
 
 #include <memory>

@@ -18,8 +18,9 @@ const ParamTable<VctSettings>& vctParams() {
                 {"opaque", "cull"}, U::Rebuild)
         .integer(&S::bounces, "bounces", "Bounces", "1 = direct light and emission; more gather in voxel space again", 1,
                  4, U::Rebuild)
-        .choice(&S::coneSet, "cones", "Diffuse cones", "six 60-degree cones (Godot's set), four 90-degree cones, or many: 32 cones of 14 degrees "
-                "spread by cosine (closer to the path tracer, 8x the trace)",
+        .choice(&S::coneSet, "cones", "Diffuse cones",
+                "six 60-degree cones (Godot's set), four 90-degree cones, or many: 32 cones of 14 degrees spread by "
+                "cosine (closer to the path tracer, 8x the trace)",
                 {"six", "four", "many"}, U::Live)
         .real(&S::stepFactor, "step", "Step", "step as a fraction of the cone's diameter", 0.05, 2.0, U::Live)
         .real(&S::maxDistance, "max-distance", "Max distance", "cone length as a fraction of the volume's edge", 0.01,
