@@ -51,7 +51,7 @@ float farthestCorner(const Aabb& b, const glm::vec3& eye) {
 }  // namespace
 
 void drawChannel(DisplayChannel channel, GLuint source, const Frame& frame, GLuint target) {
-    const GLuint depth = frame.has("gbuffer.depth") ? frame.texture("gbuffer.depth") : 0;
+    const GLuint depth = frame.has(resource::kGbufferDepth) ? frame.texture(resource::kGbufferDepth) : 0;
     frame.services.channelDisplay().draw(channel, source, depth, frame.camera,
                                          farthestCorner(frame.scene.cpu.bounds, frame.camera.position), target,
                                          frame.settings.width, frame.settings.height);

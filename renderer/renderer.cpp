@@ -16,109 +16,24 @@
 
 namespace gis {
 
+
 namespace {
-const char* const kDiffuseNames[kDiffuseModelCount] = {"lambert", "wrap", "toon", "burley"};
-const char* const kSpecularNames[kSpecularModelCount] = {"ggx", "blinn", "toon", "none"};
-}  // namespace
-
-DiffuseModel parseDiffuse(const std::string& s) {
-    for (int i = 0; i < kDiffuseModelCount; ++i)
-        if (s == kDiffuseNames[i]) return DiffuseModel(i);
-    throw Error("unknown diffuse BRDF '" + s + "' (expected lambert, wrap, toon or burley)");
-}
-
-SpecularModel parseSpecular(const std::string& s) {
-    for (int i = 0; i < kSpecularModelCount; ++i)
-        if (s == kSpecularNames[i]) return SpecularModel(i);
-    throw Error("unknown specular BRDF '" + s + "' (expected ggx, blinn, toon or none)");
-}
-
-Tonemapper parseTonemapper(const std::string& s) {
-    if (s == "aces") return Tonemapper::Aces;
-    if (s == "linear") return Tonemapper::Linear;
-    throw Error("unknown tonemapper '" + s + "' (expected aces or linear)");
-}
-
-bool physicallyBased(DiffuseModel d, SpecularModel s) {
-    return (d == DiffuseModel::Lambert || d == DiffuseModel::Burley) && (s == SpecularModel::Ggx || s == SpecularModel::None);
-}
-
-void setParam(RenderSettings& s, const std::string& fullKey, const std::string& text) {
-    // An alias flag (--spp, --ao-radius) sets every row that declares it.
-    bool any = false;
-    for (const GiMethod& m : giMethods())
-        for (const ParamDesc& d : m.params)
-            if (fullKey == m.name + "." + d.key || (!d.alias.empty() && fullKey == d.alias)) {
-                s.params[m.name + "." + d.key] = parseParamValue(m.name, d, text);
-                any = true;
-            }
-    if (!any) findParam(fullKey);  // throws the message naming the method's keys
-}
-
-ParamValue getParam(const RenderSettings& s, const std::string& fullKey) {
-    auto it = s.params.find(fullKey);
-    return it != s.params.end() ? it->second : findParam(fullKey).defaultValue;
-}
-
-CameraMatrices cameraMatrices(const Scene& scene, int cameraIndex, float aspect) {
-    if (!scene.cameras.empty() && (cameraIndex < 0 || cameraIndex >= int(scene.cameras.size())))
-        throw Error("camera " + std::to_string(cameraIndex) + " does not exist (the scene has " +
-                    std::to_string(scene.cameras.size()) + ")");
-    const Camera cam = scene.cameras.empty() ? defaultCamera(scene.bounds, aspect) : scene.cameras[cameraIndex];
-    CameraMatrices m;
-    m.view = glm::inverse(cam.cameraToWorld);
-    m.position = glm::vec3(cam.cameraToWorld[3]);
-    m.znear = cam.znear;
-    m.zfar = cam.zfar;
-    if (cam.orthographic) {
-        // Keep the file's vertical extent; the width follows the viewport's aspect.
-        m.proj = glm::ortho(-cam.ymag * aspect, cam.ymag * aspect, -cam.ymag, cam.ymag, cam.znear, cam.zfar);
-    } else if (cam.zfar <= 0.0f) {
-        m.proj = glm::infinitePerspective(cam.yfov, aspect, cam.znear);
-    } else {
-        m.proj = glm::perspective(cam.yfov, aspect, cam.znear, cam.zfar);
+// The barrier after a pass that wrote through image stores or storage buffers: its outputs may be
+// read next as textures (sampled, loaded as images, attached, read back) or as buffers (storage or
+// uniform blocks, read back), so those bits for the kinds it outputs, and no others.
+GLbitfield barrierBitsFor(const Pass& pass, const Frame& frame) {
+    GLbitfield bits = 0;
+    for (const std::string& name : pass.outputs()) {
+        const auto it = frame.resources.find(name);
+        if (it == frame.resources.end()) continue;
+        bits |= it->second.kind == ResourceKind::Buffer
+                    ? GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT
+                    : GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                          GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT;
     }
-    m.viewProj = m.proj * m.view;
-    m.invViewProj = glm::inverse(m.viewProj);
-    return m;
+    return bits;
 }
-
-void Frame::put(const std::string& name, const gl::Texture& t) {
-    ResourceKind kind = ResourceKind::Texture2D;
-    if (t.target == GL_TEXTURE_3D) kind = ResourceKind::Texture3D;
-    else if (t.target == GL_TEXTURE_2D_ARRAY) kind = ResourceKind::Texture2DArray;
-    else if (t.target == GL_TEXTURE_CUBE_MAP_ARRAY) kind = ResourceKind::TextureCubeArray;
-    resources[name] = {t.id(), kind, t.format, t.width, t.height, t.depth, t.levels, 0};
-}
-
-void Frame::put(const std::string& name, const gl::Buffer& b) {
-    resources[name] = {b.id(), ResourceKind::Buffer, 0, 0, 0, 1, 1, b.size};
-}
-
-const FrameResource& Frame::resource(const std::string& name) const {
-    auto it = resources.find(name);
-    if (it == resources.end()) throw Error("internal: no pass produced '" + name + "'");
-    return it->second;
-}
-
-GLuint Frame::texture(const std::string& name) const {
-    const FrameResource& r = resource(name);
-    if (r.kind == ResourceKind::Buffer) throw Error("internal: '" + name + "' is a buffer, not a texture");
-    return r.id;
-}
-
-GLuint Frame::buffer(const std::string& name) const {
-    const FrameResource& r = resource(name);
-    if (r.kind != ResourceKind::Buffer) throw Error("internal: '" + name + "' is a texture, not a buffer");
-    return r.id;
-}
-
-StepTimers::Scope StepTimers::scope(const std::string& step) {
-    for (auto& [name, timer] : steps)
-        if (name == step) return Scope(timer.get());
-    steps.emplace_back(step, std::make_unique<gl::GpuTimer>());
-    return Scope(steps.back().second.get());
-}
+}  // namespace
 
 namespace {
 void checkSettings(const RenderSettings& s) {
@@ -236,14 +151,16 @@ void Renderer::renderFrame() {
     Frame frame{settings_, *gpuScene_, *services_, camera_, {}, frameIndex_};
     for (const auto& pass : passes_) {
         frame.steps = &pass->steps;
+        frame.pass = pass.get();
         pass->timer.begin();
         pass->execute(frame);
         pass->timer.end(!pass->reusedLastFrame());
-        if (pass->writesImagesOrBuffers()) glMemoryBarrier(GL_ALL_BARRIER_BITS);
+        if (pass->writesImagesOrBuffers()) glMemoryBarrier(barrierBitsFor(*pass, frame));
     }
+    frame.pass = nullptr;
     ++frameIndex_;
-    hdr_ = frame.texture("radiance");
-    ldr_ = frame.texture("display");
+    hdr_ = frame.texture(resource::kRadiance);
+    ldr_ = frame.texture(resource::kDisplay);
     if (settings_.view != "final") drawDebugView(frame);
     frameResources_ = frame.resources;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -259,8 +176,10 @@ void Renderer::drawDebugView(Frame& frame) {
     for (const auto& pass : passes_)
         for (const DebugViewDesc& v : pass->debugViews())
             if (v.name == settings_.view) {
+                frame.pass = pass.get();  // its view reads only what the pass declared
                 pass->drawDebugView(v.name, frame, debugTarget_.id());
-                frame.put("display", debugTarget_);
+                frame.pass = nullptr;
+                frame.put(resource::kDisplay, debugTarget_);
                 hdr_ = ldr_ = debugTarget_.id();
                 return;
             }
@@ -292,6 +211,7 @@ void Renderer::lightsChanged() {
 }
 
 void Renderer::invalidate(Changes changes) {
+    services_->invalidate(changes);
     for (const auto& pass : passes_) pass->invalidate(changes);
 }
 
@@ -348,16 +268,6 @@ ImageF Renderer::readHdr() const {
 ImageU8 Renderer::readLdr() const {
     if (!ldr_) throw Error("internal: readLdr before renderFrame");
     return readTextureBytes(ldr_, settings_.width, settings_.height);
-}
-
-double median(std::vector<double> values) {
-    if (values.empty()) return 0.0;
-    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-    return values[values.size() / 2];
-}
-
-double medianAfter(const std::vector<double>& values, int skip) {
-    return median({values.begin() + std::min<size_t>(size_t(std::max(skip, 0)), values.size()), values.end()});
 }
 
 namespace {

@@ -6,7 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "image.h"
-#include "renderer.h"  // Tonemapper
+#include "render_settings.h"  // Tonemapper
 
 namespace gis {
 

@@ -47,5 +47,5 @@ void main() {
                       saturate(occlusion), saturate(u_materialParams.z));
     // Clamped to the largest half float: the target is RGBA16F.
     vec3 emissive = u_emissive * MATERIAL_SAMPLE(MATERIAL_EMISSIVE_TEXTURE, s_emissive, v_in.uv).rgb;
-    o_emissive = vec4(min(finiteOrZero(max(emissive, vec3(0.0))), vec3(65504.0)), 0.0);
+    o_emissive = vec4(min(finiteOrZero(max(emissive, vec3(0.0))), vec3(MAX_HALF_FLOAT)), 0.0);
 }

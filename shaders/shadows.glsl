@@ -46,7 +46,7 @@ float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
     // is 1 here). Unrolled under a per-tap branch on the light's type, llvmpipe evaluated both
     // kinds' lookups for every tap (it runs both sides of a branch it cannot prove uniform); this
     // way the other kind's loop ends after one masked pass: same image, the lighting pass ~20%
-    // faster on cornell_point and the atrium (interleaved runs, README "Speed against Godot 3").
+    // faster on cornell_point and the atrium (interleaved runs, docs/godot.md).
     int radius = PCF_RADIUS * u_shadowsEnabled;
     float sum = 0.0;
 #if SHADOW_CUBES

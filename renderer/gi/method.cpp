@@ -19,6 +19,19 @@ const GiMethod* findGiMethod(const std::string& name) {
     return nullptr;
 }
 
+const GiMethod& methodInRole(MethodRole role) {
+    for (const GiMethod& m : giMethods())
+        if (m.role == role) return m;
+    throw Error(std::string("no GI method is registered as the ") +
+                (role == MethodRole::Reference ? "reference" : role == MethodRole::AoReference ? "AO reference" : "method"));
+}
+
+std::string roleParamKey(MethodRole role, const std::string& key) {
+    const GiMethod& m = methodInRole(role);
+    if (!m.param(key)) throw Error("GI method '" + m.name + "' has no parameter '" + key + "'");
+    return m.name + "." + key;
+}
+
 std::string giMethodNames() {
     std::string s;
     for (const GiMethod& m : giMethods()) s += (s.empty() ? "" : ", ") + m.name;

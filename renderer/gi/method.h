@@ -27,6 +27,15 @@ enum class MethodPipeline {
 // What the method's image is, so the bench scores it against the right reference.
 enum class MethodImage { Radiance, AmbientOcclusion };
 
+// What a method is to the bench and the viewer besides one of the methods compared: app/ asks the
+// registry for a role and names no method.
+enum class MethodRole {
+    Method,       // one of the methods compared
+    Reference,    // the ground truth radiance is scored against; its "spp" and "bounces" rows are the
+                  // bench's and the viewer's reference controls
+    AoReference,  // the ground truth an AO image is scored against; its "spp" row sets its samples
+};
+
 struct GiPreset {
     std::string name;            // low, medium, high
     std::string description;     // "8 directions x 2 steps, half resolution"
@@ -49,6 +58,8 @@ struct GiMethod {
     std::string summary;                    // one line for `gisandbox methods`
     MethodPipeline pipeline = MethodPipeline::Deferred;
     MethodImage image = MethodImage::Radiance;
+    MethodRole role = MethodRole::Method;
+    bool scoredAgainstAo = false;           // its "ao" output is also scored against the AO reference
     bool physicalBrdfsOnly = false;         // refuses wrap/toon/blinn (the path tracer)
     bool benchmarked = true;                // a row in `bench` (not the reference itself)
     std::vector<ParamDesc> params;
@@ -72,6 +83,10 @@ const std::vector<GiMethod>& giMethods();
 void registerGiMethod(GiMethod method);
 const GiMethod& giMethod(const std::string& name);   // throws "unknown GI method 'x' (available: ...)"
 const GiMethod* findGiMethod(const std::string& name);
+// The method registered in `role` (throws naming the role when there is none).
+const GiMethod& methodInRole(MethodRole role);
+// "method.key" of the method in `role`, for one of its rows ("spp" -> "pathtrace.spp").
+std::string roleParamKey(MethodRole role, const std::string& key);
 std::string giMethodNames();                         // "none, ssao, ..."
 const std::vector<std::string>& presetNames();       // low, medium, high
 

@@ -13,6 +13,10 @@
 
 namespace gis::gl {
 
+// The largest finite value of a half float (RGBA16F): radiance is clamped there, not to Inf
+// (GLSL's MAX_HALF_FLOAT, renderer/shader_constants.cpp).
+constexpr float kMaxHalfFloat = 65504.0f;
+
 // Bytes held per owner. Lives as long as the renderer; resources keep a pointer to it.
 struct MemoryLedger {
     std::map<std::string, int64_t> bytesByOwner;

@@ -59,6 +59,7 @@ PreprocessedShader preprocessShader(const std::string& file,
                                     const std::vector<std::pair<std::string, std::string>>& defines) {
     PreprocessedShader out;
     emit(out, "#version 450 core", "(generated)", 0);
+    for (const auto& [name, value] : sharedShaderDefines()) emit(out, "#define " + name + " " + value, "(generated)", 0);
     for (const auto& [name, value] : defines) emit(out, "#define " + name + " " + value, "(generated)", 0);
     std::set<std::string> included;
     expand(file, out, included, 0);

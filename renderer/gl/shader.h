@@ -30,8 +30,13 @@ struct PreprocessedShader {
 };
 
 std::string shaderDir();  // GIS_SHADER_DIR environment variable, else the build's source path
+// The source of one stage: the version line, sharedShaderDefines(), the program's `defines`, then
+// the file with its #includes expanded.
 PreprocessedShader preprocessShader(const std::string& file,
                                     const std::vector<std::pair<std::string, std::string>>& defines);
+// Every limit and size C++ and GLSL share, as #define NAME VALUE from the one C++ constant that
+// declares it (renderer/shader_constants.cpp), so the two cannot drift apart.
+const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines();
 // Rewrites "0:LINE(COL): msg" (Mesa) and "0(LINE) : msg" (NVIDIA) into "shaders/file:LINE: msg".
 std::string mapShaderLog(const std::string& log, const PreprocessedShader& shader);
 

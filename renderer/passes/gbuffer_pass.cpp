@@ -80,11 +80,11 @@ void GBufferPass::execute(Frame& frame) {
     glFrontFace(GL_CCW);
     glDisable(GL_CULL_FACE);
     glDisable(GL_FRAMEBUFFER_SRGB);
-    frame.put("gbuffer.depth", depth_);
-    frame.put("gbuffer.baseColor", baseColor_);
-    frame.put("gbuffer.normal", normal_);
-    frame.put("gbuffer.material", material_);
-    frame.put("gbuffer.emissive", emissive_);
+    frame.put(resource::kGbufferDepth, depth_);
+    frame.put(resource::kGbufferBaseColor, baseColor_);
+    frame.put(resource::kGbufferNormal, normal_);
+    frame.put(resource::kGbufferMaterial, material_);
+    frame.put(resource::kGbufferEmissive, emissive_);
 }
 
 namespace {

@@ -12,7 +12,7 @@ public:
     GBufferPass(int width, int height, gl::MemoryLedger& ledger);
     const char* name() const override { return "gbuffer"; }
     std::vector<std::string> outputs() const override {
-        return {"gbuffer.depth", "gbuffer.baseColor", "gbuffer.normal", "gbuffer.material", "gbuffer.emissive"};
+        return {resource::kGbufferDepth, resource::kGbufferBaseColor, resource::kGbufferNormal, resource::kGbufferMaterial, resource::kGbufferEmissive};
     }
     void execute(Frame& frame) override;
     std::vector<DebugViewDesc> debugViews() const override { return views(); }

@@ -24,7 +24,7 @@ public:
     LightingPass(int width, int height, bool hdr32, const std::set<std::string>& produced, gl::MemoryLedger& ledger);
     const char* name() const override { return "lighting"; }
     std::vector<std::string> inputs() const override;
-    std::vector<std::string> outputs() const override { return {"radiance"}; }
+    std::vector<std::string> outputs() const override { return {resource::kRadiance}; }
     void execute(Frame& frame) override;
     static std::vector<ProgramDesc> programs();
 
@@ -41,8 +41,8 @@ class TonemapPass final : public Pass {
 public:
     TonemapPass(int width, int height, gl::MemoryLedger& ledger);
     const char* name() const override { return "tonemap"; }
-    std::vector<std::string> inputs() const override { return {"radiance"}; }
-    std::vector<std::string> outputs() const override { return {"display"}; }
+    std::vector<std::string> inputs() const override { return {resource::kRadiance}; }
+    std::vector<std::string> outputs() const override { return {resource::kDisplay}; }
     void execute(Frame& frame) override;
     static std::vector<ProgramDesc> programs();
 

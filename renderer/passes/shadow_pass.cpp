@@ -147,9 +147,9 @@ void ShadowPass::layoutLights() {
 }
 
 void ShadowPass::execute(Frame& frame) {
-    frame.put("lights", lightBuffer_);
-    frame.put("shadow.maps", maps_);
-    frame.put("shadow.cubes", cubeFaces_);
+    frame.put(resource::kLights, lightBuffer_);
+    frame.put(resource::kShadowMaps, maps_);
+    frame.put(resource::kShadowCubes, cubeFaces_);
     reused_ = valid_;
     if (valid_) return;
     const GpuScene& scene = frame.scene;

@@ -16,7 +16,7 @@ class ShadowPass final : public Pass {
 public:
     ShadowPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger);
     const char* name() const override { return "shadows"; }
-    std::vector<std::string> outputs() const override { return {"lights", "shadow.maps", "shadow.cubes"}; }
+    std::vector<std::string> outputs() const override { return {resource::kLights, resource::kShadowMaps, resource::kShadowCubes}; }
     void execute(Frame& frame) override;
     bool reusedLastFrame() const override { return reused_; }
     void invalidate(Changes changes) override;

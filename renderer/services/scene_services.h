@@ -1,6 +1,7 @@
 // What several GI methods need from the scene, built lazily once per renderer rather than once
-// per pass: the ray-tracing scene (Embree BVH, triangles, materials, emitters), and the scene's
-// bounds with a helper that fits volumes to them. Charged to "scene.*" owners in the ledger.
+// per pass: the ray-tracing scene (Embree BVH, triangles, materials, emitters; charged to
+// "scene.rays") and the scene volume (voxels, distance field, their light and cascades; charged to
+// the method that asked, so its row shows its whole footprint).
 #pragma once
 
 #include <memory>
@@ -8,6 +9,7 @@
 #include "debug_view.h"
 #include "gpu_scene.h"
 #include "ray_scene.h"
+#include "volume/scene_volume.h"
 
 namespace gis {
 
@@ -20,6 +22,11 @@ struct SceneServices {
     RayScene& rays();
     bool hasRays() const { return rays_ != nullptr; }
     const Aabb& bounds() const { return scene.cpu.bounds; }
+    // The scene volume as `request` describes it: built on first use; the same request gets the
+    // same volume, so methods sharing a renderer share what they can.
+    SceneVolume& volume(const VolumeRequest& request);
+    // What changed, for the services that cache anything derived from it (the volumes).
+    void invalidate(Changes changes);
     // The scene's lights were edited: every service that holds them uploads them again.
     void lightsChanged();
     // The program debug views draw frame textures with (renderer/debug_view.h).
@@ -27,6 +34,7 @@ struct SceneServices {
 
 private:
     std::unique_ptr<RayScene> rays_;
+    std::vector<std::unique_ptr<SceneVolume>> volumes_;
     std::unique_ptr<ChannelDisplay> channelDisplay_;
 };
 

@@ -40,11 +40,11 @@ int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces) {
     return bytes;
 }
 
-std::vector<ProgramDesc> VoxelRadiance::programs() {
-    return {{"voxel_inject", {"voxel/inject.comp"}, {}},
-            {"voxel_mip", {"voxel/voxel_mip.comp"}, {}},
-            {"voxel_bounce", {"voxel/bounce.comp"}, {}}};
-}
+const ProgramDesc kInjectProgram{"voxel_inject", {"voxel/inject.comp"}, {}};
+const ProgramDesc kMipProgram{"voxel_mip", {"voxel/voxel_mip.comp"}, {}};
+const ProgramDesc kBounceProgram{"voxel_bounce", {"voxel/bounce.comp"}, {}};
+
+std::vector<ProgramDesc> VoxelRadiance::programs() { return {kInjectProgram, kMipProgram, kBounceProgram}; }
 
 VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::MemoryScope& scope, bool cullBackfaces)
     : scope_(scope), anisotropic_(anisotropic && n >= 2), cullBackfaces_(cullBackfaces && anisotropic_), bounces_(bounces) {
@@ -57,10 +57,9 @@ VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::Mem
             setVolumeSampling(t);
         }
     if (bounces_ > 1) direct_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n);
-    const auto p = programs();
-    injectProgram_ = buildProgram(p[0]);
-    mipProgram_ = buildProgram(p[1]);
-    bounceProgram_ = buildProgram(p[2]);
+    injectProgram_ = buildProgram(kInjectProgram);
+    mipProgram_ = buildProgram(kMipProgram);
+    bounceProgram_ = buildProgram(kBounceProgram);
 }
 
 void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
@@ -146,11 +145,6 @@ void VoxelRadiance::bind(GLuint unit) const {
     glBindSamplers(unit, 7, nullptr);
 }
 
-void voxelizeAndInject(Frame& frame, Voxelizer& voxelizer, VoxelRadiance& radiance) {
-    voxelizeFrame(frame, voxelizer);
-    injectFrameLights(frame, voxelizer.grid(), radiance);
-}
-
 void voxelizeFrame(Frame& frame, Voxelizer& voxelizer, const std::string& prefix) {
     auto t = frame.step(prefix + "voxelize");
     voxelizer.voxelize(frame.scene);
@@ -158,9 +152,9 @@ void voxelizeFrame(Frame& frame, Voxelizer& voxelizer, const std::string& prefix
 
 void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance, const std::string& prefix) {
     VoxelRadiance::Lights lights;
-    lights.buffer = frame.buffer("lights");
-    lights.shadowMaps = frame.texture("shadow.maps");
-    lights.shadowCubes = frame.texture("shadow.cubes");
+    lights.buffer = frame.buffer(resource::kLights);
+    lights.shadowMaps = frame.texture(resource::kShadowMaps);
+    lights.shadowCubes = frame.texture(resource::kShadowCubes);
     lights.count = int(frame.scene.cpu.lights.size());
     lights.shadows = frame.settings.shadows;
     auto t = frame.step(prefix + "inject");

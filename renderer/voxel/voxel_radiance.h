@@ -59,12 +59,9 @@ private:
     int bounces_;
 };
 
-// The first two steps of every voxel-based method (VCT, probes, SDF GI): voxelize the scene and
+// The scene volume's first two steps (renderer/volume/scene_volume.h): voxelize the scene, and
 // inject the frame's punctual lights (through the shadow pass's maps) and emission, timed as the
-// pass's "voxelize" and "inject" steps.
-void voxelizeAndInject(Frame& frame, Voxelizer& voxelizer, VoxelRadiance& radiance);
-// Each step alone, for passes that redo only one (a light edit keeps the voxels and injects their
-// light again), timed as the pass's `prefix` + "voxelize" and `prefix` + "inject" steps.
+// executing pass's `prefix` + "voxelize" and `prefix` + "inject" steps.
 void voxelizeFrame(Frame& frame, Voxelizer& voxelizer, const std::string& prefix = "");
 void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance, const std::string& prefix = "");
 

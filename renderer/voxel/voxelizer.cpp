@@ -26,7 +26,7 @@ float maxEmission(const GpuScene& scene) {
     float m = 0.0f;
     for (const GpuMaterial& g : scene.materials)
         for (int c = 0; c < 3; ++c) m = std::max(m, g.params.emissive[c]);
-    return std::min(std::max(m, 1e-6f), 65504.0f);
+    return std::min(std::max(m, 1e-6f), gl::kMaxHalfFloat);
 }
 
 std::string mib(int64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
@@ -61,21 +61,23 @@ void checkVoxelBudget(int resolution, int64_t bytes, const std::string& what) {
 
 bool Voxelizer::hardwareConservativeAvailable() { return hasExtension("GL_NV_conservative_raster"); }
 
-std::vector<ProgramDesc> Voxelizer::programs() {
-    return {{"voxelize", {"scene.vert", "voxel/voxelize.geom", "voxel/voxelize.frag"}, {}},
-            {"voxel_resolve", {"voxel/voxel_resolve.comp"}, {}}};
-}
+const ProgramDesc kVoxelizeProgram{"voxelize", {"scene.vert", "voxel/voxelize.geom", "voxel/voxelize.frag"}, {}};
+const ProgramDesc kResolveProgram{"voxel_resolve", {"voxel/voxel_resolve.comp"}, {}};
 
-Voxelizer::Voxelizer(const VolumeFit& fit, ConservativeMode mode, const gl::MemoryScope& scope)
+std::vector<ProgramDesc> Voxelizer::programs() { return {kVoxelizeProgram, kResolveProgram}; }
+
+Voxelizer::Voxelizer(const VolumeFit& fit, ConservativeMode mode, const gl::MemoryScope& scope,
+                     const std::string& modeKey)
     : scope_(scope), mode_(mode) {
     const int n = fit.resolution;
     checkVoxelBudget(n, voxelGridBytes(n), scope.owner);
     if (mode_ == ConservativeMode::Hardware && !hardwareConservativeAvailable()) {
         static bool warned = false;  // once per process: a renderer per frame size would repeat it
-        if (!warned)
+        if (!warned && !modeKey.empty()) {
             std::fprintf(stderr, "gisandbox: warning: GL_NV_conservative_raster is not available; "
-                                 "vct.conservative=hardware falls back to geometry\n");
-        warned = true;
+                                 "%s=hardware falls back to geometry\n", modeKey.c_str());
+            warned = true;
+        }
         mode_ = ConservativeMode::Geometry;
     }
     grid_.fit = fit;
@@ -86,9 +88,8 @@ Voxelizer::Voxelizer(const VolumeFit& fit, ConservativeMode mode, const gl::Memo
         glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     }
-    const auto programs = Voxelizer::programs();
-    voxelizeProgram_ = buildProgram(programs[0]);
-    resolveProgram_ = buildProgram(programs[1]);
+    voxelizeProgram_ = buildProgram(kVoxelizeProgram);
+    resolveProgram_ = buildProgram(kResolveProgram);
     fbo_ = gl::createFramebuffer();  // no attachments: only its size matters
     glNamedFramebufferParameteri(fbo_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, n);
     glNamedFramebufferParameteri(fbo_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, n);

@@ -2,7 +2,7 @@
 // occupancy (shaders/voxel/). Triangles are projected along their dominant axis in a geometry
 // shader and rasterized conservatively, by GL_NV_conservative_raster (hardware) or by dilating the
 // triangle in the geometry shader (geometry); `off` is plain rasterization, which misses thin and
-// small triangles. Shared by VCT, the SDF's jump-flood seeds and probe GI.
+// small triangles. The scene volume's (renderer/volume/scene_volume.h) first step.
 #pragma once
 
 #include <string>
@@ -10,7 +10,7 @@
 #include "gl/gl.h"
 #include "gl/shader.h"
 #include "gpu_scene.h"
-#include "services/volume_fit.h"
+#include "volume/volume_fit.h"
 
 namespace gis {
 
@@ -37,8 +37,10 @@ struct VoxelGrid {
 class Voxelizer {
 public:
     // Allocates the grid (charged to scope.owner) after checking its size. `hardware` without
-    // GL_NV_conservative_raster falls back to `geometry` with one warning on stderr.
-    Voxelizer(const VolumeFit& fit, ConservativeMode mode, const gl::MemoryScope& scope);
+    // GL_NV_conservative_raster falls back to `geometry`, with one warning on stderr naming
+    // `modeKey` (the parameter that asked for it; none when empty: the best available was asked).
+    Voxelizer(const VolumeFit& fit, ConservativeMode mode, const gl::MemoryScope& scope,
+              const std::string& modeKey = "");
     // Places the grid over another cube of the same resolution (a cascade that follows the camera):
     // textures and programs are kept; the next voxelize() fills it. Throws gis::Error for another
     // resolution.

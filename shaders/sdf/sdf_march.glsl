@@ -5,7 +5,7 @@
 //   SdfVolume vol = SdfVolume(origin, size, resolution);
 //   SdfHit h = sdfMarch(s_distance, s_coarse, vol, rayOrigin, rayDir, sdfDefaultParams(maxDistance));
 //
-// or through cascades (renderer/sdf/sdf_cascades.h), stacked as layers of one texture:
+// or through cascades (renderer/volume/volume_cascades.h), stacked as layers of one texture:
 //
 //   SdfCascades cs = SdfCascades(u_cascades, u_cascadeCount, resolution);
 //   SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, rayOrigin, rayDir, params);
@@ -20,7 +20,7 @@ struct SdfVolume {
     int resolution;   // cells per edge
 };
 
-const int SDF_MAX_CASCADES = 4;   // renderer/sdf/sdf_cascades.h's kSdfMaxCascades
+// SDF_MAX_CASCADES: renderer/volume/volume_cascades.h's kMaxCascades (a shared define).
 // A ray hands over to the next coarser cascade this many cells before it would leave the finer
 // one: the finer field knows nothing of surfaces outside its cube, so near its faces its values are
 // too large (stepping is clamped by the distance to the faces, see sdfMarchLayer) and its gradient

@@ -34,5 +34,5 @@ void main() {
     vec3 origin = vec3(v) + 0.5 + n * u_traceParams.z;
     vec4 gathered = traceDiffuse(t, origin, n, u_coneSet, 1.0, u_environment, 0.0);
     vec3 radiance = direct.rgb + albedo.rgb * gathered.rgb;
-    imageStore(i_radiance, v, vec4(min(finiteOrZero(radiance), vec3(65504.0)), direct.a));
+    imageStore(i_radiance, v, vec4(min(finiteOrZero(radiance), vec3(MAX_HALF_FLOAT)), direct.a));
 }

@@ -65,7 +65,7 @@ float boundaryCrossing(vec3 a, vec3 b, float lo, float hi) {
 // the surface the cone leaves: with t.lift each sample is lifted along it until the sample's
 // footprint (about one diameter around its centre, what a trilinear mip lookup blends) clears the
 // surface's tangent plane, so a wide cone filters in less of the surface's own voxels (a lit
-// floor lighting itself; it still sees them over part of its footprint, see the README). Returns
+// floor lighting itself; it still sees them over part of its footprint, see renderer/gi/vct/README.md). Returns
 // premultiplied radiance and opacity; `escaped` says the cone left the volume (the caller adds the
 // environment for what is left); a cone that runs out of distance inside the volume adds nothing
 // more (indoors, the environment would leak).
@@ -123,7 +123,7 @@ vec4 traceCone(ConeTracer t, vec3 origin, vec3 dir, float tanHalf, float start, 
 //     equal share of E and weighs 1/32; their solid angles together are the hemisphere's 2 pi. They
 //     are narrow enough that a cone rarely grows wider than part of a room (where the directional
 //     chains mix walls and ceiling by direction alone) and sample a small bright source from more
-//     directions: 8x the trace of the six (README "Voxel cone tracing", measured).
+//     directions: 8x the trace of the six (renderer/gi/vct/README.md, measured).
 const int MANY_CONES = 32;
 int diffuseConeCount(int coneSet) { return coneSet == 0 ? 6 : coneSet == 1 ? 4 : MANY_CONES; }
 

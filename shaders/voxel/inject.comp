@@ -65,5 +65,5 @@ void main() {
         irradiance += e * cosine * shadowVisibility(u_lights[i], Ps, N, cosine);
     }
     vec3 radiance = albedo.rgb * INV_PI * irradiance + texelFetch(s_emission, v, 0).rgb;
-    imageStore(i_radiance, v, vec4(min(finiteOrZero(radiance), vec3(65504.0)), 1.0));
+    imageStore(i_radiance, v, vec4(min(finiteOrZero(radiance), vec3(MAX_HALF_FLOAT)), 1.0));
 }

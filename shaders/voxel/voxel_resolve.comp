@@ -31,5 +31,5 @@ void main() {
     vec3 normal = vec3(sumOf(v, 7), sumOf(v, 8), sumOf(v, 9)) * norm * 2.0 - 1.0;
     imageStore(i_albedo, v, vec4(albedo, 1.0));
     imageStore(i_normal, v, vec4(normal * 0.5 + 0.5, 1.0));
-    imageStore(i_emission, v, vec4(min(emission, vec3(65504.0)), 0.0));
+    imageStore(i_emission, v, vec4(min(emission, vec3(MAX_HALF_FLOAT)), 0.0));
 }

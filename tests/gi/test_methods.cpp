@@ -319,6 +319,53 @@ TEST(Methods, ALightEditKeepsTheRendererAndRestartsTheProgressivePass) {
     EXPECT_EQ(session.pane(0).renderer->samplesDone(), 1) << "the path tracer did not restart";
 }
 
+// A pass that reads a frame resource it did not declare, or writes one it does not output.
+class UndeclaredAccessPass final : public Pass {
+public:
+    UndeclaredAccessPass(bool write, gl::MemoryLedger& ledger) : write_(write) {
+        texture_ = gl::createTexture2D({&ledger, name()}, GL_RGBA16F, 4, 4);
+    }
+    const char* name() const override { return "test-undeclared"; }
+    std::vector<std::string> inputs() const override { return {resource::kGbufferDepth}; }
+    std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse}; }
+    void execute(Frame& frame) override {
+        if (write_) frame.put(resource::kIndirectSpecular, texture_);
+        else frame.texture(resource::kGbufferNormal);  // produced by the G-buffer, but not declared
+        frame.put(resource::kIndirectDiffuse, texture_);
+    }
+
+private:
+    bool write_;
+    gl::Texture texture_;
+};
+
+TEST(Methods, AnUndeclaredReadOrWriteNamesThePassAndTheResource) {
+    context();
+    for (bool write : {false, true}) {
+        const std::string name = write ? "test-undeclared-write" : "test-undeclared-read";
+        if (!findGiMethod(name)) {
+            GiMethod m;
+            m.name = name;
+            for (const std::string& p : presetNames()) m.presets.push_back({p, "", {}});
+            m.addPasses = [write](MethodBuild& b) { b.add(std::make_unique<UndeclaredAccessPass>(write, b.ledger)); };
+            registerGiMethod(m);
+        }
+        RenderSettings s;
+        s.width = s.height = 8;
+        s.gi = name;
+        const Scene scene = makeBuiltinScene("cornell");
+        Renderer r(scene, s);
+        try {
+            r.renderFrame();
+            ADD_FAILURE() << name << ": an undeclared access was allowed";
+        } catch (const Error& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find("test-undeclared"), std::string::npos) << what;
+            EXPECT_NE(what.find(write ? "indirect.specular" : "gbuffer.normal"), std::string::npos) << what;
+        }
+    }
+}
+
 TEST(Methods, DuplicateOutputsAreRefusedAtConstruction) {
     context();
     if (!findGiMethod("test-duplicate")) {

@@ -1,4 +1,4 @@
-// Where the distance field's cascades lie (renderer/sdf/sdf_cascades.h), on the CPU: how many a
+// Where the distance field's cascades lie (renderer/volume/volume_cascades.h), on the CPU: how many a
 // scene gets, that they nest, that a camera move within the snap moves none of them and a longer
 // one moves only those whose position changed.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "render_test_util.h"
-#include "sdf/sdf_cascades.h"
+#include "volume/volume_cascades.h"
 
 namespace gis::test {
 namespace {
@@ -20,7 +20,7 @@ TEST(SdfCascades, OneForSmallScenesSeveralForTheAtrium) {
     for (const char* name : {"cornell", "room", "leak", "atrium"}) {
         const Scene scene = makeBuiltinScene(name);
         for (int n : {32, 64}) {
-            const SdfCascadeLayout l = layoutCascades(scene, n, kExtent, 0);
+            const CascadeLayout l = layoutCascades(scene, n, kExtent, 0);
             std::printf("SDF-TABLE cascades %s at %d^3: %d (scene cube %.3f; finest cascade %.3f, cells of %.4f)\n",
                         name, n, l.count, double(l.scene.size), double(l.extent(0)), double(l.cellSize(0)));
             EXPECT_EQ(l.count, std::string(name) == "atrium" ? 3 : 1) << name << " " << n;
@@ -42,9 +42,9 @@ TEST(SdfCascades, CountFollowsTheExtentCappedAndCanBeForced) {
     EXPECT_EQ(chooseCascadeCount(cube, 100.0f, 0), 1);
     EXPECT_EQ(chooseCascadeCount(cube, 99.0f, 0), 2);
     EXPECT_EQ(chooseCascadeCount(cube, 50.0f, 0), 2);
-    EXPECT_EQ(chooseCascadeCount(cube, 1.0f, 0), kSdfMaxCascades);  // capped
+    EXPECT_EQ(chooseCascadeCount(cube, 1.0f, 0), kMaxCascades);  // capped
     EXPECT_EQ(chooseCascadeCount(cube, 1.0f, 2), 2);                // sdf.cascades
-    EXPECT_THROW(chooseCascadeCount(cube, 1.0f, kSdfMaxCascades + 1), Error);
+    EXPECT_THROW(chooseCascadeCount(cube, 1.0f, kMaxCascades + 1), Error);
     EXPECT_THROW(chooseCascadeCount(cube, 1.0f, -1), Error);
     EXPECT_THROW(chooseCascadeCount(cube, 0.0f, 0), Error);
     Scene empty;
@@ -52,8 +52,8 @@ TEST(SdfCascades, CountFollowsTheExtentCappedAndCanBeForced) {
     EXPECT_EQ(layoutCascades(empty, 32, kExtent, 0).count, 1);
 }
 
-SdfCascadeLayout testLayout() {
-    SdfCascadeLayout l;
+CascadeLayout testLayout() {
+    CascadeLayout l;
     l.scene.origin = glm::vec3(-10.0f);
     l.scene.size = 20.0f;
     l.scene.resolution = 32;
@@ -71,7 +71,7 @@ bool inside(const SdfVolume& inner, const SdfVolume& outer) {
 // Each cascade lies inside the next and the coarsest is the scene's cube, wherever the camera is
 // and however the snap left the cascades (placed for an earlier camera position within the snap).
 TEST(SdfCascades, CascadesNestInsideTheSceneCube) {
-    const SdfCascadeLayout l = testLayout();
+    const CascadeLayout l = testLayout();
     uint32_t rng = 7;
     auto uniform = [&rng] {
         rng = rng * 1664525u + 1013904223u;
@@ -96,7 +96,7 @@ TEST(SdfCascades, CascadesNestInsideTheSceneCube) {
 }
 
 TEST(SdfCascades, SmallMovesKeepEveryCascadeLongerOnesMoveOnlyTheFineOnes) {
-    const SdfCascadeLayout l = testLayout();
+    const CascadeLayout l = testLayout();
     const glm::vec3 start(0.3f, -0.2f, 0.1f);
     std::vector<glm::ivec3> placed;
     for (int i = 0; i < l.count; ++i) placed.push_back(l.centredOffset(i, start));

@@ -9,7 +9,7 @@
 #include <functional>
 
 #include "render_test_util.h"
-#include "sdf/sdf_cascades.h"
+#include "volume/volume_cascades.h"
 #include "sdf_test_util.h"
 
 namespace gis::test {
@@ -234,7 +234,7 @@ TEST(SdfMarch, FindsAJumpFloodedSphereWithinACell) {
 // and the "far" value where the plane misses the cube - what a cascade jump-flooded from its own
 // voxels holds.
 struct PlaneCascades {
-    SdfCascadeLayout layout;
+    CascadeLayout layout;
     std::unique_ptr<DistanceField> field;
 };
 

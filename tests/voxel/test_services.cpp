@@ -1,14 +1,9 @@
-// The shared scene services: volume fitting for every kind of bounds, and the scene's triangles
-// on the GPU matching the BVH's flattening.
+// The shared scene volume's fitting for every kind of bounds.
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 
-#include "bvh.h"
-#include "render_test_util.h"
-#include "services/scene_triangles.h"
-#include "services/volume_fit.h"
+#include "volume/volume_fit.h"
 
 namespace gis::test {
 namespace {
@@ -50,42 +45,6 @@ TEST(VolumeFit, DegenerateAndExtremeBounds) {
     }
     EXPECT_THROW(fitVolume(flat, 0), Error);
     EXPECT_THROW(fitVolume(Aabb{{0, 0, 0}, {INFINITY, 1, 1}}, 8), Error);
-}
-
-TEST(SceneTriangles, MatchTheBvhFlatteningAndMaterials) {
-    context();
-    const Scene scene = makeBuiltinScene("cornell-area");
-    gl::MemoryLedger ledger;
-    GpuScene gpu(scene, ledger);
-    SceneTriangles tris(gpu, ledger);
-    const std::vector<TraceTriangle> flat = worldTriangles(scene);
-    ASSERT_EQ(tris.count, flat.size());
-    ASSERT_EQ(tris.count, scene.triangleCount());
-    int emissive = 0;
-    for (size_t i = 0; i < flat.size(); ++i) {
-        EXPECT_EQ(glm::vec3(tris.cpu[i].p0), flat[i].p0);
-        const int material = int(tris.cpu[i].p0.w);
-        ASSERT_LT(material, int(gpu.materials.size()));
-        if (gpu.materials[material].params.emissive.x > 0.0f) ++emissive;
-        EXPECT_NEAR(glm::length(glm::vec3(tris.cpu[i].normal)), 1.0f, 1e-5f);
-    }
-    EXPECT_EQ(emissive, 2);  // the area light's quad
-    EXPECT_GT(ledger.bytesByOwner["scene.triangles"], 0);
-    // What the GPU holds is what the CPU list says.
-    std::vector<SceneTriangle> back(tris.count);
-    glGetNamedBufferSubData(tris.triangles.id(), 0, GLsizeiptr(back.size() * sizeof(SceneTriangle)), back.data());
-    EXPECT_EQ(0, std::memcmp(back.data(), tris.cpu.data(), back.size() * sizeof(SceneTriangle)));
-}
-
-TEST(SceneTriangles, EmptySceneHasAPlaceholder) {
-    context();
-    Scene scene;
-    finalizeScene(scene);
-    gl::MemoryLedger ledger;
-    GpuScene gpu(scene, ledger);
-    SceneTriangles tris(gpu, ledger);
-    EXPECT_EQ(tris.count, 0u);
-    EXPECT_GT(tris.triangles.size, 0);
 }
 
 }  // namespace

@@ -35,7 +35,7 @@ void AoReferencePass::execute(Frame& frame) {
     params_ = now;
     samples_.target = params_.spp;
     samples_.perFrame = frame.settings.samplesPerFrame;
-    frame.put("radiance", samples_.mean);
+    frame.put(resource::kRadiance, samples_.mean);
     if (samples_.finished()) return;
     const GLuint p = program_.id();
     glUseProgram(p);
@@ -56,6 +56,7 @@ GiMethod aoReferenceMethod() {
     m.summary = "ray-traced ambient occlusion within the AO radius: the truth SSAO is scored against";
     m.pipeline = MethodPipeline::Standalone;
     m.image = MethodImage::AmbientOcclusion;
+    m.role = MethodRole::AoReference;
     m.benchmarked = false;
     m.params = aoReferenceParams().rows;
     for (auto [name, spp] : {std::pair{"low", 16}, {"medium", 64}, {"high", 256}})

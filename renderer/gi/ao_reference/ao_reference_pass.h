@@ -18,7 +18,7 @@ class AoReferencePass final : public Pass {
 public:
     AoReferencePass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger);
     const char* name() const override { return "ao-reference"; }
-    std::vector<std::string> outputs() const override { return {"radiance"}; }
+    std::vector<std::string> outputs() const override { return {resource::kRadiance}; }
     void execute(Frame& frame) override;
     bool reusedLastFrame() const override { return samples_.finished(); }
     bool writesImagesOrBuffers() const override { return true; }

@@ -58,7 +58,7 @@ void PathTracePass::execute(Frame& frame) {
     samples_.target = params_.spp;
     samples_.perFrame = s.samplesPerFrame;
 
-    frame.put("radiance", samples_.mean);
+    frame.put(resource::kRadiance, samples_.mean);
     if (samples_.finished()) return;  // converged to the requested sample count: nothing changes
     const GLuint p = program_.id();
     glUseProgram(p);
@@ -82,6 +82,7 @@ GiMethod pathtraceMethod() {
     m.name = "pathtrace";
     m.summary = "GPU path tracer (BVH, NEE + MIS, progressive): the reference every method is scored against";
     m.pipeline = MethodPipeline::Standalone;
+    m.role = MethodRole::Reference;
     m.physicalBrdfsOnly = true;
     m.params = pathTraceParams().rows;
     // At low sample counts: the reference's own speed/noise trade.

@@ -21,7 +21,7 @@ class PathTracePass final : public Pass {
 public:
     PathTracePass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger);
     const char* name() const override { return "pathtrace"; }
-    std::vector<std::string> outputs() const override { return {"radiance"}; }
+    std::vector<std::string> outputs() const override { return {resource::kRadiance}; }
     void execute(Frame& frame) override;
     bool reusedLastFrame() const override { return samples_.finished(); }
     bool writesImagesOrBuffers() const override { return true; }

@@ -1,5 +1,6 @@
-// Probe GI's parameters: one row each in probeParams() (issue 13's names: probes.spacing,
-// probes.rays, probes.storage, probes.visibility), defaults in the initialisers below.
+// Probe GI's parameters: one row each in probeParams() (names that scripts and other checks use:
+// probes.spacing, probes.rays, probes.storage, probes.visibility), defaults in the initialisers
+// below.
 #pragma once
 
 #include "gi/params.h"

@@ -47,33 +47,44 @@ ParamValue choiceValue(const char* name) {
 int64_t probeStorageBytes(const ProbeSettings& s, int probes) { return int64_t(probes) * bytesPerProbe(s.storageKind()); }
 int64_t probeRayBytes(const ProbeSettings& s, int probes) { return int64_t(batchSize(s, probes)) * s.rays * 16; }
 
+const ProgramDesc kClassifyProgram{"probe_classify", {"gi/probes/probe_classify.comp"}, {}};
+const ProgramDesc kTraceProgram{"probe_trace", {"gi/probes/probe_trace.comp"}, {}};
+const ProgramDesc kBlendProgram{"probe_blend", {"gi/probes/probe_blend.comp"}, {}};
+const ProgramDesc kShadeProgram{"probe_shade", {"gi/probes/probe_shade.comp"}, {}};
+const ProgramDesc kDebugProgram{"probe_debug", {"gi/probes/probe_debug.comp"}, {}};
+const ProgramDesc kRaysProgram{"probe_rays", {"gi/probes/probe_rays.comp"}, {}};
+
 std::vector<ProgramDesc> ProbesPass::programs() {
     std::vector<ProgramDesc> all = Voxelizer::programs();
     for (const ProgramDesc& p : VoxelRadiance::programs()) all.push_back(p);
     for (const ProgramDesc& p : DistanceField::programs()) all.push_back(p);
-    all.push_back({"probe_classify", {"gi/probes/probe_classify.comp"}, {}});
-    all.push_back({"probe_trace", {"gi/probes/probe_trace.comp"}, {}});
-    all.push_back({"probe_blend", {"gi/probes/probe_blend.comp"}, {}});
-    all.push_back({"probe_shade", {"gi/probes/probe_shade.comp"}, {}});
-    all.push_back({"probe_debug", {"gi/probes/probe_debug.comp"}, {}});
-    all.push_back({"probe_rays", {"gi/probes/probe_rays.comp"}, {}});
+    for (const ProgramDesc* p : {&kClassifyProgram, &kTraceProgram, &kBlendProgram, &kShadeProgram, &kDebugProgram,
+                                 &kRaysProgram})
+        all.push_back(*p);
     return all;
 }
 
-ProbesPass::ProbesPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger)
+namespace {
+// What probes ask of the scene volume: one cube of voxels with their distance field (the rays'
+// sphere tracing) and their direct light and emission (what the rays see).
+VolumeRequest volumeRequest(const ProbeSettings& s) {
+    VolumeRequest r;
+    r.method = "probes";
+    r.resolution = s.sdfResolution;
+    r.resolutionKey = "probes.sdf-resolution";
+    r.distanceField = true;
+    return r;
+}
+}  // namespace
+
+ProbesPass::ProbesPass(SceneServices& services, const RenderSettings& settings)
     : built_(probeParams().read("probes", settings.params)), maxUpdates_(built_.maxUpdates) {
     checkProbeSettings(built_);
-    const gl::MemoryScope scope{&ledger, name()};
-    grid_ = fitProbeGrid(scene.cpu.bounds, built_.spacing);
-    const int n = built_.sdfResolution, count = grid_.count();
-    checkVoxelBudget(n, voxelGridBytes(n) + voxelRadianceBytes(n, false, 1) + distanceFieldBuildBytes(n),
-                     "probes.sdf-resolution");
-    // The voxels and the field share one cube with VCT's margin (2.5 voxels: walls on the bounds lie
-    // mid-voxel at any scene scale).
-    fit_ = fitVolume(scene.cpu.bounds, n, 2.5f);
-    voxelizer_ = std::make_unique<Voxelizer>(fit_, ConservativeMode::Hardware, scope);
-    radiance_ = std::make_unique<VoxelRadiance>(n, false, 1, scope);
-    field_ = std::make_unique<DistanceField>(SdfVolume{fit_.origin, fit_.size, n}, scope);
+    const gl::MemoryScope scope{&services.ledger, name()};
+    grid_ = fitProbeGrid(services.bounds(), built_.spacing);
+    const int count = grid_.count();
+    volume_ = &services.volume(volumeRequest(built_));
+    fit_ = volume_->grid().fit;
     batch_ = batchSize(built_, count);
     irradiance_ = gl::createBuffer(scope, int64_t(count) * irradianceBytesPerProbe(built_.storageKind()), nullptr);
     glClearNamedBufferData(irradiance_.id(), GL_R32F, GL_RED, GL_FLOAT, nullptr);
@@ -92,19 +103,18 @@ ProbesPass::ProbesPass(const GpuScene& scene, const RenderSettings& settings, gl
     glSamplerParameteri(sampler_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
         glSamplerParameteri(sampler_.id(), w, GL_CLAMP_TO_EDGE);
-    const auto all = programs();
-    const size_t k = all.size();
-    classifyProgram_ = buildProgram(all[k - 6]);
-    traceProgram_ = buildProgram(all[k - 5]);
-    blendProgram_ = buildProgram(all[k - 4]);
-    shadeProgram_ = buildProgram(all[k - 3]);
-    debugProgram_ = buildProgram(all[k - 2]);
-    raysProgram_ = buildProgram(all[k - 1]);
+    classifyProgram_ = buildProgram(kClassifyProgram);
+    traceProgram_ = buildProgram(kTraceProgram);
+    blendProgram_ = buildProgram(kBlendProgram);
+    shadeProgram_ = buildProgram(kShadeProgram);
+    debugProgram_ = buildProgram(kDebugProgram);
+    raysProgram_ = buildProgram(kRaysProgram);
 }
 
+// The scene volume rebuilds what the change touched (a light edit relights it alone); the probes
+// restart.
 void ProbesPass::invalidate(Changes c) {
     if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) {
-        volumesValid_ = false;
         // Restart the updates: the running mean starts over, so the new light is followed at once.
         needClassify_ = true;
         converged_ = false;
@@ -130,19 +140,12 @@ void ProbesPass::bindProbeBuffers() const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, change_.id());
 }
 
-void ProbesPass::rebuildVolumes(Frame& frame) {
-    voxelizeAndInject(frame, *voxelizer_, *radiance_);
-    field_->build({voxelizer_->grid().albedo.id(), voxelizer_->grid().normal.id()}, JfaVariant::OnePlusJfa,
-                  frame.steps);
-    glMemoryBarrier(GL_ALL_BARRIER_BITS);
-}
-
 void ProbesPass::classify() {
     const GLuint p = classifyProgram_.id();
     glUseProgram(p);
     setGridUniforms(p);
     glProgramUniform1i(p, UP_MODE, built_.inside);
-    field_->bind(0);
+    volume_->field().bind(0);
     glBindSamplers(0, 2, nullptr);
     bindProbeBuffers();
     glDispatchCompute(GLuint((grid_.count() + 63) / 64), 1, 1);
@@ -173,8 +176,8 @@ void ProbesPass::trace(const Frame& frame, const ProbeSettings& s, int first, in
     glProgramUniform4f(p, UP_BLEND_PARAMS, s.hysteresis, s.bounces ? 1.0f : 0.0f, missDistance(fit_),
                        s.visibility ? 1.0f : 0.0f);
     glProgramUniform4f(p, UP_SHADE_PARAMS, s.normalBias, 1.0f, 0.0f, 0.0f);
-    field_->bind(0);
-    const GLuint voxels[2] = {radiance_->radiance().id(), voxelizer_->grid().albedo.id()};
+    volume_->field().bind(0);
+    const GLuint voxels[2] = {volume_->radianceTexture(), volume_->grid().albedo.id()};
     glBindTextures(2, 2, voxels);
     glBindSamplers(0, 2, nullptr);
     const GLuint samplers[2] = {sampler_.id(), sampler_.id()};
@@ -248,7 +251,7 @@ void ProbesPass::shade(const Frame& frame, const ProbeSettings& s) {
     glProgramUniformMatrix4fv(p, UP_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UP_CAMERA_POS, 1, &frame.camera.position[0]);
     glProgramUniform4f(p, UP_SHADE_PARAMS, s.normalBias, s.intensity, s.visibility ? 1.0f : 0.0f, 0.0f);
-    const GLuint gbuffer[2] = {frame.texture("gbuffer.depth"), frame.texture("gbuffer.normal")};
+    const GLuint gbuffer[2] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal)};
     glBindTextures(4, 2, gbuffer);
     glBindSamplers(4, 2, nullptr);
     bindProbeBuffers();
@@ -267,8 +270,7 @@ Pass::Progress ProbesPass::progress() const {
 void ProbesPass::execute(Frame& frame) {
     const ProbeSettings live = probeParams().read("probes", frame.settings.params);
     maxUpdates_ = live.maxUpdates;
-    if (!volumesValid_) rebuildVolumes(frame);
-    volumesValid_ = true;
+    volume_->update(frame);
     if (needClassify_) {
         classify();
         firstProbe_ = 0;
@@ -281,7 +283,7 @@ void ProbesPass::execute(Frame& frame) {
         auto t = frame.step("shade");
         shade(frame, live);
     }
-    frame.put("indirect.diffuse", diffuse_);
+    frame.put(resource::kIndirectDiffuse, diffuse_);
 }
 
 ProbesPass::StateCounts ProbesPass::stateCounts() const {
@@ -331,7 +333,7 @@ void ProbesPass::drawRays(const Frame& frame, GLuint target) {
 
 // The debug views' common end: depth and probe buffers bound, one thread per pixel into `target`.
 void ProbesPass::dispatchDebugDraw(const Frame& frame, GLuint target) {
-    const GLuint depth = frame.texture("gbuffer.depth");
+    const GLuint depth = frame.texture(resource::kGbufferDepth);
     glBindTextures(4, 1, &depth);
     glBindSamplers(4, 1, nullptr);
     bindProbeBuffers();
@@ -372,16 +374,15 @@ GiMethod probesMethod() {
     m.programs = &ProbesPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) {
         const ProbeSettings p = probeParams().read("probes", s.params);
-        const int n = p.sdfResolution, probes = fitProbeGrid(scene.bounds, p.spacing).count();
+        const int probes = fitProbeGrid(scene.bounds, p.spacing).count();
         const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
         return std::vector<std::pair<std::string, uint64_t>>{
-            {"probe voxels and distance field",
-             uint64_t(voxelGridBytes(n) + voxelRadianceBytes(n, false, 1) + distanceFieldBuildBytes(n))},
+            {"probe voxels and distance field", uint64_t(sceneVolumeBytes(volumeRequest(p), 1))},
             {"probes (irradiance, distance moments, state)", uint64_t(probeStorageBytes(p, probes))},
             {"probe rays", uint64_t(probeRayBytes(p, probes))},
             {"probe screen target", pixels * 8}};
     };
-    m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<ProbesPass>(b.services.scene, b.settings, b.ledger)); };
+    m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<ProbesPass>(b.services, b.settings)); };
     // Updates stop when converged (40-70 updates on the Cornell box) or after max-updates; the
     // bench renders this many frames first. Capped so that a huge max-updates cannot stall it; with
     // probes.per-frame below the probe count a pass over all probes takes several frames, which
@@ -400,7 +401,7 @@ std::vector<std::string> ProbesPass::stats() const {
     std::snprintf(line, sizeof line, "probes %dx%dx%d = %d, %s storage, %lld bytes per probe (%.1f KiB)",
                   grid_.counts.x, grid_.counts.y, grid_.counts.z, grid_.count(), probes::storageName(storage),
                   static_cast<long long>(perProbe), double(perProbe * grid_.count()) / 1024.0);
-    return {line, describeVolume(voxelizer_->grid().fit, "voxels / distance-field cells")};
+    return {line, describeVolume(fit_, "voxels / distance-field cells")};
 }
 
 }  // namespace gis

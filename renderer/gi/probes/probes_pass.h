@@ -1,12 +1,12 @@
 // Probe GI (`--gi probes`): a grid of irradiance probes fitted to the scene. Each update, every
-// probe of the frame's batch shoots rays sphere-traced through the distance field (renderer/sdf),
-// shaded from the voxel radiance (renderer/voxel: direct light and emission) plus the probes' own
+// probe of the frame's batch shoots rays sphere-traced through the scene volume's distance field,
+// shaded from its voxels' light (renderer/volume: direct light and emission) plus the probes' own
 // irradiance (multi-bounce); the rays are blended into SH L1/L2 or an octahedral irradiance map and
 // an octahedral map of distance moments, with hysteresis. Per pixel, the 8 surrounding probes are
 // interpolated with normal-facing and Chebyshev-visibility weights into "indirect.diffuse".
-// Voxels, field and probes are view independent: a camera move costs the shading alone, and once
-// the updates stop changing the probes (a static scene converged) they stop; a light change
-// re-injects the voxels and restarts them.
+// Volume and probes are view independent: a camera move costs the shading alone, and once the
+// updates stop changing the probes (a static scene converged) they stop; a light change relights
+// the voxels (no voxelization, no flood) and restarts them.
 #pragma once
 
 #include <memory>
@@ -14,10 +14,11 @@
 #include "gi/probes/probe_math.h"
 #include "gi/probes/probe_settings.h"
 #include "renderer.h"
-#include "sdf/distance_field.h"
-#include "voxel/voxel_radiance.h"
+#include "volume/scene_volume.h"
 
 namespace gis {
+
+struct SceneServices;
 
 // GPU bytes of the probes themselves (irradiance, distance moments, state) and of the ray buffer.
 int64_t probeStorageBytes(const ProbeSettings& s, int probes);
@@ -25,12 +26,12 @@ int64_t probeRayBytes(const ProbeSettings& s, int probes);
 
 class ProbesPass final : public Pass {
 public:
-    ProbesPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger);
+    ProbesPass(SceneServices& services, const RenderSettings& settings);
     const char* name() const override { return "probes"; }
     std::vector<std::string> inputs() const override {
-        return {"gbuffer.depth", "gbuffer.normal", "lights", "shadow.maps", "shadow.cubes"};
+        return withVolumeInputs({resource::kGbufferDepth, resource::kGbufferNormal});
     }
-    std::vector<std::string> outputs() const override { return {"indirect.diffuse"}; }
+    std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse}; }
     void execute(Frame& frame) override;
     bool reusedLastFrame() const override { return false; }  // the shading runs every frame
     // Updates as progress, so `render` (and the sandbox's "converge") renders until the probes
@@ -57,9 +58,9 @@ public:
     // Probe i's irradiance payload (RGB per SH coefficient or octahedral texel), read back.
     std::vector<glm::vec3> readIrradiance(int probe) const;
     const ProbeSettings& rebuildSettings() const { return built_; }
+    const SceneVolume& volume() const { return *volume_; }
 
 private:
-    void rebuildVolumes(Frame& frame);
     void classify();
     void update(Frame& frame, const ProbeSettings& live);
     void finishUpdate(const ProbeSettings& live);
@@ -70,10 +71,8 @@ private:
     void bindProbeBuffers() const;
     ProbeSettings built_;
     probes::ProbeGrid grid_;
-    VolumeFit fit_;
-    std::unique_ptr<Voxelizer> voxelizer_;
-    std::unique_ptr<VoxelRadiance> radiance_;
-    std::unique_ptr<DistanceField> field_;
+    SceneVolume* volume_ = nullptr;   // the renderer's, shared (SceneServices)
+    VolumeFit fit_;                   // the volume's cube
     gl::Buffer irradiance_, distance_, state_, rays_, change_;
     gl::Texture diffuse_;
     gl::Object traceProgram_, blendProgram_, classifyProgram_, shadeProgram_, debugProgram_, raysProgram_, sampler_;
@@ -83,7 +82,7 @@ private:
     void drawRays(const Frame& frame, GLuint target);
     void dispatchDebugDraw(const Frame& frame, GLuint target);
     float cycleChange_ = 0.0f, lastChange_ = 0.0f;
-    bool volumesValid_ = false, needClassify_ = true, converged_ = false, updatedLastFrame_ = false,
+    bool needClassify_ = true, converged_ = false, updatedLastFrame_ = false,
          pendingChange_ = false, warnedAllOff_ = false;
 };
 

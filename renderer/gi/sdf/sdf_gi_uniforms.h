@@ -22,7 +22,7 @@ enum SdfGiUniform : int {
     UG_FILTER = 434,        // filter radius in traced pixels
     UG_PREV_CAMERA_POS = 435,
     UG_DEBUG = 436,         // view (0 slice, 1 steps, 2 normals), slice axis, slice position, max steps
-    UG_CASCADES = 437,      // vec4[kSdfMaxCascades] (437-440): origin xyz, edge; finest first
+    UG_CASCADES = 437,      // vec4[kMaxCascades] (437-440): origin xyz, edge; finest first
     UG_CASCADE_COUNT = 441,
     UG_SLICE_CASCADE = 442, // the cascade (layer) sdf.slice shows
 };

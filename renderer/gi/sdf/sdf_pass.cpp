@@ -29,68 +29,56 @@ ParamValue choiceValue(const char* name) {
 
 }  // namespace
 
+const ProgramDesc kTraceProgram{"sdf_gi_trace", {"gi/sdf/sdf_trace.comp"}, {}};
+const ProgramDesc kTemporalProgram{"sdf_gi_temporal", {"gi/sdf/sdf_temporal.comp"}, {}};
+const ProgramDesc kFilterProgram{"sdf_gi_filter", {"gi/sdf/sdf_filter.comp"}, {}};
+const ProgramDesc kDebugProgram{"sdf_gi_debug", {"gi/sdf/sdf_debug.comp"}, {}};
+
 std::vector<ProgramDesc> SdfGiPass::programs() {
     std::vector<ProgramDesc> all = Voxelizer::programs();
     for (const auto& list : {VoxelRadiance::programs(), DistanceField::programs()})
         all.insert(all.end(), list.begin(), list.end());
-    all.push_back({"sdf_gi_trace", {"gi/sdf/sdf_trace.comp"}, {}});
-    all.push_back({"sdf_gi_temporal", {"gi/sdf/sdf_temporal.comp"}, {}});
-    all.push_back({"sdf_gi_filter", {"gi/sdf/sdf_filter.comp"}, {}});
-    all.push_back({"sdf_gi_debug", {"gi/sdf/sdf_debug.comp"}, {}});
+    for (const ProgramDesc* p : {&kTraceProgram, &kTemporalProgram, &kFilterProgram, &kDebugProgram}) all.push_back(*p);
     return all;
 }
 
 namespace {
-// Bytes of one cascade's voxels and radiance.
-int64_t cascadeVoxelBytes(const SdfGiSettings& s) {
-    return voxelGridBytes(s.resolution) + voxelRadianceBytes(s.resolution, false, s.bounces);
-}
-// Radiance level 0 of every cascade in one RGBA16F texture, when there is more than one.
-int64_t radianceAtlasBytes(int resolution, int count) {
-    const int64_t n = resolution;
-    return count > 1 ? 8 * n * n * n * count : 0;
+// What SDF GI asks of the scene volume: voxels, their light and the distance field, in cascades
+// around the camera for a large scene.
+VolumeRequest volumeRequest(const SdfGiSettings& s) {
+    VolumeRequest r;
+    r.method = "sdf";
+    r.resolution = s.resolution;
+    r.resolutionKey = "sdf.resolution";
+    r.bounces = s.bounces;
+    r.distanceField = true;
+    r.jfa = s.jfaVariant();
+    r.cascades = s.cascades;
+    r.cascadeExtent = s.cascadeExtent;
+    return r;
 }
 }  // namespace
 
 std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Scene& scene, const RenderSettings& settings) {
     const SdfGiSettings s = sdfParams().read("sdf", settings.params);
     const int n = s.resolution, scale = s.halfResolution ? 2 : 1;
-    const int count = layoutCascades(scene, n, s.cascadeExtent, s.cascades).count;
+    const VolumeRequest request = volumeRequest(s);
+    const int count = layoutCascades(scene.bounds, n, s.cascadeExtent, s.cascades).count;
     const uint64_t traced = uint64_t(tracedSize(settings.width, scale)) * uint64_t(tracedSize(settings.height, scale));
     const uint64_t full = uint64_t(settings.width) * uint64_t(settings.height);
     std::vector<std::pair<std::string, uint64_t>> rows;
-    for (int i = 0; i < count; ++i)
-        rows.push_back({"SDF voxels, cascade " + std::to_string(i), uint64_t(cascadeVoxelBytes(s))});
-    rows.push_back({"SDF field (" + std::to_string(count) + " layers)", uint64_t(distanceFieldBuildBytes(n, count))});
-    if (count > 1) rows.push_back({"SDF radiance layers", uint64_t(radianceAtlasBytes(n, count))});
+    rows.push_back({"SDF scene volume (" + std::to_string(count) + " cascade" + (count > 1 ? "s" : "") +
+                        ": voxels, light, field)",
+                    uint64_t(sceneVolumeBytes(request, count))});
     // raw, reflection, info, 2 histories (RGBA16F), occlusion (R16F), 2 distances (R32F);
     // full resolution: diffuse, specular (RGBA16F), ao (R16F)
     rows.push_back({"SDF trace", traced * (5 * 8 + 2 + 2 * 4) + full * (2 * 8 + 2)});
     return rows;
 }
 
-SdfGiPass::SdfGiPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger)
-    : built_(sdfParams().read("sdf", settings.params)), scope_{&ledger, name()} {
-    const int n = built_.resolution;
-    // The voxels and the field share the grid (a field cell is a voxel); the scene's cube is VCT's
-    // fit (2.5 voxels of margin) and the coarsest cascade.
-    layout_ = layoutCascades(scene.cpu, n, built_.cascadeExtent, built_.cascades);
-    const int count = layout_.count;
-    // Refuse before allocating: voxels and radiance per cascade, the field's peak while it is built.
-    checkVoxelBudget(n, count * cascadeVoxelBytes(built_) + distanceFieldBuildBytes(n, count) + radianceAtlasBytes(n, count),
-                     "sdf.resolution");
-    mode_ = Voxelizer::hardwareConservativeAvailable() ? ConservativeMode::Hardware : ConservativeMode::Geometry;
-    cascades_.resize(size_t(count));
-    for (Cascade& c : cascades_) c.radiance = std::make_unique<VoxelRadiance>(n, false, built_.bounces, scope_);
-    field_ = std::make_unique<DistanceField>(layout_.volume(count - 1, glm::ivec3(0)), scope_, count);
-    if (count > 1) {
-        radianceAtlas_ = gl::createTexture3D(scope_, GL_RGBA16F, n, n, n * count);
-        glTextureParameteri(radianceAtlas_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(radianceAtlas_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-            glTextureParameteri(radianceAtlas_.id(), wrap, GL_CLAMP_TO_EDGE);
-    }
-
+SdfGiPass::SdfGiPass(SceneServices& services, const RenderSettings& settings)
+    : built_(sdfParams().read("sdf", settings.params)), scope_{&services.ledger, name()} {
+    volume_ = &services.volume(volumeRequest(built_));
     scale_ = built_.halfResolution ? 2 : 1;
     const int tw = tracedSize(settings.width, scale_), th = tracedSize(settings.height, scale_);
     raw_ = gl::createTexture2D(scope_, GL_RGBA16F, tw, th);
@@ -109,105 +97,24 @@ SdfGiPass::SdfGiPass(const GpuScene& scene, const RenderSettings& settings, gl::
         glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     }
-    const auto all = programs();
-    const size_t last = all.size();
-    traceProgram_ = buildProgram(all[last - 4]);
-    temporalProgram_ = buildProgram(all[last - 3]);
-    filterProgram_ = buildProgram(all[last - 2]);
-    debugProgram_ = buildProgram(all[last - 1]);
+    traceProgram_ = buildProgram(kTraceProgram);
+    temporalProgram_ = buildProgram(kTemporalProgram);
+    filterProgram_ = buildProgram(kFilterProgram);
+    debugProgram_ = buildProgram(kDebugProgram);
 }
 
-int SdfGiPass::fieldBuilds() const {
-    int sum = 0;
-    for (const Cascade& c : cascades_) sum += c.fieldBuilds;
-    return sum;
-}
-
-int SdfGiPass::radianceBuilds() const {
-    int sum = 0;
-    for (const Cascade& c : cascades_) sum += c.radianceBuilds;
-    return sum;
-}
-
+// The volume rebuilds what the change touched; the camera is handled by reprojection, and
+// anything that changes what a ray sees starts the history over.
 void SdfGiPass::invalidate(Changes c) {
-    for (Cascade& k : cascades_) {
-        if (c & ChangeGeometry) k.voxelsValid = k.fieldValid = false;
-        if (c & ChangeMaterials) k.voxelsValid = false;  // albedo and emission; occupancy, so the field, stays
-        if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) k.radianceValid = false;
-    }
-    // The camera is handled by reprojection; anything that changes what a ray sees starts over.
     if (c & (ChangeGeometry | ChangeMaterials | ChangeLights | ChangeLiveParams)) hasHistory_ = false;
-}
-
-std::string SdfGiPass::stepPrefix(int cascade) const {
-    return layout_.count > 1 ? "c" + std::to_string(cascade) + "." : "";
-}
-
-// Cascades follow the camera beyond the snap distance. A moved one keeps its voxelizer, moved to
-// its new cube, and is rebuilt whole.
-void SdfGiPass::place(const glm::vec3& camera) {
-    for (int i = 0; i < layout_.count; ++i) {
-        Cascade& c = cascades_[size_t(i)];
-        const glm::ivec3 centred = layout_.centredOffset(i, camera);
-        if (c.placed && !layout_.mustMove(c.offset, centred)) continue;
-        c.offset = centred;
-        c.placed = true;
-        const SdfVolume v = layout_.volume(i, centred);
-        VolumeFit fit;
-        fit.origin = v.origin;
-        fit.size = v.size;
-        fit.resolution = v.resolution;
-        if (c.voxelizer) c.voxelizer->moveTo(fit);
-        else c.voxelizer = std::make_unique<Voxelizer>(fit, mode_, scope_);
-        field_->setVolume(i, v);
-        c.voxelsValid = c.fieldValid = c.radianceValid = false;
-    }
-}
-
-void SdfGiPass::refresh(Frame& frame, int i) {
-    Cascade& c = cascades_[size_t(i)];
-    const std::string prefix = stepPrefix(i);
-    c.lastFrame = !c.voxelsValid || !c.fieldValid ? "rebuilt" : !c.radianceValid ? "relit" : "cached";
-    if (!c.voxelsValid) {
-        voxelizeFrame(frame, *c.voxelizer, prefix);
-        c.voxelsValid = true;
-        c.radianceValid = false;
-    }
-    if (!c.fieldValid) {
-        const VoxelGrid& grid = c.voxelizer->grid();
-        // Seeds: the voxelizer's occupancy (albedo alpha) and averaged normals (the field's sign).
-        field_->build({grid.albedo.id(), grid.normal.id()}, built_.jfaVariant(), frame.steps, i, prefix);
-        c.fieldValid = true;
-        ++c.fieldBuilds;
-    }
-    if (!c.radianceValid) relight(frame, i, prefix);
-}
-
-void SdfGiPass::relight(Frame& frame, int i, const std::string& prefix) {
-    Cascade& c = cascades_[size_t(i)];
-    const VoxelGrid& grid = c.voxelizer->grid();
-    injectFrameLights(frame, grid, *c.radiance, prefix);
-    if (built_.bounces > 1) {  // further bounces gather by cone tracing in voxel space (the voxel module's)
-        auto t = frame.step(prefix + "bounce");
-        c.radiance->buildMips(grid);
-        c.radiance->bounce(grid, ConeSettings{}, frame.settings.background.value_or(frame.scene.cpu.background));
-    }
-    if (layout_.count > 1) {  // into this cascade's layer, where the trace shader reads it
-        const int n = layout_.resolution();
-        glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        glCopyImageSubData(c.radiance->radiance().id(), GL_TEXTURE_3D, 0, 0, 0, 0, radianceAtlas_.id(), GL_TEXTURE_3D,
-                           0, 0, 0, i * n, n, n, n);
-    }
-    c.radianceValid = true;
-    ++c.radianceBuilds;
 }
 
 void SdfGiPass::setCommonUniforms(GLuint p, const Frame& frame) const {
     glProgramUniformMatrix4fv(p, UG_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UG_CAMERA_POS, 1, &frame.camera.position[0]);
     glProgramUniform1i(p, UG_SCALE, scale_);
-    const GLuint gbuffer[3] = {frame.texture("gbuffer.depth"), frame.texture("gbuffer.normal"),
-                               frame.texture("gbuffer.material")};
+    const GLuint gbuffer[3] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal),
+                               frame.texture(resource::kGbufferMaterial)};
     glBindTextures(0, 3, gbuffer);
     glBindSamplers(0, 7, nullptr);
 }
@@ -224,15 +131,16 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     glProgramUniform2f(p, UG_SPECULAR, s.specular ? 1.0f : 0.0f, s.specularRoughness);
     glProgramUniform1f(p, UG_AO, s.aoStrength);
     std::vector<glm::vec4> volumes;
-    for (int i = 0; i < layout_.count; ++i) {
-        const SdfVolume& v = field_->volume(i);
+    const DistanceField& field = volume_->field();
+    for (int i = 0; i < field.layers(); ++i) {
+        const SdfVolume& v = field.volume(i);
         volumes.emplace_back(v.origin, v.size);
     }
     glProgramUniform4fv(p, UG_CASCADES, GLsizei(volumes.size()), &volumes[0][0]);
-    glProgramUniform1i(p, UG_CASCADE_COUNT, layout_.count);
-    glProgramUniform1i(p, UG_RESOLUTION, layout_.resolution());
-    field_->bind(3);
-    glBindTextureUnit(5, layout_.count > 1 ? radianceAtlas_.id() : cascades_[0].radiance->radiance().id());
+    glProgramUniform1i(p, UG_CASCADE_COUNT, field.layers());
+    glProgramUniform1i(p, UG_RESOLUTION, volume_->layout().resolution());
+    field.bind(3);
+    glBindTextureUnit(5, volume_->radianceTexture());
     glBindImageTexture(0, raw_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, reflection_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(2, occlusion_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
@@ -276,8 +184,7 @@ void SdfGiPass::filter(const Frame& frame, const SdfGiSettings& s) {
 
 void SdfGiPass::execute(Frame& frame) {
     const SdfGiSettings live = sdfParams().read("sdf", frame.settings.params);
-    place(frame.camera.position);
-    for (int i = 0; i < layout_.count; ++i) refresh(frame, i);
+    volume_->update(frame);
     {
         auto t = frame.step("trace");
         trace(frame, live);
@@ -293,28 +200,28 @@ void SdfGiPass::execute(Frame& frame) {
     prevViewProj_ = frame.camera.viewProj;
     prevCameraPos_ = frame.camera.position;
     hasHistory_ = true;
-    frame.put("indirect.diffuse", diffuse_);
-    frame.put("indirect.specular", specular_);
-    frame.put("ao", ao_);
+    frame.put(resource::kIndirectDiffuse, diffuse_);
+    frame.put(resource::kIndirectSpecular, specular_);
+    frame.put(resource::kAo, ao_);
 }
 
 std::vector<std::string> SdfGiPass::stats() const {
+    const CascadeLayout& layout = volume_->layout();
     char line[200];
     std::snprintf(line, sizeof line, "%d cascade%s (%s; scene cube %.4g world units, sdf.cascade-extent %.4g)",
-                  layout_.count, layout_.count > 1 ? "s" : "", built_.cascades > 0 ? "sdf.cascades" : "auto",
-                  double(layout_.scene.size), double(built_.cascadeExtent));
+                  layout.count, layout.count > 1 ? "s" : "", built_.cascades > 0 ? "sdf.cascades" : "auto",
+                  double(layout.scene.size), double(built_.cascadeExtent));
     std::vector<std::string> out = {line};
-    const int64_t bytes = cascadeVoxelBytes(built_) + distanceFieldBytes(layout_.resolution()) +
-                          radianceAtlasBytes(layout_.resolution(), layout_.count) / layout_.count;
-    for (int i = 0; i < layout_.count; ++i) {
-        const Cascade& c = cascades_[size_t(i)];
-        const SdfVolume& v = field_->volume(i);
+    const int64_t bytes = sceneVolumeBytes(volume_->request(), layout.count) / layout.count;
+    for (int i = 0; i < layout.count; ++i) {
+        const SdfVolume& v = volume_->field().volume(i);
+        const SceneVolume::Builds b = volume_->builds(i);
         std::snprintf(line, sizeof line,
                       "cascade %d: %d^3 cells of %.4g (a %.4g cube from %.4g, %.4g, %.4g), up to %.2f MiB; field built "
                       "%d times, radiance %d; last frame %s",
                       i, v.resolution, double(v.cellSize()), double(v.size), double(v.origin.x), double(v.origin.y),
-                      double(v.origin.z), double(bytes) / (1024.0 * 1024.0), c.fieldBuilds, c.radianceBuilds,
-                      c.lastFrame);
+                      double(v.origin.z), double(bytes) / (1024.0 * 1024.0), b.fields, b.injections,
+                      volume_->lastUpdate(i));
         out.push_back(line);
     }
     return out;
@@ -335,8 +242,8 @@ void SdfGiPass::drawDebugView(const std::string& view, const Frame& frame, GLuin
     }
     const SdfGiSettings live = sdfParams().read("sdf", frame.settings.params);
     const GLuint p = debugProgram_.id();
-    const int cascade = std::min(live.sliceCascade, layout_.count - 1);
-    const SdfVolume& v = field_->volume(cascade);
+    const int cascade = std::min(live.sliceCascade, volume_->cascadeCount() - 1);
+    const SdfVolume& v = volume_->field().volume(cascade);
     glUseProgram(p);
     glProgramUniform4f(p, UG_VOLUME, v.origin.x, v.origin.y, v.origin.z, v.size);
     glProgramUniform1i(p, UG_RESOLUTION, v.resolution);
@@ -344,7 +251,7 @@ void SdfGiPass::drawDebugView(const std::string& view, const Frame& frame, GLuin
     const float kind = view == "sdf.slice" ? 0.0f : view == "sdf.steps" ? 1.0f : 2.0f;
     glProgramUniform4f(p, UG_DEBUG, kind, float(live.sliceAxis), live.slicePosition, float(live.maxSteps));
     glBindSamplers(0, 7, nullptr);
-    field_->bind(3);
+    volume_->field().bind(3);
     glBindTextureUnit(6, info_.id());
     glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch2D(diffuse_.width, diffuse_.height);
@@ -373,7 +280,7 @@ GiMethod sdfMethod() {
     };
     m.programs = &SdfGiPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) { return SdfGiPass::estimateMemory(scene, s); };
-    m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<SdfGiPass>(b.services.scene, b.settings, b.ledger)); };
+    m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<SdfGiPass>(b.services, b.settings)); };
     // A static view's history is a running mean (up to 256 frames): after 4 / (1 - temporal) frames
     // (40 at the default) the frame-to-frame change is below 1% (the convergence test).
     m.framesToConverge = [](const RenderSettings& s) {

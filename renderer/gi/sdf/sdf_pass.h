@@ -1,39 +1,38 @@
-// SDF GI (`--gi sdf`): the scene voxelized (renderer/voxel), its surface voxels jump-flooded into
-// a signed distance field (renderer/sdf), the voxels lit by direct light and emission; then per
-// pixel a few cosine-distributed rays sphere-traced through the field and shaded from the voxel
-// radiance at their hits (misses: the environment), accumulated over frames with reprojection and
-// filtered edge-aware into the lighting contract's indirect.diffuse; a mirror ray for smooth
-// surfaces into indirect.specular; near-field soft occlusion from the field into ao.
+// SDF GI (`--gi sdf`): the scene volume (renderer/volume: voxels, their direct light and emission,
+// a signed distance field jump-flooded from its surface voxels); per pixel a few
+// cosine-distributed rays sphere-traced through the field and shaded from the voxels' light at
+// their hits (misses: the environment), accumulated over frames with reprojection and filtered
+// edge-aware into the lighting contract's indirect.diffuse; a mirror ray for smooth surfaces into
+// indirect.specular; near-field soft occlusion from the field into ao.
 //
-// Cascades (renderer/sdf/sdf_cascades.h): a scene whose cube is larger than sdf.cascade-extent
-// gets up to four nested volumes around the camera, each with its own voxels, radiance and a
-// layer of the field; a small scene (the Cornell box) gets one, the scene's cube.
-//
-// What is cached: each cascade's voxels and field depend on geometry and on where the cascade lies,
-// and are rebuilt only after invalidate(ChangeGeometry) or when the camera takes that cascade with
-// it (beyond the snap distance); its radiance also after materials or lights change. A shifted
-// cascade is rebuilt whole (voxelize, seed, every flood pass, inject): see the README for why. A
-// camera move within the snap costs the trace, temporal and filter steps only.
+// Cascades (renderer/volume/volume_cascades.h): a scene whose cube is larger than
+// sdf.cascade-extent gets up to four nested volumes around the camera, each with its own voxels,
+// light and a layer of the field; a small scene (the Cornell box) gets one, the scene's cube. The
+// volume rebuilds what changed (renderer/volume/scene_volume.h); a shifted cascade is rebuilt whole
+// (voxelize, seed, every flood pass, inject): see renderer/gi/sdf/README.md for why. A camera move within the
+// snap costs the trace, temporal and filter steps only.
 #pragma once
 
 #include <memory>
 
 #include "gi/sdf/sdf_settings.h"
 #include "renderer.h"
-#include "sdf/distance_field.h"
-#include "sdf/sdf_cascades.h"
-#include "voxel/voxel_radiance.h"
+#include "volume/scene_volume.h"
 
 namespace gis {
 
+struct SceneServices;
+
 class SdfGiPass final : public Pass {
 public:
-    SdfGiPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger);
+    SdfGiPass(SceneServices& services, const RenderSettings& settings);
     const char* name() const override { return "sdf"; }
     std::vector<std::string> inputs() const override {
-        return {"gbuffer.depth", "gbuffer.normal", "gbuffer.material", "lights", "shadow.maps", "shadow.cubes"};
+        return withVolumeInputs({resource::kGbufferDepth, resource::kGbufferNormal, resource::kGbufferMaterial});
     }
-    std::vector<std::string> outputs() const override { return {"indirect.diffuse", "indirect.specular", "ao"}; }
+    std::vector<std::string> outputs() const override {
+        return {resource::kIndirectDiffuse, resource::kIndirectSpecular, resource::kAo};
+    }
     void execute(Frame& frame) override;
     void invalidate(Changes c) override;
     bool writesImagesOrBuffers() const override { return true; }
@@ -45,30 +44,17 @@ public:
     static std::vector<std::pair<std::string, uint64_t>> estimateMemory(const Scene& scene,
                                                                         const RenderSettings& settings);
 
-    const DistanceField& field() const { return *field_; }
-    const SdfCascadeLayout& layout() const { return layout_; }
-    int cascadeCount() const { return layout_.count; }
+    const SceneVolume& volume() const { return *volume_; }
+    const DistanceField& field() const { return volume_->field(); }
+    const CascadeLayout& layout() const { return volume_->layout(); }
+    int cascadeCount() const { return volume_->cascadeCount(); }
     // Builds of each cascade's field (voxelize + seed + flood + resolve) and radiance (inject), and
     // of all cascades together.
-    int fieldBuilds(int cascade) const { return cascades_.at(size_t(cascade)).fieldBuilds; }
-    int radianceBuilds(int cascade) const { return cascades_.at(size_t(cascade)).radianceBuilds; }
-    int fieldBuilds() const;
-    int radianceBuilds() const;
-    glm::ivec3 cascadeOffset(int cascade) const { return cascades_.at(size_t(cascade)).offset; }
+    int fieldBuilds(int cascade = -1) const { return volume_->builds(cascade).fields; }
+    int radianceBuilds(int cascade = -1) const { return volume_->builds(cascade).injections; }
+    glm::ivec3 cascadeOffset(int cascade) const { return volume_->offset(cascade); }
 
 private:
-    struct Cascade {
-        std::unique_ptr<Voxelizer> voxelizer;   // made where the cascade is first placed, moved after
-        std::unique_ptr<VoxelRadiance> radiance;
-        glm::ivec3 offset{0};                   // in the cascade's cells from the scene cube's corner
-        bool placed = false, voxelsValid = false, fieldValid = false, radianceValid = false;
-        const char* lastFrame = "cached";      // what refresh() did: "rebuilt" (voxels/field), "relit", "cached"
-        int fieldBuilds = 0, radianceBuilds = 0;
-    };
-    void place(const glm::vec3& camera);
-    void refresh(Frame& frame, int cascade);
-    void relight(Frame& frame, int cascade, const std::string& prefix);
-    std::string stepPrefix(int cascade) const;
     void trace(const Frame& frame, const SdfGiSettings& s);
     void accumulate(const Frame& frame, const SdfGiSettings& s);
     void filter(const Frame& frame, const SdfGiSettings& s);
@@ -76,11 +62,7 @@ private:
 
     SdfGiSettings built_;
     gl::MemoryScope scope_;
-    ConservativeMode mode_;
-    SdfCascadeLayout layout_;
-    std::vector<Cascade> cascades_;
-    std::unique_ptr<DistanceField> field_;   // one layer per cascade
-    gl::Texture radianceAtlas_;              // more than one cascade: their radiance, a layer each
+    SceneVolume* volume_ = nullptr;   // the renderer's, shared (SceneServices)
     int scale_ = 1;  // full-resolution pixels per traced pixel
     // Traced resolution: this frame's diffuse, mirror ray, occlusion, debug data; the history
     // and each history pixel's distance from its camera, ping-ponged.

@@ -1,6 +1,6 @@
 #include "gi/sdf/sdf_settings.h"
 
-#include "sdf/sdf_cascades.h"
+#include "volume/volume_cascades.h"
 
 namespace gis {
 
@@ -14,7 +14,7 @@ const ParamTable<SdfGiSettings>& sdfParams() {
                 {"plain", "1+jfa", "jfa+2"}, U::Rebuild)
         .integer(&S::cascades, "cascades", "Cascades",
                  "nested volumes around the camera, each twice the last; 0 = from the scene's extent and sdf.cascade-extent",
-                 0, kSdfMaxCascades, U::Rebuild)
+                 0, kMaxCascades, U::Rebuild)
         .real(&S::cascadeExtent, "cascade-extent", "Finest cascade extent",
               "world units: a scene cube up to this edge gets one volume; each doubling beyond it one more cascade",
               1e-6, 1e9, U::Rebuild)
@@ -44,7 +44,7 @@ const ParamTable<SdfGiSettings>& sdfParams() {
         .choice(&S::sliceAxis, "slice-axis", "Slice axis", "axis sdf.slice cuts across", {"x", "y", "z"}, U::Live)
         .real(&S::slicePosition, "slice-position", "Slice position", "where along the axis, 0..1", 0.0, 1.0, U::Live)
         .integer(&S::sliceCascade, "slice-cascade", "Slice cascade", "which cascade sdf.slice shows (0 = the finest)", 0,
-                 kSdfMaxCascades - 1, U::Live);
+                 kMaxCascades - 1, U::Live);
     return table;
 }
 

@@ -1,5 +1,5 @@
-// SDF GI's parameters: one row each in sdfParams() (issue 12's names: sdf.resolution, sdf.jfa,
-// sdf.rays), defaults in the initialisers below.
+// SDF GI's parameters: one row each in sdfParams() (names that scripts and other checks use:
+// sdf.resolution, sdf.jfa, sdf.rays), defaults in the initialisers below.
 #pragma once
 
 #include "gi/params.h"

@@ -12,7 +12,6 @@
 namespace gis {
 
 namespace {
-constexpr int kMaxKernel = 256;         // shaders/gi/ssao/ssao.frag MAX_AO_KERNEL
 constexpr int kMaxSlices = 64;
 constexpr float kTemporalFrames = 16;   // running mean over at most this many frames
 constexpr float kTemporalDepthTolerance = 0.02f;
@@ -55,7 +54,7 @@ const ParamTable<SsaoSettings>& ssaoParams() {
     using S = SsaoSettings;
     using U = ParamUpdate;
     static const ParamTable<S> table = ParamTable<S>()
-        .integer(&S::samples, "samples", "Directions", "directions in the hemisphere kernel", 1, kMaxKernel, U::Rebuild,
+        .integer(&S::samples, "samples", "Directions", "directions in the hemisphere kernel", 1, kSsaoMaxKernel, U::Rebuild,
                  "--ao-samples")
         .integer(&S::steps, "steps", "Steps", "points tested along each direction (gtao: per side of a slice)", 1, 64,
                  U::Live, "--ao-steps")
@@ -94,7 +93,7 @@ SsaoPass::SsaoPass(const RenderSettings& s, gl::MemoryLedger& ledger)
     : params_(ssaoParams().read("ssao", s.params)),
       width_(params_.halfResolution ? std::max(1, s.width / 2) : s.width),
       height_(params_.halfResolution ? std::max(1, s.height / 2) : s.height),
-      kernel_(gtao() ? std::vector<glm::vec4>{} : kernel(std::min(params_.samples, kMaxKernel))) {
+      kernel_(gtao() ? std::vector<glm::vec4>{} : kernel(std::min(params_.samples, kSsaoMaxKernel))) {
     const gl::MemoryScope scope{&ledger, name()};
     raw_ = gl::createTexture2D(scope, GL_RG16F, width_, height_);
     rawFbo_ = gl::createColorTarget(raw_, "SSAO");
@@ -146,7 +145,7 @@ void SsaoPass::execute(Frame& frame) {
     GLuint p = aoProgram_.id();
     glUseProgram(p);
     glBindFramebuffer(GL_FRAMEBUFFER, rawFbo_.id());
-    const GLuint inputs[3] = {frame.texture("gbuffer.depth"), frame.texture("gbuffer.normal"), noise_.id()};
+    const GLuint inputs[3] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal), noise_.id()};
     glBindTextures(0, 3, inputs);
     const glm::mat4 invProj = glm::inverse(frame.camera.proj);
     glProgramUniformMatrix4fv(p, U_PROJ, 1, GL_FALSE, &frame.camera.proj[0][0]);
@@ -173,7 +172,7 @@ void SsaoPass::execute(Frame& frame) {
         glProgramUniformMatrix4fv(blurProgram_.id(), U_INV_PROJ, 1, GL_FALSE, &invProj[0][0]);
         glProgramUniformMatrix4fv(blurProgram_.id(), U_VIEW, 1, GL_FALSE, &frame.camera.view[0][0]);
         glBindFramebuffer(GL_FRAMEBUFFER, blurFbo_.id());
-        const GLuint blurInputs[2] = {result->id(), frame.texture("gbuffer.normal")};
+        const GLuint blurInputs[2] = {result->id(), frame.texture(resource::kGbufferNormal)};
         glBindTextures(0, 2, blurInputs);
         glDrawArrays(GL_TRIANGLES, 0, 3);
         result = &blurred_;
@@ -185,7 +184,7 @@ void SsaoPass::execute(Frame& frame) {
         p = temporalProgram_.id();
         glUseProgram(p);
         glBindFramebuffer(GL_FRAMEBUFFER, historyFbo_[next].id());
-        const GLuint temporalInputs[3] = {result->id(), history_[current_].id(), frame.texture("gbuffer.depth")};
+        const GLuint temporalInputs[3] = {result->id(), history_[current_].id(), frame.texture(resource::kGbufferDepth)};
         glBindTextures(0, 3, temporalInputs);
         glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
         glProgramUniformMatrix4fv(p, U_PREV_VIEW_PROJ, 1, GL_FALSE, &prevViewProj_[0][0]);
@@ -196,7 +195,7 @@ void SsaoPass::execute(Frame& frame) {
         prevViewProj_ = frame.camera.viewProj;
         result = &history_[current_];
     }
-    frame.put("ao", *result);
+    frame.put(resource::kAo, *result);
     result_ = result;
 }
 
@@ -208,7 +207,7 @@ namespace {
 // The kernel the plain low/medium/high presets use; the other kernel's presets carry its name
 // as a prefix ("hemisphere-medium"), so `bench --presets` can set the two side by side. GTAO:
 // each of its presets is both faster and closer to ray-traced AO than the hemisphere's preset of
-// the same name (README, "SSAO and ray-traced AO").
+// the same name (renderer/gi/ssao/README.md).
 constexpr SsaoKernel kPresetKernel = SsaoKernel::Gtao;
 
 void addPresets(GiMethod& m, SsaoKernel kernel, const std::string& prefix) {
@@ -232,6 +231,7 @@ void addPresets(GiMethod& m, SsaoKernel kernel, const std::string& prefix) {
 GiMethod ssaoMethod() {
     GiMethod m;
     m.name = "ssao";
+    m.scoredAgainstAo = true;
     m.summary = "screen-space ambient occlusion of the constant ambient term (hemisphere or GTAO kernel, blur, temporal)";
     m.params = ssaoParams().rows;
     const SsaoKernel other = kPresetKernel == SsaoKernel::Gtao ? SsaoKernel::Hemisphere : SsaoKernel::Gtao;

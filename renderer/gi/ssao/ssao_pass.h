@@ -7,6 +7,9 @@
 
 namespace gis {
 
+// Directions the hemisphere kernel's uniform array holds (shaders/gi/ssao/ssao.frag's MAX_AO_KERNEL).
+constexpr int kSsaoMaxKernel = 256;
+
 enum class SsaoKernel { Hemisphere, Gtao };
 
 struct SsaoSettings {
@@ -31,8 +34,8 @@ class SsaoPass final : public Pass {
 public:
     SsaoPass(const RenderSettings& settings, gl::MemoryLedger& ledger);
     const char* name() const override { return "ssao"; }
-    std::vector<std::string> inputs() const override { return {"gbuffer.depth", "gbuffer.normal"}; }
-    std::vector<std::string> outputs() const override { return {"ao"}; }
+    std::vector<std::string> inputs() const override { return {resource::kGbufferDepth, resource::kGbufferNormal}; }
+    std::vector<std::string> outputs() const override { return {resource::kAo}; }
     void execute(Frame& frame) override;
     void invalidate(Changes c) override {
         if (c & (ChangeGeometry | ChangeLiveParams)) hasHistory_ = false;  // reprojection handles the camera

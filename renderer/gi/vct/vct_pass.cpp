@@ -23,62 +23,57 @@ ParamValue choiceValue(const char* name) {
 }
 }  // namespace
 
+const ProgramDesc kTraceProgram{"vct_trace", {"gi/vct/vct_trace.comp"}, {}};
+const ProgramDesc kDebugProgram{"vct_debug", {"gi/vct/vct_debug.comp"}, {}};
+
 std::vector<ProgramDesc> VctPass::programs() {
     std::vector<ProgramDesc> all = Voxelizer::programs();
     for (const ProgramDesc& p : VoxelRadiance::programs()) all.push_back(p);
-    all.push_back({"vct_debug", {"gi/vct/vct_debug.comp"}, {}});
-    all.push_back({"vct_trace", {"gi/vct/vct_trace.comp"}, {}});
+    all.push_back(kDebugProgram);
+    all.push_back(kTraceProgram);
     return all;
 }
 
-VctPass::VctPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger)
+namespace {
+// What VCT asks of the scene volume. With back faces culled the margin is half a voxel: the
+// margin's empty voxels make coarse texels at the bounds partly transparent, and cones escape
+// through them (the emissive furnace loses 26% at 32^3, 13% at 64^3 with the full margin and back
+// faces culled; 7% and 3% with half a voxel). The opaque mode keeps the full margin, which its
+// measured tuning (renderer/gi/vct/README.md) was made with: there its cones' own surfaces stand in
+// for the loss.
+VolumeRequest volumeRequest(const VctSettings& s) {
+    VolumeRequest r;
+    r.method = "vct";
+    r.resolution = s.resolution;
+    r.resolutionKey = "vct.resolution";
+    r.conservative = s.conservativeMode();
+    r.conservativeKey = "vct.conservative";
+    r.cullBackfaces = s.backfaces == 1;
+    r.marginVoxels = r.cullBackfaces ? 0.5f : kVolumeMarginVoxels;
+    r.anisotropic = s.anisotropic;
+    r.mips = true;
+    r.bounces = s.bounces;
+    return r;
+}
+}  // namespace
+
+VctPass::VctPass(SceneServices& services, const RenderSettings& settings)
     : built_(vctParams().read("vct", settings.params)), live_(built_) {
     checkVctSettings(built_);
     // Everything is charged to the pass, so --timings, info and the panel show the method's whole
-    // footprint on its row (the README lists it per texture).
-    const gl::MemoryScope voxels{&ledger, name()}, radiance{&ledger, name()}, trace{&ledger, name()};
-    const int n = built_.resolution;
-    // Refuse before allocating anything: the whole method's voxel memory at once.
-    checkVoxelBudget(n, voxelGridBytes(n) + voxelRadianceBytes(n, built_.anisotropic, built_.bounces),
-                     "vct.resolution");
-    // A margin of a whole number and a half voxels: the bounds (a room's walls) then lie mid-voxel
-    // instead of on a voxel boundary, where float rounding at another scene scale would flip them
-    // between one and two voxel layers (and change the light by a few percent). The margin's empty
-    // voxels make coarse texels at the bounds partly transparent, and cones escape through them
-    // (the emissive furnace loses 26% at 32^3, 13% at 64^3 with 2.5 voxels and back faces culled;
-    // 7% and 3% with 0.5): so half a voxel with culling. The opaque mode keeps 2.5, which its
-    // measured tuning (README) was made with: there its cones' own surfaces stand in for the loss.
-    const bool cull = built_.backfaces == 1;
-    const float margin = cull ? 0.5f : 2.5f;
-    voxelizer_ = std::make_unique<Voxelizer>(fitVolume(scene.cpu.bounds, n, margin), built_.conservativeMode(), voxels);
-    radiance_ = std::make_unique<VoxelRadiance>(n, built_.anisotropic, built_.bounces, radiance, cull);
+    // footprint on its row (its README page lists it per texture).
+    volume_ = &services.volume(volumeRequest(built_));
+    const gl::MemoryScope trace{&services.ledger, name()};
     diffuse_ = gl::createTexture2D(trace, GL_RGBA16F, settings.width, settings.height);
     specular_ = gl::createTexture2D(trace, GL_RGBA16F, settings.width, settings.height);
     ao_ = gl::createTexture2D(trace, GL_R16F, settings.width, settings.height);
-    const auto all = programs();
-    traceProgram_ = buildProgram(all.back());
-    debugProgram_ = buildProgram(all[all.size() - 2]);
-}
-
-void VctPass::relight(Frame& frame) {
-    injectFrameLights(frame, voxelizer_->grid(), *radiance_);
-    ++injections_;
-    {
-        auto t = frame.step("mips");
-        radiance_->buildMips(voxelizer_->grid());
-    }
-    if (built_.bounces > 1) {  // further bounces re-light the voxels: timed as their own step
-        auto t = frame.step("bounce");
-        VctSettings cones = live_;
-        cones.resolution = built_.resolution;
-        radiance_->bounce(voxelizer_->grid(), coneSettingsOf(cones),
-                          frame.settings.background.value_or(frame.scene.cpu.background));
-    }
+    traceProgram_ = buildProgram(kTraceProgram);
+    debugProgram_ = buildProgram(kDebugProgram);
 }
 
 void VctPass::trace(const Frame& frame, const VctSettings& s) {
     const GLuint p = traceProgram_.id();
-    const VolumeFit& fit = voxelizer_->grid().fit;
+    const VolumeFit& fit = volume_->grid().fit;
     const glm::mat4 worldToVoxel = fit.worldToVoxelMatrix();
     const glm::vec3 environment = frame.settings.background.value_or(frame.scene.cpu.background);
     glUseProgram(p);
@@ -90,13 +85,13 @@ void VctPass::trace(const Frame& frame, const VctSettings& s) {
     glProgramUniform4f(p, UV_TRACE_PARAMS, s.stepFactor, s.maxDistance * float(fit.resolution), s.offset,
                        s.specular ? 1.0f : 0.0f);
     glProgramUniform3fv(p, UV_ENVIRONMENT, 1, &environment[0]);
-    glProgramUniform1i(p, UV_ANISOTROPIC, radiance_->mipMode());
+    glProgramUniform1i(p, UV_ANISOTROPIC, volume_->radiance().mipMode());
     glProgramUniform1f(p, UV_INTENSITY, s.intensity);
-    const GLuint gbuffer[3] = {frame.texture("gbuffer.depth"), frame.texture("gbuffer.normal"),
-                               frame.texture("gbuffer.material")};
+    const GLuint gbuffer[3] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal),
+                               frame.texture(resource::kGbufferMaterial)};
     glBindTextures(0, 3, gbuffer);
     glBindSamplers(0, 3, nullptr);
-    radiance_->bind(4);
+    volume_->radiance().bind(4);
     glBindImageTexture(0, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(2, ao_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
@@ -117,7 +112,7 @@ void VctPass::drawDebugView(const std::string& view, const Frame& frame, GLuint 
     }
     const VctSettings live = vctParams().read("vct", frame.settings.params);
     const GLuint p = debugProgram_.id();
-    const VolumeFit& fit = voxelizer_->grid().fit;
+    const VolumeFit& fit = volume_->grid().fit;
     const glm::mat4 worldToVoxel = fit.worldToVoxelMatrix();
     glUseProgram(p);
     glProgramUniformMatrix4fv(p, UV_WORLD_TO_VOXEL, 1, GL_FALSE, &worldToVoxel[0][0]);
@@ -126,8 +121,8 @@ void VctPass::drawDebugView(const std::string& view, const Frame& frame, GLuint 
     const bool slice = view == "vct.slice";
     glProgramUniform4f(p, UV_DEBUG_PARAMS, float(live.debugChannel), float(live.debugLevel),
                        slice ? float(live.sliceAxis) : -1.0f, live.slicePosition);
-    const GLuint textures[3] = {voxelizer_->grid().albedo.id(), voxelizer_->grid().emission.id(),
-                                radiance_->radiance().id()};
+    const GLuint textures[3] = {volume_->grid().albedo.id(), volume_->grid().emission.id(),
+                                volume_->radiance().radiance().id()};
     glBindTextures(0, 3, textures);
     glBindSamplers(0, 3, nullptr);
     glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -137,22 +132,15 @@ void VctPass::drawDebugView(const std::string& view, const Frame& frame, GLuint 
 
 void VctPass::execute(Frame& frame) {
     live_ = vctParams().read("vct", frame.settings.params);
-    reused_ = voxelsValid_ && radianceValid_;
-    if (!voxelsValid_) {
-        voxelizeFrame(frame, *voxelizer_);
-        ++voxelizations_;
-        voxelsValid_ = true;
-        radianceValid_ = false;
-    }
-    if (!radianceValid_) relight(frame);
-    radianceValid_ = true;
+    VctSettings cones = live_;  // further bounces gather with the live cones at the built resolution
+    cones.resolution = built_.resolution;
+    volume_->update(frame, coneSettingsOf(cones));
     {
         auto t = frame.step("trace");
         trace(frame, live_);
     }
-    frame.put("indirect.diffuse", diffuse_);
-    frame.put("indirect.specular", specular_);
-    frame.put("voxel.radiance", radiance_->radiance());
+    frame.put(resource::kIndirectDiffuse, diffuse_);
+    frame.put(resource::kIndirectSpecular, specular_);
 }
 
 GiMethod vctMethod() {
@@ -180,7 +168,7 @@ GiMethod vctMethod() {
             {"VCT radiance mips", uint64_t(voxelRadianceBytes(int(n), v.anisotropic, v.bounces))},
             {"VCT screen targets", pixels * 18}};
     };
-    m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<VctPass>(b.services.scene, b.settings, b.ledger)); };
+    m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<VctPass>(b.services, b.settings)); };
     m.framesToConverge = [](const RenderSettings&) { return 1; };
     return m;
 }

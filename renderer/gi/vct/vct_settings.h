@@ -1,5 +1,6 @@
-// Voxel cone tracing's parameters: one row each in vctParams() (issue 11's names: vct.resolution,
-// vct.conservative, vct.anisotropic, vct.bounces, ...), defaults in the initialisers below.
+// Voxel cone tracing's parameters: one row each in vctParams() (names that scripts and other
+// checks use: vct.resolution, vct.conservative, vct.anisotropic, vct.bounces, ...), defaults in the
+// initialisers below.
 #pragma once
 
 #include <string>

@@ -4,7 +4,7 @@
 // frame's estimate of the cosine-weighted mean incoming radiance (E / pi: the lighting contract's
 // indirect.diffuse) before temporal accumulation and filtering. Also: one mirror ray where the
 // surface is smooth, the near-field soft occlusion, and the debug data (steps, first hit normal).
-// With cascades (renderer/sdf/sdf_cascades.h) the field and the radiance hold one layer per
+// With cascades (renderer/volume/volume_cascades.h) the field and the radiance hold one layer per
 // cascade; a ray starts in the finest cascade around its pixel's surface and hands over outwards.
 #include "common.glsl"
 #include "random.glsl"

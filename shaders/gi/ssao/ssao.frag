@@ -9,7 +9,6 @@
 #include "gi/ssao/ssao_common.glsl"
 
 layout(location = U_AO_KERNEL_SIZE) uniform int u_kernelSize;
-#define MAX_AO_KERNEL 256
 layout(location = U_AO_KERNEL) uniform vec4 u_kernel[MAX_AO_KERNEL];  // xyz unit direction (+Z = normal)
 
 in vec2 v_uv;

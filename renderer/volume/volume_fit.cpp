@@ -1,4 +1,4 @@
-#include "services/volume_fit.h"
+#include "volume/volume_fit.h"
 
 #include <algorithm>
 #include <cmath>
@@ -43,7 +43,5 @@ VolumeFit fitVolume(const Aabb& bounds, int resolution, float marginVoxels) {
     f.origin = center - glm::vec3(0.5f * f.size);
     return f;
 }
-
-SceneVolume::SceneVolume(const Scene& scene, gl::MemoryLedger&) : bounds(scene.bounds) {}
 
 }  // namespace gis

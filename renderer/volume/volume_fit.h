@@ -1,5 +1,5 @@
-// A cubic volume fitted to the scene's bounds: what the voxelizer (and the SDF, and probe grids)
-// place their grids in. Robust for empty, flat, single-triangle and very small or large scenes.
+// A cubic volume fitted to the scene's bounds: what the scene volume's voxels and distance field
+// (and probe grids) are placed in. Robust for empty, flat, single-triangle and very small or large scenes.
 #pragma once
 
 #include <cstdio>
@@ -24,19 +24,17 @@ struct VolumeFit {
     glm::mat4 voxelToWorldMatrix() const;
 };
 
+// Empty voxels around the scene's bounds: a whole number and a half, so the bounds (a room's walls)
+// lie mid-voxel instead of on a voxel boundary, where float rounding at another scene scale would
+// flip them between one and two voxel layers (and change the light by a few percent).
+constexpr float kVolumeMarginVoxels = 2.5f;
+
 // The cube around `bounds`, centred on them, its edge the longest extent plus `marginVoxels` empty
 // voxels on each side (so surfaces on the bounds never sit in the outermost voxel, where trilinear
 // lookups and mips would clamp them). Empty bounds give a unit cube at the origin; a flat or
 // point-like scene gets a cube sized from its largest extent or, if all are zero, from its distance
 // to the origin. Throws gis::Error for a resolution outside [1, 4096] or non-finite bounds.
-VolumeFit fitVolume(const Aabb& bounds, int resolution, float marginVoxels = 2.0f);
-
-// The scene's bounds as a shared service: one per renderer, handed to every volume-based method.
-struct SceneVolume {
-    SceneVolume(const Scene& scene, gl::MemoryLedger& ledger);
-    Aabb bounds;
-    VolumeFit fit(int resolution, float marginVoxels = 2.0f) const { return fitVolume(bounds, resolution, marginVoxels); }
-};
+VolumeFit fitVolume(const Aabb& bounds, int resolution, float marginVoxels = kVolumeMarginVoxels);
 
 // "64^3 voxels of 3.4 cm (2.2 m cube)": a volume in world units, for stats().
 inline std::string describeVolume(const VolumeFit& fit, const char* what) {

@@ -1,0 +1,76 @@
+#include "render_settings.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "gi/method.h"
+
+namespace gis {
+
+namespace {
+const char* const kDiffuseNames[kDiffuseModelCount] = {"lambert", "wrap", "toon", "burley"};
+const char* const kSpecularNames[kSpecularModelCount] = {"ggx", "blinn", "toon", "none"};
+}  // namespace
+
+DiffuseModel parseDiffuse(const std::string& s) {
+    for (int i = 0; i < kDiffuseModelCount; ++i)
+        if (s == kDiffuseNames[i]) return DiffuseModel(i);
+    throw Error("unknown diffuse BRDF '" + s + "' (expected lambert, wrap, toon or burley)");
+}
+
+SpecularModel parseSpecular(const std::string& s) {
+    for (int i = 0; i < kSpecularModelCount; ++i)
+        if (s == kSpecularNames[i]) return SpecularModel(i);
+    throw Error("unknown specular BRDF '" + s + "' (expected ggx, blinn, toon or none)");
+}
+
+Tonemapper parseTonemapper(const std::string& s) {
+    if (s == "aces") return Tonemapper::Aces;
+    if (s == "linear") return Tonemapper::Linear;
+    throw Error("unknown tonemapper '" + s + "' (expected aces or linear)");
+}
+
+bool physicallyBased(DiffuseModel d, SpecularModel s) {
+    return (d == DiffuseModel::Lambert || d == DiffuseModel::Burley) && (s == SpecularModel::Ggx || s == SpecularModel::None);
+}
+
+void setParam(RenderSettings& s, const std::string& fullKey, const std::string& text) {
+    // An alias flag (--spp, --ao-radius) sets every row that declares it.
+    bool any = false;
+    for (const GiMethod& m : giMethods())
+        for (const ParamDesc& d : m.params)
+            if (fullKey == m.name + "." + d.key || (!d.alias.empty() && fullKey == d.alias)) {
+                s.params[m.name + "." + d.key] = parseParamValue(m.name, d, text);
+                any = true;
+            }
+    if (!any) findParam(fullKey);  // throws the message naming the method's keys
+}
+
+ParamValue getParam(const RenderSettings& s, const std::string& fullKey) {
+    auto it = s.params.find(fullKey);
+    return it != s.params.end() ? it->second : findParam(fullKey).defaultValue;
+}
+
+CameraMatrices cameraMatrices(const Scene& scene, int cameraIndex, float aspect) {
+    if (!scene.cameras.empty() && (cameraIndex < 0 || cameraIndex >= int(scene.cameras.size())))
+        throw Error("camera " + std::to_string(cameraIndex) + " does not exist (the scene has " +
+                    std::to_string(scene.cameras.size()) + ")");
+    const Camera cam = scene.cameras.empty() ? defaultCamera(scene.bounds, aspect) : scene.cameras[cameraIndex];
+    CameraMatrices m;
+    m.view = glm::inverse(cam.cameraToWorld);
+    m.position = glm::vec3(cam.cameraToWorld[3]);
+    m.znear = cam.znear;
+    m.zfar = cam.zfar;
+    if (cam.orthographic) {
+        // Keep the file's vertical extent; the width follows the viewport's aspect.
+        m.proj = glm::ortho(-cam.ymag * aspect, cam.ymag * aspect, -cam.ymag, cam.ymag, cam.znear, cam.zfar);
+    } else if (cam.zfar <= 0.0f) {
+        m.proj = glm::infinitePerspective(cam.yfov, aspect, cam.znear);
+    } else {
+        m.proj = glm::perspective(cam.yfov, aspect, cam.znear, cam.zfar);
+    }
+    m.viewProj = m.proj * m.view;
+    m.invViewProj = glm::inverse(m.viewProj);
+    return m;
+}
+
+}  // namespace gis

@@ -1,0 +1,181 @@
+#include "volume/scene_volume.h"
+
+#include <tuple>
+
+
+namespace gis {
+
+namespace {
+auto tied(const VolumeRequest& r) {
+    return std::tie(r.method, r.resolution, r.resolutionKey, r.conservative, r.conservativeKey, r.marginVoxels,
+                    r.anisotropic, r.cullBackfaces, r.mips, r.bounces, r.distanceField, r.jfa, r.cascades,
+                    r.cascadeExtent);
+}
+
+// Level 0 of every cascade's light in one RGBA16F texture, when there is more than one.
+int64_t radianceAtlasBytes(int resolution, int cascades) {
+    const int64_t n = resolution;
+    return cascades > 1 ? 8 * n * n * n * cascades : 0;
+}
+
+VolumeFit fitOf(const SdfVolume& v) {
+    VolumeFit fit;
+    fit.origin = v.origin;
+    fit.size = v.size;
+    fit.resolution = v.resolution;
+    return fit;
+}
+}  // namespace
+
+std::vector<std::string> withVolumeInputs(std::vector<std::string> own) {
+    for (const char* name : {resource::kLights, resource::kShadowMaps, resource::kShadowCubes}) own.push_back(name);
+    return own;
+}
+
+bool VolumeRequest::operator==(const VolumeRequest& o) const { return tied(*this) == tied(o); }
+
+int64_t sceneVolumeBytes(const VolumeRequest& r, int cascades) {
+    const int n = r.resolution;
+    const int64_t perCascade = voxelGridBytes(n) + voxelRadianceBytes(n, r.anisotropic, r.bounces);
+    return cascades * perCascade + (r.distanceField ? distanceFieldBuildBytes(n, cascades) : 0) +
+           radianceAtlasBytes(n, cascades);
+}
+
+SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::MemoryLedger& ledger)
+    : request_(request), scope_{&ledger, request.method} {
+    const int n = request.resolution;
+    layout_ = layoutCascades(bounds, n, request.cascadeExtent, request.cascades, request.marginVoxels, request.method);
+    const int count = layout_.count;
+    // Refuse before allocating anything: the whole volume at once.
+    checkVoxelBudget(n, sceneVolumeBytes(request, count), request.resolutionKey);
+    mode_ = request.conservative;
+    if (request.conservativeKey.empty() && mode_ == ConservativeMode::Hardware &&
+        !Voxelizer::hardwareConservativeAvailable())
+        mode_ = ConservativeMode::Geometry;
+    cascades_.resize(size_t(count));
+    // Each cascade's grid exists from the start (stats and debug views may ask before the first
+    // frame), around the scene's centre until the first update() places it at the camera.
+    for (int i = 0; i < count; ++i) {
+        Cascade& c = cascades_[size_t(i)];
+        const SdfVolume v = layout_.volume(i, layout_.centredOffset(i, layout_.scene.origin + 0.5f * layout_.scene.size));
+        c.voxelizer = std::make_unique<Voxelizer>(fitOf(v), mode_, scope_, request.conservativeKey);
+        c.radiance = std::make_unique<VoxelRadiance>(n, request.anisotropic, request.bounces, scope_, request.cullBackfaces);
+    }
+    if (request.distanceField)
+        field_ = std::make_unique<DistanceField>(layout_.volume(count - 1, glm::ivec3(0)), scope_, count);
+    if (count > 1) {
+        radianceAtlas_ = gl::createTexture3D(scope_, GL_RGBA16F, n, n, n * count);
+        glTextureParameteri(radianceAtlas_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(radianceAtlas_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+            glTextureParameteri(radianceAtlas_.id(), wrap, GL_CLAMP_TO_EDGE);
+    }
+}
+
+void SceneVolume::invalidate(Changes c) {
+    for (Cascade& k : cascades_) {
+        if (c & ChangeGeometry) k.voxelsValid = k.fieldValid = false;
+        if (c & ChangeMaterials) k.voxelsValid = false;  // albedo and emission; occupancy, so the field, stays
+        if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) k.radianceValid = false;
+    }
+}
+
+std::string SceneVolume::stepPrefix(int cascade) const {
+    return layout_.count > 1 ? "c" + std::to_string(cascade) + "." : "";
+}
+
+// Cascades follow the camera beyond the snap distance (one cascade is the scene cube and never
+// moves). A moved one keeps its voxelizer, moved to its new cube, and is rebuilt whole.
+void SceneVolume::place(const glm::vec3& camera) {
+    for (int i = 0; i < layout_.count; ++i) {
+        Cascade& c = cascades_[size_t(i)];
+        const glm::ivec3 centred = layout_.centredOffset(i, camera);
+        if (c.placed && !layout_.mustMove(c.offset, centred)) continue;
+        c.offset = centred;
+        c.placed = true;
+        const SdfVolume v = layout_.volume(i, centred);
+        c.voxelizer->moveTo(fitOf(v));
+        if (field_) field_->setVolume(i, v);
+        c.voxelsValid = c.fieldValid = c.radianceValid = false;
+    }
+}
+
+void SceneVolume::update(Frame& frame, const ConeSettings& bounceCones) {
+    place(frame.camera.position);
+    for (int i = 0; i < layout_.count; ++i) refresh(frame, i, bounceCones);
+}
+
+void SceneVolume::refresh(Frame& frame, int i, const ConeSettings& bounceCones) {
+    Cascade& c = cascades_[size_t(i)];
+    const std::string prefix = stepPrefix(i);
+    const bool fieldStale = field_ && !c.fieldValid;
+    c.lastUpdate = !c.voxelsValid || fieldStale ? "rebuilt" : !c.radianceValid ? "relit" : "cached";
+    if (!c.voxelsValid) {
+        voxelizeFrame(frame, *c.voxelizer, prefix);
+        ++c.builds.voxelizations;
+        c.voxelsValid = true;
+        c.radianceValid = false;
+    }
+    if (fieldStale) {
+        const VoxelGrid& grid = c.voxelizer->grid();
+        // Seeds: the voxelizer's occupancy (albedo alpha) and averaged normals (the field's sign).
+        field_->build({grid.albedo.id(), grid.normal.id()}, request_.jfa, frame.steps, i, prefix);
+        ++c.builds.fields;
+    }
+    c.fieldValid = true;
+    if (!c.radianceValid) relight(frame, i, bounceCones);
+    c.radianceValid = true;
+}
+
+void SceneVolume::relight(Frame& frame, int i, const ConeSettings& bounceCones) {
+    Cascade& c = cascades_[size_t(i)];
+    const VoxelGrid& grid = c.voxelizer->grid();
+    const std::string prefix = stepPrefix(i);
+    injectFrameLights(frame, grid, *c.radiance, prefix);
+    ++c.builds.injections;
+    // Further bounces gather by cone tracing the mips in voxel space.
+    if (request_.mips || request_.bounces > 1) {
+        auto t = frame.step(prefix + "mips");
+        c.radiance->buildMips(grid);
+    }
+    if (request_.bounces > 1) {
+        auto t = frame.step(prefix + "bounce");
+        c.radiance->bounce(grid, bounceCones, frame.settings.background.value_or(frame.scene.cpu.background));
+    }
+    if (layout_.count > 1) {  // into this cascade's layer, where tracers read it
+        const int n = layout_.resolution();
+        glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glCopyImageSubData(c.radiance->radiance().id(), GL_TEXTURE_3D, 0, 0, 0, 0, radianceAtlas_.id(), GL_TEXTURE_3D,
+                           0, 0, 0, i * n, n, n, n);
+    }
+}
+
+const VoxelGrid& SceneVolume::grid(int cascade) const { return cascades_.at(size_t(cascade)).voxelizer->grid(); }
+
+const VoxelRadiance& SceneVolume::radiance(int cascade) const { return *cascades_.at(size_t(cascade)).radiance; }
+
+GLuint SceneVolume::radianceTexture() const {
+    return layout_.count > 1 ? radianceAtlas_.id() : cascades_[0].radiance->radiance().id();
+}
+
+const DistanceField& SceneVolume::field() const {
+    if (!field_) throw Error("scene volume: " + request_.method + " asked for no distance field");
+    return *field_;
+}
+
+const char* SceneVolume::lastUpdate(int cascade) const { return cascades_.at(size_t(cascade)).lastUpdate; }
+
+glm::ivec3 SceneVolume::offset(int cascade) const { return cascades_.at(size_t(cascade)).offset; }
+
+SceneVolume::Builds SceneVolume::builds(int cascade) const {
+    if (cascade >= 0) return cascades_.at(size_t(cascade)).builds;
+    Builds sum;
+    for (const Cascade& c : cascades_) {
+        sum.voxelizations += c.builds.voxelizations;
+        sum.fields += c.builds.fields;
+        sum.injections += c.builds.injections;
+    }
+    return sum;
+}
+
+}  // namespace gis

@@ -1,0 +1,114 @@
+// The scene volume: what every voxel-based GI method reads, built once per renderer for the
+// methods that ask (SceneServices::volume) and composed here only. Per cascade: the voxel grid
+// (occupancy, albedo, normal, emission; renderer/voxel/voxelizer.h), the light its voxels send out
+// (renderer/voxel/voxel_radiance.h) and, when asked for, a layer of the signed distance field
+// jump-flooded from its surface voxels (renderer/sdf/distance_field.h).
+//
+// What is rebuilt and when, for every method alike (invalidate()):
+// - geometry: voxels, field and light;
+// - materials: voxels (albedo, emission) and light; occupancy, so the field, stays;
+// - lights: the light only: no voxelization and no flood;
+// - the camera: only cascades it takes with it (volume_cascades.h) are rebuilt whole.
+// Each step is timed under the executing pass's step timers with the names the methods report
+// ("voxelize", "seed", "jfa.K.STEP", "resolve", "inject", "mips", "bounce"; "cN." before each with
+// more than one cascade).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "renderer.h"
+#include "sdf/distance_field.h"
+#include "voxel/voxel_radiance.h"
+#include "volume/volume_cascades.h"
+
+namespace gis {
+
+// What a method asks of the volume. Two methods asking the same share one volume.
+struct VolumeRequest {
+    std::string method;               // "vct": the ledger's owner and the prefix of parameter names in messages
+    int resolution = 64;              // cells per edge of every cascade
+    std::string resolutionKey;        // the parameter that set it ("vct.resolution"), for budget messages
+    // The voxelizer's rasterization; `conservativeKey` empty: the best the driver has, silently.
+    ConservativeMode conservative = ConservativeMode::Hardware;
+    std::string conservativeKey;
+    float marginVoxels = kVolumeMarginVoxels;
+    // The voxels' light: directional mips (cones), back faces left out of them, further bounces.
+    bool anisotropic = false, cullBackfaces = false, mips = false;
+    int bounces = 1;
+    bool distanceField = false;
+    JfaVariant jfa = JfaVariant::OnePlusJfa;
+    // Cascades around the camera: `cascades` > 0 a fixed count, 0 from `cascadeExtent`.
+    int cascades = 1;
+    float cascadeExtent = 1.0f;
+
+    bool operator==(const VolumeRequest& o) const;
+};
+
+// What update() reads from the frame (the lights and their shadow maps, for light injection),
+// added to `own`: the inputs() of a pass that updates a volume.
+std::vector<std::string> withVolumeInputs(std::vector<std::string> own);
+
+// GPU bytes the volume will hold for `request` with `cascades` cascades (the field at its peak
+// while it is built), for the budget check before anything is allocated.
+int64_t sceneVolumeBytes(const VolumeRequest& request, int cascades);
+
+class SceneVolume {
+public:
+    // Refuses (gis::Error naming request.resolutionKey) what exceeds the voxel budget, then
+    // allocates; cascades are placed around the camera by the first update().
+    SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::MemoryLedger& ledger);
+    SceneVolume(const SceneVolume&) = delete;
+    SceneVolume& operator=(const SceneVolume&) = delete;
+
+    // Brings every cascade up to date for this frame: places them around the camera, then
+    // voxelizes, floods and relights what is out of date. `bounceCones` are the cones further
+    // bounces gather with (the method's live setting).
+    void update(Frame& frame, const ConeSettings& bounceCones = {});
+    void invalidate(Changes changes);
+
+    const VolumeRequest& request() const { return request_; }
+    const CascadeLayout& layout() const { return layout_; }
+    int cascadeCount() const { return layout_.count; }
+    const VoxelGrid& grid(int cascade = 0) const;
+    const VoxelRadiance& radiance(int cascade = 0) const;
+    // Level 0 of the light: the cascade's own texture with one cascade, else one layer per cascade
+    // stacked along z (like the field's layers), so a tracer switches cascade by a coordinate.
+    GLuint radianceTexture() const;
+    const DistanceField& field() const;  // throws unless request.distanceField
+    bool hasField() const { return field_ != nullptr; }
+
+    // What the last update() did to cascade i: "rebuilt" (voxels or field), "relit" or "cached".
+    const char* lastUpdate(int cascade) const;
+    glm::ivec3 offset(int cascade) const;   // in the cascade's cells from the scene cube's corner
+    // How often cascade i (or all together, for -1) was voxelized, flooded and lit.
+    struct Builds {
+        int voxelizations = 0, fields = 0, injections = 0;
+    };
+    Builds builds(int cascade = -1) const;
+    // The step-name prefix of cascade i ("" with one cascade, else "cN.").
+    std::string stepPrefix(int cascade) const;
+
+private:
+    struct Cascade {
+        std::unique_ptr<Voxelizer> voxelizer;   // moved with the cascade
+        std::unique_ptr<VoxelRadiance> radiance;
+        glm::ivec3 offset{0};
+        bool placed = false, voxelsValid = false, fieldValid = false, radianceValid = false;
+        const char* lastUpdate = "cached";
+        Builds builds;
+    };
+    void place(const glm::vec3& camera);
+    void refresh(Frame& frame, int cascade, const ConeSettings& bounceCones);
+    void relight(Frame& frame, int cascade, const ConeSettings& bounceCones);
+    VolumeRequest request_;
+    gl::MemoryScope scope_;
+    ConservativeMode mode_;
+    CascadeLayout layout_;
+    std::vector<Cascade> cascades_;
+    std::unique_ptr<DistanceField> field_;   // one layer per cascade
+    gl::Texture radianceAtlas_;              // more than one cascade: their light, a layer each
+};
+
+}  // namespace gis

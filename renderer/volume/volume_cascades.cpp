@@ -1,0 +1,50 @@
+#include "volume/volume_cascades.h"
+
+#include <algorithm>
+#include <cmath>
+
+
+namespace gis {
+
+int chooseCascadeCount(const VolumeFit& sceneCube, float finestExtent, int requested, const std::string& method) {
+    if (requested < 0 || requested > kMaxCascades)
+        throw Error(method + ".cascades " + std::to_string(requested) + " is out of range [0 (auto), " +
+                    std::to_string(kMaxCascades) + "]");
+    if (requested > 0) return requested;
+    if (!(finestExtent > 0.0f) || !std::isfinite(finestExtent))
+        throw Error(method + ".cascade-extent must be a positive number of world units");
+    if (sceneCube.size <= finestExtent) return 1;
+    const int halvings = int(std::ceil(std::log2(double(sceneCube.size) / double(finestExtent))));
+    return std::clamp(1 + halvings, 1, kMaxCascades);
+}
+
+glm::ivec3 CascadeLayout::centredOffset(int i, const glm::vec3& camera) const {
+    const int n = scene.resolution;
+    const int span = n << (count - 1 - i);  // the scene cube's edge in cascade i's cells
+    const glm::vec3 centre = (camera - scene.origin) / cellSize(i) - glm::vec3(0.5f * float(n));
+    glm::ivec3 o;
+    for (int a = 0; a < 3; ++a) {
+        const float c = std::isfinite(centre[a]) ? std::clamp(centre[a], -1e9f, 1e9f) : 0.0f;
+        o[a] = std::clamp(int(std::lround(c)), 0, span - n);
+    }
+    return o;
+}
+
+bool CascadeLayout::mustMove(const glm::ivec3& current, const glm::ivec3& centred) const {
+    const glm::ivec3 d = glm::abs(centred - current);
+    return std::max({d.x, d.y, d.z}) > snapCells();
+}
+
+SdfVolume CascadeLayout::volume(int i, const glm::ivec3& offset) const {
+    return {scene.origin + glm::vec3(offset) * cellSize(i), extent(i), scene.resolution};
+}
+
+CascadeLayout layoutCascades(const Aabb& bounds, int resolution, float finestExtent, int requested, float marginVoxels,
+                             const std::string& method) {
+    CascadeLayout layout;
+    layout.scene = fitVolume(bounds, resolution, marginVoxels);
+    layout.count = chooseCascadeCount(layout.scene, finestExtent, requested, method);
+    return layout;
+}
+
+}  // namespace gis

@@ -1,0 +1,64 @@
+// Where the scene volume's cascades lie (renderer/volume/): for a scene too large for one volume,
+// nested cubes around the camera, each twice the edge of the one inside it, all with the same
+// number of cells. CPU-only placement, so tests can check it without a GPU.
+//
+// How many: from the scene's extent against the finest cascade's largest edge (the method's
+// `cascade-extent`, world units, like Godot's SDFGI cell size): a scene cube within it gets one
+// volume; each doubling beyond it one more cascade, up to kMaxCascades. The coarsest is always the
+// scene's cube, so the finest is that cube halved count - 1 times. This is the one choice that
+// depends on the unit of length (glTF's is the metre); unit-free measures of "large" were tried
+// and rejected (renderer/gi/sdf/README.md).
+//
+// Where: the coarsest cascade is the scene's fitted cube and never moves. Cascade i < last is
+// centred on the camera, on the grid of its own cells (aligned with the scene cube, so a finer
+// cascade's cells nest in the coarser ones) and kept inside the scene cube. It moves only when the
+// camera is more than snapCells() of its cells from where it was placed, so small camera moves
+// rebuild nothing and a coarser cascade (cells twice as large) moves half as often.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+#include "sdf/distance_field.h"
+#include "volume/volume_fit.h"
+
+namespace gis {
+
+constexpr int kMaxCascades = 4;          // GLSL's SDF_MAX_CASCADES (renderer/shader_constants.cpp)
+// A cascade moves when the camera is more than resolution / kCascadeSnapDivisor of its cells away.
+constexpr int kCascadeSnapDivisor = 8;
+
+// 1 when the scene cube's edge is within `finestExtent`, else 1 + the halvings that bring it
+// there, at most kMaxCascades. `requested` > 0 overrides it (the method's `cascades`). Throws
+// gis::Error naming `method`'s parameter for a request outside [0, kMaxCascades] or an extent that
+// is not positive.
+int chooseCascadeCount(const VolumeFit& sceneCube, float finestExtent, int requested, const std::string& method = "sdf");
+
+struct CascadeLayout {
+    VolumeFit scene;   // the scene's fitted cube: the coarsest cascade
+    int count = 1;
+
+    int resolution() const { return scene.resolution; }
+    float extent(int i) const { return scene.size / float(1 << (count - 1 - i)); }
+    float cellSize(int i) const { return extent(i) / float(scene.resolution); }
+    int snapCells() const { return std::max(1, scene.resolution / kCascadeSnapDivisor); }
+    // The offset (in cascade i's cells, from the scene cube's corner) that centres cascade i on
+    // `camera`, kept inside the scene cube.
+    glm::ivec3 centredOffset(int i, const glm::vec3& camera) const;
+    // Whether a cascade at `current` must move to `centred` (more than snapCells() on some axis).
+    bool mustMove(const glm::ivec3& current, const glm::ivec3& centred) const;
+    SdfVolume volume(int i, const glm::ivec3& offset) const;
+};
+
+// The layout for a scene: its cube (fitted with `marginVoxels` of empty cells, shared with the
+// voxels), and the count from its extent (or `requested`).
+CascadeLayout layoutCascades(const Aabb& bounds, int resolution, float finestExtent, int requested,
+                             float marginVoxels = kVolumeMarginVoxels, const std::string& method = "sdf");
+inline CascadeLayout layoutCascades(const Scene& scene, int resolution, float finestExtent, int requested) {
+    return layoutCascades(scene.bounds, resolution, finestExtent, requested);
+}
+
+}  // namespace gis
