@@ -73,7 +73,7 @@ void runReference(const BenchJob& job, const SweepDirs& dirs, const GlOpener& op
     PreparedScene prepared;
     const RenderSettings settings = resolveChecked(job, prepared);
     const nlohmann::ordered_json machine = openGl();
-    const bool ao = job.method == "ao-reference";
+    const bool ao = giMethod(job.method).role == MethodRole::AoReference;
     std::fprintf(stderr, "%s: rendering the %sreference (%d spp)...\n", job.sceneName.c_str(), ao ? "AO " : "",
                  job.referenceSpp);
     Renderer renderer(prepared.scene, settings);
@@ -161,7 +161,7 @@ JobOutcome runJob(const BenchJob& job, const SweepDirs& dirs, bool force, const 
     if (!force && readRecord(record, job.id).ok) {
         if (job.kind == JobKind::Reference)
             std::fprintf(stderr, "%s: %sreference from cache %s\n", job.sceneName.c_str(),
-                         job.method == "ao-reference" ? "AO " : "", imagePath(dirs, job).c_str());
+                         giMethod(job.method).role == MethodRole::AoReference ? "AO " : "", imagePath(dirs, job).c_str());
         else
             std::fprintf(stderr, "%s: done already (%s); --force runs it again\n", job.id.c_str(), record.c_str());
         return JobOutcome::AlreadyDone;

@@ -7,6 +7,7 @@
 
 #include "bench_record.h"
 #include "bench_row.h"
+#include "gi/method.h"
 #include "image.h"
 #include "metrics.h"
 #include "plot.h"
@@ -136,7 +137,7 @@ int mergeBench(const std::vector<BenchJob>& jobs, const SweepDirs& dirs, const s
     const std::vector<MergedCell> cells = gatherCells(jobs, dirs, machine, problems);
     std::map<std::string, const BenchJob*> references;  // scene name -> its path-traced reference
     for (const BenchJob& job : jobs) {
-        if (job.kind != JobKind::Reference || job.method != "pathtrace") continue;
+        if (job.kind != JobKind::Reference || giMethod(job.method).role != MethodRole::Reference) continue;
         const RecordCheck check = readRecord(recordPath(dirs, job), job.id);
         if (!check.ok) problems.push_back(job.id + " (" + job.sceneName + " reference): " + check.problem);
         references[job.sceneName] = &job;

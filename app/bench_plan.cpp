@@ -145,14 +145,14 @@ RenderSettings jobSettings(const BenchJob& job, const RenderSettings& sceneBase)
     RenderSettings s = sceneBase;
     if (job.kind == JobKind::Cell) {
         applyPreset(s, job.method, job.preset);
-    } else if (job.method == "pathtrace") {
-        s.gi = "pathtrace";
-        setParam(s, "pathtrace.spp", std::to_string(job.referenceSpp));
-        setParam(s, "pathtrace.bounces", std::to_string(kReferenceBounces));
+    } else if (job.method == methodInRole(MethodRole::Reference).name) {
+        s.gi = job.method;
+        setParam(s, roleParamKey(MethodRole::Reference, "spp"), std::to_string(job.referenceSpp));
+        setParam(s, roleParamKey(MethodRole::Reference, "bounces"), std::to_string(kReferenceBounces));
         s.samplesPerFrame = kReferenceSamplesPerFrame;
     } else {
-        s.gi = "ao-reference";
-        setParam(s, "ao-reference.spp", std::to_string(job.referenceSpp));
+        s.gi = methodInRole(MethodRole::AoReference).name;
+        setParam(s, roleParamKey(MethodRole::AoReference, "spp"), std::to_string(job.referenceSpp));
         s.samplesPerFrame = kAoReferenceSamplesPerFrame;
     }
     return s;
@@ -182,7 +182,8 @@ std::string contentId(const BenchJob& job, const RenderSettings& settings) {
 std::vector<BenchJob> planBench(const BenchOptions& o) {
     validateFlags(o);
     const std::vector<std::string> methods = selectMethods(o);
-    const bool wantsAo = std::find(methods.begin(), methods.end(), "ssao") != methods.end();
+    const bool wantsAo = std::any_of(methods.begin(), methods.end(),
+                                     [](const std::string& m) { return giMethod(m).scoredAgainstAo; });
     const std::vector<std::string> names = uniqueSceneNames(o.scenes);
     std::vector<BenchJob> references, cells;
     for (size_t si = 0; si < o.scenes.size(); ++si) {
@@ -205,13 +206,14 @@ std::vector<BenchJob> planBench(const BenchOptions& o) {
             to.back().id = contentId(to.back(), jobSettings(to.back(), prepared.base));
             return to.back().id;
         };
-        const std::string reference = add(references, JobKind::Reference, "pathtrace", "");
-        const std::string aoReference = wantsAo ? add(references, JobKind::Reference, "ao-reference", "") : "";
+        const std::string reference = add(references, JobKind::Reference, methodInRole(MethodRole::Reference).name, "");
+        const std::string aoReference =
+            wantsAo ? add(references, JobKind::Reference, methodInRole(MethodRole::AoReference).name, "") : "";
         common.frames = o.frames;
         common.warmup = o.warmup;
         common.reference = reference;
         for (const std::string& method : methods) {
-            common.aoReference = method == "ssao" ? aoReference : "";  // only SSAO is scored against AO
+            common.aoReference = giMethod(method).scoredAgainstAo ? aoReference : "";
             for (const std::string& preset : o.presets) add(cells, JobKind::Cell, method, preset);
         }
     }

@@ -29,7 +29,7 @@ struct BenchJob {
     std::string scene;         // the spec as given: a glTF path or builtin:NAME[?options]
     std::string sceneName;     // unique within the plan: the file stem or builtin name
     std::string sceneSha256;   // sceneDigest
-    std::string method;        // references: pathtrace or ao-reference
+    std::string method;        // references: the method in the Reference or AoReference role
     std::string preset;        // cells
     std::string size;          // WxH
     SceneSetupOptions setup;

@@ -239,7 +239,7 @@ int runRender(const RenderOptions& o) {
     if (!listViews) checkWritable(o.out, "--out");
     // A parameter of another method than the one rendered does nothing: say so.
     for (const auto& [key, value] : s.params)
-        if (key.rfind(s.gi + ".", 0) != 0 && !(viewSettings && key == "pathtrace.bounces"))
+        if (key.rfind(s.gi + ".", 0) != 0 && !(viewSettings && key == roleParamKey(MethodRole::Reference, "bounces")))
             std::fprintf(stderr, "gisandbox: warning: %s is a parameter of another method than --gi %s: ignored\n",
                          key.c_str(), s.gi.c_str());
 

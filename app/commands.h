@@ -18,7 +18,7 @@ struct RenderOptions {
     std::string size = "256x256";
     std::string backend = "auto";
     SceneSetupOptions setup;             // --lighting, --camera, --camera-pos, --look-at, --fov
-    std::string gi = "none";
+    std::string gi = kDefaultGiMethod;
     std::string diffuse = "lambert";
     std::string specular = "ggx";
     std::string tonemap = "aces";
@@ -48,7 +48,7 @@ struct RenderOptions {
 
 struct InfoOptions {
     std::string scene;
-    std::string gi = "none";
+    std::string gi = kDefaultGiMethod;
     std::string preset;
     std::string size = "256x256";
     std::string backend = "auto";

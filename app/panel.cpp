@@ -470,9 +470,9 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
             a.flag = shadows;
             act(ctx, a);
         }
-        // Ranges from the path tracer's parameter rows, the one place they are declared.
-        const ParamDesc& bouncesRow = *giMethod("pathtrace").param("bounces");
-        const ParamDesc& sppRow = *giMethod("pathtrace").param("spp");
+        // Ranges from the reference's parameter rows, the one place they are declared.
+        const ParamDesc& bouncesRow = *methodInRole(MethodRole::Reference).param("bounces");
+        const ParamDesc& sppRow = *methodInRole(MethodRole::Reference).param("spp");
         int bounces = s.maxBounces;
         if (ImGui::DragInt("Bounces", &bounces, 0.2f, int(bouncesRow.min), int(bouncesRow.max))) {
             PanelAction a;

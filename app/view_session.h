@@ -8,7 +8,7 @@
 // (Renderer::setLiveSettings): switching them costs nothing, and the path tracer restarts its
 // accumulation. A camera move never rebuilds either (Renderer::setCamera). A rebuild costs what
 // `gisandbox render` pays before its first frame: the scene upload, shader compilation and, for the
-// path tracer, the BVH build (README, "Interactive sandbox", has llvmpipe numbers).
+// path tracer, the BVH build (docs/viewer.md has llvmpipe numbers).
 #pragma once
 
 #include <deque>

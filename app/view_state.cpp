@@ -367,7 +367,8 @@ void applyPanelAction(ViewState& state, const PanelAction& a) {
             s.background = a.vec;
             break;
         case PanelAction::SetMaxBounces:  // the path tracer's row gives the range
-            checkParamValue("pathtrace", *giMethod("pathtrace").param("bounces"), ParamValue{a.value});
+            checkParamValue(methodInRole(MethodRole::Reference).name, findParam(roleParamKey(MethodRole::Reference, "bounces")),
+                            ParamValue{a.value});
             s.maxBounces = int(a.value);
             break;
         case PanelAction::SetRenderScale:
@@ -377,7 +378,8 @@ void applyPanelAction(ViewState& state, const PanelAction& a) {
             break;
         case PanelAction::SetHeatmapMetric: s.heatmapMetric = parseErrorMetric(a.text); break;
         case PanelAction::SetReferenceSpp:
-            checkParamValue("pathtrace", *giMethod("pathtrace").param("spp"), ParamValue{a.value});
+            checkParamValue(methodInRole(MethodRole::Reference).name, findParam(roleParamKey(MethodRole::Reference, "spp")),
+                            ParamValue{a.value});
             s.referenceSpp = int(a.value);
             break;
         case PanelAction::SetCameraMode:
@@ -787,7 +789,8 @@ RenderSettings paneSettings(const ViewState& state, int pane, glm::ivec2 size) {
     s.shadows = state.shadows;
     s.background = state.background;
     applyPreset(s, p.gi, p.preset);
-    s.params["pathtrace.bounces"] = ParamValue{double(state.maxBounces)};  // shared by every pane
+    const std::string bounces = roleParamKey(MethodRole::Reference, "bounces");
+    s.params[bounces] = ParamValue{double(state.maxBounces)};  // shared by every pane
     for (const auto& [key, value] : p.params) s.params[key] = value;       // the pane's own edits
     s.samplesPerFrame = 1;  // progressive: a sample per displayed frame
     s.diffuse = p.diffuse;
@@ -795,16 +798,16 @@ RenderSettings paneSettings(const ViewState& state, int pane, glm::ivec2 size) {
     s.view = rendererView(p);
     if (p.directOnly) {
         if (giMethod(s.gi).pipeline == MethodPipeline::Deferred) s.ambient = glm::vec3(0.0f);
-        if (s.gi == "pathtrace") s.params["pathtrace.bounces"] = ParamValue{0.0};
+        if (giMethod(s.gi).role == MethodRole::Reference) s.params[bounces] = ParamValue{0.0};
     }
     return s;
 }
 
 RenderSettings referenceSettings(const ViewState& state, int pane, glm::ivec2 size) {
     RenderSettings s = paneSettings(state, pane, size);
-    s.gi = "pathtrace";
-    s.params = {{"pathtrace.spp", ParamValue{double(state.referenceSpp)}},
-                {"pathtrace.bounces", ParamValue{double(state.maxBounces)}}};
+    s.gi = methodInRole(MethodRole::Reference).name;
+    s.params = {{roleParamKey(MethodRole::Reference, "spp"), ParamValue{double(state.referenceSpp)}},
+                {roleParamKey(MethodRole::Reference, "bounces"), ParamValue{double(state.maxBounces)}}};
     s.samplesPerFrame = 1;
     s.ambient = state.ambient;
     s.view = "final";

@@ -35,7 +35,7 @@ bool isGBufferDisplay(PaneDisplay d);                // depth .. emissive
 
 // What one pane shows: its own GI method (with a quality preset) and BRDFs; everything else is shared.
 struct PaneState {
-    std::string gi = "none";
+    std::string gi = kDefaultGiMethod;
     std::string preset = "medium";
     ParamValues params;        // the panel's parameter edits, over the preset ("method.key" -> value)
     std::string methodView;    // display Method: which of the method's debug views
@@ -152,7 +152,7 @@ struct PanelAction {
 void applyPanelAction(ViewState& state, const PanelAction& action);
 
 // A script line / command in words, e.g. "method 1 pathtrace", "camera orbit 10 0" (degrees),
-// "light 0 intensity 2". Throws gis::Error naming the problem. See README "Interactive sandbox".
+// "light 0 intensity 2". Throws gis::Error naming the problem. See docs/viewer.md.
 PanelAction parsePanelAction(const std::vector<std::string>& words);
 std::vector<std::string> splitWords(const std::string& line);
 
