@@ -1,6 +1,6 @@
 // Probe GI (`--gi probes`): SH and octahedral math against closed forms, the probe grid, the
 // furnace for every storage kind, convergence (updates stop, and restart after a light edit),
-// extremes, and the README's measurements (GIS_PROBES_MEASURE=1 prints "PROBES-TABLE" lines).
+// extremes, and the README's measurements (GIS_MEASURE=probes prints "PROBES-TABLE" lines).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -205,6 +205,45 @@ TEST(Probe, ConvergesStopsAndRestartsAfterALightEdit) {
     EXPECT_NEAR(r.after / r.before, 0.5, 0.05);
     EXPECT_GE(r.follow, 1);
     EXPECT_LE(r.follow, 20);
+}
+
+// The scene volume under the probes rebuilds what a change touches: a light edit relights the
+// voxels without voxelizing or flooding the distance field again; a geometry change redoes both.
+TEST(Probe, LightEditRelightsWithoutRevoxelizingOrReflooding) {
+    context();
+    RenderSettings s;
+    s.width = s.height = 16;
+    applyPreset(s, "probes", "low");
+    Scene scene = makeBuiltinScene("cornell");  // the renderer keeps a reference to it
+    Renderer r(scene, s);
+    const ProbesPass* pass = nullptr;
+    for (const auto& p : r.passes())
+        if (auto* v = dynamic_cast<const ProbesPass*>(p.get())) pass = v;
+    ASSERT_NE(pass, nullptr);
+    r.renderFrame();
+    r.renderFrame();
+    SceneVolume::Builds b = pass->volume().builds();
+    EXPECT_EQ(b.voxelizations, 1);
+    EXPECT_EQ(b.fields, 1);
+    EXPECT_EQ(b.injections, 1) << "a static frame relit the voxels";
+    scene.lights[0].intensity *= 2.0f;
+    r.lightsChanged();
+    r.renderFrame();
+    b = pass->volume().builds();
+    EXPECT_EQ(b.voxelizations, 1) << "a light edit re-voxelized the scene";
+    EXPECT_EQ(b.fields, 1) << "a light edit flooded the distance field again";
+    EXPECT_EQ(b.injections, 2) << "a light edit did not relight the voxels";
+    r.invalidate(ChangeMaterials);
+    r.renderFrame();
+    b = pass->volume().builds();
+    EXPECT_EQ(b.voxelizations, 2);
+    EXPECT_EQ(b.fields, 1) << "a material edit keeps the occupancy, so the field";
+    r.invalidate(ChangeGeometry);
+    r.renderFrame();
+    b = pass->volume().builds();
+    EXPECT_EQ(b.voxelizations, 3);
+    EXPECT_EQ(b.fields, 2);
+    EXPECT_EQ(b.injections, 4);
 }
 
 TEST(Probe, ExtremesStayFinite) {
@@ -425,21 +464,8 @@ TEST(Probe, RoundRobinBudgetConvergesAndTheSpheresViewDrawsProbes) {
     EXPECT_GT(meanRgb(rays), 0.0);
 }
 
-// Faces of builtin:cornell (castPixels: draw * 8 + face) and their interior pixels.
-const std::map<std::string, int> kFaces = {{"floor", 0}, {"ceiling", 1}, {"back", 2}, {"red wall", 8}, {"green wall", 16}};
-
-double faceMean(const ImageF& img, const std::vector<PixelHit>& hits, const std::vector<bool>& interior, int face,
-                int channel = -1) {
-    double sum = 0.0;
-    int n = 0;
-    for (size_t i = 0; i < hits.size(); ++i) {
-        if (!interior[i] || hits[i].region != face) continue;
-        const float* p = &img.rgba[i * 4];
-        sum += channel < 0 ? (p[0] + p[1] + p[2]) / 3.0 : p[channel];
-        ++n;
-    }
-    return n ? sum / n : 0.0;
-}
+// The Cornell references at the measurement size (tests/gi/gi_reference.h).
+const GiReference& cornellReference(int spp) { return giReference("cornell", {kMeasureSize, spp, true}); }
 
 // Colour bleeding: the floor's indirect light is redder near the red wall than near the green one.
 TEST(Probe, CornellIndirectBleedsTheWallColours) {
@@ -450,11 +476,11 @@ TEST(Probe, CornellIndirectBleedsTheWallColours) {
     ProbeRun run(s, r);
     run.renderUntilConverged(100);
     const ImageF d = run.diffuse();
-    const auto hits = castPixels(s, 0, kMeasureSize, kMeasureSize, nullptr);
+    const std::vector<PixelHit>& hits = cornellReference(128).hits();
     double redSide[2] = {0, 0}, greenSide[2] = {0, 0};
     for (int y = 0; y < kMeasureSize; ++y)
         for (int x = 0; x < kMeasureSize; ++x) {
-            if (hits[size_t(y * kMeasureSize + x)].region != kFaces.at("floor")) continue;
+            if (hits[size_t(y * kMeasureSize + x)].region != kCornellFaces.at("floor")) continue;
             double* side = x < kMeasureSize / 3 ? redSide : x > 2 * kMeasureSize / 3 ? greenSide : nullptr;
             if (!side) continue;
             side[0] += d.at(x, y)[0];
@@ -471,22 +497,15 @@ TEST(Probe, CornellIndirectBleedsTheWallColours) {
 // the floor. Asserted for the high preset (medium's back wall sits at the 120% edge: README).
 TEST(Probe, CornellIndirectEnergyPerFaceWithinTheGoal) {
     const Scene s = makeBuiltinScene("cornell");
-    const ImageF direct = renderHdr(s, measureSettings("none"));
-    RenderSettings pt = measureSettings("pathtrace");
-    setParam(pt, "pathtrace.spp", "128");
-    setParam(pt, "pathtrace.bounces", "16");
-    const ImageF ptFull = renderHdr(s, pt);
-    setParam(pt, "pathtrace.bounces", "0");
-    const ImageF ptIndirect = subtract(ptFull, renderHdr(s, pt));
-    const auto hits = castPixels(s, 0, kMeasureSize, kMeasureSize, nullptr);
-    const auto interior = interiorPixels(hits, kMeasureSize, kMeasureSize, 2, 0);
+    const GiReference& ref = cornellReference(128);
+    const ImageF ptIndirect = subtract(ref.ptFull(), ref.ptDirect());
     RenderSettings r = measureSettings("probes");
     applyPreset(r, "probes", "high");
     r.ambient = glm::vec3(0.0f);
-    const ImageF indirect = subtract(convergedProbes(s, r), direct);
+    const ImageF indirect = subtract(convergedProbes(s, r), ref.direct());
     for (const char* face : {"floor", "back", "red wall", "green wall"}) {
-        const double ratio = faceMean(indirect, hits, interior, kFaces.at(face)) /
-                             faceMean(ptIndirect, hits, interior, kFaces.at(face));
+        const double ratio = ref.regionMean(indirect, kCornellFaces.at(face)) /
+                             ref.regionMean(ptIndirect, kCornellFaces.at(face));
         std::printf("PROBES-TABLE energy high %s: %.0f%%\n", face, 100.0 * ratio);
         EXPECT_GT(ratio, 0.8) << face;
         EXPECT_LT(ratio, 1.2) << face;
@@ -494,19 +513,14 @@ TEST(Probe, CornellIndirectEnergyPerFaceWithinTheGoal) {
 }
 
 // Energy per face against the multi-bounce path tracer and PSNR per preset and storage kind.
-// Slow (path tracer, 16 bounces, 256 spp): GIS_PROBES_MEASURE=1 runs it.
+// Slow (path tracer, 16 bounces, 256 spp): GIS_MEASURE=probes runs it.
 TEST(Probe, MeasureAgainstThePathTracer) {
-    if (!std::getenv("GIS_PROBES_MEASURE")) GTEST_SKIP() << "GIS_PROBES_MEASURE=1 runs the measurement";
+    if (!measuring("probes")) GTEST_SKIP() << "GIS_MEASURE=probes runs the measurement";
     const Scene s = makeBuiltinScene("cornell");
-    const ImageF direct = renderHdr(s, measureSettings("none"));
-    RenderSettings pt = measureSettings("pathtrace");
-    setParam(pt, "pathtrace.spp", "256");
-    setParam(pt, "pathtrace.bounces", "16");
-    const ImageF ptFull = renderHdr(s, pt);
-    setParam(pt, "pathtrace.bounces", "0");
-    const ImageF ptIndirect = subtract(ptFull, renderHdr(s, pt));
-    const auto hits = castPixels(s, 0, kMeasureSize, kMeasureSize, nullptr);
-    const auto interior = interiorPixels(hits, kMeasureSize, kMeasureSize, 2, 0);
+    const GiReference& ref = cornellReference(256);
+    const ImageF& direct = ref.direct();
+    const ImageF& ptFull = ref.ptFull();
+    const ImageF ptIndirect = subtract(ptFull, ref.ptDirect());
     std::printf("PROBES-TABLE psnr none %.2f dB\n", compareImages(direct, ptFull).psnrSrgb);
     for (const char* preset : {"medium", "high"}) halveTheLamp(preset, kMeasureSize, 100);
     struct Case {
@@ -542,8 +556,8 @@ TEST(Probe, MeasureAgainstThePathTracer) {
         const ImageF indirect = subtract(frame, direct);
         std::printf("PROBES-TABLE %s storage=%s visibility=%s: %d updates, PSNR %.2f dB;", c.preset,
                     c.storage ? c.storage : "(preset)", c.visibility, updates, compareImages(frame, ptFull).psnrSrgb);
-        for (const auto& [name, face] : kFaces) {
-            const double ratio = faceMean(indirect, hits, interior, face) / faceMean(ptIndirect, hits, interior, face);
+        for (const auto& [name, face] : kCornellFaces) {
+            const double ratio = ref.regionMean(indirect, face) / ref.regionMean(ptIndirect, face);
             std::printf(" %s %.0f%%", name.c_str(), 100.0 * ratio);
         }
         std::printf("\n");

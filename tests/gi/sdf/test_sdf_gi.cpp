@@ -14,11 +14,12 @@
 
 #include "gi/method.h"
 #include "gi/sdf/sdf_pass.h"
-#include "sdf/sdf_cascades.h"
+#include "volume/volume_cascades.h"
 #include "gl/gl.h"
 #include "metrics.h"
 #include "render_test_util.h"
 #include "../vct/vct_test_util.h"
+#include "gi_reference.h"
 
 namespace gis::test {
 namespace {
@@ -26,15 +27,9 @@ namespace {
 constexpr int kSize = 96;
 constexpr int kSpp = 64;
 
-RenderSettings base(const std::string& gi) {
-    RenderSettings r;
-    r.width = r.height = kSize;
-    r.gi = gi;
-    r.ambient = glm::vec3(0.0f);
-    r.hdr32 = true;
-    if (gi == "pathtrace") setParam(r, "pathtrace.spp", std::to_string(kSpp));
-    return r;
-}
+constexpr ReferenceSpec kSpec{kSize, kSpp, true};
+
+RenderSettings base(const std::string& gi) { return referenceSettings(gi, kSpec); }
 
 void setSdf(RenderSettings& s, const std::string& key, const std::string& text) { setParam(s, "sdf." + key, text); }
 
@@ -86,61 +81,20 @@ SdfImages renderSdf(const Scene& scene, RenderSettings s, int frames = 0) {
     return read(r);
 }
 
-struct Reference {
-    ImageF direct, ptDirect, ptOneBounce, ptFull;
-    std::vector<PixelHit> hits;
-    std::vector<bool> interior;
-};
+// The Cornell references at this file's size and sample count (tests/gi/gi_reference.h).
+const GiReference& reference(const std::string& name) { return giReference(name, kSpec); }
 
-// SDF_REF_CACHE=DIR keeps the path-traced images between runs (tuning by hand).
-const Reference& reference(const std::string& name) {
-    static std::map<std::string, Reference> cache;
-    if (auto it = cache.find(name); it != cache.end()) return it->second;
-    const Scene s = makeBuiltinScene(name);
-    const char* dir = std::getenv("SDF_REF_CACHE");
-    auto render = [&](const std::string& what, const RenderSettings& settings) {
-        const std::string path = dir ? std::string(dir) + "/" + name + "_" + what + "_" + std::to_string(kSize) + ".exr" : "";
-        if (std::FILE* f = dir ? std::fopen(path.c_str(), "rb") : nullptr) {
-            std::fclose(f);
-            return readExr(path);
-        }
-        ImageF img = renderHdr(s, settings);
-        if (dir) writeExr(path, img);
-        return img;
-    };
-    Reference r;
-    r.direct = render("direct", base("none"));
-    RenderSettings pt = base("pathtrace");
-    setParam(pt, "pathtrace.bounces", "0");
-    r.ptDirect = render("pt0", pt);
-    setParam(pt, "pathtrace.bounces", "1");
-    r.ptOneBounce = render("pt1", pt);
-    if (std::getenv("GIS_SDF_MEASURE")) {
-        setParam(pt, "pathtrace.bounces", "16");
-        r.ptFull = render("pt16", pt);
-    }
-    r.hits = castPixels(s, 0, kSize, kSize, nullptr);
-    r.interior = interiorPixels(r.hits, kSize, kSize, 2, 0);
-    return cache.emplace(name, std::move(r)).first->second;
-}
-
-const std::map<std::string, int> kRegions = {{"floor", 0}, {"ceiling", 1}, {"back", 2}, {"red wall", 8}, {"green wall", 16}};
-
-double regionMean(const ImageF& img, const Reference& ref, int region) {
-    return test::regionMean(img, ref.hits, ref.interior, region);
-}
-
-double interiorRmse(const ImageF& a, const ImageF& b, const Reference& r) { return test::interiorRmse(a, b, r.interior); }
+double interiorRmse(const ImageF& a, const ImageF& b, const GiReference& r) { return test::interiorRmse(a, b, r.interior()); }
 
 TEST(SdfGi, CornellIndirectEnergyPerWallAgainstPathTracer) {
-    const Reference& ref = reference("cornell");
-    const ImageF pt = subtract(ref.ptOneBounce, ref.ptDirect);
+    const GiReference& ref = reference("cornell");
+    const ImageF pt = subtract(ref.ptOneBounce(), ref.ptDirect());
     const SdfImages v = renderSdf(makeBuiltinScene("cornell"), base("sdf"));
-    const ImageF indirect = subtract(v.frame, ref.direct);
+    const ImageF indirect = subtract(v.frame, ref.direct());
     ASSERT_TRUE(allFinite(indirect));
     int inBand = 0;
-    for (const auto& [name, region] : kRegions) {
-        const double ours = regionMean(indirect, ref, region), theirs = regionMean(pt, ref, region);
+    for (const auto& [name, region] : kCornellFaces) {
+        const double ours = ref.regionMean(indirect, region), theirs = ref.regionMean(pt, region);
         const double ratio = ours / theirs;
         const bool ok = ratio >= 0.8 && ratio <= 1.2;
         std::printf("SDF-TABLE energy cornell %-10s sdf %.5f pathtrace(1 bounce) %.5f ratio %.0f%% %s\n", name.c_str(),
@@ -152,7 +106,7 @@ TEST(SdfGi, CornellIndirectEnergyPerWallAgainstPathTracer) {
     }
     std::printf("SDF-TABLE energy: %d of 4 (walls, floor) within 80-120%%\n", inBand);
     std::printf("SDF-TABLE psnr cornell medium: %.2f dB sRGB vs 1-bounce path tracer\n",
-                compareImages(v.frame, ref.ptOneBounce).psnrSrgb);
+                compareImages(v.frame, ref.ptOneBounce()).psnrSrgb);
 }
 
 // Cascades forced onto the Cornell box (its front half then lies in finer cascades, the rest is
@@ -160,35 +114,35 @@ TEST(SdfGi, CornellIndirectEnergyPerWallAgainstPathTracer) {
 // same 80-120% band as one volume, and change the image little: the hand-over neither loses nor
 // doubles light.
 TEST(SdfGi, ForcedCascadesKeepTheCornellEnergy) {
-    const Reference& ref = reference("cornell");
-    const ImageF pt = subtract(ref.ptOneBounce, ref.ptDirect);
+    const GiReference& ref = reference("cornell");
+    const ImageF pt = subtract(ref.ptOneBounce(), ref.ptDirect());
     RenderSettings s = base("sdf");
     setSdf(s, "resolution", "32");
     const SdfImages one = renderSdf(makeBuiltinScene("cornell"), s);
     setSdf(s, "cascades", "3");
     const SdfImages three = renderSdf(makeBuiltinScene("cornell"), s);
-    const ImageF a = subtract(one.frame, ref.direct), b = subtract(three.frame, ref.direct);
+    const ImageF a = subtract(one.frame, ref.direct()), b = subtract(three.frame, ref.direct());
     ASSERT_TRUE(allFinite(b));
-    for (const auto& [name, region] : kRegions) {
-        const double mOne = regionMean(a, ref, region), mThree = regionMean(b, ref, region), mPt = regionMean(pt, ref, region);
+    for (const auto& [name, region] : kCornellFaces) {
+        const double mOne = ref.regionMean(a, region), mThree = ref.regionMean(b, region), mPt = ref.regionMean(pt, region);
         std::printf("SDF-TABLE cascades cornell %-10s one volume %.0f%%, three cascades %.0f%% of the path tracer\n",
                     name.c_str(), 100.0 * mOne / mPt, 100.0 * mThree / mPt);
         if (name == "ceiling") continue;
         EXPECT_GE(mThree / mPt, 0.8) << name;
         EXPECT_LE(mThree / mPt, 1.2) << name;
     }
-    const double rel = interiorRmse(b, a, ref) / regionMean(a, ref, 0);
+    const double rel = interiorRmse(b, a, ref) / ref.regionMean(a, 0);
     std::printf("SDF-TABLE cascades cornell: indirect RMSE three cascades vs one = %.3f of the floor's mean\n", rel);
 }
 
 TEST(SdfGi, ColourBleedsFromTheWallsOntoTheFloor) {
-    const Reference& ref = reference("cornell");
+    const GiReference& ref = reference("cornell");
     const SdfImages v = renderSdf(makeBuiltinScene("cornell"), base("sdf"));
     double red[2] = {0, 0}, green[2] = {0, 0};
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {
             const int i = y * kSize + x;
-            if (!ref.interior[i] || ref.hits[i].region != kRegions.at("floor")) continue;
+            if (!ref.interior()[i] || ref.hits()[i].region != kCornellFaces.at("floor")) continue;
             const int side = x < kSize / 4 ? 0 : x >= 3 * kSize / 4 ? 1 : -1;
             if (side < 0) continue;
             red[side] += v.indirect.at(x, y)[0];
@@ -270,7 +224,7 @@ TEST(SdfGi, CascadesFollowTheCameraAndRebuildOnlyWhatMoved) {
     setSdf(s, "rays", "1");
     Renderer r(scene, s);
     const SdfGiPass& pass = sdfPass(r);
-    const SdfCascadeLayout& layout = pass.layout();
+    const CascadeLayout& layout = pass.layout();
     const int count = pass.cascadeCount();
     ASSERT_GT(count, 1);
     // In the courtyard, a fifth of the way up.
@@ -488,7 +442,7 @@ TEST(SdfGi, Extremes) {
         const SdfImages v = renderSdf(slab, s, 2);
         EXPECT_TRUE(allFinite(v.frame) && allFinite(v.diffuse) && allFinite(v.specular));
     }
-    const Reference& ref = reference("cornell");
+    const GiReference& ref = reference("cornell");
     const SdfImages unit = renderSdf(scaledScene(makeBuiltinScene("cornell"), 1.0f), s);
     for (float scale : {1e-3f, 1e3f}) {
         // sdf.cascade-extent is in world units: it scales with the scene (one volume at every scale).
@@ -496,7 +450,7 @@ TEST(SdfGi, Extremes) {
         setSdf(scaled, "cascade-extent", std::to_string(8.0f * scale));
         const SdfImages v = renderSdf(scaledScene(makeBuiltinScene("cornell"), scale), scaled);
         ASSERT_TRUE(allFinite(v.indirect));
-        const double rel = interiorRmse(v.indirect, unit.indirect, ref) / regionMean(unit.indirect, ref, 0);
+        const double rel = interiorRmse(v.indirect, unit.indirect, ref) / ref.regionMean(unit.indirect, 0);
         std::printf("SDF-TABLE scale %g: indirect RMSE vs x1 = %.4f of the floor's mean\n", scale, rel);
         EXPECT_LT(rel, 0.02) << "scale " << scale;
     }
@@ -587,8 +541,8 @@ TEST(SdfGi, BadParametersAreOneClearError) {
 // Error against the path tracer's one-bounce indirect falls with rays per pixel (one frame, no
 // temporal or spatial filtering: the noise) and with the field's resolution (converged: the bias).
 TEST(SdfGi, ErrorFallsWithRaysAndResolution) {
-    const Reference& ref = reference("cornell");
-    const ImageF pt = subtract(ref.ptOneBounce, ref.ptDirect);
+    const GiReference& ref = reference("cornell");
+    const ImageF pt = subtract(ref.ptOneBounce(), ref.ptDirect());
     const Scene scene = makeBuiltinScene("cornell");
     double previous = 1e30;
     for (int rays : {1, 4, 16}) {
@@ -597,7 +551,7 @@ TEST(SdfGi, ErrorFallsWithRaysAndResolution) {
         setSdf(r, "rays", std::to_string(rays));
         setSdf(r, "temporal", "0");
         setSdf(r, "filter-radius", "0");
-        const double e = interiorRmse(subtract(renderSdf(scene, r, 1).frame, ref.direct), pt, ref);
+        const double e = interiorRmse(subtract(renderSdf(scene, r, 1).frame, ref.direct()), pt, ref);
         std::printf("SDF-TABLE error 32^3 %2d rays, one frame unfiltered: indirect RMSE %.5f\n", rays, e);
         EXPECT_LT(e, previous) << rays << " rays";
         previous = e;
@@ -606,19 +560,19 @@ TEST(SdfGi, ErrorFallsWithRaysAndResolution) {
     for (int res : {16, 32, 64}) {
         RenderSettings r = base("sdf");
         setSdf(r, "resolution", std::to_string(res));
-        const double e = interiorRmse(subtract(renderSdf(scene, r).frame, ref.direct), pt, ref);
+        const double e = interiorRmse(subtract(renderSdf(scene, r).frame, ref.direct()), pt, ref);
         std::printf("SDF-TABLE error %d^3 converged: indirect RMSE %.5f\n", res, e);
         EXPECT_LT(e, previous) << res << "^3";
         previous = e;
     }
 }
 
-// The README's table (GIS_SDF_MEASURE=1: the high preset is 128^3 and slow on llvmpipe): PSNR
+// The README's table (GIS_MEASURE=sdf: the high preset is 128^3 and slow on llvmpipe): PSNR
 // against the path tracer per preset, error against rays and resolution, timings per step.
 TEST(SdfGi, MeasurePresets) {
-    if (!std::getenv("GIS_SDF_MEASURE")) GTEST_SKIP() << "set GIS_SDF_MEASURE=1 to measure";
-    const Reference& ref = reference("cornell");
-    const ImageF pt = subtract(ref.ptOneBounce, ref.ptDirect);
+    if (!measuring("sdf")) GTEST_SKIP() << "set GIS_MEASURE=sdf to measure";
+    const GiReference& ref = reference("cornell");
+    const ImageF pt = subtract(ref.ptOneBounce(), ref.ptDirect());
     for (const char* preset : {"low", "medium", "high"}) {
         RenderSettings r = base("sdf");
         applyPreset(r, "sdf", preset);
@@ -627,7 +581,7 @@ TEST(SdfGi, MeasurePresets) {
         r.hdr32 = true;
         const SdfImages v = renderSdf(makeBuiltinScene("cornell"), r);
         std::printf("SDF-TABLE preset %-6s psnr %.2f dB sRGB vs 1-bounce, %.2f dB vs 16-bounce;", preset,
-                    compareImages(v.frame, ref.ptOneBounce).psnrSrgb, compareImages(v.frame, ref.ptFull).psnrSrgb);
+                    compareImages(v.frame, ref.ptOneBounce()).psnrSrgb, compareImages(v.frame, ref.ptFull()).psnrSrgb);
         for (const auto& [step, ms] : v.stepMs) std::printf(" %s %.1f ms", step.c_str(), ms);
         std::printf("\n");
     }
@@ -635,10 +589,10 @@ TEST(SdfGi, MeasurePresets) {
         RenderSettings r = base("sdf");
         setSdf(r, "bounces", std::to_string(bounces));
         const SdfImages v = renderSdf(makeBuiltinScene("cornell"), r);
-        const ImageF ours = subtract(v.frame, ref.direct), full = subtract(ref.ptFull, ref.ptDirect);
-        std::printf("SDF-TABLE bounces %d: psnr %.2f dB vs 16-bounce;", bounces, compareImages(v.frame, ref.ptFull).psnrSrgb);
-        for (const auto& [name, region] : kRegions)
-            std::printf(" %s %.0f%%", name.c_str(), 100.0 * regionMean(ours, ref, region) / regionMean(full, ref, region));
+        const ImageF ours = subtract(v.frame, ref.direct()), full = subtract(ref.ptFull(), ref.ptDirect());
+        std::printf("SDF-TABLE bounces %d: psnr %.2f dB vs 16-bounce;", bounces, compareImages(v.frame, ref.ptFull()).psnrSrgb);
+        for (const auto& [name, region] : kCornellFaces)
+            std::printf(" %s %.0f%%", name.c_str(), 100.0 * ref.regionMean(ours, region) / ref.regionMean(full, region));
         std::printf(" of the 16-bounce indirect\n");
     }
 }

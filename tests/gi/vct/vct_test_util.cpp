@@ -33,9 +33,9 @@ VctImages renderVct(const Scene& scene, RenderSettings settings, int frames) {
     out.diffuse = readTextureFloat(renderer.frameTexture("indirect.diffuse"), w, h);
     out.specular = readTextureFloat(renderer.frameTexture("indirect.specular"), w, h);
     out.resolution = pass->rebuildSettings().resolution;
-    out.radiance = readVoxelsRgba16f(pass->voxelRadiance().radiance());
-    out.albedo = readVoxelsRgba8(pass->voxelizer().grid().albedo);
-    out.normal = readVoxelsRgba8(pass->voxelizer().grid().normal);
+    out.radiance = readVoxelsRgba16f(pass->volume().radiance().radiance());
+    out.albedo = readVoxelsRgba8(pass->volume().grid().albedo);
+    out.normal = readVoxelsRgba8(pass->volume().grid().normal);
     // The base colour target is sRGB8: read back, its values are the encoded ones.
     const ImageF base = readTextureFloat(renderer.frameTexture("gbuffer.baseColor"), w, h);
     const ImageF material = readTextureFloat(renderer.frameTexture("gbuffer.material"), w, h);
@@ -46,20 +46,6 @@ VctImages renderVct(const Scene& scene, RenderSettings settings, int frames) {
                 out.indirect.at(x, y)[c] =
                     srgbToLinear(base.at(x, y)[c]) * (1.0f - material.at(x, y)[0]) * out.diffuse.at(x, y)[c];
     return out;
-}
-
-ImageF add(const ImageF& a, const ImageF& b) {
-    ImageF r = a;
-    for (size_t i = 0; i < r.rgba.size(); ++i)
-        if (i % 4 != 3) r.rgba[i] += b.rgba[i];
-    return r;
-}
-
-ImageF subtract(const ImageF& a, const ImageF& b) {
-    ImageF r = a;
-    for (size_t i = 0; i < r.rgba.size(); ++i)
-        if (i % 4 != 3) r.rgba[i] -= b.rgba[i];
-    return r;
 }
 
 }  // namespace gis::test

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gi/vct/vct_pass.h"
+#include "gi_reference.h"
 #include "image.h"
 #include "renderer.h"
 
@@ -31,7 +32,5 @@ void setVct(RenderSettings& s, const std::string& key, const std::string& text);
 
 
 
-ImageF add(const ImageF& a, const ImageF& b);
-ImageF subtract(const ImageF& a, const ImageF& b);
 
 }  // namespace gis::test
