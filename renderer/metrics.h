@@ -1,7 +1,7 @@
 // Image error metrics on the CPU: a test image against a reference (the path tracer's, Cycles').
 // Inputs are gis::ImageF, RGBA float, rows top to bottom; alpha is ignored everywhere.
 //
-// Conventions (README.md, "Metrics", says the same):
+// Conventions (docs/metrics.md says the same):
 //  - RMSE      sqrt(mean over pixels and R, G, B of (t - r)^2), on linear radiance.
 //  - relMSE    mean over pixels and R, G, B of (t - r)^2 / (r^2 + eps), eps = 1e-2, on linear
 //              radiance (per channel, reference in the denominator).

@@ -13,7 +13,7 @@ PACKAGES=(
   libglm-dev libimgui-dev libtinygltf-dev libstb-dev libtinyexr-dev libcli11-dev nlohmann-json3-dev libembree-dev
   # SHA-256 for bench content ids (libcrypto)
   libssl-dev
-  # bench sweeps over local cores or machines (README, Benchmark)
+  # bench sweeps over local cores or machines (docs/bench.md)
   parallel
   # tests (xvfb: the GLFW window backend runs under a virtual X server)
   libgtest-dev xvfb xauth

@@ -1,4 +1,4 @@
-// What a new user meets first (issue "scenes that test GI ..., a newcomer's defects"): a glTF file
+// What a new user meets first: a glTF file
 // without lights or cameras, camera flags, and the messages of the mistakes everyone makes once.
 // Each case failed before its fix.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Hostile input that used to hang or load silently (issue #16): loading cost linear in the number
+// Hostile input that used to hang or load silently (the first hardening round): loading cost linear in the number
 // of JSON elements, no blocking on a FIFO, and values the glTF spec forbids refused by name.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -154,7 +154,7 @@ TEST(Hardening, LightColorTimesIntensityOverflowRefused) {
     EXPECT_EQ(b.load().lights.size(), 1u);  // 3e38 itself is finite
 }
 
-// Messages that used to name nothing (issue #16, item 12): each names the element and the
+// Messages that used to name nothing: each names the element and the
 // problem in one short line.
 TEST(Hardening, BufferAndSchemaMessagesNameTheElement) {
     struct Case {
