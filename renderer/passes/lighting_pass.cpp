@@ -37,12 +37,13 @@ struct LightingVariant {
     ShadowKinds kinds = kBothKinds;
     unsigned diffuseModels = kAllModels, specularModels = kAllModels;
     bool ao = true, indirectDiffuse = true, indirectSpecular = true;
+    bool emitterDirect = true;  // "emitters.direct" (renderer/emitters/)
 
     std::string name() const {
         static const char* kindNames[] = {"-cubes", "-maps", ""};
         return std::string(uniformBlock ? "lighting" : "lighting-many-lights") + kindNames[kinds] + "-d" +
                std::to_string(diffuseModels) + "s" + std::to_string(specularModels) + (ao ? "-ao" : "") +
-               (indirectDiffuse ? "-id" : "") + (indirectSpecular ? "-is" : "");
+               (indirectDiffuse ? "-id" : "") + (indirectSpecular ? "-is" : "") + (emitterDirect ? "-em" : "");
     }
     ProgramDesc program() const {
         auto flag = [](bool b) { return std::string(b ? "1" : "0"); };
@@ -54,7 +55,8 @@ struct LightingVariant {
                        {"BRDF_SPECULAR_MODELS", std::to_string(specularModels)},
                        {"AO_INPUT", flag(ao)},
                        {"INDIRECT_DIFFUSE", flag(indirectDiffuse)},
-                       {"INDIRECT_SPECULAR", flag(indirectSpecular)}}};
+                       {"INDIRECT_SPECULAR", flag(indirectSpecular)},
+                       {"EMITTER_DIRECT", flag(emitterDirect)}}};
         if (uniformBlock) d.defines.push_back({"LIGHTS_UNIFORM_BLOCK_CAPACITY", std::to_string(kUniformBlockLights)});
         return d;
     }
@@ -83,7 +85,7 @@ std::vector<ProgramDesc> LightingPass::programs() {
             all.push_back(v.program());
         }
     LightingVariant none;
-    none.ao = none.indirectDiffuse = none.indirectSpecular = false;
+    none.ao = none.indirectDiffuse = none.indirectSpecular = none.emitterDirect = false;
     all.push_back(none.program());
     return all;
 }
@@ -92,7 +94,8 @@ LightingPass::LightingPass(int width, int height, bool hdr32, const std::set<std
                            gl::MemoryLedger& ledger)
     : hasAo_(produced.count("ao") > 0),
       hasDiffuse_(produced.count("indirect.diffuse") > 0),
-      hasSpecular_(produced.count("indirect.specular") > 0) {
+      hasSpecular_(produced.count("indirect.specular") > 0),
+      hasEmitters_(produced.count("emitters.direct") > 0) {
     radiance_ = gl::createTexture2D({&ledger, name()}, hdr32 ? GL_RGBA32F : GL_RGBA16F, width, height);
     unit_ = gl::createTexture2D({&ledger, name()}, GL_RG16F, 1, 1);  // samplers stay valid; ao reads 1
     const float one[2] = {1.0f, 0.0f};
@@ -111,6 +114,7 @@ GLuint LightingPass::programFor(const Frame& frame) {
     v.ao = hasAo_;
     v.indirectDiffuse = hasDiffuse_;
     v.indirectSpecular = hasSpecular_;
+    v.emitterDirect = hasEmitters_;
     gl::Object& program = programs_[v.name()];
     if (!program.id()) program = buildProgram(v.program());
     return program.id();
@@ -122,6 +126,7 @@ std::vector<std::string> LightingPass::inputs() const {
     if (hasAo_) in.push_back("ao");
     if (hasDiffuse_) in.push_back("indirect.diffuse");
     if (hasSpecular_) in.push_back("indirect.specular");
+    if (hasEmitters_) in.push_back("emitters.direct");
     return in;
 }
 
@@ -133,7 +138,7 @@ void LightingPass::execute(Frame& frame) {
     glDisable(GL_DEPTH_TEST);
     glUseProgram(p);
     glBindVertexArray(vao_.id());
-    const GLuint textures[10] = {frame.texture("gbuffer.depth"),
+    const GLuint textures[11] = {frame.texture("gbuffer.depth"),
                                  frame.texture("gbuffer.baseColor"),
                                  frame.texture("gbuffer.normal"),
                                  frame.texture("gbuffer.material"),
@@ -142,9 +147,10 @@ void LightingPass::execute(Frame& frame) {
                                  frame.texture("shadow.cubes"),
                                  hasAo_ ? frame.texture("ao") : unit_.id(),
                                  hasDiffuse_ ? frame.texture("indirect.diffuse") : unit_.id(),
-                                 hasSpecular_ ? frame.texture("indirect.specular") : unit_.id()};
-    glBindTextures(0, 10, textures);
-    glBindSamplers(0, 10, nullptr);
+                                 hasSpecular_ ? frame.texture("indirect.specular") : unit_.id(),
+                                 hasEmitters_ ? frame.texture("emitters.direct") : unit_.id()};
+    glBindTextures(0, 11, textures);
+    glBindSamplers(0, 11, nullptr);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame.buffer("lights"));
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, frame.buffer("lights"));
     glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "emitters/emitter_lights.h"
 #include "voxel/voxel_uniforms.h"
 
 namespace gis {
@@ -43,7 +44,8 @@ int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces) {
 std::vector<ProgramDesc> VoxelRadiance::programs() {
     return {{"voxel_inject", {"voxel/inject.comp"}, {}},
             {"voxel_mip", {"voxel/voxel_mip.comp"}, {}},
-            {"voxel_bounce", {"voxel/bounce.comp"}, {}}};
+            {"voxel_bounce", {"voxel/bounce.comp"}, {}},
+            {"voxel_inject_emitters", {"voxel/inject.comp"}, {{"EMITTER_LIGHT", "1"}}}};
 }
 
 VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::MemoryScope& scope, bool cullBackfaces)
@@ -64,7 +66,13 @@ VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::Mem
 }
 
 void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
-    const GLuint p = injectProgram_.id();
+    const bool emitterLight = lights.emitters && lights.emitters->emitterCount > 0 && lights.emitterSamples > 0;
+    if (emitterLight && !emitterInjectProgram_.id()) emitterInjectProgram_ = buildProgram(programs()[3]);
+    const GLuint p = emitterLight ? emitterInjectProgram_.id() : injectProgram_.id();
+    if (emitterLight) {
+        lights.emitters->bind(7);  // inject.comp's RAY_SCENE_TEXTURE_UNIT; SSBOs 1-5 (0: the frame's lights, below)
+        glProgramUniform2i(p, UV_EMITTER_SAMPLES, int(lights.emitters->emitterCount), lights.emitterSamples);
+    }
     const int n = radiance_.width;
     const glm::mat4 voxelToWorld = grid.fit.voxelToWorldMatrix();
     glUseProgram(p);
@@ -73,6 +81,7 @@ void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
     glProgramUniform1f(p, UV_VOXEL_SIZE, grid.fit.voxelSize());
     glProgramUniform1i(p, UV_LIGHT_COUNT, lights.buffer ? lights.count : 0);
     glProgramUniform1i(p, UV_SHADOWS_ENABLED, lights.shadows ? 1 : 0);
+    glProgramUniform1f(p, UV_EMISSION_WEIGHT, lights.emission);
     const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), grid.emission.id()};
     glBindTextures(0, 3, textures);
     glBindSamplers(0, 7, nullptr);
@@ -163,6 +172,12 @@ void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radia
     lights.shadowCubes = frame.texture("shadow.cubes");
     lights.count = int(frame.scene.cpu.lights.size());
     lights.shadows = frame.settings.shadows;
+    const EmitterLightSettings emitters = emitterLightSettings(frame.settings);
+    lights.emission = EmitterMode(emitters.mode) == EmitterMode::Gi ? 1.0f : 0.0f;
+    if (EmitterMode(emitters.mode) == EmitterMode::Lights && sceneHasEmitters(frame.scene.cpu)) {
+        lights.emitters = &frame.services.rays();
+        lights.emitterSamples = emitters.volumeSamples;
+    }
     auto t = frame.step(prefix + "inject");
     radiance.inject(grid, lights);
 }

@@ -1,0 +1,88 @@
+// The measured tables of renderer/emitters/README.md, on the reference Cornell box lit by its
+// emitter (shared/assets/reference/scenes/cornell_box, Cycles' refs/cornell_box, 256x256). Slow on
+// llvmpipe, so not in the default run:
+//   build/tests/gis_emitter_tests --gtest_also_run_disabled_tests --gtest_filter='*Table*'
+// Each prints its rows and one `NAME-TABLE` line per row for the README.
+#include <cstdio>
+#include <map>
+
+#include "metrics.h"
+#include "render_test_util.h"
+
+namespace gis::test {
+namespace {
+
+constexpr int kSize = 256;
+
+std::string sharedPath(const std::string& rel) { return std::string(GIS_SHARED_DIR) + "/assets/reference/" + rel; }
+
+RenderSettings cornellSettings(const std::string& gi, const std::string& mode) {
+    RenderSettings r;
+    r.width = r.height = kSize;
+    r.gi = gi;
+    setParam(r, "emitters.mode", mode);
+    return r;
+}
+
+// --gi none with the emitter as a light: each face's mean direct light against Cycles' direct pass.
+TEST(EmitterTables, DISABLED_CornellBoxDirectLightPerFace) {
+    const Scene scene = loadScene(sharedPath("scenes/cornell_box/cornell_box.gltf"));
+    const ImageF ref = readExr(sharedPath("refs/cornell_box/direct.exr"));
+    RenderSettings r = cornellSettings("none", "lights");
+    r.ambient = glm::vec3(0.0f);
+    const ImageF img = renderHdr(scene, r);
+    const std::vector<PixelHit> hits = castPixels(scene, 0, kSize, kSize, nullptr);
+    const std::vector<bool> keep = interiorPixels(hits, kSize, kSize, 1, 0);
+    std::map<int, int> pixels;
+    for (size_t i = 0; i < hits.size(); ++i)
+        if (hits[i].region >= 0 && keep[i]) ++pixels[hits[i].region];
+    double worst = 0.0;
+    int compared = 0;
+    for (const auto& [region, n] : pixels) {
+        if (n < 30) continue;
+        const double ours = regionMean(img, hits, keep, region), cycles = regionMean(ref, hits, keep, region);
+        if (cycles < 1e-3) continue;  // unlit
+        const double err = (ours - cycles) / cycles;
+        worst = std::max(worst, std::abs(err));
+        ++compared;
+        std::printf("CORNELL-DIRECT-TABLE | %d/%d | %d | %.5f | %.5f | %+.2f%% |\n", region / 8, region % 8, n, ours,
+                    cycles, 100.0 * err);
+    }
+    std::printf("CORNELL-DIRECT-TABLE | worst | | | | %.2f%% |\n", 100.0 * worst);
+    EXPECT_GE(compared, 6);
+    EXPECT_LT(worst, 0.03);  // the goal
+}
+
+// Every method's PSNR (sRGB) against Cycles' full image, with the emitters as lights and with them
+// only in the GI (the default settings of each method).
+TEST(EmitterTables, DISABLED_CornellBoxPsnrLightsVsGi) {
+    const Scene scene = loadScene(sharedPath("scenes/cornell_box/cornell_box.gltf"));
+    const ImageF ref = readExr(sharedPath("refs/cornell_box/full.exr"));
+    for (const char* gi : {"none", "ssao", "vct", "sdf", "probes"}) {
+        double psnr[2] = {};
+        for (int m = 0; m < 2; ++m) {
+            const ImageF img = renderHdr(scene, cornellSettings(gi, m == 0 ? "gi" : "lights"));
+            psnr[m] = compareImages(img, ref).psnrSrgb;
+        }
+        std::printf("CORNELL-PSNR-TABLE | %s | %.2f | %.2f | %+.2f |\n", gi, psnr[0], psnr[1], psnr[1] - psnr[0]);
+    }
+}
+
+// ReSTIR's GPU time per frame at 256x256 (median of 16 frames after 4), biased and unbiased.
+TEST(EmitterTables, DISABLED_RestirCostPerFrame) {
+    const Scene scene = loadScene(sharedPath("scenes/cornell_box/cornell_box.gltf"));
+    context();
+    for (const char* unbiased : {"false", "true"}) {
+        RenderSettings r = cornellSettings("none", "lights");
+        setParam(r, "emitters.unbiased", unbiased);
+        setParam(r, "emitters.accumulate", "0");
+        Renderer renderer(scene, r);
+        for (int i = 0; i < 20; ++i) renderer.renderFrame();
+        for (const PassTiming& t : renderer.timings(4))
+            if (t.pass.rfind("emitters", 0) == 0)
+                std::printf("RESTIR-COST-TABLE | unbiased=%s | %s | %.2f ms |\n", unbiased, t.pass.c_str(), t.medianMs);
+    }
+}
+
+}  // namespace
+}  // namespace gis::test
