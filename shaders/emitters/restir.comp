@@ -143,8 +143,11 @@ float targetAt(Surface s, Reservoir r) {
     return luminance(contribution(s, emitterPoint(r.triangle, r.b, s.P), L, dist));
 }
 
+// A ray from a G-buffer position: reconstructed from depth, it may lie a few depth-buffer steps
+// behind its surface, a distance that grows with the distance to the camera; so the origin first
+// moves off by a small fraction of that distance, then by offsetRayOrigin's few ulps.
 bool visible(vec3 P, vec3 N, vec3 target) {
-    vec3 origin = offsetRayOrigin(P, N);
+    vec3 origin = offsetRayOrigin(P + N * (2e-4 * length(u_cameraPos - P)), N);
     vec3 d = target - origin;
     float dist = length(d);
     if (!(dist > 0.0)) return false;
