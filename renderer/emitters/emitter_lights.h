@@ -26,7 +26,7 @@ enum class EmitterMode {
 };
 
 struct EmitterLightSettings {
-    int mode = int(EmitterMode::Gi);
+    int mode = int(EmitterMode::Lights);  // measured: every method closer to Cycles than with gi (README)
     int candidates = 8;       // M: initial candidates per pixel
     bool temporal = true;     // reuse the reprojected reservoir of the last frame
     int spatial = 3;          // k: neighbours reused
