@@ -340,7 +340,7 @@ TEST(EmitterLights, ParametersAreOneListedTable) {
     EXPECT_THROW(setParam(s, "emitters.mode", "sometimes"), Error);
     // The mode rebuilds (passes differ); the reuse parameters are live.
     RenderSettings other = s;
-    setParam(other, "emitters.mode", "lights");
+    setParam(other, "emitters.mode", "gi");  // the default is lights
     EXPECT_TRUE(requiresRebuild(s, other));
     other = s;
     setParam(other, "emitters.spatial", "5");
