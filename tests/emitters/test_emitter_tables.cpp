@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <map>
 
+#include "gi/method.h"
 #include "metrics.h"
 #include "render_test_util.h"
 
@@ -65,6 +66,21 @@ TEST(EmitterTables, DISABLED_CornellBoxPsnrLightsVsGi) {
             psnr[m] = compareImages(img, ref).psnrSrgb;
         }
         std::printf("CORNELL-PSNR-TABLE | %s | %.2f | %.2f | %+.2f |\n", gi, psnr[0], psnr[1], psnr[1] - psnr[0]);
+    }
+}
+
+// The same at the voxel methods' high presets (the goals: probes >= 30, vct >= 26, sdf >= 24 dB).
+TEST(EmitterTables, DISABLED_CornellBoxPsnrHighPresets) {
+    const Scene scene = loadScene(sharedPath("scenes/cornell_box/cornell_box.gltf"));
+    const ImageF ref = readExr(sharedPath("refs/cornell_box/full.exr"));
+    for (const char* gi : {"vct", "sdf", "probes"}) {
+        double psnr[2] = {};
+        for (int m = 0; m < 2; ++m) {
+            RenderSettings r = cornellSettings(gi, m == 0 ? "gi" : "lights");
+            applyPreset(r, gi, "high");
+            psnr[m] = compareImages(renderHdr(scene, r), ref).psnrSrgb;
+        }
+        std::printf("CORNELL-PSNR-HIGH-TABLE | %s | %.2f | %.2f | %+.2f |\n", gi, psnr[0], psnr[1], psnr[1] - psnr[0]);
     }
 }
 
