@@ -84,6 +84,32 @@ TEST(EmitterTables, DISABLED_CornellBoxPsnrHighPresets) {
     }
 }
 
+// The closed room lit by its emissive panel, where bounce light is most of the image: each
+// method's mean radiance over the path tracer's (64 bounces, 256 spp), 64x64 (the goal:
+// 85-115%).
+TEST(EmitterTables, DISABLED_PanelRoomEnergy) {
+    const Scene scene = makeBuiltinScene("room?lamp=panel");
+    auto mean = [](const ImageF& img) {
+        double sum = 0;
+        for (size_t i = 0; i < img.rgba.size(); i += 4)
+            if (img.rgba[i] < 10.0f) sum += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2];  // not the panel
+        return sum / (3.0 * double(img.rgba.size() / 4));
+    };
+    RenderSettings pt = cornellSettings("pathtrace", "lights");
+    pt.width = pt.height = 64;
+    pt.samplesPerFrame = 16;
+    setParam(pt, "pathtrace.spp", "256");
+    setParam(pt, "pathtrace.bounces", "64");
+    const double truth = mean(renderHdr(scene, pt));
+    for (const char* mode : {"lights", "gi"})
+        for (const char* gi : {"none", "vct", "sdf", "probes"}) {
+            RenderSettings r = cornellSettings(gi, mode);
+            r.width = r.height = 64;
+            const double m = mean(renderHdr(scene, r));
+            std::printf("PANEL-ROOM-TABLE | %s | %s | %.4f | %.4f | %.2f |\n", mode, gi, m, truth, m / truth);
+        }
+}
+
 // ReSTIR's GPU time per frame at 256x256 (median of 16 frames after 4), biased and unbiased.
 TEST(EmitterTables, DISABLED_RestirCostPerFrame) {
     const Scene scene = loadScene(sharedPath("scenes/cornell_box/cornell_box.gltf"));
