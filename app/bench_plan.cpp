@@ -234,6 +234,7 @@ ojson jobToJson(const BenchJob& job) {
     j["camera_pos"] = job.setup.cameraPos;
     j["look_at"] = job.setup.lookAt;
     j["fov"] = job.setup.fov;
+    if (!job.setup.emitters.empty()) j["emitters"] = job.setup.emitters;
     j["ambient"] = job.ambient;
     j["background"] = job.background;
     j["reference_spp"] = job.referenceSpp;
@@ -263,6 +264,7 @@ BenchJob jobFromJson(const nlohmann::json& j) {
         job.setup.cameraPos = j.at("camera_pos").get<std::vector<float>>();
         job.setup.lookAt = j.at("look_at").get<std::vector<float>>();
         job.setup.fov = j.at("fov").get<float>();
+        job.setup.emitters = j.value("emitters", std::string());
         job.ambient = j.at("ambient").get<std::vector<float>>();
         job.background = j.at("background").get<std::vector<float>>();
         job.referenceSpp = j.at("reference_spp").get<int>();

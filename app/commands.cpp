@@ -239,7 +239,8 @@ int runRender(const RenderOptions& o) {
     if (!listViews) checkWritable(o.out, "--out");
     // A parameter of another method than the one rendered does nothing: say so.
     for (const auto& [key, value] : s.params)
-        if (key.rfind(s.gi + ".", 0) != 0 && !(viewSettings && key == roleParamKey(MethodRole::Reference, "bounces")))
+        if (key.rfind(s.gi + ".", 0) != 0 && !isGroupParam(key) &&
+            !(viewSettings && key == roleParamKey(MethodRole::Reference, "bounces")))
             std::fprintf(stderr, "gisandbox: warning: %s is a parameter of another method than --gi %s: ignored\n",
                          key.c_str(), s.gi.c_str());
 
@@ -408,6 +409,8 @@ int runMethods(const MethodsOptions& o) {
     std::vector<const GiMethod*> list;
     if (o.method.empty())
         for (const GiMethod& m : giMethods()) list.push_back(&m);
+    else if (!findGiMethod(o.method) && isGroupParam(o.method + "."))
+        ;  // a shared table's name: only its rows below
     else
         list.push_back(&giMethod(o.method));
     for (const GiMethod* m : list) {
@@ -416,6 +419,19 @@ int runMethods(const MethodsOptions& o) {
         for (const GiPreset& p : m->presets) e["presets"][p.name] = p.description;
         for (const ParamDesc& d : m->params)
             e["params"].push_back({{"key", m->name + "." + d.key}, {"type", paramTypeName(d.type)},
+                                   {"range", describeParamRange(d)}, {"default", formatParamValue(d, d.defaultValue)},
+                                   {"update", d.update == ParamUpdate::Live ? "live" : "rebuild"},
+                                   {"alias", d.alias}, {"label", d.label}, {"help", d.help}});
+        j.push_back(e);
+    }
+    // The shared tables (the emitter lights): listed with every method, or by their own name.
+    std::vector<const ParamGroup*> groups;
+    for (const ParamGroup& g : paramGroups())
+        if (o.method.empty() || o.method == g.name) groups.push_back(&g);
+    for (const ParamGroup* g : groups) {
+        nlohmann::ordered_json e{{"name", g->name}, {"summary", g->summary}, {"pipeline", "shared"}};
+        for (const ParamDesc& d : g->params)
+            e["params"].push_back({{"key", g->name + "." + d.key}, {"type", paramTypeName(d.type)},
                                    {"range", describeParamRange(d)}, {"default", formatParamValue(d, d.defaultValue)},
                                    {"update", d.update == ParamUpdate::Live ? "live" : "rebuild"},
                                    {"alias", d.alias}, {"label", d.label}, {"help", d.help}});
@@ -435,6 +451,13 @@ int runMethods(const MethodsOptions& o) {
                         paramTypeName(d.type), describeParamRange(d).c_str(), formatParamValue(d, d.defaultValue).c_str(),
                         d.update == ParamUpdate::Live ? "live" : "rebuild", d.help.c_str(),
                         d.alias.empty() ? "" : (" (alias " + d.alias + ")").c_str());
+    }
+    for (const ParamGroup* g : groups) {
+        std::printf("%-13s %s (shared by every method)\n", g->name.c_str(), g->summary.c_str());
+        for (const ParamDesc& d : g->params)
+            std::printf("  %-26s %-6s %-24s default %-10s %-7s %s\n", (g->name + "." + d.key).c_str(),
+                        paramTypeName(d.type), describeParamRange(d).c_str(), formatParamValue(d, d.defaultValue).c_str(),
+                        d.update == ParamUpdate::Live ? "live" : "rebuild", d.help.c_str());
     }
     if (o.method.empty()) std::printf("\n`gisandbox methods NAME` lists a method's parameters and presets.\n");
     return 0;

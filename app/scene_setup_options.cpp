@@ -16,6 +16,9 @@ void addSceneSetupOptions(CLI::App& cmd, SceneSetupOptions& o) {
     cmd.add_option("--camera-pos", o.cameraPos, "Camera position X,Y,Z (with --look-at)")->delimiter(',')->expected(3);
     cmd.add_option("--look-at", o.lookAt, "Point the camera looks at X,Y,Z (with --camera-pos)")->delimiter(',')->expected(3);
     cmd.add_option("--fov", o.fov, "Vertical field of view in degrees, with --camera-pos")->capture_default_str();
+    cmd.add_option("--emitters", o.emitters,
+                   "How emissive surfaces light the scene: lights (direct light by ReSTIR, the GI volume without "
+                   "emission), gi (only through the GI method), off (only the visible emission); sets emitters.mode");
 }
 
 CameraRequest cameraRequest(const SceneSetupOptions& o) {
@@ -44,6 +47,7 @@ CameraRequest cameraRequest(const SceneSetupOptions& o) {
 }
 
 int prepareScene(Scene& scene, const SceneSetupOptions& o, float aspect, RenderSettings* settings, bool ambientGiven) {
+    if (settings && !o.emitters.empty()) setParam(*settings, "emitters.mode", o.emitters);
     const LightingMode mode = parseLightingMode(o.lighting);
     if (applyLighting(scene, mode)) {
         std::fprintf(stderr,

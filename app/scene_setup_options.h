@@ -17,6 +17,7 @@ struct SceneSetupOptions {
     std::string camera;                     // "" (the file's first, else auto), N or "auto"
     std::vector<float> cameraPos, lookAt;
     float fov = 40.0f;
+    std::string emitters;                   // "" (emitters.mode's default), lights, gi or off
 };
 
 void addSceneSetupOptions(CLI::App& cmd, SceneSetupOptions& o);
@@ -24,7 +25,8 @@ void addSceneSetupOptions(CLI::App& cmd, SceneSetupOptions& o);
 CameraRequest cameraRequest(const SceneSetupOptions& o);
 // Applies lighting and camera to a loaded scene; returns the camera index to render from. When the
 // default sun and sky are added it says so on stderr once, and, unless the user set --ambient,
-// makes the constant ambient the sky's radiance, so every method sees the same sky.
+// makes the constant ambient the sky's radiance, so every method sees the same sky. --emitters
+// sets emitters.mode in `settings`.
 int prepareScene(Scene& scene, const SceneSetupOptions& o, float aspect, RenderSettings* settings, bool ambientGiven);
 
 }  // namespace gis

@@ -249,6 +249,11 @@ int ViewApp::run() {
         throw Error(session_->lastError());
     }
     scenePath_ = state_.scene;
+    if (!options_.setup.emitters.empty()) {  // --emitters: emitters.mode of every pane
+        RenderSettings parsed;
+        setParam(parsed, "emitters.mode", options_.setup.emitters);
+        for (PaneState& pane : state_.panes) pane.params["emitters.mode"] = parsed.params["emitters.mode"];
+    }
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();

@@ -24,6 +24,10 @@ constexpr char kAo[] = "ao";                               // R: ambient occlusi
 constexpr char kIndirectDiffuse[] = "indirect.diffuse";    // RGB: incoming irradiance / pi
 constexpr char kIndirectSpecular[] = "indirect.specular";  // RGB: prefiltered incoming radiance
 
+// Emitters as lights of the direct pass (renderer/emitters): their ReSTIR-sampled direct light,
+// which the lighting pass adds.
+constexpr char kEmittersDirect[] = "emitters.direct";
+
 // The frame's images.
 constexpr char kRadiance[] = "radiance";  // linear radiance (or a standalone method's image)
 constexpr char kDisplay[] = "display";    // tone-mapped, what is shown and saved as PNG

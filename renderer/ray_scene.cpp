@@ -164,7 +164,7 @@ void RayScene::updateLights(const Scene& scene) {
     lights = gl::createBuffer(scope_, int64_t(lightData.size() * sizeof(GpuLight)), lightData.data());
 }
 
-void RayScene::bind() const {
+void RayScene::bind(GLuint textureUnit) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, nodes.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, triangles.id());
@@ -172,8 +172,8 @@ void RayScene::bind() const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, materials.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, emitters.id());
     const GLuint tex = textures.id(), smp = sampler.id();
-    glBindTextures(0, 1, &tex);
-    glBindSamplers(0, 1, &smp);
+    glBindTextures(textureUnit, 1, &tex);
+    glBindSamplers(textureUnit, 1, &smp);
 }
 
 SampleAccumulator::SampleAccumulator(const gl::MemoryScope& scope, int width, int height, int target_, int perFrame_)

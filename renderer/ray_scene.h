@@ -13,8 +13,9 @@ namespace gis {
 
 struct RayScene {
     RayScene(const GpuScene& scene, gl::MemoryLedger& ledger, const std::string& owner);
-    // SSBO bindings 0 (lights) to 5 (emitters), texture unit 0 (the texture array).
-    void bind() const;
+    // SSBO bindings 0 (lights) to 5 (emitters), the texture array at `textureUnit`
+    // (ray_scene.glsl's RAY_SCENE_TEXTURE_UNIT).
+    void bind(GLuint textureUnit = 0) const;
     // The scene's lights were edited: uploads them again (the BVH and materials stay).
     void updateLights(const Scene& scene);
 

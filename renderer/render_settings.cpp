@@ -42,6 +42,12 @@ void setParam(RenderSettings& s, const std::string& fullKey, const std::string& 
                 s.params[m.name + "." + d.key] = parseParamValue(m.name, d, text);
                 any = true;
             }
+    for (const ParamGroup& g : paramGroups())
+        for (const ParamDesc& d : g.params)
+            if (fullKey == g.name + "." + d.key) {
+                s.params[fullKey] = parseParamValue(g.name, d, text);
+                any = true;
+            }
     if (!any) findParam(fullKey);  // throws the message naming the method's keys
 }
 

@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "debug_view.h"
+#include "emitters/emitter_lights.h"
 #include "gi/method.h"
 #include "memory_budget.h"
 #include "passes/gbuffer_pass.h"
@@ -15,7 +16,6 @@
 #include "services/scene_services.h"
 
 namespace gis {
-
 
 namespace {
 // The barrier after a pass that wrote through image stores or storage buffers: its outputs may be
@@ -88,6 +88,10 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     const bool gbufferView = settings_.view.rfind("gbuffer.", 0) == 0;
     if (deferred) passes_.push_back(std::make_unique<ShadowPass>(*gpuScene_, settings_, ledger_));
     if (deferred || gbufferView) passes_.push_back(std::make_unique<GBufferPass>(w, h, ledger_));
+    // Emissive triangles as lights of the direct pass: only when there are any (no cost otherwise).
+    if (deferred && EmitterMode(emitterLightSettings(settings_).mode) == EmitterMode::Lights &&
+        sceneHasEmitters(scene) && services_->rays().emitterCount > 0)
+        passes_.push_back(std::make_unique<EmitterLightPass>(*services_, settings_, ledger_));
     MethodBuild build{scene, settings_, *services_, ledger_, passes_};
     method.addPasses(build);
 
@@ -220,16 +224,22 @@ bool requiresRebuild(const RenderSettings& a, const RenderSettings& b) {
         a.shadowCubeSize != b.shadowCubeSize || a.shadows != b.shadows || a.hdr32 != b.hdr32 || a.seed != b.seed ||
         a.view != b.view || a.samplesPerFrame != b.samplesPerFrame)
         return true;
-    // A rebuild parameter of the method whose value differs (defaults included).
+    // A rebuild parameter of the method or of a shared table whose value differs (defaults included).
+    auto differs = [&a, &b](const std::string& prefix, const std::vector<ParamDesc>& rows) {
+        for (const ParamDesc& d : rows) {
+            if (d.update != ParamUpdate::Rebuild) continue;
+            const std::string key = prefix + "." + d.key;
+            auto ia = a.params.find(key), ib = b.params.find(key);
+            const ParamValue& va = ia == a.params.end() ? d.defaultValue : ia->second;
+            const ParamValue& vb = ib == b.params.end() ? d.defaultValue : ib->second;
+            if (va != vb) return true;
+        }
+        return false;
+    };
     const GiMethod& m = giMethod(a.gi);
-    for (const ParamDesc& d : m.params) {
-        if (d.update != ParamUpdate::Rebuild) continue;
-        const std::string key = m.name + "." + d.key;
-        auto ia = a.params.find(key), ib = b.params.find(key);
-        const ParamValue& va = ia == a.params.end() ? d.defaultValue : ia->second;
-        const ParamValue& vb = ib == b.params.end() ? d.defaultValue : ib->second;
-        if (va != vb) return true;
-    }
+    if (differs(m.name, m.params)) return true;
+    for (const ParamGroup& g : paramGroups())
+        if (differs(g.name, g.params)) return true;
     return false;
 }
 
@@ -319,7 +329,7 @@ ProgramDesc brdfProbeProgram() { return {"brdf_probe", {"brdf_probe.comp"}, {}};
 
 std::vector<ProgramDesc> allPrograms() {
     std::vector<ProgramDesc> all;
-    for (auto list : {ShadowPass::programs(), GBufferPass::programs(), LightingPass::programs(),
+    for (auto list : {ShadowPass::programs(), GBufferPass::programs(), LightingPass::programs(), EmitterLightPass::programs(),
                       TonemapPass::programs(), ChannelDisplay::programs()})
         all.insert(all.end(), list.begin(), list.end());
     for (const GiMethod& m : giMethods())

@@ -17,6 +17,7 @@ layout(binding = 6) uniform sampler2DArrayShadow s_shadowCubes;  // cube faces, 
 layout(binding = 7) uniform sampler2D s_ao;   // r = occlusion of the ambient term ("ao"), or a 1x1 one
 layout(binding = 8) uniform sampler2D s_indirectDiffuse;   // "indirect.diffuse" (or the 1x1 one)
 layout(binding = 9) uniform sampler2D s_indirectSpecular;  // "indirect.specular" (or the 1x1 one)
+layout(binding = 10) uniform sampler2D s_emitterDirect;    // "emitters.direct" (or the 1x1 one)
 
 layout(location = U_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = U_CAMERA_POS) uniform vec3 u_cameraPos;
@@ -36,6 +37,9 @@ layout(location = U_MAX_RADIANCE) uniform float u_maxRadiance;  // 65504 for an 
 #endif
 #ifndef AO_INPUT
 #define AO_INPUT 0
+#endif
+#ifndef EMITTER_DIRECT
+#define EMITTER_DIRECT 0
 #endif
 
 in vec2 v_uv;
@@ -90,6 +94,9 @@ void main() {
         if (all(equal(response, vec3(0.0)))) continue;
         radiance += response * irradiance * shadowVisibility(light, P, N, dot(N, L));
     }
+#if EMITTER_DIRECT
+    radiance += texelFetch(s_emitterDirect, pixel, 0).rgb;  // emissive triangles as lights (ReSTIR)
+#endif
     // Indirect light. Without a method's terms: L_ind = ambient * (diffuse colour + F0) * AO, the
     // constant-ambient baseline. With them (the lighting contract):
     //   diffuse:  diffuseColor * indirect.diffuse (E / pi: a Lambert lobe integrated over the

@@ -30,7 +30,11 @@ struct Emitter {
 layout(std430, binding = 3) readonly buffer Attributes { TriangleAttributes u_attributes[]; };
 layout(std430, binding = 4) readonly buffer Materials { RayMaterial u_materials[]; };
 layout(std430, binding = 5) readonly buffer Emitters { Emitter u_emitters[]; };
-layout(binding = 0) uniform sampler2DArray s_textures;
+// The texture array's unit: 0 unless the including shader needs unit 0 for its own (RayScene::bind).
+#ifndef RAY_SCENE_TEXTURE_UNIT
+#define RAY_SCENE_TEXTURE_UNIT 0
+#endif
+layout(binding = RAY_SCENE_TEXTURE_UNIT) uniform sampler2DArray s_textures;
 
 
 vec4 sampleLayer(int layer, vec2 uv) {
@@ -51,6 +55,17 @@ bool bvhTriangleIsCutout(uint triangle, vec2 barycentric) {
     if (m.params.w < 0.0) return false;
     vec4 color = a.c0 * (1.0 - barycentric.x - barycentric.y) + a.c1 * barycentric.x + a.c2 * barycentric.y;
     return m.baseColor.a * color.a * sampleLayer(m.textures.x, triangleUv(a, barycentric)).a < m.params.w;
+}
+
+// Picks one of `count` emissive triangles in proportion to its power (binary search in the CDF).
+uint pickEmitter(float u, int count) {
+    int lo = 0, hi = count - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (u_emitters[mid].cdf < u) lo = mid + 1;
+        else hi = mid;
+    }
+    return u_emitters[lo].triangle;
 }
 
 // The scene's size: the largest coordinate magnitude of the BVH root's box (at least a tiny

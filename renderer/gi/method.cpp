@@ -77,12 +77,31 @@ const ParamDesc& findParam(const std::string& fullKey, std::string* methodOut) {
                 if (methodOut) *methodOut = m.name;
                 return d;
             }
+    for (const ParamGroup& g : paramGroups())
+        for (const ParamDesc& d : g.params)
+            if (fullKey == g.name + "." + d.key) {
+                if (methodOut) *methodOut = g.name;
+                return d;
+            }
     const size_t dot = fullKey.find('.');
-    const GiMethod* m = dot == std::string::npos ? nullptr : findGiMethod(fullKey.substr(0, dot));
+    const std::string prefix = dot == std::string::npos ? "" : fullKey.substr(0, dot);
+    for (const ParamGroup& g : paramGroups())
+        if (g.name == prefix) {
+            std::string keys;
+            for (const ParamDesc& d : g.params) keys += (keys.empty() ? "" : ", ") + d.key;
+            throw Error("unknown parameter '" + fullKey + "' (" + g.name + " has: " + keys + ")");
+        }
+    const GiMethod* m = prefix.empty() ? nullptr : findGiMethod(prefix);
     if (!m) throw Error("unknown parameter '" + fullKey + "' (expected METHOD.KEY; methods: " + giMethodNames() + ")");
     std::string keys;
     for (const ParamDesc& d : m->params) keys += (keys.empty() ? "" : ", ") + d.key;
     throw Error("unknown parameter '" + fullKey + "' (" + m->name + " has: " + (keys.empty() ? "none" : keys) + ")");
+}
+
+bool isGroupParam(const std::string& fullKey) {
+    for (const ParamGroup& g : paramGroups())
+        if (fullKey.rfind(g.name + ".", 0) == 0) return true;
+    return false;
 }
 
 void checkParams(const ParamValues& values) {

@@ -93,7 +93,20 @@ const std::vector<std::string>& presetNames();       // low, medium, high
 // Applies `preset` of `method` to s: sets s.gi and the preset's values (as overrides).
 void applyPreset(RenderSettings& s, const std::string& method, const std::string& preset);
 
-// Resolves "method.key" or an alias flag; throws naming the key and the method's keys.
+// A parameter table of a frame module every method shares (the emitter lights,
+// renderer/emitters/): keys GROUP.KEY, set with --set, stored in RenderSettings::params, listed by
+// `gisandbox methods` and validated exactly as a method's rows, but no --gi name.
+struct ParamGroup {
+    std::string name;                       // the key prefix: "emitters"
+    std::string summary;                    // one line for `gisandbox methods`
+    std::vector<ParamDesc> params;
+};
+// Every shared table, in registry order (renderer/gi/methods.cpp).
+const std::vector<ParamGroup>& paramGroups();
+// True when `fullKey` belongs to a shared table, not to a method.
+bool isGroupParam(const std::string& fullKey);
+
+// Resolves "method.key", "group.key" or an alias flag; throws naming the key and the method's keys.
 const ParamDesc& findParam(const std::string& fullKey, std::string* methodOut = nullptr);
 // Validates every value in s.params against its row (one message format).
 void checkParams(const ParamValues& values);

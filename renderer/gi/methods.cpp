@@ -25,4 +25,12 @@ std::vector<GiMethod>& methodRegistry() {
     return methods;
 }
 
+// The shared parameter tables (ParamGroup): frame modules every method's frame uses.
+ParamGroup emitterParamGroup();
+
+const std::vector<ParamGroup>& paramGroups() {
+    static const std::vector<ParamGroup> groups{emitterParamGroup()};
+    return groups;
+}
+
 }  // namespace gis

@@ -12,7 +12,6 @@ namespace gis {
 namespace {
 // Largest finite values of the radiance formats: clamping there keeps very bright lights from
 // turning into Inf (which tone mapping would show as black).
-constexpr float kMaxHalf = 65504.0f;
 constexpr float kMaxFloat = 3.0e38f;
 
 // The kinds of shadow map a scene's lights need (shadows.glsl's SHADOW_CUBES / SHADOW_MAPS).
@@ -37,12 +36,13 @@ struct LightingVariant {
     ShadowKinds kinds = kBothKinds;
     unsigned diffuseModels = kAllModels, specularModels = kAllModels;
     bool ao = true, indirectDiffuse = true, indirectSpecular = true;
+    bool emitterDirect = true;  // "emitters.direct" (renderer/emitters/)
 
     std::string name() const {
         static const char* kindNames[] = {"-cubes", "-maps", ""};
         return std::string(uniformBlock ? "lighting" : "lighting-many-lights") + kindNames[kinds] + "-d" +
                std::to_string(diffuseModels) + "s" + std::to_string(specularModels) + (ao ? "-ao" : "") +
-               (indirectDiffuse ? "-id" : "") + (indirectSpecular ? "-is" : "");
+               (indirectDiffuse ? "-id" : "") + (indirectSpecular ? "-is" : "") + (emitterDirect ? "-em" : "");
     }
     ProgramDesc program() const {
         auto flag = [](bool b) { return std::string(b ? "1" : "0"); };
@@ -54,7 +54,8 @@ struct LightingVariant {
                        {"BRDF_SPECULAR_MODELS", std::to_string(specularModels)},
                        {"AO_INPUT", flag(ao)},
                        {"INDIRECT_DIFFUSE", flag(indirectDiffuse)},
-                       {"INDIRECT_SPECULAR", flag(indirectSpecular)}}};
+                       {"INDIRECT_SPECULAR", flag(indirectSpecular)},
+                       {"EMITTER_DIRECT", flag(emitterDirect)}}};
         if (uniformBlock) d.defines.push_back({"LIGHTS_UNIFORM_BLOCK_CAPACITY", std::to_string(kUniformBlockLights)});
         return d;
     }
@@ -83,16 +84,17 @@ std::vector<ProgramDesc> LightingPass::programs() {
             all.push_back(v.program());
         }
     LightingVariant none;
-    none.ao = none.indirectDiffuse = none.indirectSpecular = false;
+    none.ao = none.indirectDiffuse = none.indirectSpecular = none.emitterDirect = false;
     all.push_back(none.program());
     return all;
 }
 
 LightingPass::LightingPass(int width, int height, bool hdr32, const std::set<std::string>& produced,
                            gl::MemoryLedger& ledger)
-    : hasAo_(produced.count("ao") > 0),
-      hasDiffuse_(produced.count("indirect.diffuse") > 0),
-      hasSpecular_(produced.count("indirect.specular") > 0) {
+    : hasAo_(produced.count(resource::kAo) > 0),
+      hasDiffuse_(produced.count(resource::kIndirectDiffuse) > 0),
+      hasSpecular_(produced.count(resource::kIndirectSpecular) > 0),
+      hasEmitters_(produced.count(resource::kEmittersDirect) > 0) {
     radiance_ = gl::createTexture2D({&ledger, name()}, hdr32 ? GL_RGBA32F : GL_RGBA16F, width, height);
     unit_ = gl::createTexture2D({&ledger, name()}, GL_RG16F, 1, 1);  // samplers stay valid; ao reads 1
     const float one[2] = {1.0f, 0.0f};
@@ -111,17 +113,20 @@ GLuint LightingPass::programFor(const Frame& frame) {
     v.ao = hasAo_;
     v.indirectDiffuse = hasDiffuse_;
     v.indirectSpecular = hasSpecular_;
+    v.emitterDirect = hasEmitters_;
     gl::Object& program = programs_[v.name()];
     if (!program.id()) program = buildProgram(v.program());
     return program.id();
 }
 
 std::vector<std::string> LightingPass::inputs() const {
-    std::vector<std::string> in{"gbuffer.depth", "gbuffer.baseColor", "gbuffer.normal", "gbuffer.material",
-                                "gbuffer.emissive", "lights", "shadow.maps", "shadow.cubes"};
-    if (hasAo_) in.push_back("ao");
-    if (hasDiffuse_) in.push_back("indirect.diffuse");
-    if (hasSpecular_) in.push_back("indirect.specular");
+    std::vector<std::string> in{resource::kGbufferDepth,    resource::kGbufferBaseColor, resource::kGbufferNormal,
+                                resource::kGbufferMaterial, resource::kGbufferEmissive,  resource::kLights,
+                                resource::kShadowMaps,      resource::kShadowCubes};
+    if (hasAo_) in.push_back(resource::kAo);
+    if (hasDiffuse_) in.push_back(resource::kIndirectDiffuse);
+    if (hasSpecular_) in.push_back(resource::kIndirectSpecular);
+    if (hasEmitters_) in.push_back(resource::kEmittersDirect);
     return in;
 }
 
@@ -133,20 +138,21 @@ void LightingPass::execute(Frame& frame) {
     glDisable(GL_DEPTH_TEST);
     glUseProgram(p);
     glBindVertexArray(vao_.id());
-    const GLuint textures[10] = {frame.texture("gbuffer.depth"),
-                                 frame.texture("gbuffer.baseColor"),
-                                 frame.texture("gbuffer.normal"),
-                                 frame.texture("gbuffer.material"),
-                                 frame.texture("gbuffer.emissive"),
-                                 frame.texture("shadow.maps"),
-                                 frame.texture("shadow.cubes"),
-                                 hasAo_ ? frame.texture("ao") : unit_.id(),
-                                 hasDiffuse_ ? frame.texture("indirect.diffuse") : unit_.id(),
-                                 hasSpecular_ ? frame.texture("indirect.specular") : unit_.id()};
-    glBindTextures(0, 10, textures);
-    glBindSamplers(0, 10, nullptr);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame.buffer("lights"));
-    glBindBufferBase(GL_UNIFORM_BUFFER, 0, frame.buffer("lights"));
+    const GLuint textures[11] = {frame.texture(resource::kGbufferDepth),
+                                 frame.texture(resource::kGbufferBaseColor),
+                                 frame.texture(resource::kGbufferNormal),
+                                 frame.texture(resource::kGbufferMaterial),
+                                 frame.texture(resource::kGbufferEmissive),
+                                 frame.texture(resource::kShadowMaps),
+                                 frame.texture(resource::kShadowCubes),
+                                 hasAo_ ? frame.texture(resource::kAo) : unit_.id(),
+                                 hasDiffuse_ ? frame.texture(resource::kIndirectDiffuse) : unit_.id(),
+                                 hasSpecular_ ? frame.texture(resource::kIndirectSpecular) : unit_.id(),
+                                 hasEmitters_ ? frame.texture(resource::kEmittersDirect) : unit_.id()};
+    glBindTextures(0, 11, textures);
+    glBindSamplers(0, 11, nullptr);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame.buffer(resource::kLights));
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, frame.buffer(resource::kLights));
     glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, U_CAMERA_POS, 1, &frame.camera.position[0]);
     glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));
@@ -155,9 +161,9 @@ void LightingPass::execute(Frame& frame) {
     glProgramUniform3fv(p, U_BACKGROUND, 1, &background[0]);
     glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));
     glProgramUniform1i(p, U_SHADOWS_ENABLED, s.shadows ? 1 : 0);
-    glProgramUniform1f(p, U_MAX_RADIANCE, radiance_.format == GL_RGBA16F ? kMaxHalf : kMaxFloat);
+    glProgramUniform1f(p, U_MAX_RADIANCE, radiance_.format == GL_RGBA16F ? gl::kMaxHalfFloat : kMaxFloat);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    frame.put("radiance", radiance_);
+    frame.put(resource::kRadiance, radiance_);
 }
 
 std::vector<ProgramDesc> TonemapPass::programs() {
@@ -178,13 +184,13 @@ void TonemapPass::execute(Frame& frame) {
     glDisable(GL_DEPTH_TEST);
     glUseProgram(p);
     glBindVertexArray(vao_.id());
-    const GLuint radiance = frame.texture("radiance");
+    const GLuint radiance = frame.texture(resource::kRadiance);
     glBindTextures(0, 1, &radiance);
     glBindSamplers(0, 1, nullptr);
     glProgramUniform1f(p, U_EXPOSURE, std::exp2(frame.settings.exposureEV));
     glProgramUniform1i(p, U_TONEMAPPER, int(frame.settings.tonemap));
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    frame.put("display", display_);
+    frame.put(resource::kDisplay, display_);
 }
 
 }  // namespace gis

@@ -7,6 +7,8 @@
 //   "indirect.specular"  RGB: radiance pre-integrated over the specular lobe (multiplied by the
 //                        split-sum directional albedo from F0, F90, roughness and N.V);
 //   "ao"                 R: occlusion of the indirect/ambient term.
+// and the emitter-light module (renderer/emitters/) "emitters.direct", RGB direct radiance from
+// emissive triangles, added as it is.
 // Any that is missing falls back to the constant ambient (or to 1 for "ao"). No method edits this
 // pass or lighting.frag.
 #pragma once
@@ -34,7 +36,7 @@ private:
     gl::Texture radiance_, unit_;   // unit_: a 1x1 stand-in (ao = 1) for terms no method gives
     gl::Object fbo_, vao_;
     std::map<std::string, gl::Object> programs_;  // by variant name, built on first need
-    bool hasAo_, hasDiffuse_, hasSpecular_;
+    bool hasAo_, hasDiffuse_, hasSpecular_, hasEmitters_;
 };
 
 class TonemapPass final : public Pass {

@@ -73,6 +73,12 @@ SceneOptions parseSceneOptions(const std::string& spec, const std::string& query
         const size_t eq = item.find('=');
         char* end = nullptr;
         const std::string value = eq == std::string::npos ? "" : item.substr(eq + 1);
+        // A word value (lamp=panel) is kept as the key "lamp=panel" (1): scenes list the words they take.
+        if (eq != std::string::npos && eq > 0 && !value.empty() &&
+            value.find_first_not_of("abcdefghijklmnopqrstuvwxyz") == std::string::npos) {
+            o[item] = 1.0;
+            continue;
+        }
         const double v = std::strtod(value.c_str(), &end);
         if (eq == std::string::npos || value.empty() || *end != '\0' || !std::isfinite(v))
             throw Error("builtin:" + oneLine(spec, 80) + ": '" + oneLine(item, 40) + "' is not KEY=NUMBER");
@@ -113,9 +119,11 @@ Scene makeLeakScene(const SceneOptions& o) {
 
 // A closed 4 x 2.6 x 5 m room: red, green, blue and yellow walls, white floor and ceiling, a
 // white block, a lamp under the ceiling and the camera inside. Light bounces many times before it
-// leaves (it never does): the multi-bounce energy check.
+// leaves (it never does): the multi-bounce energy check. lamp=panel: the lamp is a 0.4 m emissive
+// panel facing down instead, of the point light's power (4 pi I = pi L a^2, so L = 4 I / a^2).
 Scene makeRoomScene(const SceneOptions& o) {
-    checkKeys(o, "room", {});
+    checkKeys(o, "room", {"lamp=point", "lamp=panel"});
+    const bool panel = o.count("lamp=panel") > 0;
     Scene s;
     s.name = "room";
     const int white = addMaterial(s, lambert("White", glm::vec3(0.8f)));
@@ -132,7 +140,21 @@ Scene makeRoomScene(const SceneOptions& o) {
     box(blue, {-X, 0, -Z - w}, {X, H, -Z});
     box(yellow, {-X, 0, Z}, {X, H, Z + w});
     box(white, {-0.9f, 0, -1.4f}, {-0.1f, 0.9f, -0.6f});
-    s.lights.push_back(pointLight("Lamp", {0.3f, 2.3f, -0.5f}, 3.0f));
+    const glm::vec3 lampPosition{0.3f, 2.3f, -0.5f};
+    const float lampIntensity = 3.0f;
+    if (panel) {
+        const float a = 0.4f, e = 0.5f * a, y = H - 0.001f;
+        Material m = lambert("Panel", glm::vec3(0.0f));
+        m.emissive = glm::vec3(4.0f * lampIntensity / (a * a));
+        Primitive quad;
+        quad.material = addMaterial(s, m);
+        const float x = lampPosition.x, z = lampPosition.z;
+        addQuad(quad, {{x - e, y, z - e}, {x + e, y, z - e}, {x + e, y, z + e}, {x - e, y, z + e}}, {0, -1, 0});
+        addPrimitive(s, quad);
+        s.draws.push_back(DrawItem{int(s.primitives.size()) - 1, glm::mat4(1.0f)});
+    } else {
+        s.lights.push_back(pointLight("Lamp", lampPosition, lampIntensity));
+    }
     s.cameras.push_back(lookAt("Inside", {0.6f, 1.4f, 2.2f}, {-0.3f, 0.9f, -2.5f}, 65.0f));
     finalizeScene(s);
     return s;

@@ -17,7 +17,9 @@ namespace {
 
 using namespace detail;
 
-Scene makeCornell(bool areaLight) {
+// emitterSize: the area light's edge in metres, its radiance scaled to keep its power; 0 = the
+// reference glTF's 0.5 m quad of radiance 15.
+Scene makeCornell(bool areaLight, float emitterSize = 0.0f) {
     Scene s;
     s.name = areaLight ? "cornell-area" : "cornell";
     s.background = glm::vec3(0.0f);
@@ -29,6 +31,7 @@ Scene makeCornell(bool areaLight) {
     if (areaLight) {
         Material light = lambert("Light", {0.0f, 0.0f, 0.0f});
         light.emissive = glm::vec3(1.0f) * 15.0f;  // emissiveFactor (1,1,1) * emissiveStrength 15
+        if (emitterSize > 0.0f) light.emissive *= (0.5f / emitterSize) * (0.5f / emitterSize);  // equal power
         s.materials.push_back(light);
     }
 
@@ -52,7 +55,7 @@ Scene makeCornell(bool areaLight) {
         // Emitter quad just below the ceiling, facing down (-Y), one-sided.
         Primitive quad;
         quad.material = kLight;
-        const float y = 1.999f, e = 0.25f;
+        const float y = 1.999f, e = emitterSize > 0.0f ? 0.5f * emitterSize : 0.25f;
         addQuad(quad, {{-e, y, -e}, {e, y, -e}, {e, y, e}, {-e, y, e}}, {0, -1, 0});
         s.primitives.push_back(quad);
         s.draws.push_back(DrawItem{static_cast<int>(s.primitives.size()) - 1, glm::mat4(1.0f)});
@@ -209,6 +212,16 @@ Scene makeBuiltinScene(const std::string& spec) {
     if (name == "room") return detail::makeRoomScene(options);
     if (name == "mirror") return detail::makeMirrorScene(options);
     if (name == "atrium") return detail::makeAtriumScene(options);
+    if (name == "cornell-area") {
+        for (const auto& [key, value] : options)
+            if (key != "emitter-size")
+                throw Error("builtin:cornell-area: unknown option '" + detail::oneLine(key, 40) + "' (expected emitter-size)");
+        auto it = options.find("emitter-size");
+        if (it != options.end() && !(it->second >= 0.01 && it->second <= 2.0))
+            throw Error("builtin:cornell-area: emitter-size " + detail::oneLine(std::to_string(it->second), 40) +
+                        " is out of range [0.01, 2] (metres)");
+        return makeCornell(true, it == options.end() ? 0.0f : float(it->second));
+    }
     if (!options.empty()) throw Error("built-in scene '" + detail::oneLine(name, 80) + "' takes no options");
     if (name == "cornell") return makeCornell(false);
     if (name == "cornell-area") return makeCornell(true);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "emitters/emitter_lights.h"
 #include "voxel/voxel_uniforms.h"
 
 namespace gis {
@@ -41,10 +42,15 @@ int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces) {
 }
 
 const ProgramDesc kInjectProgram{"voxel_inject", {"voxel/inject.comp"}, {}};
+// The same injection that also lights each voxel by the emitters (renderer/emitters), sampled
+// through the ray scene.
+const ProgramDesc kEmitterInjectProgram{"voxel_inject_emitters", {"voxel/inject.comp"}, {{"EMITTER_LIGHT", "1"}}};
 const ProgramDesc kMipProgram{"voxel_mip", {"voxel/voxel_mip.comp"}, {}};
 const ProgramDesc kBounceProgram{"voxel_bounce", {"voxel/bounce.comp"}, {}};
 
-std::vector<ProgramDesc> VoxelRadiance::programs() { return {kInjectProgram, kMipProgram, kBounceProgram}; }
+std::vector<ProgramDesc> VoxelRadiance::programs() {
+    return {kInjectProgram, kMipProgram, kBounceProgram, kEmitterInjectProgram};
+}
 
 VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::MemoryScope& scope, bool cullBackfaces)
     : scope_(scope), anisotropic_(anisotropic && n >= 2), cullBackfaces_(cullBackfaces && anisotropic_), bounces_(bounces) {
@@ -63,7 +69,13 @@ VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::Mem
 }
 
 void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
-    const GLuint p = injectProgram_.id();
+    const bool emitterLight = lights.emitters && lights.emitters->emitterCount > 0 && lights.emitterSamples > 0;
+    if (emitterLight && !emitterInjectProgram_.id()) emitterInjectProgram_ = buildProgram(kEmitterInjectProgram);
+    const GLuint p = emitterLight ? emitterInjectProgram_.id() : injectProgram_.id();
+    if (emitterLight) {
+        lights.emitters->bind(7);  // inject.comp's RAY_SCENE_TEXTURE_UNIT; SSBOs 1-5 (0: the frame's lights, below)
+        glProgramUniform2i(p, UV_EMITTER_SAMPLES, int(lights.emitters->emitterCount), lights.emitterSamples);
+    }
     const int n = radiance_.width;
     const glm::mat4 voxelToWorld = grid.fit.voxelToWorldMatrix();
     glUseProgram(p);
@@ -72,6 +84,7 @@ void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
     glProgramUniform1f(p, UV_VOXEL_SIZE, grid.fit.voxelSize());
     glProgramUniform1i(p, UV_LIGHT_COUNT, lights.buffer ? lights.count : 0);
     glProgramUniform1i(p, UV_SHADOWS_ENABLED, lights.shadows ? 1 : 0);
+    glProgramUniform1f(p, UV_EMISSION_WEIGHT, lights.emission);
     const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), grid.emission.id()};
     glBindTextures(0, 3, textures);
     glBindSamplers(0, 7, nullptr);
@@ -157,6 +170,12 @@ void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radia
     lights.shadowCubes = frame.texture(resource::kShadowCubes);
     lights.count = int(frame.scene.cpu.lights.size());
     lights.shadows = frame.settings.shadows;
+    const EmitterLightSettings emitters = emitterLightSettings(frame.settings);
+    lights.emission = EmitterMode(emitters.mode) == EmitterMode::Gi ? 1.0f : 0.0f;
+    if (EmitterMode(emitters.mode) == EmitterMode::Lights && sceneHasEmitters(frame.scene.cpu)) {
+        lights.emitters = &frame.services.rays();
+        lights.emitterSamples = emitters.volumeSamples;
+    }
     auto t = frame.step(prefix + "inject");
     radiance.inject(grid, lights);
 }

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "ray_scene.h"
 #include "renderer.h"
 #include "voxel/voxelizer.h"
 
@@ -31,6 +32,13 @@ public:
         GLuint buffer = 0, shadowMaps = 0, shadowCubes = 0;
         int count = 0;
         bool shadows = true;
+        // 0 when the emitters are lights of the direct pass (emitters.mode=lights or off): the
+        // volume then holds no emission, so no method counts an emitter's light twice.
+        float emission = 1.0f;
+        // With emitters.mode=lights: the ray scene whose emissive triangles light the voxels too
+        // (inject.comp's EMITTER_LIGHT), `emitterSamples` points per voxel; null: none.
+        const RayScene* emitters = nullptr;
+        int emitterSamples = 0;
     };
     // Direct light + emission into level 0.
     void inject(const VoxelGrid& grid, const Lights& lights);
@@ -54,6 +62,7 @@ private:
     gl::Texture radiance_, direct_;
     gl::Texture directional_[6];
     gl::Object injectProgram_, mipProgram_, bounceProgram_;
+    gl::Object emitterInjectProgram_;  // built on first need
     gl::MemoryScope scope_;
     bool anisotropic_, cullBackfaces_;
     int bounces_;

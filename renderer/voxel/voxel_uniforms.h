@@ -23,5 +23,7 @@ enum VoxelUniform : int {
     UV_DEBUG_PARAMS = 117,     // channel, mip level, slice axis, slice position
     UV_BOUNCE = 118,
     UV_NORMAL_WEIGHT = 119,    // directional mip from level 0: 1 weigh voxels by |normal . axis|, 2 cull back faces
+    UV_EMISSION_WEIGHT = 120,  // injection: 1 = emission is a light source of the volume, 0 = not (emitters.mode)
+    UV_EMITTER_SAMPLES = 121,  // injection with emitter light: emitter count, samples per voxel
 };
 }  // namespace gis::voxel

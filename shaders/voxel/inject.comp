@@ -18,8 +18,60 @@ layout(location = UV_VOXEL_TO_WORLD) uniform mat4 u_voxelToWorld;
 layout(location = UV_VOXEL_SIZE) uniform float u_voxelSize;
 layout(location = UV_LIGHT_COUNT) uniform int u_lightCount;
 layout(location = UV_SHADOWS_ENABLED) uniform int u_shadowsEnabled;
+// 0 when emissive triangles are lights of the direct pass (renderer/emitters/): then the volume
+// holds reflected light only and emitters reach it through no method a second time.
+layout(location = UV_EMISSION_WEIGHT) uniform float u_emissionWeight;
 
 #include "shadows.glsl"
+
+#ifndef EMITTER_LIGHT
+#define EMITTER_LIGHT 0
+#endif
+#if EMITTER_LIGHT
+// Emissive triangles as lights of the volume (emitters.mode=lights): the irradiance they give each
+// voxel, from u_emitterSamples.y points drawn by power from the ray scene's emitter table (as the
+// direct pass's ReSTIR candidates), each with a visibility ray through the BVH. The surfaces an
+// emitter lights then pass its light on, as they do under punctual lights.
+#define RAY_SCENE_TEXTURE_UNIT 7
+#include "random.glsl"
+#include "ray_scene.glsl"
+layout(location = UV_EMITTER_SAMPLES) uniform ivec2 u_emitterSamples;  // emitter count, samples per voxel
+
+vec3 emitterIrradiance(ivec3 v, vec3 P, vec3 N, bool oriented) {
+    Rng rng = makeRng(uvec2(v.x + u_resolution * v.z, v.y), 0u, 0x9e3779b9u);
+    vec3 origin = P + N * (oriented ? u_voxelSize : 0.0);
+    // Closer than half a voxel the centre is no estimate of the surface's distance to the emitter.
+    float minD2 = 0.25 * u_voxelSize * u_voxelSize;
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < u_emitterSamples.y; ++i) {
+        uint ti = pickEmitter(nextFloat(rng), u_emitterSamples.x);
+        TraceTriangle tri = u_triangles[ti];
+        TriangleAttributes a = u_attributes[ti];
+        RayMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
+        vec2 u = nextFloat2(rng);
+        float su = sqrt(u.x);
+        vec2 b = vec2(su * (1.0 - u.y), su * u.y);
+        vec3 q = tri.p0.xyz * (1.0 - b.x - b.y) + tri.p1.xyz * b.x + tri.p2.xyz * b.y;
+        vec3 nl = cross(tri.p1.xyz - tri.p0.xyz, tri.p2.xyz - tri.p0.xyz);
+        vec3 d = q - P;
+        float d2 = dot(d, d);
+        if (!(d2 > 0.0) || !(dot(nl, nl) > 0.0) || !(a.uv2MaterialEmitter.w > 0.0)) continue;
+        vec3 L = d * inversesqrt(d2);
+        float cosLight = dot(normalize(nl), -L);
+        if (!(cosLight > 0.0 || m.emissive.w > 0.5)) continue;  // one-sided: its front only
+        float cosine = oriented ? dot(N, L) : 0.5;
+        if (cosine <= 0.0) continue;
+        vec3 toQ = q - origin;
+        float dist = length(toQ);
+        Hit h;
+        if (dist > 0.0 && traceRay(origin, toQ / dist, dist * (1.0 - 1e-3), true, h)) continue;
+        vec3 le = m.emissive.rgb;
+        if (m.textures.w >= 0) le *= srgbToLinear(sampleLayer(m.textures.w, triangleUv(a, b)).rgb);
+        sum += le * (cosine * abs(cosLight) / (max(d2, minD2) * a.uv2MaterialEmitter.w));
+    }
+    return sum / float(max(u_emitterSamples.y, 1));
+}
+#endif
 
 // Irradiance at normal incidence from `light` at P, and the direction towards it.
 vec3 lightIrradiance(GpuLight light, vec3 P, out vec3 L) {
@@ -64,6 +116,9 @@ void main() {
         if (cosine <= 0.0 || all(equal(e, vec3(0.0)))) continue;
         irradiance += e * cosine * shadowVisibility(u_lights[i], Ps, N, cosine);
     }
-    vec3 radiance = albedo.rgb * INV_PI * irradiance + texelFetch(s_emission, v, 0).rgb;
+#if EMITTER_LIGHT
+    if (u_emitterSamples.x > 0) irradiance += emitterIrradiance(v, P, N, oriented);
+#endif
+    vec3 radiance = albedo.rgb * INV_PI * irradiance + texelFetch(s_emission, v, 0).rgb * u_emissionWeight;
     imageStore(i_radiance, v, vec4(min(finiteOrZero(radiance), vec3(MAX_HALF_FLOAT)), 1.0));
 }

@@ -175,17 +175,6 @@ vec3 punctualIrradiance(GpuLight light, vec3 P, out vec3 L, out float dist) {
     return e;
 }
 
-// Picks an emissive triangle in proportion to its power (binary search in the CDF).
-uint pickEmitter(float u) {
-    int lo = 0, hi = u_emitterCount - 1;
-    while (lo < hi) {
-        int mid = (lo + hi) / 2;
-        if (u_emitters[mid].cdf < u) lo = mid + 1;
-        else hi = mid;
-    }
-    return u_emitters[lo].triangle;
-}
-
 bool visible(vec3 from, vec3 dir, float dist) {
     Hit h;
     ++g_rays[RAYS_SHADOW];
@@ -207,7 +196,7 @@ vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, ino
         sum += evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel) * e * NoL;
     }
     if (u_emitterCount > 0) {
-        uint ti = pickEmitter(nextFloat(rng));
+        uint ti = pickEmitter(nextFloat(rng), u_emitterCount);
         TraceTriangle tri = u_triangles[ti];
         TriangleAttributes a = u_attributes[ti];
         vec2 u = nextFloat2(rng);

@@ -1,0 +1,151 @@
+#include "emitters/emitter_lights.h"
+
+#include <algorithm>
+
+#include "emitters/emitter_uniforms.h"
+#include "gi/method.h"
+
+namespace gis {
+
+using namespace emitters;
+
+const ParamTable<EmitterLightSettings>& emitterLightParams() {
+    using S = EmitterLightSettings;
+    static const ParamTable<S> table = ParamTable<S>()
+        .choice(&S::mode, "mode", "Emitters",
+                "lights: emissive triangles are lights of the direct pass (ReSTIR) and the GI volume holds no "
+                "emission; gi: they reach the image only through the GI method; off: only the visible emission",
+                {"lights", "gi", "off"}, ParamUpdate::Rebuild)
+        .integer(&S::candidates, "candidates", "Candidates", "initial candidates per pixel (M), drawn by power", 1, 64,
+                 ParamUpdate::Live)
+        .boolean(&S::temporal, "temporal", "Temporal reuse", "reuse the last frame's reprojected reservoir",
+                 ParamUpdate::Live)
+        .integer(&S::spatial, "spatial", "Spatial neighbours", "neighbours reused per pixel (k; 0 = no spatial reuse)", 0,
+                 8, ParamUpdate::Live)
+        .real(&S::radius, "radius", "Spatial radius", "radius of the spatial neighbourhood, pixels", 1.0, 64.0,
+              ParamUpdate::Live)
+        .boolean(&S::unbiased, "unbiased", "Unbiased",
+                 "count only reservoirs that can produce the sample (1/Z, a visibility ray each); false: 1/sum M, "
+                 "cheaper, darkens contact shadows",
+                 ParamUpdate::Live)
+        .integer(&S::maxHistory, "max-history", "History cap", "temporal M cap in multiples of the candidates", 1, 1000,
+                 ParamUpdate::Live)
+        .integer(&S::accumulate, "accumulate", "Accumulate frames",
+                 "frames a still view averages (0 = each frame its own estimate)", 0, 1 << 16, ParamUpdate::Live)
+        .integer(&S::volumeSamples, "volume-samples", "Volume samples",
+                 "emitter points per voxel when the voxel methods light their volume with the emitters (0 = none)", 0,
+                 256, ParamUpdate::Rebuild);
+    return table;
+}
+
+EmitterLightSettings emitterLightSettings(const RenderSettings& settings) {
+    return emitterLightParams().read("emitters", settings.params);
+}
+
+ParamGroup emitterParamGroup() {
+    return {"emitters", "emissive triangles as lights of the direct pass (ReSTIR DI), for every deferred method",
+            emitterLightParams().rows};
+}
+
+bool sceneHasEmitters(const Scene& scene) {
+    for (const DrawItem& d : scene.draws) {
+        const int material = scene.primitives[d.primitive].material;
+        if (material < 0 || material >= int(scene.materials.size())) continue;
+        const glm::vec3 e = scene.materials[material].emissive;
+        if (std::max({e.r, e.g, e.b}) > 0.0f) return true;
+    }
+    return false;
+}
+
+std::vector<ProgramDesc> EmitterLightPass::programs() {
+    return {{"emitters-candidates", {"emitters/restir.comp"}, {{"RESTIR_STAGE", "0"}}},
+            {"emitters-spatial", {"emitters/restir.comp"}, {{"RESTIR_STAGE", "1"}}}};
+}
+
+EmitterLightPass::EmitterLightPass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger)
+    : rays_(services.rays()) {
+    const gl::MemoryScope scope{&ledger, name()};
+    const int w = settings.width, h = settings.height;
+    for (Reservoirs* r : {&temporal_, &history_}) {
+        r->sample = gl::createTexture2D(scope, GL_RGBA32F, w, h);
+        r->surface = gl::createTexture2D(scope, GL_RGBA32F, w, h);
+        r->normal = gl::createTexture2D(scope, GL_RGBA16F, w, h);
+    }
+    accumulation_ = gl::createTexture2D(scope, GL_RGBA32F, w, h);
+    const auto p = programs();
+    candidates_ = buildProgram(p[0]);
+    spatial_ = buildProgram(p[1]);
+    target_ = emitterLightSettings(settings).accumulate;
+}
+
+std::vector<std::string> EmitterLightPass::inputs() const {
+    return {resource::kGbufferDepth, resource::kGbufferBaseColor, resource::kGbufferNormal, resource::kGbufferMaterial};
+}
+
+std::vector<std::string> EmitterLightPass::stats() const {
+    return {std::to_string(rays_.emitterCount) + " emissive triangles as ReSTIR lights"};
+}
+
+void EmitterLightPass::invalidate(Changes c) {
+    accumulated_ = 0;  // every change alters the image; the camera keeps the (reprojected) history
+    if (c & ~Changes(ChangeCamera | ChangeLiveParams)) historyValid_ = false;
+}
+
+void EmitterLightPass::bindCommon(GLuint p, const Frame& frame, const EmitterLightSettings& s) {
+    glUseProgram(p);
+    rays_.bind();
+    const GLuint gbuffer[4] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferBaseColor),
+                               frame.texture(resource::kGbufferNormal), frame.texture(resource::kGbufferMaterial)};
+    glBindTextures(1, 4, gbuffer);
+    glBindSamplers(1, 4, nullptr);
+    glProgramUniformMatrix4fv(p, UE_VIEW_PROJ, 1, GL_FALSE, &frame.camera.viewProj[0][0]);
+    glProgramUniformMatrix4fv(p, UE_PREV_VIEW_PROJ, 1, GL_FALSE, &previousViewProj_[0][0]);
+    glProgramUniformMatrix4fv(p, UE_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
+    glProgramUniform3fv(p, UE_CAMERA_POS, 1, &frame.camera.position[0]);
+    glProgramUniform1i(p, UE_EMITTER_COUNT, int(rays_.emitterCount));
+    glProgramUniform2i(p, UE_BRDF_MODELS, int(frame.settings.diffuse), int(frame.settings.specular));
+    glProgramUniform2ui(p, UE_FRAME, frames_, frame.settings.seed);
+    glProgramUniform4i(p, UE_REUSE, s.candidates, s.temporal ? 1 : 0, s.spatial, s.unbiased ? 1 : 0);
+    glProgramUniform4f(p, UE_HISTORY, historyValid_ ? 1.0f : 0.0f, float(s.maxHistory * s.candidates), s.radius,
+                       float(accumulated_));
+}
+
+void EmitterLightPass::execute(Frame& frame) {
+    const EmitterLightSettings s = emitterLightSettings(frame.settings);
+    if (s.accumulate != target_) {
+        if (s.accumulate < accumulated_ || s.accumulate == 0) accumulated_ = 0;
+        target_ = s.accumulate;
+    }
+    frame.put(resource::kEmittersDirect, accumulation_);
+    idle_ = target_ > 0 && accumulated_ >= target_;
+    if (idle_) return;  // the still view's average is complete
+    const int w = accumulation_.width, h = accumulation_.height;
+    const GLuint groupsX = GLuint((w + 7) / 8), groupsY = GLuint((h + 7) / 8);
+    {
+        // Candidates, their visibility, and the temporal reuse: history -> temporal.
+        auto step = frame.step("candidates");
+        bindCommon(candidates_.id(), frame, s);
+        const GLuint images[6] = {history_.sample.id(), history_.surface.id(), history_.normal.id(),
+                                  temporal_.sample.id(), temporal_.surface.id(), temporal_.normal.id()};
+        glBindImageTextures(0, 6, images);
+        glDispatchCompute(groupsX, groupsY, 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+    {
+        // Spatial reuse and shading: temporal -> history (the next frame's), and the average.
+        auto step = frame.step("spatial");
+        bindCommon(spatial_.id(), frame, s);
+        const GLuint images[7] = {temporal_.sample.id(), temporal_.surface.id(), temporal_.normal.id(),
+                                  history_.sample.id(),  history_.surface.id(),  history_.normal.id(),
+                                  accumulation_.id()};
+        glBindImageTextures(0, 7, images);
+        glDispatchCompute(groupsX, groupsY, 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
+    previousViewProj_ = frame.camera.viewProj;
+    historyValid_ = true;
+    ++frames_;
+    accumulated_ = target_ > 0 ? accumulated_ + 1 : 0;
+}
+
+}  // namespace gis

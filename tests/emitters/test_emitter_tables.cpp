@@ -1,0 +1,153 @@
+// The measured tables of renderer/emitters/README.md, on the reference Cornell box lit by its
+// emitter (shared/assets/reference/scenes/cornell_box, Cycles' refs/cornell_box, 256x256). Slow on
+// llvmpipe, so not in the default run:
+//   build/tests/gis_emitter_tests --gtest_also_run_disabled_tests --gtest_filter='*Table*'
+// Each prints its rows and one `NAME-TABLE` line per row for the README.
+#include <cstdio>
+#include <map>
+
+#include "gi/method.h"
+#include "metrics.h"
+#include "render_test_util.h"
+
+namespace gis::test {
+namespace {
+
+constexpr int kSize = 256;
+
+std::string sharedPath(const std::string& rel) { return std::string(GIS_SHARED_DIR) + "/assets/reference/" + rel; }
+
+RenderSettings cornellSettings(const std::string& gi, const std::string& mode) {
+    RenderSettings r;
+    r.width = r.height = kSize;
+    r.gi = gi;
+    setParam(r, "emitters.mode", mode);
+    return r;
+}
+
+// --gi none with the emitter as a light: each face's mean direct light against Cycles' direct pass.
+TEST(EmitterTables, DISABLED_CornellBoxDirectLightPerFace) {
+    const Scene scene = loadScene(sharedPath("scenes/cornell_box/cornell_box.gltf"));
+    const ImageF ref = readExr(sharedPath("refs/cornell_box/direct.exr"));
+    RenderSettings r = cornellSettings("none", "lights");
+    r.ambient = glm::vec3(0.0f);
+    const ImageF img = renderHdr(scene, r);
+    const std::vector<PixelHit> hits = castPixels(scene, 0, kSize, kSize, nullptr);
+    const std::vector<bool> keep = interiorPixels(hits, kSize, kSize, 1, 0);
+    std::map<int, int> pixels;
+    for (size_t i = 0; i < hits.size(); ++i)
+        if (hits[i].region >= 0 && keep[i]) ++pixels[hits[i].region];
+    double worst = 0.0;
+    int compared = 0;
+    for (const auto& [region, n] : pixels) {
+        if (n < 30) continue;
+        const double ours = regionMean(img, hits, keep, region), cycles = regionMean(ref, hits, keep, region);
+        if (cycles < 1e-3) continue;  // unlit
+        const double err = (ours - cycles) / cycles;
+        worst = std::max(worst, std::abs(err));
+        ++compared;
+        std::printf("CORNELL-DIRECT-TABLE | %d/%d | %d | %.5f | %.5f | %+.2f%% |\n", region / 8, region % 8, n, ours,
+                    cycles, 100.0 * err);
+    }
+    std::printf("CORNELL-DIRECT-TABLE | worst | | | | %.2f%% |\n", 100.0 * worst);
+    EXPECT_GE(compared, 6);
+    EXPECT_LT(worst, 0.03);  // the goal
+}
+
+// Every method's PSNR (sRGB) against Cycles' full image, with the emitters as lights and with them
+// only in the GI (the default settings of each method).
+TEST(EmitterTables, DISABLED_CornellBoxPsnrLightsVsGi) {
+    const Scene scene = loadScene(sharedPath("scenes/cornell_box/cornell_box.gltf"));
+    const ImageF ref = readExr(sharedPath("refs/cornell_box/full.exr"));
+    for (const char* gi : {"none", "ssao", "vct", "sdf", "probes"}) {
+        double psnr[2] = {};
+        for (int m = 0; m < 2; ++m) {
+            const ImageF img = renderHdr(scene, cornellSettings(gi, m == 0 ? "gi" : "lights"));
+            psnr[m] = compareImages(img, ref).psnrSrgb;
+        }
+        std::printf("CORNELL-PSNR-TABLE | %s | %.2f | %.2f | %+.2f |\n", gi, psnr[0], psnr[1], psnr[1] - psnr[0]);
+    }
+}
+
+// The same at the voxel methods' high presets (the goals: probes >= 30, vct >= 26, sdf >= 24 dB).
+TEST(EmitterTables, DISABLED_CornellBoxPsnrHighPresets) {
+    const Scene scene = loadScene(sharedPath("scenes/cornell_box/cornell_box.gltf"));
+    const ImageF ref = readExr(sharedPath("refs/cornell_box/full.exr"));
+    for (const char* gi : {"vct", "sdf", "probes"}) {
+        double psnr[2] = {};
+        for (int m = 0; m < 2; ++m) {
+            RenderSettings r = cornellSettings(gi, m == 0 ? "gi" : "lights");
+            applyPreset(r, gi, "high");
+            psnr[m] = compareImages(renderHdr(scene, r), ref).psnrSrgb;
+        }
+        std::printf("CORNELL-PSNR-HIGH-TABLE | %s | %.2f | %.2f | %+.2f |\n", gi, psnr[0], psnr[1], psnr[1] - psnr[0]);
+    }
+}
+
+// The closed room lit by its emissive panel, where bounce light is most of the image: each
+// method's mean radiance over the path tracer's (64 bounces, 256 spp), 64x64 (the goal:
+// 85-115%).
+TEST(EmitterTables, DISABLED_PanelRoomEnergy) {
+    const Scene scene = makeBuiltinScene("room?lamp=panel");
+    auto mean = [](const ImageF& img) {
+        double sum = 0;
+        for (size_t i = 0; i < img.rgba.size(); i += 4)
+            if (img.rgba[i] < 10.0f) sum += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2];  // not the panel
+        return sum / (3.0 * double(img.rgba.size() / 4));
+    };
+    RenderSettings pt = cornellSettings("pathtrace", "lights");
+    pt.width = pt.height = 64;
+    pt.samplesPerFrame = 16;
+    setParam(pt, "pathtrace.spp", "256");
+    setParam(pt, "pathtrace.bounces", "64");
+    const double truth = mean(renderHdr(scene, pt));
+    for (const char* mode : {"lights", "gi"})
+        for (const char* gi : {"none", "vct", "sdf", "probes"}) {
+            RenderSettings r = cornellSettings(gi, mode);
+            r.width = r.height = 64;
+            const double m = mean(renderHdr(scene, r));
+            std::printf("PANEL-ROOM-TABLE | %s | %s | %.4f | %.4f | %.2f |\n", mode, gi, m, truth, m / truth);
+        }
+}
+
+// ReSTIR's GPU time per frame at 256x256 (median of 16 frames after 4), biased and unbiased.
+TEST(EmitterTables, DISABLED_RestirCostPerFrame) {
+    const Scene scene = loadScene(sharedPath("scenes/cornell_box/cornell_box.gltf"));
+    context();
+    for (const char* unbiased : {"false", "true"}) {
+        RenderSettings r = cornellSettings("none", "lights");
+        setParam(r, "emitters.unbiased", unbiased);
+        setParam(r, "emitters.accumulate", "0");
+        Renderer renderer(scene, r);
+        for (int i = 0; i < 20; ++i) renderer.renderFrame();
+        for (const PassTiming& t : renderer.timings(4))
+            if (t.pass.rfind("emitters", 0) == 0)
+                std::printf("RESTIR-COST-TABLE | unbiased=%s | %s | %.2f ms |\n", unbiased, t.pass.c_str(), t.medianMs);
+    }
+}
+
+// A small emitter of the same power lights the room as the default one does: each method's mean
+// radiance with builtin:cornell-area?emitter-size=0.04 over its mean with the default 0.5 m quad
+// (128x128, default settings, --emitters lights and gi; the goal: within 10%).
+TEST(EmitterTables, DISABLED_SmallEmitterOfEqualPower) {
+    const Scene big = makeBuiltinScene("cornell-area"), small = makeBuiltinScene("cornell-area?emitter-size=0.04");
+    for (const char* mode : {"lights", "gi"})
+        for (const char* gi : {"none", "vct", "sdf", "probes"}) {
+            RenderSettings r = cornellSettings(gi, mode);
+            r.width = r.height = 128;
+            // The emitter's own pixels left out: its visible radiance differs by (0.5/0.04)^2 by design.
+            auto mean = [&](const Scene& scene) {
+                const ImageF img = renderHdr(scene, r);
+                double sum = 0;
+                int n = 0;
+                for (size_t i = 0; i < img.rgba.size(); i += 4)
+                    if (img.rgba[i] < 10.0f) sum += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2], ++n;
+                return sum / (3.0 * n);
+            };
+            const double a = mean(big), b = mean(small);
+            std::printf("EMITTER-SIZE-TABLE | %s | %s | %.4f | %.4f | %.3f |\n", mode, gi, a, b, b / a);
+        }
+}
+
+}  // namespace
+}  // namespace gis::test
