@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "scene/scene_lighting.h"
+
 namespace gis {
 
 std::vector<GiMethod>& methodRegistry();  // gi/methods.cpp
@@ -19,6 +21,14 @@ const GiMethod* findGiMethod(const std::string& name) {
     return nullptr;
 }
 
+namespace {
+std::vector<std::string> methodNameList() {
+    std::vector<std::string> names;
+    for (const GiMethod& m : giMethods()) names.push_back(m.name);
+    return names;
+}
+}  // namespace
+
 std::string giMethodNames() {
     std::string s;
     for (const GiMethod& m : giMethods()) s += (s.empty() ? "" : ", ") + m.name;
@@ -27,7 +37,8 @@ std::string giMethodNames() {
 
 const GiMethod& giMethod(const std::string& name) {
     if (const GiMethod* m = findGiMethod(name)) return *m;
-    throw Error("unknown GI method '" + name + "' (available: " + giMethodNames() + ")");
+    throw Error("unknown GI method '" + name + "' (" + didYouMean(name, methodNameList()) + "available: " +
+                giMethodNames() + ")");
 }
 
 const std::vector<std::string>& presetNames() {
@@ -66,10 +77,14 @@ const ParamDesc& findParam(const std::string& fullKey, std::string* methodOut) {
             }
     const size_t dot = fullKey.find('.');
     const GiMethod* m = dot == std::string::npos ? nullptr : findGiMethod(fullKey.substr(0, dot));
-    if (!m) throw Error("unknown parameter '" + fullKey + "' (expected METHOD.KEY; methods: " + giMethodNames() + ")");
+    if (!m)
+        throw Error("unknown parameter '" + fullKey + "' (expected METHOD.KEY; " +
+                    didYouMean(fullKey.substr(0, dot), methodNameList()) + "methods: " + giMethodNames() + ")");
     std::string keys;
-    for (const ParamDesc& d : m->params) keys += (keys.empty() ? "" : ", ") + d.key;
-    throw Error("unknown parameter '" + fullKey + "' (" + m->name + " has: " + (keys.empty() ? "none" : keys) + ")");
+    std::vector<std::string> names;
+    for (const ParamDesc& d : m->params) keys += (keys.empty() ? "" : ", ") + d.key, names.push_back(d.key);
+    throw Error("unknown parameter '" + fullKey + "' (" + didYouMean(fullKey.substr(dot + 1), names) + m->name +
+                " has: " + (keys.empty() ? "none" : keys) + ")");
 }
 
 void checkParams(const ParamValues& values) {
