@@ -242,6 +242,9 @@ int runRender(const RenderOptions& o) {
         if (o.background.size() != 1 && o.background.size() != 3) throw Error("--background takes one value or R,G,B");
         s.background = o.background.size() == 3 ? glm::vec3(o.background[0], o.background[1], o.background[2])
                                                 : glm::vec3(o.background[0]);
+        // The constant ambient stands for the environment's radiance (the default sky sets both),
+        // so --background without --ambient reaches none's and ssao's ambient term too.
+        if (!viewSettings && !(o.given && o.given("--ambient"))) s.ambient = *s.background;
     }
     // Without --preset the viewer's default pane preset, so one method gives one image in render
     // and in the viewer (ssao: GTAO, the fast kernel; pathtrace: the same spp).
@@ -280,7 +283,8 @@ int runRender(const RenderOptions& o) {
         SceneSetupOptions setup = o.setup;
         if (viewSettings && !use("--lighting")) setup.lighting = viewSettings->lighting;
         // With --settings the file's ambient stands: the view applied the same rule when it opened the scene.
-        const bool ambientFixed = viewSettings.has_value() || (o.given && o.given("--ambient"));
+        const bool ambientFixed =
+            viewSettings.has_value() || (o.given && (o.given("--ambient") || o.given("--background")));
         const int camera = prepareScene(scene, setup, float(s.width) / float(s.height), &s, ambientFixed);
         if (viewSettings) scene.lights = view::effectiveLights(*viewSettings, scene.lights);  // the panel's edits
         if (!viewSettings || use("--camera") || use("--camera-pos")) s.camera = camera;
