@@ -128,6 +128,17 @@ void setAlias(RenderSettings& s, const std::string& flag, const std::string& val
     setParam(s, flag, value);
 }
 
+// `--preset NAME`, or without it the viewer's default pane preset, so one method gives one image
+// in render and in the viewer (ssao: GTAO, the fast kernel; pathtrace: the same spp). A method
+// without that preset keeps its parameter defaults.
+void applyRenderPreset(RenderSettings& s, const std::string& given) {
+    const std::string preset = given.empty() ? view::PaneState{}.preset : given;
+    const GiMethod& method = giMethod(s.gi);
+    const bool has = std::any_of(method.presets.begin(), method.presets.end(),
+                                 [&](const GiPreset& p) { return p.name == preset; });
+    if (has || !given.empty()) applyPreset(s, s.gi, preset);
+}
+
 }  // namespace
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
@@ -246,15 +257,7 @@ int runRender(const RenderOptions& o) {
         // so --background without --ambient reaches none's and ssao's ambient term too.
         if (!viewSettings && !(o.given && o.given("--ambient"))) s.ambient = *s.background;
     }
-    // Without --preset the viewer's default pane preset, so one method gives one image in render
-    // and in the viewer (ssao: GTAO, the fast kernel; pathtrace: the same spp).
-    if (use("--preset")) {
-        const std::string preset = o.preset.empty() ? view::PaneState{}.preset : o.preset;
-        const GiMethod& method = giMethod(s.gi);
-        const bool has = std::any_of(method.presets.begin(), method.presets.end(),
-                                     [&](const GiPreset& p) { return p.name == preset; });
-        if (has || !o.preset.empty()) applyPreset(s, s.gi, preset);
-    }
+    if (use("--preset")) applyRenderPreset(s, o.preset);
     // A shadow-map size given on the command line wins over the preset's.
     if (o.given && o.given("--shadow-size")) s.shadowMapSize = o.shadowSize;
     if (o.given && o.given("--shadow-cube-size")) s.shadowCubeSize = o.shadowCubeSize;
