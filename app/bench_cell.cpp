@@ -24,6 +24,7 @@ namespace fs = std::filesystem;
 // warm-up, measured once converged, and the image scored is the converged one.
 void measure(Renderer& renderer, const GiMethod& method, int frames, int warmup, BenchRow& row) {
     const bool progressive = !renderer.converged();
+    row.msToConverge = progressive;
     const int converge = method.framesToConverge ? std::max(1, method.framesToConverge(renderer.settings())) : 1;
     std::vector<double> wall;
     auto frame = [&] {

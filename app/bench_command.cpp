@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <set>
@@ -99,6 +100,15 @@ int runOneJob(const BenchOptions& o) {
 }
 
 int mergeResults(const BenchOptions& o) {
+    // The merge reads DIR/cells and writes its tables and charts into DIR: an --out-dir elsewhere
+    // would be silently ignored, so it is refused.
+    const BenchOptions defaults;
+    if (o.outDir != defaults.outDir && std::filesystem::weakly_canonical(o.outDir) != std::filesystem::weakly_canonical(o.merge))
+        throw Error("bench --merge " + o.merge + " writes its results into " + o.merge + ": --out-dir " + o.outDir +
+                    " does not apply (give --merge " + o.outDir + " to merge there)");
+    if (o.manifest.empty() && !std::filesystem::exists(o.merge + "/manifest.jsonl"))
+        throw Error("bench --merge " + o.merge + ": no manifest there (" + o.merge +
+                    "/manifest.jsonl, which a plain bench run writes); give the plan with --manifest FILE");
     const std::string manifest = o.manifest.empty() ? o.merge + "/manifest.jsonl" : o.manifest;
     return mergeBench(readManifest(manifest), sweepDirs(o.merge, o.cacheDir), o.metric);
 }

@@ -15,6 +15,15 @@
 
 namespace gis {
 
+std::string timeAxisLabel(const std::string& glRenderer, const std::vector<std::string>& totals) {
+    std::string label = "GPU ms on " + glRenderer.substr(0, glRenderer.find(" (")) + " (per frame";
+    if (!totals.empty()) {
+        label += "; until converged: ";
+        for (size_t i = 0; i < totals.size(); ++i) label += (i ? ", " : "") + totals[i];
+    }
+    return label + ")";
+}
+
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -91,11 +100,13 @@ void writeSceneImages(const std::string& sceneName, const BenchJob& referenceJob
     const std::string stem = dirs.outDir + "/" + fileSafeName(sceneName);
     writePng(stem + "_grid.png", composeGrid(tiles, std::min<int>(4, int(tiles.size()))));
     const std::string yLabel = metricName == "ssim" ? "1 - SSIM vs reference" : metricName + " vs reference";
-    writePng(stem + "_chart.png",
-             drawTradeoffChart(points, sceneName + ": error vs GPU time, " + referenceJob.size,
-                               "GPU ms on " + glRenderer.substr(0, glRenderer.find(" (")) +
-                                   " (per frame; path tracer: all samples)",
-                               yLabel));
+    std::vector<std::string> totals;
+    for (const MergedCell& c : cells)
+        if (c.job->sceneName == sceneName && c.row.msToConverge &&
+            std::find(totals.begin(), totals.end(), c.row.method) == totals.end())
+            totals.push_back(c.row.method);
+    writePng(stem + "_chart.png", drawTradeoffChart(points, sceneName + ": error vs GPU time, " + referenceJob.size,
+                                                    timeAxisLabel(glRenderer, totals), yLabel));
 }
 
 void writeTables(const std::vector<MergedCell>& cells, const ojson& machine, const SweepDirs& dirs) {

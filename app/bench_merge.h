@@ -14,6 +14,10 @@ namespace gis {
 // A scene name as a file name: anything but letters, digits, - and _ becomes _.
 std::string fileSafeName(std::string s);
 
+// The chart's time axis: per frame, except the methods in `totals` whose figure is the total
+// until converged.
+std::string timeAxisLabel(const std::string& glRenderer, const std::vector<std::string>& totals);
+
 // Returns 0, or throws gis::Error after listing every problem on stderr, one line each.
 int mergeBench(const std::vector<BenchJob>& jobs, const SweepDirs& dirs, const std::string& metric);
 

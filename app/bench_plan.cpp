@@ -134,10 +134,11 @@ PreparedScene prepareBenchScene(const BenchJob& job) {
     parseRenderSize(job.size, p.base.width, p.base.height);
     if (!job.ambient.empty()) p.base.ambient = colourFlag(job.ambient, "--ambient");
     if (!job.background.empty()) p.base.background = colourFlag(job.background, "--background");
+    if (!job.background.empty() && job.ambient.empty()) p.base.ambient = *p.base.background;  // as render does
     p.scene = loadScene(job.scene);
     p.sha256 = sceneDigest(job.scene, p.scene);
     p.base.camera = prepareScene(p.scene, job.setup, float(p.base.width) / float(p.base.height), &p.base,
-                                 !job.ambient.empty());
+                                 !job.ambient.empty() || !job.background.empty());
     return p;
 }
 

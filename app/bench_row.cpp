@@ -56,6 +56,7 @@ nlohmann::ordered_json rowToJson(const BenchRow& r) {
     for (const BenchRow::StepTime& t : r.steps) e["step_ms"][t.step] = {{"frame", t.ms}, {"first", t.firstMs}};
     if (r.aoRmse >= 0.0) e["ao_rmse_vs_raytraced"] = r.aoRmse;
     if (r.megaRaysPerSecond >= 0.0) e["mrays_per_s"] = r.megaRaysPerSecond;
+    if (r.msToConverge) e["gpu_ms_to_converge"] = true;
     return e;
 }
 
@@ -74,6 +75,7 @@ BenchRow rowFromJson(const nlohmann::ordered_json& j) {
     r.error.psnrSrgb = psnrFromJson(j.at("psnr_srgb"));
     r.error.ssim = j.at("ssim").get<double>();
     r.error.flip = j.at("flip").get<double>();
+    r.msToConverge = j.value("gpu_ms_to_converge", false);  // absent in rows of per-frame methods
     if (j.contains("pass_ms"))
         for (const auto& [pass, ms] : j.at("pass_ms").items()) r.passMs.emplace_back(pass, ms.get<double>());
     if (j.contains("step_ms"))

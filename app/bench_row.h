@@ -18,6 +18,7 @@ namespace gis {
 struct BenchRow {
     std::string scene, method, preset, description;
     double ms = 0.0;                          // per frame; for progressive methods, to converge
+    bool msToConverge = false;                // ms is that total (the path tracer, probes), not per frame
     double wallMs = 0.0;                      // wall clock with glFinish, the same way
     std::vector<std::pair<std::string, double>> passMs;
     // A pass's steps ("sdf/c0.jfa.1.16"), within passMs: per measured frame (0 when cached then) and

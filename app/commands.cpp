@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -109,11 +111,39 @@ void printTimings(const Renderer& renderer, int frames, int warmup) {
         for (const std::string& line : pass->stats()) std::printf("%-22s %s\n", pass->name(), line.c_str());
 }
 
+std::string builtinSceneList() {
+    std::string list;
+    for (const std::string& n : builtinSceneNames()) list += (list.empty() ? "" : ", ") + n;
+    return list;
+}
+
+// A documented alias (--spp, --ao-radius) sets the rendered method's row when it declares one, so
+// it never warns there; otherwise every row that declares it, and the check below says it is unused.
+void setAlias(RenderSettings& s, const std::string& flag, const std::string& value) {
+    for (const ParamDesc& d : giMethod(s.gi).params)
+        if (d.alias == flag) {
+            s.params[s.gi + "." + d.key] = parseParamValue(s.gi, d, value);
+            return;
+        }
+    setParam(s, flag, value);
+}
+
+// `--preset NAME`, or without it the viewer's default pane preset, so one method gives one image
+// in render and in the viewer (ssao: GTAO, the fast kernel; pathtrace: the same spp). A method
+// without that preset keeps its parameter defaults.
+void applyRenderPreset(RenderSettings& s, const std::string& given) {
+    const std::string preset = given.empty() ? view::PaneState{}.preset : given;
+    const GiMethod& method = giMethod(s.gi);
+    const bool has = std::any_of(method.presets.begin(), method.presets.end(),
+                                 [&](const GiPreset& p) { return p.name == preset; });
+    if (has || !given.empty()) applyPreset(s, s.gi, preset);
+}
+
 }  // namespace
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--scene", o.scene,
-                   "glTF file (.gltf/.glb) or builtin:NAME (cornell, cornell-area, brdf-gallery); required unless "
+                   "glTF file (.gltf/.glb) or builtin:NAME (" + builtinSceneList() + "); required unless "
                    "--settings names one");
     cmd.add_option("--out", o.out, "Output image: .png (tonemapped sRGB 8-bit) or .exr (linear float radiance)");
     cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT")->capture_default_str();
@@ -140,7 +170,8 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--background", o.background, "Environment radiance R,G,B (or one value), overriding the scene's")
         ->delimiter(',')
         ->expected(1, 3);
-    cmd.add_option("--preset", o.preset, "Quality preset of the --gi method: low, medium, high (see `gisandbox methods`)");
+    cmd.add_option("--preset", o.preset, "Quality preset of the --gi method: low, medium, high (see `gisandbox methods`); without it "
+                   "medium, the viewer's default, where the method has one");
     cmd.add_option("--set", o.sets,
                    "A method parameter, METHOD.KEY=VALUE (repeatable; e.g. --set ssao.samples=32). "
                    "`gisandbox methods NAME` lists them")
@@ -222,12 +253,18 @@ int runRender(const RenderOptions& o) {
         if (o.background.size() != 1 && o.background.size() != 3) throw Error("--background takes one value or R,G,B");
         s.background = o.background.size() == 3 ? glm::vec3(o.background[0], o.background[1], o.background[2])
                                                 : glm::vec3(o.background[0]);
+        // The constant ambient stands for the environment's radiance (the default sky sets both),
+        // so --background without --ambient reaches none's and ssao's ambient term too.
+        if (!viewSettings && !(o.given && o.given("--ambient"))) s.ambient = *s.background;
     }
-    if (use("--preset") && !o.preset.empty()) applyPreset(s, s.gi, o.preset);
+    if (use("--preset")) applyRenderPreset(s, o.preset);
+    // A shadow-map size given on the command line wins over the preset's.
+    if (o.given && o.given("--shadow-size")) s.shadowMapSize = o.shadowSize;
+    if (o.given && o.given("--shadow-cube-size")) s.shadowCubeSize = o.shadowCubeSize;
     for (const auto& [flag, value] : o.aliases)
-        if (o.given && o.given(flag)) setParam(s, flag, value);
+        if (o.given && o.given(flag)) setAlias(s, flag, value);
     for (const auto& [flag, on] : o.aliasFlags)
-        if (o.given && o.given(flag)) setParam(s, flag, on ? "true" : "false");
+        if (o.given && o.given(flag)) setAlias(s, flag, on ? "true" : "false");
     for (const std::string& kv : o.sets) {
         const size_t eq = kv.find('=');
         if (eq == std::string::npos) throw Error("--set '" + kv + "' is not METHOD.KEY=VALUE");
@@ -250,7 +287,8 @@ int runRender(const RenderOptions& o) {
         SceneSetupOptions setup = o.setup;
         if (viewSettings && !use("--lighting")) setup.lighting = viewSettings->lighting;
         // With --settings the file's ambient stands: the view applied the same rule when it opened the scene.
-        const bool ambientFixed = viewSettings.has_value() || (o.given && o.given("--ambient"));
+        const bool ambientFixed =
+            viewSettings.has_value() || (o.given && (o.given("--ambient") || o.given("--background")));
         const int camera = prepareScene(scene, setup, float(s.width) / float(s.height), &s, ambientFixed);
         if (viewSettings) scene.lights = view::effectiveLights(*viewSettings, scene.lights);  // the panel's edits
         if (!viewSettings || use("--camera") || use("--camera-pos")) s.camera = camera;
@@ -308,7 +346,7 @@ int runRender(const RenderOptions& o) {
 }
 
 void addInfoOptions(CLI::App& cmd, InfoOptions& o) {
-    cmd.add_option("--scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME")->required();
+    cmd.add_option("--scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME (" + builtinSceneList() + ")")->required();
     cmd.add_option("--size", o.size, "Image size the GPU memory figures assume")->capture_default_str();
     cmd.add_option("--backend", o.backend, "OpenGL context for the GPU memory figures: auto, egl, osmesa")
         ->capture_default_str();
@@ -404,6 +442,31 @@ void addMethodsOptions(CLI::App& cmd, MethodsOptions& o) {
     cmd.add_flag("--json", o.json, "Print JSON instead of text");
 }
 
+namespace {
+
+// One method's presets and parameters as aligned columns, each as wide as its longest entry.
+void printMethodTable(const GiMethod& m) {
+    size_t presetWidth = 0;
+    for (const GiPreset& p : m.presets) presetWidth = std::max(presetWidth, p.name.size());
+    for (const GiPreset& p : m.presets) std::printf("  preset %-*s  %s\n", int(presetWidth), p.name.c_str(), p.description.c_str());
+    if (m.params.empty()) std::printf("  (no parameters)\n");
+    std::vector<std::array<std::string, 5>> rows;
+    for (const ParamDesc& d : m.params)
+        rows.push_back({m.name + "." + d.key, paramTypeName(d.type), describeParamRange(d),
+                        "default " + formatParamValue(d, d.defaultValue), d.update == ParamUpdate::Live ? "live" : "rebuild"});
+    std::array<size_t, 5> width{};
+    for (const auto& r : rows)
+        for (size_t c = 0; c < r.size(); ++c) width[c] = std::max(width[c], r[c].size());
+    for (size_t i = 0; i < rows.size(); ++i) {
+        std::printf(" ");
+        for (size_t c = 0; c < rows[i].size(); ++c) std::printf(" %-*s", int(width[c]), rows[i][c].c_str());
+        const ParamDesc& d = m.params[i];
+        std::printf("  %s%s\n", d.help.c_str(), d.alias.empty() ? "" : (" (alias " + d.alias + ")").c_str());
+    }
+}
+
+}  // namespace
+
 int runMethods(const MethodsOptions& o) {
     nlohmann::ordered_json j = nlohmann::ordered_json::array();
     std::vector<const GiMethod*> list;
@@ -441,16 +504,11 @@ int runMethods(const MethodsOptions& o) {
         std::printf("%s\n", j.dump(2).c_str());
         return 0;
     }
+    size_t nameWidth = 0;
+    for (const GiMethod* m : list) nameWidth = std::max(nameWidth, m->name.size());
     for (const GiMethod* m : list) {
-        std::printf("%-13s %s\n", m->name.c_str(), m->summary.c_str());
-        if (o.method.empty()) continue;
-        for (const GiPreset& p : m->presets) std::printf("  preset %-7s %s\n", p.name.c_str(), p.description.c_str());
-        if (m->params.empty()) std::printf("  (no parameters)\n");
-        for (const ParamDesc& d : m->params)
-            std::printf("  %-26s %-6s %-24s default %-10s %-7s %s%s\n", (m->name + "." + d.key).c_str(),
-                        paramTypeName(d.type), describeParamRange(d).c_str(), formatParamValue(d, d.defaultValue).c_str(),
-                        d.update == ParamUpdate::Live ? "live" : "rebuild", d.help.c_str(),
-                        d.alias.empty() ? "" : (" (alias " + d.alias + ")").c_str());
+        std::printf("%-*s  %s\n", int(nameWidth), m->name.c_str(), m->summary.c_str());
+        if (!o.method.empty()) printMethodTable(*m);
     }
     for (const ParamGroup* g : groups) {
         std::printf("%-13s %s (shared by every method)\n", g->name.c_str(), g->summary.c_str());

@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "image.h"
 #include "metrics.h"
+#include "tonemap.h"
 
 namespace gis {
 
@@ -84,13 +85,33 @@ int runDiff(const DiffOptions& o) {
         if (!hasExtension(o.mask, ".png")) throw Error("--mask '" + o.mask + "' must be a .png");
     }
 
-    const ImageF test = loadLinear(o.test);
-    const ImageF reference = loadLinear(o.reference);
+    ImageF test = loadLinear(o.test);
+    ImageF reference = loadLinear(o.reference);
     MetricOptions options;
-    const bool anyPng = hasExtension(o.test, ".png") || hasExtension(o.reference, ".png");
-    const std::string tonemapName = o.tonemap == "auto" ? (anyPng ? "linear" : "aces") : o.tonemap;
+    const bool testPng = hasExtension(o.test, ".png"), referencePng = hasExtension(o.reference, ".png");
+    std::string tonemapName = o.tonemap == "auto" ? (testPng || referencePng ? "linear" : "aces") : o.tonemap;
+    float exposure = o.exposure;
+    if (testPng != referencePng) {
+        // A tone-mapped PNG against linear radiance: the errors would measure the tone curve, not
+        // the render (FLIP 0.49 where the two EXRs give 0.24). The EXR takes the display transform
+        // a PNG of it gets from `render` (aces unless --tonemap says otherwise), 8-bit, and the pair
+        // is compared as two PNGs.
+        DisplaySettings toPng;
+        const std::string curve = o.tonemap == "auto" ? "aces" : o.tonemap;
+        toPng.tonemap = parseTonemapper(curve);
+        toPng.exposureEV = o.exposure;
+        ImageF& linear = testPng ? reference : test;
+        linear = decodeSrgbImage(toLdrImage(linear, toPng));
+        std::fprintf(stderr,
+                     "gisandbox: warning: %s is a tone-mapped PNG and %s a linear EXR: the EXR is tone-mapped "
+                     "(%s, %s EV) and quantized as a PNG before comparing; compare two EXRs for radiance errors\n",
+                     (testPng ? o.test : o.reference).c_str(), (testPng ? o.reference : o.test).c_str(),
+                     curve.c_str(), formatMetric(o.exposure, 4).c_str());
+        tonemapName = "linear";
+        exposure = 0.0f;
+    }
     options.display.tonemap = parseTonemapper(tonemapName);
-    options.display.exposureEV = o.exposure;
+    options.display.exposureEV = exposure;
     options.pixelsPerDegree = o.ppd;
     if (!o.mask.empty()) {
         const ImageU8 mask = readPng(o.mask);
@@ -136,7 +157,7 @@ int runDiff(const DiffOptions& o) {
         j["height"] = reference.height;
         j["pixels"] = m.pixels;
         j["tonemap"] = tonemapName;
-        j["exposure_ev"] = o.exposure;
+        j["exposure_ev"] = exposure;
         j["rmse"] = m.rmse;
         j["relmse"] = m.relMse;
         j["relmse_epsilon"] = options.relMseEpsilon;
@@ -157,7 +178,7 @@ int runDiff(const DiffOptions& o) {
     if (!options.ignore.empty())
         std::printf(" (%lld masked)", static_cast<long long>(int64_t(options.ignore.size()) - m.pixels));
     std::printf("\ndisplay     %s, exposure %s EV (PSNR sRGB, SSIM, FLIP)\n\n", tonemapName.c_str(),
-                formatMetric(o.exposure, 4).c_str());
+                formatMetric(exposure, 4).c_str());
     std::printf("%-12s %12s\n", "metric", "value");
     std::printf("%-12s %12s\n", "RMSE", formatMetric(m.rmse).c_str());
     std::printf("%-12s %12s   eps %s\n", "relMSE", formatMetric(m.relMse).c_str(),

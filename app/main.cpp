@@ -2,11 +2,38 @@
 // ("gisandbox: error: ...") and a non-zero exit status.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <new>
 
 #include "commands.h"
 #include "scene/scene.h"
+#include "scene/scene_lighting.h"
+
+namespace {
+
+// CLI11 names unexpected arguments last first ("vct --gii"): say them in the order typed, and
+// offer the command's nearest option for a mistyped flag.
+std::string extrasMessage(const CLI::App& app, int argc, char** argv) {
+    std::vector<std::string> extras = app.remaining(true), typed;
+    for (int i = 1; i < argc; ++i) {
+        const auto it = std::find(extras.begin(), extras.end(), argv[i]);
+        if (it != extras.end()) typed.push_back(*it), extras.erase(it);
+    }
+    typed.insert(typed.end(), extras.begin(), extras.end());
+    std::string list, hint;
+    for (const std::string& a : typed) list += (list.empty() ? "" : " ") + a;
+    const CLI::App* cmd = app.get_subcommands().empty() ? &app : app.get_subcommands().back();
+    std::vector<std::string> flags;
+    for (const CLI::Option* opt : cmd->get_options())
+        for (const std::string& name : opt->get_lnames()) flags.push_back("--" + name);
+    for (const std::string& a : typed)
+        if (a.rfind("--", 0) == 0 && hint.empty()) hint = gis::didYouMean(a.substr(0, a.find('=')), flags);
+    if (!hint.empty()) hint = " (" + hint.substr(0, hint.size() - 1) + ")";
+    return "unexpected argument" + std::string(typed.size() == 1 ? "" : "s") + ": " + list + hint;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"gisandbox: explore and compare real-time global illumination against a reference"};
@@ -56,7 +83,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::string what = e.what();
+        std::string what = dynamic_cast<const CLI::ExtrasError*>(&e) ? extrasMessage(app, argc, argv) : e.what();
         // A word where a command belongs: name it and the commands there are.
         bool known = false;
         std::string names;

@@ -444,12 +444,14 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
                                 ? "left drag: orbit, right/middle drag: pan, wheel: zoom"
                                 : "WASD/QE: move (shift: x4), drag: look, wheel: speed");
         ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-        ImGui::TextWrapped("F: orbit/fly, R: reset, 1/2/3: single/split/grid, F12: screenshot");
+        ImGui::TextWrapped("F: orbit/fly, R: reset, 1/2/3: single/split/grid, B: swap the split's sides (A/B), I: pixel inspector, F12: screenshot");
         ImGui::PopStyleColor();
     }
 
     for (int i = 0; i < paneCount(s.mode); ++i)
         if (ImGui::CollapsingHeader(paneTitle(s.mode, i), ImGuiTreeNodeFlags_DefaultOpen)) paneControls(ctx, i);
+    // Right after the panes it times, so it is on screen at the default 720-pixel height.
+    if (ImGui::CollapsingHeader("Timings and memory", ImGuiTreeNodeFlags_DefaultOpen)) timingControls(ctx);
 
     if (ImGui::CollapsingHeader("Display and lighting", ImGuiTreeNodeFlags_DefaultOpen)) {
         combo("Tone mapper", s.tonemap == Tonemapper::Aces ? "aces" : "linear", {"aces", "linear"},
@@ -473,13 +475,6 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
         // Ranges from the reference's parameter rows, the one place they are declared.
         const ParamDesc& bouncesRow = *methodInRole(MethodRole::Reference).param("bounces");
         const ParamDesc& sppRow = *methodInRole(MethodRole::Reference).param("spp");
-        int bounces = s.maxBounces;
-        if (ImGui::DragInt("Bounces", &bounces, 0.2f, int(bouncesRow.min), int(bouncesRow.max))) {
-            PanelAction a;
-            a.kind = PanelAction::SetMaxBounces;
-            a.value = float(bounces);
-            act(ctx, a);
-        }
         combo("Heatmap metric", errorMetricName(s.heatmapMetric), {"flip", "rmse", "relmse", "ssim"},
               [&](const std::string& n) {
                   PanelAction a;
@@ -487,8 +482,19 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
                   a.text = n;
                   act(ctx, a);
               });
-        int spp = s.referenceSpp;
+        // The path tracer's own controls, apart from the methods' bounce parameters (vct.bounces
+        // is in its pane).
+        ImGui::Separator();
+        ImGui::TextDisabled("Path tracer and reference");
+        int bounces = s.maxBounces;
+        if (ImGui::DragInt("Path tracer bounces", &bounces, 0.2f, int(bouncesRow.min), int(bouncesRow.max))) {
+            PanelAction a;
+            a.kind = PanelAction::SetMaxBounces;
+            a.value = float(bounces);
+            act(ctx, a);
+        }
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("path tracer: %s", bouncesRow.help.c_str());
+        int spp = s.referenceSpp;
         if (ImGui::InputInt("Reference spp", &spp, 16, 64, ImGuiInputTextFlags_EnterReturnsTrue)) {
             PanelAction a;
             a.kind = PanelAction::SetReferenceSpp;
@@ -498,8 +504,7 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
     }
 
     if (ImGui::CollapsingHeader("Lights")) lightControls(ctx);
-    if (ImGui::CollapsingHeader("Timings and memory", ImGuiTreeNodeFlags_DefaultOpen)) timingControls(ctx);
-    if (ImGui::CollapsingHeader("BRDF lobe", ImGuiTreeNodeFlags_DefaultOpen)) lobePlot(ctx);
+    if (ImGui::CollapsingHeader("BRDF lobe")) lobePlot(ctx);
 
     if (ImGui::CollapsingHeader("Settings and screenshots", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::InputText("##settings", &ctx.settingsPath);
@@ -515,6 +520,37 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
     }
     ImGui::PopItemWidth();
     ImGui::End();
+}
+
+void drawPixelInspector(const ViewState& state, const ViewSession& session, float mx, float my, float w, float h) {
+    if (mx < 0.0f || my < 0.0f || mx >= w || my >= h || session.visiblePanes() == 0) return;
+    // Which panes sit under the cursor (both halves of a split: they share a frame), and where in
+    // each pane's render pixels (the render scale may make those fewer than window pixels).
+    const std::vector<PaneRect> rects = paneRects(state.mode, int(w), int(h));
+    const glm::ivec2 size = session.paneSize();
+    std::string text;
+    for (int i = 0; i < session.visiblePanes() && i < int(rects.size()); ++i) {
+        const PaneRect& r = rects[size_t(i)];
+        if (mx < float(r.x) || my < float(r.y) || mx >= float(r.x + r.w) || my >= float(r.y + r.h)) continue;
+        const glm::ivec2 pixel(int((mx - float(r.x)) / float(r.w) * float(size.x)),
+                               int((my - float(r.y)) / float(r.h) * float(size.y)));
+        const auto readout = session.inspectPixel(state, i, pixel);
+        if (!readout) continue;
+        char line[256];
+        const glm::vec3 c = readout->radiance;
+        std::snprintf(line, sizeof line, "%s  (%d, %d)\n  radiance   %.4f %.4f %.4f\n", paneLabel(state, i).c_str(),
+                      pixel.x, pixel.y, c.r, c.g, c.b);
+        text += line;
+        if (readout->hasReference) {
+            const glm::vec3 ref = readout->reference, err = c - ref;
+            std::snprintf(line, sizeof line, "  reference  %.4f %.4f %.4f\n  error      %+.4f %+.4f %+.4f\n", ref.r, ref.g,
+                          ref.b, err.r, err.g, err.b);
+            text += line;
+        } else {
+            text += "  reference  (shown once a heatmap's reference has converged)\n";
+        }
+    }
+    if (!text.empty()) ImGui::SetTooltip("%s", text.c_str());
 }
 
 void drawViewOverlay(const ViewState& state, const ViewSession& session, float x, float y, float w, float h) {

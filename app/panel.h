@@ -27,6 +27,10 @@ void act(PanelContext& ctx, const PanelAction& action);
 // The panel at (x, y, width, height) in ImGui (window) coordinates.
 void drawPanel(PanelContext& ctx, float x, float y, float width, float height);
 
+// The pixel inspector's tooltip at the cursor (mx, my in the 3D view of w x h, window
+// coordinates): each pane's radiance there, the reference's and the error.
+void drawPixelInspector(const ViewState& state, const ViewSession& session, float mx, float my, float w, float h);
+
 // Pane labels, progress and metric, and the split divider, over the 3D view at (x, y, w, h).
 void drawViewOverlay(const ViewState& state, const ViewSession& session, float x, float y, float w, float h);
 

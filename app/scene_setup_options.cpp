@@ -4,11 +4,14 @@
 
 #include <cstdio>
 
+#include "scene/scene_lighting.h"
+
 namespace gis {
 
 void addSceneSetupOptions(CLI::App& cmd, SceneSetupOptions& o) {
     cmd.add_option("--lighting", o.lighting,
-                   "auto (the scene's lights, or a default sun and sky when it has no light and no emitter), "
+                   "auto (the scene's lights, or a default sun and sky when it has no light and no emission strong "
+                   "enough to light it), "
                    "scene, default (sun and sky instead), none")
         ->capture_default_str();
     cmd.add_option("--camera", o.camera,
@@ -49,11 +52,18 @@ CameraRequest cameraRequest(const SceneSetupOptions& o) {
 int prepareScene(Scene& scene, const SceneSetupOptions& o, float aspect, RenderSettings* settings, bool ambientGiven) {
     if (settings && !o.emitters.empty()) setParam(*settings, "emitters.mode", o.emitters);
     const LightingMode mode = parseLightingMode(o.lighting);
+    // Measured before: applyLighting keeps the emission but the reason belongs in the line.
+    const double emitted = mode == LightingMode::Auto ? meanEmittedRadiance(scene) : 0.0;
     if (applyLighting(scene, mode)) {
+        char why[200] = "the scene has no light";
+        if (emitted > 0.0)
+            std::snprintf(why, sizeof why,
+                          "the scene's emission is a surface detail, not a light (mean emitted radiance %.3g over its "
+                          "surfaces, below %g)", emitted, kEmitterLightingFloor);
         std::fprintf(stderr,
-                     "gisandbox: the scene has no light: added the default sun (irradiance %g, elevation %g deg, "
-                     "azimuth %g deg) and sky (radiance %g); --lighting scene renders without them\n",
-                     kDefaultSunIrradiance, kDefaultSunElevationDegrees, kDefaultSunAzimuthDegrees, kDefaultSkyRadiance);
+                     "gisandbox: %s: added the default sun (irradiance %g, elevation %g deg, azimuth %g deg) and sky "
+                     "(radiance %g); --lighting scene renders without them\n",
+                     why, kDefaultSunIrradiance, kDefaultSunElevationDegrees, kDefaultSunAzimuthDegrees, kDefaultSkyRadiance);
         if (settings && !ambientGiven) settings->ambient = glm::vec3(kDefaultSkyRadiance);
     }
     return resolveCamera(scene, cameraRequest(o), aspect);

@@ -81,6 +81,7 @@ private:
     std::string droppedPath_;
     double scroll_ = 0.0;
     bool keyWasDown_[GLFW_KEY_LAST + 1] = {};
+    bool inspect_ = false;  // I: the pixel inspector's tooltip follows the cursor
     enum class Drag { None, Orbit, Pan, Look, Divider } drag_ = Drag::None;
     double lastX_ = 0.0, lastY_ = 0.0;
 };
@@ -146,7 +147,7 @@ void ViewApp::handleInput(float viewW, float viewH, float dt) {
     scroll_ = 0.0;
 
     if (io.WantCaptureKeyboard) {
-        for (int k : {GLFW_KEY_F12, GLFW_KEY_F, GLFW_KEY_R, GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3})
+        for (int k : {GLFW_KEY_F12, GLFW_KEY_F, GLFW_KEY_R, GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_B, GLFW_KEY_I})
             keyWasDown_[k] = glfwGetKey(window_, k) == GLFW_PRESS;
         return;
     }
@@ -165,6 +166,12 @@ void ViewApp::handleInput(float viewW, float viewH, float dt) {
     if (keyPressed(GLFW_KEY_1)) applyPanelAction(state_, PanelAction::viewMode(ViewMode::Single));
     if (keyPressed(GLFW_KEY_2)) applyPanelAction(state_, PanelAction::viewMode(ViewMode::Split));
     if (keyPressed(GLFW_KEY_3)) applyPanelAction(state_, PanelAction::viewMode(ViewMode::Grid));
+    if (keyPressed(GLFW_KEY_I)) inspect_ = !inspect_;
+    if (keyPressed(GLFW_KEY_B)) {  // A/B: flip the split's sides to see which difference is which
+        PanelAction a;
+        a.kind = PanelAction::SwapSides;
+        applyPanelAction(state_, a);
+    }
     if (fly) {
         auto down = [&](int k) { return glfwGetKey(window_, k) == GLFW_PRESS ? 1.0f : 0.0f; };
         const glm::vec3 dir(down(GLFW_KEY_D) - down(GLFW_KEY_A), down(GLFW_KEY_E) - down(GLFW_KEY_Q),
@@ -307,6 +314,8 @@ int ViewApp::run() {
         // Panel and overlay after the frame: both show the frame on screen (the same "5/16 spp"),
         // and what the panel changes is rendered from the next frame on.
         drawViewOverlay(state_, *session_, 0.0f, 0.0f, viewW, viewH);
+        if (inspect_ && !ImGui::GetIO().WantCaptureMouse)
+            drawPixelInspector(state_, *session_, float(lastX_), float(lastY_), viewW, viewH);
         view::PanelContext panel{state_, *session_, message_, scenePath_, settingsPath_, ctx_->renderer, cpuMs};
         drawPanel(panel, viewW, 0.0f, float(ww) - viewW, viewH);
         if (panel.screenshotRequested) screenshot_ = true;

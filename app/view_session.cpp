@@ -1,5 +1,7 @@
 #include "view_session.h"
 
+#include <glm/gtc/type_ptr.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <ctime>
@@ -254,10 +256,16 @@ GLuint ViewSession::ensureDisplay(PaneView& p) {
     return p.display.id();
 }
 
+namespace {
+// References are shared by every pane that compares against the same path-traced image.
+std::string referenceKey(const RenderSettings& rs) {
+    return structuralKey(rs) + "|" + std::to_string(int(rs.diffuse)) + "|" + std::to_string(int(rs.specular));
+}
+}  // namespace
+
 ViewSession::Reference* ViewSession::reference(const ViewState& state, int index, const CameraMatrices& camera) {
     const RenderSettings rs = referenceSettings(state, index, paneSize_);
-    const std::string key = structuralKey(rs) + "|" + std::to_string(int(rs.diffuse)) + "|" +
-                            std::to_string(int(rs.specular));
+    const std::string key = referenceKey(rs);
     auto it = references_.find(key);
     if (it == references_.end()) {
         Reference ref;
@@ -378,6 +386,23 @@ bool ViewSession::settled() const {
         if (!p.renderer->converged() || (p.heatmapWanted && !p.heatmapReady)) return false;
     }
     return true;
+}
+
+std::optional<ViewSession::PixelReadout> ViewSession::inspectPixel(const ViewState& state, int index,
+                                                                   glm::ivec2 pixel) const {
+    if (index < 0 || index >= visible_ || !panes_[index].renderer) return std::nullopt;
+    if (pixel.x < 0 || pixel.y < 0 || pixel.x >= paneSize_.x || pixel.y >= paneSize_.y) return std::nullopt;
+    const ImageF image = panes_[index].renderer->readHdr();
+    if (image.width != paneSize_.x || image.height != paneSize_.y) return std::nullopt;
+    PixelReadout out;
+    out.radiance = glm::make_vec3(image.at(pixel.x, pixel.y));
+    const auto ref = references_.find(referenceKey(referenceSettings(state, index, paneSize_)));
+    if (ref != references_.end() && ref->second.image.width == paneSize_.x && ref->second.image.height == paneSize_.y &&
+        sameCamera(ref->second.camera, panes_[index].camera)) {
+        out.hasReference = true;
+        out.reference = glm::make_vec3(ref->second.image.at(pixel.x, pixel.y));
+    }
+    return out;
 }
 
 ImageU8 ViewSession::readPane(int index) const {

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <deque>
+#include <optional>
 #include <map>
 #include <memory>
 #include <string>
@@ -88,6 +89,16 @@ public:
     // Every visible pane finished (progressive methods converged, heatmaps computed).
     bool settled() const;
     ImageU8 readPane(int pane) const;             // what the pane shows, rows top to bottom
+    // The pixel inspector: pane `index`'s linear radiance (or its debug view's values) at pane
+    // pixel `pixel` (x right, y down, render pixels), and the path-traced reference's radiance
+    // there once the reference the heatmap uses has converged. Empty outside the pane or before
+    // its first frame.
+    struct PixelReadout {
+        glm::vec3 radiance{0.0f};
+        bool hasReference = false;
+        glm::vec3 reference{0.0f};
+    };
+    std::optional<PixelReadout> inspectPixel(const ViewState& state, int index, glm::ivec2 pixel) const;
     // What the 3D view shows, composed on the CPU at render size: the pane (single), the two
     // halves at the divider (split) or 2x2 panes (grid), each labelled when `labels`.
     ImageU8 composite(const ViewState& state, bool labels) const;

@@ -287,6 +287,13 @@ CameraMatrices viewCameraMatrices(const ViewState& state, const Scene& scene, fl
     return m;
 }
 
+std::array<PaneState, kMaxPanes> defaultPanes() {
+    std::array<PaneState, kMaxPanes> panes;
+    const char* methods[kMaxPanes] = {"none", "vct", "probes", "pathtrace"};
+    for (int i = 0; i < kMaxPanes; ++i) panes[size_t(i)].gi = methods[i];
+    return panes;
+}
+
 // --- Applying actions.
 
 void applyPanelAction(ViewState& state, const PanelAction& a) {
@@ -296,6 +303,8 @@ void applyPanelAction(ViewState& state, const PanelAction& a) {
         case PanelAction::SetMethod:
             checkPane(a.index);
             giMethod(a.text);  // throws for an unknown one
+            // A new method starts at the default preset: the old method's one was chosen for it.
+            if (s.panes[a.index].gi != a.text) s.panes[a.index].preset = PaneState{}.preset;
             s.panes[a.index].gi = a.text;
             if (s.panes[a.index].display == PaneDisplay::Method) s.panes[a.index].display = PaneDisplay::Lit;
             break;
@@ -341,6 +350,7 @@ void applyPanelAction(ViewState& state, const PanelAction& a) {
             s.panes[a.index].directOnly = a.flag;
             break;
         case PanelAction::SetMode: s.mode = parseViewMode(a.text); break;
+        case PanelAction::SwapSides: std::swap(s.panes[0], s.panes[1]); break;
         case PanelAction::SetDivider:
             checkFinite("divider", a.value);
             s.divider = std::clamp(a.value, 0.02f, 0.98f);
@@ -585,6 +595,11 @@ PanelAction parsePanelAction(const std::vector<std::string>& w) {
         need(2, "mode single|split|grid");
         a.kind = PanelAction::SetMode;
         a.text = w[1];
+        return a;
+    }
+    if (cmd == "swap") {
+        need(1, "swap (panes 0 and 1 trade places: the split's A/B)");
+        a.kind = PanelAction::SwapSides;
         return a;
     }
     if (cmd == "divider") {

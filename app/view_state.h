@@ -45,6 +45,10 @@ struct PaneState {
     bool directOnly = false;   // none: no ambient term; pathtrace: no indirect bounce
 };
 
+// The baseline, then three methods that differ, so split and grid modes open on a comparison
+// (pane 1 is split mode's other side) instead of identical panes.
+std::array<PaneState, kMaxPanes> defaultPanes();
+
 // The free camera: a position and a look direction (yaw about +Y, pitch up), with an orbit target
 // `distance` ahead. While `free` is false the scene's camera `sceneCamera` is used unchanged, so
 // an untouched view renders exactly what `gisandbox render --camera N` does.
@@ -71,7 +75,7 @@ struct ViewState {
     std::string scene = "builtin:cornell";
     std::string lighting = "auto";        // --lighting: applied when the scene is opened
     ViewMode mode = ViewMode::Single;
-    std::array<PaneState, kMaxPanes> panes;
+    std::array<PaneState, kMaxPanes> panes = defaultPanes();
     float divider = 0.5f;                 // split: left pane's share of the view width, [0.02, 0.98]
 
     // Shared by every pane.
@@ -118,6 +122,7 @@ struct PanelAction {
         SetLightEnabled, SetLightIntensity, SetLightColor, SetLightPosition, SetLightDirection, AddLight,
         RemoveLight, ResetLights,
         SetPlotPane, SetPlotMaterial, SetPlotViewAngle, SetPlotLog,
+        SwapSides,  // A/B: panes 0 and 1 trade places (split mode's left and right)
     };
     Kind kind = SetMethod;
     int index = 0;            // pane or light

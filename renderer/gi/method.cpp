@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "scene/scene_lighting.h"
+
 namespace gis {
 
 std::vector<GiMethod>& methodRegistry();  // gi/methods.cpp
@@ -32,6 +34,14 @@ std::string roleParamKey(MethodRole role, const std::string& key) {
     return m.name + "." + key;
 }
 
+namespace {
+std::vector<std::string> methodNameList() {
+    std::vector<std::string> names;
+    for (const GiMethod& m : giMethods()) names.push_back(m.name);
+    return names;
+}
+}  // namespace
+
 std::string giMethodNames() {
     std::string s;
     for (const GiMethod& m : giMethods()) s += (s.empty() ? "" : ", ") + m.name;
@@ -40,7 +50,8 @@ std::string giMethodNames() {
 
 const GiMethod& giMethod(const std::string& name) {
     if (const GiMethod* m = findGiMethod(name)) return *m;
-    throw Error("unknown GI method '" + name + "' (available: " + giMethodNames() + ")");
+    throw Error("unknown GI method '" + name + "' (" + didYouMean(name, methodNameList()) + "available: " +
+                giMethodNames() + ")");
 }
 
 const std::vector<std::string>& presetNames() {
@@ -92,10 +103,14 @@ const ParamDesc& findParam(const std::string& fullKey, std::string* methodOut) {
             throw Error("unknown parameter '" + fullKey + "' (" + g.name + " has: " + keys + ")");
         }
     const GiMethod* m = prefix.empty() ? nullptr : findGiMethod(prefix);
-    if (!m) throw Error("unknown parameter '" + fullKey + "' (expected METHOD.KEY; methods: " + giMethodNames() + ")");
+    if (!m)
+        throw Error("unknown parameter '" + fullKey + "' (expected METHOD.KEY; " +
+                    didYouMean(prefix, methodNameList()) + "methods: " + giMethodNames() + ")");
     std::string keys;
-    for (const ParamDesc& d : m->params) keys += (keys.empty() ? "" : ", ") + d.key;
-    throw Error("unknown parameter '" + fullKey + "' (" + m->name + " has: " + (keys.empty() ? "none" : keys) + ")");
+    std::vector<std::string> names;
+    for (const ParamDesc& d : m->params) keys += (keys.empty() ? "" : ", ") + d.key, names.push_back(d.key);
+    throw Error("unknown parameter '" + fullKey + "' (" + didYouMean(fullKey.substr(dot + 1), names) + m->name +
+                " has: " + (keys.empty() ? "none" : keys) + ")");
 }
 
 bool isGroupParam(const std::string& fullKey) {

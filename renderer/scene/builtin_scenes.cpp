@@ -11,6 +11,7 @@
 #include "scene/scene.h"
 #include "scene/mesh_builders.h"
 #include "scene/scene_internal.h"
+#include "scene/scene_lighting.h"
 
 namespace gis {
 namespace {
@@ -228,8 +229,8 @@ Scene makeBuiltinScene(const std::string& spec) {
     if (name == "brdf-gallery") return makeBrdfGallery();
     std::string list;
     for (const std::string& n : builtinSceneNames()) list += (list.empty() ? "" : ", ") + n;
-    throw Error("unknown built-in scene '" + detail::oneLine(spec, 80) + "' (available: " + list +
-                ")");
+    throw Error("unknown built-in scene '" + detail::oneLine(spec, 80) + "' (" + didYouMean(name, builtinSceneNames()) +
+                "available: " + list + ")");
 }
 
 }  // namespace gis

@@ -148,7 +148,8 @@ Camera defaultCamera(const Aabb& bounds, float aspect);
 
 // --- Light and camera for scenes that bring none (renderer/scene/scene_setup.cpp).
 
-// auto: the scene's own lights and emitters, or the default sun and sky when it has neither;
+// auto: the scene's own lights and emitters, or the default sun and sky when it has no light and
+// no emission strong enough to light it (renderer/scene/scene_lighting.h);
 // scene: exactly the scene's (possibly none: a black image); default: the sun and sky instead of
 // the scene's lights; none: no punctual light (emission only).
 enum class LightingMode { Auto, Scene, Default, None };
@@ -160,7 +161,7 @@ constexpr float kDefaultSunIrradiance = 3.0f;
 constexpr float kDefaultSunElevationDegrees = 50.0f;
 constexpr float kDefaultSunAzimuthDegrees = 30.0f;
 constexpr float kDefaultSkyRadiance = 0.4f;
-bool hasOwnLighting(const Scene& scene);  // a punctual light or an emissive material
+bool hasOwnLighting(const Scene& scene);  // a punctual light, or emission that lights the scene
 // Applies `mode`; returns true when the default sun and sky were added (the caller says so once).
 bool applyLighting(Scene& scene, LightingMode mode);
 

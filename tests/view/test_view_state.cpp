@@ -326,5 +326,38 @@ TEST(BrdfTable, EveryModelHasAnEntryAndTheShapesAreRight) {
     EXPECT_EQ(evaluateCpuBrdf(s, N, V, -L, DiffuseModel::Lambert, SpecularModel::Ggx), glm::vec3(0.0f));
 }
 
+// A new user's first split or grid is a comparison, and a method picked for a pane starts at the
+// default preset instead of the previous method's (vct/low by accident).
+TEST(FirstHour, PanesStartDistinctAndAMethodChangeResetsThePreset) {
+    const Scene scene = makeBuiltinScene("cornell");
+    ViewState s = stateFor(scene);
+    std::set<std::string> methods;
+    for (const PaneState& p : s.panes) methods.insert(p.gi);
+    EXPECT_EQ(methods.size(), s.panes.size());
+    EXPECT_EQ(s.panes[0].gi, "none");
+    EXPECT_NE(s.panes[1].gi, s.panes[0].gi) << "split mode compares panes 0 and 1";
+    applyPanelAction(s, parsePanelAction(splitWords("preset 1 low")));
+    applyPanelAction(s, parsePanelAction(splitWords("method 1 ssao")));
+    EXPECT_EQ(s.panes[1].preset, PaneState{}.preset);
+    applyPanelAction(s, parsePanelAction(splitWords("preset 1 high")));
+    applyPanelAction(s, parsePanelAction(splitWords("method 1 ssao")));
+    EXPECT_EQ(s.panes[1].preset, "high") << "choosing the same method again keeps its preset";
+}
+
+TEST(FirstHour, SwapFlipsTheSplitsSides) {
+    const Scene scene = makeBuiltinScene("cornell");
+    ViewState s = stateFor(scene);
+    applyPanelAction(s, parsePanelAction(splitWords("mode split")));
+    applyPanelAction(s, parsePanelAction(splitWords("preset 1 low")));
+    const PaneState left = s.panes[0], right = s.panes[1];
+    applyPanelAction(s, parsePanelAction(splitWords("swap")));
+    EXPECT_EQ(s.panes[0].gi, right.gi);
+    EXPECT_EQ(s.panes[0].preset, "low");
+    EXPECT_EQ(s.panes[1].gi, left.gi);
+    applyPanelAction(s, parsePanelAction(splitWords("swap")));
+    EXPECT_EQ(s.panes[0].gi, left.gi);
+    EXPECT_THROW(parsePanelAction(splitWords("swap 1")), Error);
+}
+
 }  // namespace
 }  // namespace gis::test
