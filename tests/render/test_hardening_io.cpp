@@ -214,10 +214,11 @@ TEST(Hardening, SettingsCameraIsCheckedLikeAGltfCamera) {
     const Case cases[] = {
         {R"({"free": true, "position": [0, 1, 3.5], "znear": 1e-7})", "depth buffer cannot resolve"},
         {R"({"free": true, "position": [0, 1, 3.5], "znear": 1e-30})", "depth buffer cannot resolve"},
-        {R"({"distance": -1})", "camera.distance"},
-        {R"({"pitch": 3})", "camera.pitch"},
-        {R"({"yfov": 4})", "camera.yfov"},
-        {R"({"scene_camera": -1})", "camera.scene_camera"},
+        // A valid znear last: the key the old message named was the last one read.
+        {R"({"distance": -1, "znear": 0.01})", "camera.distance"},
+        {R"({"pitch": 3, "znear": 0.01})", "camera.pitch"},
+        {R"({"yfov": 4, "znear": 0.01})", "camera.yfov"},
+        {R"({"scene_camera": -1, "znear": 0.01})", "camera.scene_camera"},
     };
     for (const Case& c : cases) {
         spit(dir + "/s.json", std::string(R"({"scene": "builtin:cornell", "camera": )") + c.camera + "}");
@@ -266,6 +267,23 @@ TEST(Hardening, ScriptNumbersAreStrictAndABomIsAccepted) {
     for (const char* good : {"exposure 1.5", "exposure -2", "exposure 1e-1", "wait 3"})
         EXPECT_NO_THROW(gis::view::parseScript(std::string(good) + "\n", "s.txt")) << good;
     EXPECT_EQ(gis::view::parseScript("\xEF\xBB\xBFwait 2\nquit\n", "bom.txt").size(), 2u);
+}
+
+// The voxel view at a coarse level shows the walls: a one-voxel-thick wall never reached the fixed
+// occupancy 0.5 at level 2, and the view of the Cornell box was all black. The albedo grid has no
+// coarser level: asking for one is refused, not a black image.
+TEST(Hardening, CoarseVoxelViewShowsThinWalls) {
+    const std::string dir = tempDir("hardening_voxels");
+    const std::string view = "render --scene builtin:cornell --gi vct --view vct.voxels --set vct.debug-level=2 --size 32x32 ";
+    const gis::test::CliResult albedo = runCli(view + "--out " + quoted(dir + "/a.exr"));
+    EXPECT_EQ(albedo.status, 1);
+    EXPECT_NE(albedo.err.find("exists at level 0 only"), std::string::npos) << albedo.err;
+    const gis::test::CliResult r = runCli(view + "--set vct.debug-channel=occupancy --out " + quoted(dir + "/v.exr"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const gis::ImageF img = gis::readExr(dir + "/v.exr");
+    size_t lit = 0;
+    for (size_t i = 0; i < img.rgba.size(); i += 4) lit += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2] > 0.0f;
+    EXPECT_GT(lit, img.rgba.size() / 4 / 2) << "fewer than half the pixels show a voxel";
 }
 
 std::string replaceOnce(std::string text, const std::string& from, const std::string& to) {
