@@ -286,6 +286,22 @@ TEST(Hardening, CoarseVoxelViewShowsThinWalls) {
     EXPECT_GT(lit, img.rgba.size() / 4 / 2) << "fewer than half the pixels show a voxel";
 }
 
+// A memory refusal's advice follows its largest part: a voxel volume does not shrink with --size
+// (the message said "use a smaller --size" for vct.resolution=256 at 16x16).
+TEST(Hardening, MemoryRefusalNamesWhatToLower) {
+    const std::string dir = tempDir("hardening_memory");
+    const gis::test::CliResult volume = runCli("render --scene builtin:cornell --gi vct --set vct.resolution=256 --size 16x16 --out " +
+                                                   quoted(dir + "/a.png"),
+                                               "GIS_MEMORY_BUDGET_MB=64");
+    EXPECT_EQ(volume.status, 1);
+    EXPECT_NE(volume.err.find("lower the settings that size VCT"), std::string::npos) << volume.err;
+    EXPECT_EQ(volume.err.find("smaller --size"), std::string::npos) << volume.err;
+    const gis::test::CliResult pixels =
+        runCli("render --scene builtin:cornell --size 8192x8192 --out " + quoted(dir + "/b.png"), "GIS_MEMORY_BUDGET_MB=64");
+    EXPECT_EQ(pixels.status, 1);
+    EXPECT_NE(pixels.err.find("use a smaller --size"), std::string::npos) << pixels.err;
+}
+
 std::string replaceOnce(std::string text, const std::string& from, const std::string& to) {
     const size_t at = text.find(from);
     EXPECT_NE(at, std::string::npos) << from;
