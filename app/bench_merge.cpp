@@ -88,10 +88,15 @@ std::string sceneKey(const BenchJob& job) {
 // cell's references present, for its own scene.
 void verifyManifest(const std::vector<BenchJob>& jobs, std::vector<std::string>& problems) {
     std::map<std::string, PreparedScene> prepared;
-    std::map<std::string, const BenchJob*> referenceById;
-    std::set<std::string> seen;
+    // Two scenes with the same bytes share their references' ids: a reference is looked up by id
+    // and scene name together.
+    std::set<std::pair<std::string, std::string>> references;  // id, scene name
+    std::set<std::string> referenceIds, seen;
     for (const BenchJob& job : jobs)
-        if (job.kind == JobKind::Reference) referenceById.emplace(job.id, &job);
+        if (job.kind == JobKind::Reference) {
+            references.emplace(job.id, job.sceneName);
+            referenceIds.insert(job.id);
+        }
     for (const BenchJob& job : jobs) {
         const std::string what = job.id + " (" + describe(job) + ")";
         if (!seen.insert(describe(job)).second || !seen.insert("id " + job.id + " " + job.sceneName).second) {
@@ -111,11 +116,10 @@ void verifyManifest(const std::vector<BenchJob>& jobs, std::vector<std::string>&
         if (job.kind != JobKind::Cell) continue;
         for (const std::string& ref : {job.reference, job.aoReference}) {
             if (ref.empty()) continue;
-            const auto r = referenceById.find(ref);
-            if (r == referenceById.end())
+            if (!referenceIds.count(ref))
                 problems.push_back(what + ": its reference " + ref + " is not in the manifest");
-            else if (r->second->sceneName != job.sceneName)
-                problems.push_back(what + ": its reference " + ref + " is of scene " + r->second->sceneName);
+            else if (!references.count({ref, job.sceneName}))
+                problems.push_back(what + ": its reference " + ref + " is not listed for scene " + job.sceneName);
         }
     }
 }
