@@ -12,11 +12,13 @@
 #include <fstream>
 #include <iostream>
 #include <set>
+#include <sstream>
 
 #include "bench_cell.h"
 #include "bench_merge.h"
 #include "bench_plan.h"
 #include "commands.h"
+#include "scene/atomic_file.h"
 
 namespace gis {
 
@@ -119,11 +121,9 @@ int runInProcess(const BenchOptions& o) {
     const std::vector<BenchJob> jobs = planBench(o);
     const SweepDirs dirs = sweepDirs(o.outDir, o.cacheDir);
     createSweepDirs(dirs);
-    writeAtomically(o.outDir + "/manifest.jsonl", [&](const std::string& tmp) {
-        std::ofstream f(tmp);
-        writeManifest(f, jobs);
-        if (!f) throw Error(o.outDir + "/manifest.jsonl: cannot write");
-    });
+    std::ostringstream manifest;
+    writeManifest(manifest, jobs);
+    writeFileAtomically(o.outDir + "/manifest.jsonl", manifest.str());
     LazyContext context(o);
     context();  // the machine line first, as before
     std::set<std::string> done;  // two scenes with the same bytes share their jobs: each runs once

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <set>
+#include <sstream>
 
 #include "bench_record.h"
 #include "bench_row.h"
@@ -11,6 +13,7 @@
 #include "image.h"
 #include "metrics.h"
 #include "plot.h"
+#include "scene/atomic_file.h"
 #include "tonemap.h"
 
 namespace gis {
@@ -27,6 +30,7 @@ std::string timeAxisLabel(const std::string& glRenderer, const std::vector<std::
 namespace {
 
 using ojson = nlohmann::ordered_json;
+using OutputSet = std::vector<std::pair<std::string, std::string>>;  // path, bytes: written as one
 
 struct MergedCell {
     const BenchJob* job = nullptr;
@@ -55,6 +59,11 @@ std::vector<MergedCell> gatherCells(const std::vector<BenchJob>& jobs, const Swe
             problems.push_back(job.id + " (" + what + "): not a bench row: " + e.what());
             continue;
         }
+        if (cell.row.method != job.method || cell.row.preset != job.preset) {
+            problems.push_back(job.id + " (" + what + "): its record holds a " + cell.row.method + "/" +
+                               cell.row.preset + " result: " + path);
+            continue;
+        }
         // The manifest names the row: results are shared by content, names belong to the sweep.
         cell.row.scene = job.sceneName;
         cell.row.method = job.method;
@@ -70,6 +79,61 @@ std::vector<MergedCell> gatherCells(const std::vector<BenchJob>& jobs, const Swe
     return cells;
 }
 
+std::string describe(const BenchJob& job) {
+    return job.sceneName + " " + (job.kind == JobKind::Cell ? job.method + "/" + job.preset : job.method + " reference");
+}
+
+// What decides a job's scene and base settings (not its method, preset or counts): the key under
+// which the scene is loaded once for all its lines.
+std::string sceneKey(const BenchJob& job) {
+    ojson j = jobToJson(job);
+    for (const char* k : {"id", "kind", "method", "preset", "frames", "warmup", "reference", "ao_reference",
+                          "reference_spp", "scene_name", "scene_sha256"})
+        j.erase(k);
+    return j.dump();
+}
+
+// The manifest itself, before any result is read: each line's id recomputed from the line (a
+// method, preset or setting edited with the id kept is caught), no job listed twice, and every
+// cell's references present, for its own scene.
+void verifyManifest(const std::vector<BenchJob>& jobs, std::vector<std::string>& problems) {
+    std::map<std::string, PreparedScene> prepared;
+    // Two scenes with the same bytes share their references' ids: a reference is looked up by id
+    // and scene name together.
+    std::set<std::pair<std::string, std::string>> references;  // id, scene name
+    std::set<std::string> referenceIds, seen;
+    for (const BenchJob& job : jobs)
+        if (job.kind == JobKind::Reference) {
+            references.emplace(job.id, job.sceneName);
+            referenceIds.insert(job.id);
+        }
+    for (const BenchJob& job : jobs) {
+        const std::string what = job.id + " (" + describe(job) + ")";
+        if (!seen.insert(describe(job)).second || !seen.insert("id " + job.id + " " + job.sceneName).second) {
+            problems.push_back(what + ": listed twice in the manifest");
+            continue;
+        }
+        try {
+            auto it = prepared.find(sceneKey(job));
+            if (it == prepared.end()) it = prepared.emplace(sceneKey(job), prepareBenchScene(job)).first;
+            const std::string id = contentId(job, jobSettings(job, it->second.base));
+            if (id != job.id)
+                problems.push_back(what + ": the manifest line describes job " + id +
+                                   ", not its id (edited after --plan?)");
+        } catch (const Error& e) {
+            problems.push_back(what + ": cannot recompute its id: " + e.what());
+        }
+        if (job.kind != JobKind::Cell) continue;
+        for (const std::string& ref : {job.reference, job.aoReference}) {
+            if (ref.empty()) continue;
+            if (!referenceIds.count(ref))
+                problems.push_back(what + ": its reference " + ref + " is not in the manifest");
+            else if (!references.count({ref, job.sceneName}))
+                problems.push_back(what + ": its reference " + ref + " is not listed for scene " + job.sceneName);
+        }
+    }
+}
+
 double chartError(const BenchRow& row, ErrorMetric metric) {
     return metric == ErrorMetric::Flip     ? row.error.flip
            : metric == ErrorMetric::Rmse   ? row.error.rmse
@@ -78,8 +142,9 @@ double chartError(const BenchRow& row, ErrorMetric metric) {
 }
 
 // One scene's grid (reference first, then every cell labelled with ms and error) and chart.
-void writeSceneImages(const std::string& sceneName, const BenchJob& referenceJob, const std::vector<MergedCell>& cells,
-                      const SweepDirs& dirs, const std::string& metricName, const std::string& glRenderer) {
+void addSceneImages(OutputSet& out, const std::string& sceneName, const BenchJob& referenceJob,
+                    const std::vector<MergedCell>& cells, const SweepDirs& dirs, const std::string& metricName,
+                    const std::string& glRenderer) {
     const ErrorMetric metric = parseErrorMetric(metricName);
     std::vector<std::pair<std::string, ImageU8>> tiles;
     tiles.emplace_back("reference  path traced, " + std::to_string(referenceJob.referenceSpp) + " spp",
@@ -98,18 +163,19 @@ void writeSceneImages(const std::string& sceneName, const BenchJob& referenceJob
         tiles.emplace_back(caption, readPng(imagePath(dirs, *c.job)));
     }
     const std::string stem = dirs.outDir + "/" + fileSafeName(sceneName);
-    writePng(stem + "_grid.png", composeGrid(tiles, std::min<int>(4, int(tiles.size()))));
+    out.emplace_back(stem + "_grid.png", encodePng(composeGrid(tiles, std::min<int>(4, int(tiles.size())))));
     const std::string yLabel = metricName == "ssim" ? "1 - SSIM vs reference" : metricName + " vs reference";
     std::vector<std::string> totals;
     for (const MergedCell& c : cells)
         if (c.job->sceneName == sceneName && c.row.msToConverge &&
             std::find(totals.begin(), totals.end(), c.row.method) == totals.end())
             totals.push_back(c.row.method);
-    writePng(stem + "_chart.png", drawTradeoffChart(points, sceneName + ": error vs GPU time, " + referenceJob.size,
-                                                    timeAxisLabel(glRenderer, totals), yLabel));
+    out.emplace_back(stem + "_chart.png",
+                     encodePng(drawTradeoffChart(points, sceneName + ": error vs GPU time, " + referenceJob.size,
+                                                 timeAxisLabel(glRenderer, totals), yLabel)));
 }
 
-void writeTables(const std::vector<MergedCell>& cells, const ojson& machine, const SweepDirs& dirs) {
+void addTables(OutputSet& out, const std::vector<MergedCell>& cells, const ojson& machine, const SweepDirs& dirs) {
     const BenchJob& first = *cells.front().job;
     ojson j;
     j["machine"] = machine;
@@ -120,17 +186,11 @@ void writeTables(const std::vector<MergedCell>& cells, const ojson& machine, con
     j["results"] = ojson::array();
     for (const MergedCell& c : cells) j["results"].push_back(rowToJson(c.row));
     const std::string json = dirs.outDir + "/bench.json", csv = dirs.outDir + "/bench.csv";
-    writeAtomically(json, [&](const std::string& tmp) {
-        std::ofstream f(tmp);
-        f << j.dump(2) << "\n";
-        if (!f) throw Error(json + ": cannot write");
-    });
-    writeAtomically(csv, [&](const std::string& tmp) {
-        std::ofstream f(tmp);
-        writeCsvHeader(f);
-        for (const MergedCell& c : cells) writeCsvRow(f, c.row);
-        if (!f) throw Error(csv + ": cannot write");
-    });
+    out.emplace_back(json, j.dump(2) + "\n");
+    std::ostringstream table;
+    writeCsvHeader(table);
+    for (const MergedCell& c : cells) writeCsvRow(table, c.row);
+    out.emplace_back(csv, table.str());
 }
 
 }  // namespace
@@ -144,6 +204,7 @@ std::string fileSafeName(std::string s) {
 int mergeBench(const std::vector<BenchJob>& jobs, const SweepDirs& dirs, const std::string& metric) {
     parseErrorMetric(metric);
     std::vector<std::string> problems;
+    verifyManifest(jobs, problems);
     ojson machine;
     const std::vector<MergedCell> cells = gatherCells(jobs, dirs, machine, problems);
     std::map<std::string, const BenchJob*> references;  // scene name -> its path-traced reference
@@ -165,9 +226,17 @@ int mergeBench(const std::vector<BenchJob>& jobs, const SweepDirs& dirs, const s
     std::vector<std::string> scenes;
     for (const MergedCell& c : cells)
         if (std::find(scenes.begin(), scenes.end(), c.job->sceneName) == scenes.end()) scenes.push_back(c.job->sceneName);
-    for (const std::string& scene : scenes)
-        writeSceneImages(scene, *references.at(scene), cells, dirs, metric, glRenderer);
-    writeTables(cells, machine, dirs);
+    // Every output staged (written and synced under temporary names) before any replaces the
+    // previous merge's: a failure half way (a full disk) leaves the old set whole.
+    OutputSet out;
+    for (const std::string& scene : scenes) {
+        const auto reference = references.find(scene);
+        if (reference == references.end())
+            throw Error("scene " + scene + " has cells but no path-traced reference line in the manifest");
+        addSceneImages(out, scene, *reference->second, cells, dirs, metric, glRenderer);
+    }
+    addTables(out, cells, machine, dirs);
+    writeFilesAtomically(out);
     std::printf("wrote %s/bench.json, %s/bench.csv and a grid and chart per scene (%zu cells)\n", dirs.outDir.c_str(),
                 dirs.outDir.c_str(), cells.size());
     return 0;

@@ -76,6 +76,12 @@ void validateFlags(const BenchOptions& o) {
     parseErrorMetric(o.metric);
     if (o.scenes.empty()) throw Error("--scenes needs at least one scene");
     if (o.presets.empty()) throw Error("--presets needs at least one preset");
+    // A name given twice would plan two lines with one id: a sweep that runs and counts a cell twice.
+    for (const auto& [flag, list] : {std::pair<const char*, const std::vector<std::string>&>{"--methods", o.methods},
+                                     {"--presets", o.presets}})
+        for (size_t i = 0; i < list.size(); ++i)
+            if (std::find(list.begin(), list.begin() + long(i), list[i]) != list.begin() + long(i))
+                throw Error(std::string(flag) + " names '" + list[i] + "' twice");
 }
 
 // A .gltf names its buffers and images by URI; their bytes are the scene as much as its own.
@@ -110,22 +116,13 @@ std::string sceneDigest(const std::string& spec, const Scene& loaded) {
         if (fs::path(spec).extension() == ".gltf") hashGltfResources(spec, h);
         return h.hex();
     }
-    // A builtin has no file: hash what its generator makes, exported as glTF (and the sky, which
-    // glTF cannot hold).
-    static int counter = 0;
-    const fs::path dir = fs::temp_directory_path() /
-                         ("gisandbox-digest-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    fs::create_directories(dir);
-    try {
-        writeGltf(loaded, (dir / "scene.gltf").string());
-        h.update("builtin|" + spec + "|sky" + vecText(loaded.background) + "|");
-        for (const auto& entry : {"scene.gltf", "scene.bin"})
-            if (fs::exists(dir / entry)) h.updateFile((dir / entry).string());
-    } catch (...) {
-        fs::remove_all(dir);
-        throw;
-    }
-    fs::remove_all(dir);
+    // A builtin has no file: hash what its generator makes, serialized as glTF in memory (and the
+    // sky, which glTF cannot hold). In memory, not through a temporary export: nothing another
+    // user could pre-create or redirect, and no failed write that could change the id.
+    const GltfBytes bytes = serializeGltf(loaded, "scene.bin");
+    h.update("builtin|" + spec + "|sky" + vecText(loaded.background) + "|");
+    h.update(bytes.json);
+    h.update(bytes.bin);
     return h.hex();
 }
 

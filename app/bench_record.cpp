@@ -6,6 +6,7 @@
 
 #include "content_hash.h"
 #include "image.h"
+#include "scene/atomic_file.h"
 #include "scene/scene.h"  // gis::Error
 
 namespace gis {
@@ -37,12 +38,7 @@ void writeRecord(const std::string& path, nlohmann::ordered_json body, const std
     for (const std::string& f : files) body["files"][f] = sha256File((dir / f).string());
     const std::string text = body.dump();
     const std::string closed = text.substr(0, text.size() - 1) + kClosing + sha256Hex(text) + "\"}\n";
-    writeAtomically(path, [&](const std::string& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        out << closed;
-        out.close();
-        if (!out) throw Error(path + ": cannot write");
-    });
+    writeFileAtomically(path, closed);
 }
 
 RecordCheck readRecord(const std::string& path, const std::string& id) {
@@ -89,10 +85,7 @@ RecordCheck readRecord(const std::string& path, const std::string& id) {
 
 void writeFailure(const std::string& recordPath, const std::string& message) {
     try {
-        writeAtomically(failurePath(recordPath), [&](const std::string& tmp) {
-            std::ofstream out(tmp);
-            out << message << "\n";
-        });
+        writeFileAtomically(failurePath(recordPath), message + "\n");
     } catch (const Error&) {
         // The job's own error is what the user must see; a note that could not be left changes nothing.
     }

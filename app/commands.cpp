@@ -20,6 +20,7 @@
 #include "gi/method.h"
 #include "gl/shader.h"
 #include "image.h"
+#include "scene/atomic_file.h"
 #include "settings_io.h"
 #include "view_state.h"
 
@@ -48,18 +49,20 @@ bool endsWith(const std::string& s, const std::string& suffix) {  // case-insens
 }
 
 // Fails before any rendering when `path` cannot be written: a directory, a missing or unwritable
-// folder (with the OS's reason). Creates and removes a probe file beside it.
+// folder (with the OS's reason). Creates and removes a temporary file beside it.
 void checkWritable(const std::string& path, const char* flag) {
     namespace fs = std::filesystem;
     std::error_code ec;
     if (fs::is_directory(path, ec)) throw Error(std::string(flag) + " '" + path + "' is a directory");
     const fs::path dir = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
     if (!fs::is_directory(dir, ec)) throw Error(std::string(flag) + ": directory '" + dir.string() + "' does not exist");
-    const std::string probe = (dir / (".gisandbox-write-test-" + std::to_string(getpid()))).string();
-    FILE* f = std::fopen(probe.c_str(), "wb");
-    if (!f) throw Error(std::string(flag) + " '" + path + "' cannot be written: " + std::strerror(errno));
-    std::fclose(f);
-    std::remove(probe.c_str());
+    // The probe is the atomic writer's own temporary (random name, O_EXCL): a fixed probe name
+    // could be a planted symlink that fopen would follow and truncate.
+    try {
+        checkCanCreateBeside(path);
+    } catch (const Error& e) {
+        throw Error(std::string(flag) + " '" + path + "' cannot be written: " + e.what());
+    }
 }
 
 void printWarnings(const Scene& scene) {
@@ -291,6 +294,12 @@ int runRender(const RenderOptions& o) {
             viewSettings.has_value() || (o.given && (o.given("--ambient") || o.given("--background")));
         const int camera = prepareScene(scene, setup, float(s.width) / float(s.height), &s, ambientFixed);
         if (viewSettings) scene.lights = view::effectiveLights(*viewSettings, scene.lights);  // the panel's edits
+        // The glTF loader's depth-range check, for the settings file's own camera.
+        if (viewSettings && viewSettings->camera.free && !use("--camera") && !use("--camera-pos")) {
+            const std::string warning = checkCameraDepth(scene.bounds, viewSettings->camera.position,
+                                                         viewSettings->camera.znear, o.settings + ": camera");
+            if (!warning.empty()) std::fprintf(stderr, "gisandbox: warning: %s\n", warning.c_str());
+        }
         if (!viewSettings || use("--camera") || use("--camera-pos")) s.camera = camera;
     }
     std::unique_ptr<GlContext> ctx;
@@ -557,11 +566,7 @@ int runShaderDump(const ShaderDumpOptions& o) {
             const PreprocessedShader pre = preprocessShader(stage, p.defines);
             // A stage in a subfolder (gi/ssao/ssao.frag) is dumped flat: its file name is enough.
             const std::string path = o.dir + "/" + p.name + "." + fs::path(stage).filename().string();
-            writeAtomically(path, [&](const std::string& tmp) {
-                std::ofstream out(tmp, std::ios::binary);
-                out << pre.source;
-                if (!out) throw Error(path + ": cannot write");
-            });
+            writeFileAtomically(path, pre.source);
             ++count;
         }
     }

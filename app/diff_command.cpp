@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "image.h"
 #include "metrics.h"
+#include "scene/atomic_file.h"
 #include "tonemap.h"
 
 namespace gis {
@@ -84,6 +85,14 @@ int runDiff(const DiffOptions& o) {
         checkReadable(o.mask, "mask");
         if (!hasExtension(o.mask, ".png")) throw Error("--mask '" + o.mask + "' must be a .png");
     }
+    // By device and inode, not by name: ./t.png, a symlink or a hard link to the input is the same
+    // file, and the heatmap's rename would replace it.
+    for (const auto& [input, what] : {std::pair<const std::string&, const char*>{o.test, "test image"},
+                                      {o.reference, "reference image"},
+                                      {o.mask, "mask"}})
+        if (!o.heatmap.empty() && !input.empty() && sameFile(o.heatmap, input))
+            throw Error("--heatmap '" + o.heatmap + "' is the " + what + " '" + input +
+                        "': it would be overwritten; choose another path");
 
     ImageF test = loadLinear(o.test);
     ImageF reference = loadLinear(o.reference);

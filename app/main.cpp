@@ -7,6 +7,7 @@
 #include <new>
 
 #include "commands.h"
+#include "scene/atomic_file.h"
 #include "scene/scene.h"
 #include "scene/scene_lighting.h"
 
@@ -36,6 +37,9 @@ std::string extrasMessage(const CLI::App& app, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // A file-size limit (ulimit -f) makes a write fail with EFBIG, reported like any other write
+    // error, instead of killing the process with a partial file.
+    gis::ignoreFileSizeSignal();
     CLI::App app{"gisandbox: explore and compare real-time global illumination against a reference"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "gisandbox " GIS_VERSION);

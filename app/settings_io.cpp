@@ -7,6 +7,7 @@
 #include "brdf_cpu.h"
 #include "gi/method.h"
 #include "image.h"
+#include "scene/atomic_file.h"
 
 namespace gis::view {
 
@@ -20,7 +21,8 @@ ojson vec(glm::vec3 v) { return ojson::array({v.x, v.y, v.z}); }
 float number(const json& j, const std::string& key) {
     if (!j.is_number()) throw Error("'" + key + "' must be a number");
     const double v = j.get<double>();
-    if (!std::isfinite(v) || std::abs(v) > 3.0e38) throw Error("'" + key + "' must be a finite number");
+    if (!std::isfinite(v) || std::abs(v) > kMaxSettingMagnitude)
+        throw Error("'" + key + "' must be a finite number of magnitude <= 1e18");
     return float(v);
 }
 
@@ -40,8 +42,12 @@ bool boolean(const json& j, const std::string& key) {
 }
 
 int integer(const json& j, const std::string& key) {
-    if (!j.is_number_integer()) throw Error("'" + key + "' must be a whole number");
-    const int64_t v = j.get<int64_t>();
+    // 64.0 is the whole number 64 (a tool that writes every number as a double is not wrong).
+    const bool whole = j.is_number_integer() ||
+                       (j.is_number_float() && std::isfinite(j.get<double>()) && j.get<double>() == std::floor(j.get<double>()) &&
+                        std::abs(j.get<double>()) <= double(int64_t(1) << 30));
+    if (!whole) throw Error("'" + key + "' must be a whole number");
+    const int64_t v = j.is_number_integer() ? j.get<int64_t>() : int64_t(j.get<double>());
     if (v < -(int64_t(1) << 30) || v > (int64_t(1) << 30)) throw Error("'" + key + "' is out of range");
     return int(v);
 }
@@ -295,10 +301,14 @@ void viewStateFromJson(const json& j, ViewState& state) {
                     else if (ck == "speed") c.speed = number(cv, key);
                     else throw Error("unknown key");
                 }
-                if (c.sceneCamera < 0) throw Error("scene_camera must be >= 0");
-                if (!(c.distance > 0.0f) || !(c.yfov > 0.0f && c.yfov < 3.13f) || !(c.znear > 0.0f) ||
-                    (c.zfar != 0.0f && !(c.zfar > c.znear)) || std::abs(c.pitch) > 1.5708f)
-                    throw Error("distance, yfov (0, pi), znear > 0, zfar (0 or > znear) or pitch out of range");
+                // Each check names its own key: the loop above leaves `key` at the last one read.
+                key = "camera";
+                if (c.sceneCamera < 0) throw Error("camera.scene_camera must be >= 0");
+                if (!(c.distance > 0.0f)) throw Error("camera.distance must be > 0");
+                if (!(c.yfov > 0.0f && c.yfov < 3.13f)) throw Error("camera.yfov must be in (0, 3.13) radians");
+                if (!(c.znear > 0.0f)) throw Error("camera.znear must be > 0");
+                if (c.zfar != 0.0f && !(c.zfar > c.znear)) throw Error("camera.zfar must be 0 (infinite) or > znear");
+                if (std::abs(c.pitch) > 1.5708f) throw Error("camera.pitch must be in [-pi/2, pi/2]");
             } else if (k == "lights") {
                 if (v.is_null()) {
                     s.lightsEdited = false;
@@ -357,12 +367,7 @@ void viewStateFromJson(const json& j, ViewState& state) {
 
 void saveViewSettings(const std::string& path, const ViewState& state) {
     const std::string text = viewStateToJson(state).dump(2) + "\n";
-    writeAtomically(path, [&](const std::string& tmp) {
-        std::ofstream f(tmp, std::ios::binary);
-        f << text;
-        f.close();
-        if (!f) throw Error(path + ": cannot write");
-    });
+    writeFileAtomically(path, text);
 }
 
 ViewState loadViewSettings(const std::string& path) {

@@ -10,6 +10,7 @@ namespace {
 constexpr double kConvergeTimeout = 300.0;
 
 double parseNumber(const std::string& w) {
+    if (!isPlainNumber(w)) throw Error("'" + w + "' is not a number");
     size_t used = 0;
     double v = 0.0;
     try {
@@ -24,7 +25,8 @@ double parseNumber(const std::string& w) {
 
 std::vector<ScriptStep> parseScript(const std::string& text, const std::string& name) {
     std::vector<ScriptStep> steps;
-    std::istringstream in(text);
+    // A UTF-8 byte order mark, as an editor may write it (settings files accept one too).
+    std::istringstream in(text.rfind("\xEF\xBB\xBF", 0) == 0 ? text.substr(3) : text);
     int lineNo = 0;
     for (std::string line; std::getline(in, line);) {
         ++lineNo;

@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 
 #include "metrics.h"
 #include "plot.h"
+#include "scene/atomic_file.h"
 #include "settings_io.h"
 
 namespace gis::view {
@@ -108,6 +110,10 @@ bool ViewSession::loadSettings(ViewState& state, const std::string& path) {
         // openScene reset camera and lights from the scene (and set what "reset" returns to):
         // now the file's own.
         s.camera = loaded.camera;
+        if (s.camera.free) {  // the glTF loader's depth-range check, for the file's own camera
+            const std::string warning = checkCameraDepth(scene().bounds, s.camera.position, s.camera.znear, path + ": camera");
+            if (!warning.empty()) std::fprintf(stderr, "gisandbox: warning: %s\n", warning.c_str());
+        }
         if (loaded.lightsEdited) {
             s.lights = loaded.lights;
             s.lightsEdited = true;
@@ -516,14 +522,8 @@ std::string ViewSession::writeScreenshot(const ViewState& state, const std::stri
         panes[i]["render_settings"] = renderSettingsToJson(paneSettings(state, i, paneSize_));
     }
     side["panes"] = panes;
-    writePng(stem + ".png", image);
-    const std::string text = side.dump(2) + "\n";
-    writeAtomically(stem + ".json", [&](const std::string& tmp) {
-        std::ofstream f(tmp, std::ios::binary);
-        f << text;
-        f.close();
-        if (!f) throw Error(stem + ".json: cannot write");
-    });
+    // The image and its sidecar together or not at all.
+    writeFilesAtomically({{stem + ".png", encodePng(image)}, {stem + ".json", side.dump(2) + "\n"}});
     return stem + ".png";
 }
 

@@ -1,6 +1,7 @@
 #include "view_state.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -23,7 +24,8 @@ void checkPane(int pane) {
 }
 
 void checkFinite(const char* what, float v) {
-    if (!std::isfinite(v)) throw Error(std::string(what) + " must be a finite number");
+    if (!std::isfinite(v) || std::abs(double(v)) > kMaxSettingMagnitude)
+        throw Error(std::string(what) + " must be a finite number of magnitude <= 1e18");
 }
 
 void checkFinite(const char* what, glm::vec3 v) {
@@ -429,7 +431,9 @@ void applyPanelAction(ViewState& state, const PanelAction& a) {
             const glm::vec3 fwd = cameraForward(cam);
             const glm::vec3 right = glm::normalize(glm::cross(fwd, glm::vec3(0.0f, 1.0f, 0.0f)));
             const glm::vec3 up = glm::cross(right, fwd);
-            cam.position += right * a.vec.x + up * a.vec.y + fwd * a.vec.z;
+            const glm::vec3 moved = cam.position + right * a.vec.x + up * a.vec.y + fwd * a.vec.z;
+            checkFinite("camera position after the move", moved);  // else saved as null
+            cam.position = moved;
             cam.free = true;
             break;
         }
@@ -529,9 +533,28 @@ std::vector<std::string> splitWords(const std::string& line) {
     return words;
 }
 
+bool isPlainNumber(const std::string& w) {
+    size_t i = 0;
+    auto digits = [&] {
+        const size_t start = i;
+        while (i < w.size() && std::isdigit(static_cast<unsigned char>(w[i]))) ++i;
+        return i > start;
+    };
+    if (i < w.size() && w[i] == '-') ++i;
+    if (!digits()) return false;
+    if (i < w.size() && w[i] == '.' && (++i, !digits())) return false;
+    if (i < w.size() && (w[i] == 'e' || w[i] == 'E')) {
+        ++i;
+        if (i < w.size() && (w[i] == '+' || w[i] == '-')) ++i;
+        if (!digits()) return false;
+    }
+    return i == w.size();
+}
+
 namespace {
 
 float number(const std::string& w) {
+    if (!isPlainNumber(w)) throw Error("'" + w + "' is not a number");
     size_t used = 0;
     float v = 0.0f;
     try {

@@ -23,6 +23,10 @@ enum class PaneDisplay { Lit, Heatmap, Depth, Normal, BaseColor, Material, Emiss
 enum class CameraMode { Orbit, Fly };
 
 constexpr int kMaxPanes = 4;
+// The largest magnitude a number in the view state may hold, set by a panel, a script or a
+// settings file alike: what is accepted when set is what saves and loads again, and a product of
+// two such values (a light's colour times its intensity) is still finite in float.
+constexpr double kMaxSettingMagnitude = 1e18;
 int paneCount(ViewMode mode);
 
 const char* viewModeName(ViewMode m);
@@ -159,6 +163,10 @@ void applyPanelAction(ViewState& state, const PanelAction& action);
 // A script line / command in words, e.g. "method 1 pathtrace", "camera orbit 10 0" (degrees),
 // "light 0 intensity 2". Throws gis::Error naming the problem. See docs/viewer.md.
 PanelAction parsePanelAction(const std::vector<std::string>& words);
+// A number as a settings file writes it (JSON's grammar: -?D+(.D+)?([eE][+-]?D+)?): scripts and
+// panel commands refuse the forms strtod would also take (0x10, +5, inf, nan, .5) rather than
+// reading them silently.
+bool isPlainNumber(const std::string& word);
 std::vector<std::string> splitWords(const std::string& line);
 
 // --- From state to renderer settings.

@@ -1,9 +1,8 @@
 // CPU images and their files: PNG (tonemapped sRGB, stb) and EXR (linear float, tinyexr).
-// Files are written atomically: to a temporary file beside the target, then renamed.
+// Files are written through scene/atomic_file.h: a complete new file or the old one, never a part.
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,7 +30,8 @@ void writeExr(const std::string& path, const ImageF& image);  // RGB float32, ZI
 ImageF readExr(const std::string& path);
 ImageU8 readPng(const std::string& path);
 
-// Writes through `write(tmpPath)` and renames onto `path`; removes the temporary on failure.
-void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write);
+// The file's bytes, for a caller that writes several files as one set (writeFilesAtomically).
+std::string encodePng(const ImageU8& image);
+std::string encodeExr(const ImageF& image);
 
 }  // namespace gis

@@ -118,14 +118,20 @@ void checkMemoryBudget(const Scene& scene, const RenderSettings& settings) {
     if (b.hostMemory) {
         const uint64_t pixels = uint64_t(settings.width) * uint64_t(settings.height);
         e.parts.push_back({"read-back and encoding (host)", pixels * 20});
-        std::sort(e.parts.begin(), e.parts.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
     }
     if (e.total() <= b.bytes) return;
+    std::sort(e.parts.begin(), e.parts.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
+    // The advice follows the largest part: a method's volume does not shrink with --size.
+    const uint64_t perPixel = uint64_t(settings.width) * uint64_t(settings.height) * 64;  // G-buffer, HDR, read-back
+    const bool sizeBound = e.parts.empty() || e.parts.front().second <= perPixel;
+    const std::string advice = sizeBound ? "use a smaller --size"
+                                         : "lower the settings that size " + e.parts.front().first +
+                                               " (e.g. the method's resolution), or raise the budget";
     std::string parts;
     for (size_t i = 0; i < e.parts.size() && i < 2; ++i) parts += (i ? ", " : "") + e.parts[i].first + " " + gib(e.parts[i].second);
     throw Error(std::to_string(settings.width) + "x" + std::to_string(settings.height) + " needs about " +
                 gib(e.total()) + (b.hostMemory ? " of memory (" : " of GPU memory (") + parts + "), more than the " + gib(b.bytes) + " budget: " +
-                b.source + "; use a smaller --size");
+                b.source + "; " + advice);
 }
 
 }  // namespace gis

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gl/dispatch.h"
 #include "lights.h"
 #include "uniforms.h"
 
@@ -188,7 +189,7 @@ void SampleAccumulator::runBatch(GLuint program) {
     const int batch = std::min(perFrame, target - done);
     for (int i = 0; i < batch; ++i) {
         glProgramUniform1ui(program, U_SAMPLE_INDEX, GLuint(done));
-        glDispatchCompute(GLuint((mean.width + 7) / 8), GLuint((mean.height + 7) / 8), 1);
+        gl::dispatchCompute(gl::groupsFor(mean.width, 8), gl::groupsFor(mean.height, 8), 1, "ray tracer");
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         ++done;
     }

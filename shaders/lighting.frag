@@ -81,7 +81,9 @@ void main() {
             L = -light.directionRange.xyz;
         } else {
             vec3 toLight = light.positionType.xyz - P;
-            float d2 = max(dot(toLight, toLight), 1e-12);
+            // The floor is relative to the coordinates' magnitude (float resolves ~1e-7 of them):
+            // an absolute 1e-12 clamped every distance of a scene modelled at 1e-6 units.
+            float d2 = max(dot(toLight, toLight), max(1e-14 * dot(P, P), 1e-37));
             float d = sqrt(d2);
             L = toLight / d;
             irradiance *= rangeWindow(d, light.directionRange.w) / d2;  // inverse square law

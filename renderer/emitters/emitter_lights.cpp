@@ -4,6 +4,7 @@
 
 #include "emitters/emitter_uniforms.h"
 #include "gi/method.h"
+#include "gl/dispatch.h"
 
 namespace gis {
 
@@ -128,7 +129,7 @@ void EmitterLightPass::execute(Frame& frame) {
         const GLuint images[6] = {history_.sample.id(), history_.surface.id(), history_.normal.id(),
                                   temporal_.sample.id(), temporal_.surface.id(), temporal_.normal.id()};
         glBindImageTextures(0, 6, images);
-        glDispatchCompute(groupsX, groupsY, 1);
+        gl::dispatchCompute(groupsX, groupsY, 1, "emitters candidates");
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
     {
@@ -139,7 +140,7 @@ void EmitterLightPass::execute(Frame& frame) {
                                   history_.sample.id(),  history_.surface.id(),  history_.normal.id(),
                                   accumulation_.id()};
         glBindImageTextures(0, 7, images);
-        glDispatchCompute(groupsX, groupsY, 1);
+        gl::dispatchCompute(groupsX, groupsY, 1, "emitters spatial");
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
     previousViewProj_ = frame.camera.viewProj;

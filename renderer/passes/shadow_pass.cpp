@@ -24,7 +24,9 @@ glm::vec3 anyPerpendicularUp(const glm::vec3& dir) {
 }
 
 // Near plane for perspective shadow views: a small fraction of the scene, never zero.
-float shadowNear(float sceneRadius) { return std::max(sceneRadius * 1e-3f, 1e-5f); }
+// Relative to the scene, with floors far below any modelled size: an absolute 1e-5 put the near
+// plane beyond a scene modelled at 1e-6 units, and its shadows vanished.
+float shadowNear(float sceneRadius) { return std::max(sceneRadius * 1e-3f, 1e-30f); }
 
 // Every shadow-casting light needs layers of one array texture: 6 per point light (a cube),
 // 1 per spot or directional light. Past GL_MAX_ARRAY_TEXTURE_LAYERS (2048 on most drivers, the
@@ -69,7 +71,7 @@ void ShadowPass::layoutLights() {
     views_.clear();
     const Aabb bounds = cpu.bounds.empty() ? Aabb{glm::vec3(-1), glm::vec3(1)} : cpu.bounds;
     const glm::vec3 center = bounds.center();
-    const float radius = std::max(0.5f * glm::length(bounds.extent()), 1e-6f);
+    const float radius = std::max(0.5f * glm::length(bounds.extent()), 1e-30f);
     int layers = 0, cubes = 0;
     lights_ = makeGpuLights(cpu);
     const bool castsShadow = shadows_ && !cpu.draws.empty();
@@ -97,7 +99,7 @@ void ShadowPass::layoutLights() {
         }
         float farthest = 0.0f;
         for (const glm::vec3& c : corners(bounds)) farthest = std::max(farthest, glm::length(c - l.position));
-        const float zfar = std::max(farthest * 1.01f, 1e-4f);
+        const float zfar = std::max(farthest * 1.01f, radius * 1e-3f);
         const float znear = std::min(shadowNear(radius), zfar * 0.5f);
         if (l.type == LightType::Spot) {
             const float fov = std::min(2.0f * l.outerConeAngle + 0.05f, glm::radians(170.0f));

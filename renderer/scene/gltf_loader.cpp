@@ -725,37 +725,18 @@ Scene Loader::load(const uint8_t* data, size_t size, const std::string& baseDir)
     return std::move(scene_);
 }
 
-// A perspective depth buffer stores 1 - znear/z (a 32F G-buffer depth here): its resolution at
-// distance z is about 6e-8 * z / znear of z. The rasterizer rebuilds positions from depth, so a
-// znear far below the scene's depth breaks shading: on the Cornell box (depth ~5) FLIP against
-// znear 0.01 is 0.017 at 1e-4, 0.13 at 1e-5, 0.35 at 1e-6 and black at 1e-7. Reversed-Z
-// would lift this, but touches every pass that reads depth; until then such cameras are
-// refused below 1e-6 of the scene's depth and warned about below 1e-4.
 void Loader::checkCameraDepthRange() {
-    if (scene_.bounds.empty()) return;
     for (size_t i = 0; i < scene_.cameras.size(); ++i) {
         const Camera& cam = scene_.cameras[i];
         if (cam.orthographic) continue;  // linear depth: znear does not cost precision
-        const glm::vec3 eye(cam.cameraToWorld[3]);
-        float depth = 0.0f;
-        for (int c = 0; c < 8; ++c) {
-            const glm::vec3 corner(c & 1 ? scene_.bounds.max.x : scene_.bounds.min.x,
-                                   c & 2 ? scene_.bounds.max.y : scene_.bounds.min.y,
-                                   c & 4 ? scene_.bounds.max.z : scene_.bounds.min.z);
-            depth = std::max(depth, glm::length(corner - eye));
+        const std::string what = "camera " + str(i) + quoted(cam.name);
+        try {
+            const std::string warning =
+                checkCameraDepth(scene_.bounds, glm::vec3(cam.cameraToWorld[3]), cam.znear, what);
+            if (!warning.empty()) warn(warning);
+        } catch (const Error& e) {
+            fail(e.what());
         }
-        if (!(depth > 0.0f) || !std::isfinite(depth)) continue;
-        const double ratio = double(cam.znear) / double(depth);
-        char text[160];
-        std::snprintf(text, sizeof text, "znear %.3g is %.2g of the scene's depth from it (%.3g)", double(cam.znear),
-                      ratio, double(depth));
-        const std::string what = "camera " + str(i) + quoted(cam.name) + ": " + text;
-        if (ratio < 1e-6) {
-            std::snprintf(text, sizeof text, "%.3g", double(depth) * 1e-4);
-            fail(what + "; the depth buffer cannot resolve that (use znear >= " + text + ")");
-        }
-        if (ratio < 1e-4)
-            warn(what + "; depth precision will show in the rasterizer (a larger znear helps)");
     }
 }
 

@@ -11,7 +11,10 @@
 #include <cstring>
 #include <algorithm>
 #include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
 
+#include "scene/atomic_file.h"
 #include "scene/scene.h"
 #include "scene/scene_internal.h"
 
@@ -135,13 +138,11 @@ std::vector<double> matrix(const glm::mat4& m) {
 
 }  // namespace
 
-void writeGltf(const Scene& scene, const std::string& path) {
-    namespace fs = std::filesystem;
+GltfBytes serializeGltf(const Scene& scene, const std::string& binName) {
     tinygltf::Model m;
     m.asset.version = "2.0";
     m.asset.generator = "gisandbox";
     m.buffers.resize(1);
-    m.buffers[0].uri = fs::path(path).stem().string() + ".bin";
     for (const Material& mat : scene.materials) m.materials.push_back(material(mat));
     for (const Primitive& p : scene.primitives) addPrimitive(m, p);
     tinygltf::Scene root;
@@ -193,14 +194,37 @@ void writeGltf(const Scene& scene, const std::string& path) {
                 m.extensionsUsed.push_back(name);
     m.scenes.push_back(root);
     m.defaultScene = 0;
-    m.buffers[0].name = "geometry";
+    // Serialized in memory, the buffer left out and added back naming its file: tinygltf's file
+    // writer checks none of its writes. Same bytes as that writer gave (indented, members sorted),
+    // so the bench's content ids of built-in scenes do not change.
+    GltfBytes out;
+    out.bin.assign(m.buffers[0].data.begin(), m.buffers[0].data.end());
+    m.buffers.clear();
+    std::ostringstream json;
     tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToFile(&m, path, false, false, true, false)) {
-        std::error_code ec;  // no half-written pair left behind
-        fs::remove(path, ec);
-        fs::remove(fs::path(path).parent_path() / m.buffers[0].uri, ec);
-        throw Error(detail::oneLine(path, 200) + ": cannot write the glTF file");
+    if (!writer.WriteGltfSceneToStream(&m, json, false, false)) throw Error("cannot serialize the glTF file");
+    // nlohmann::json, as tinygltf's writer: members sorted by name.
+    nlohmann::json doc = nlohmann::json::parse(json.str());
+    nlohmann::json buffer;
+    buffer["byteLength"] = out.bin.size();
+    buffer["uri"] = binName;
+    buffer["name"] = "geometry";
+    doc["buffers"] = nlohmann::json::array({buffer});
+    out.json = doc.dump(2) + "\n";  // indented and ended as the file writer wrote it
+    return out;
+}
+
+void writeGltf(const Scene& scene, const std::string& path) {
+    const std::string binName = std::filesystem::path(path).stem().string() + ".bin";
+    GltfBytes bytes;
+    try {
+        bytes = serializeGltf(scene, binName);
+    } catch (const std::exception& e) {
+        throw Error(detail::oneLine(path, 200) + ": " + e.what());
     }
+    const std::string bin = (std::filesystem::path(path).parent_path() / binName).string();
+    // Both or neither: a .gltf naming a .bin of another export would load wrong geometry.
+    writeFilesAtomically({{bin, bytes.bin}, {path, bytes.json}});
 }
 
 }  // namespace gis

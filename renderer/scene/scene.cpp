@@ -2,7 +2,9 @@
 // camera, and loadScene's dispatch between built-in scenes and glTF files.
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -294,6 +296,34 @@ Scene loadScene(const std::string& spec) {
     if (ext != "gltf" && ext != "glb")
         throw Error(detail::oneLine(spec, 200) + ": not a glTF file (expected a .gltf or .glb file, or builtin:NAME)");
     return loadGltfFile(spec);
+}
+
+// A perspective depth buffer stores 1 - znear/z (a 32F G-buffer depth here): its resolution at
+// distance z is about 6e-8 * z / znear of z. The rasterizer rebuilds positions from depth, so a
+// znear far below the scene's depth breaks shading: on the Cornell box (depth ~5) FLIP against
+// znear 0.01 is 0.017 at 1e-4, 0.13 at 1e-5, 0.35 at 1e-6 and black at 1e-7. Reversed-Z
+// would lift this, but touches every pass that reads depth; until then such cameras are
+// refused below 1e-6 of the scene's depth and warned about below 1e-4.
+std::string checkCameraDepth(const Aabb& bounds, glm::vec3 eye, float znear, const std::string& what) {
+    if (bounds.empty()) return "";
+    float depth = 0.0f;
+    for (int c = 0; c < 8; ++c) {
+        const glm::vec3 corner(c & 1 ? bounds.max.x : bounds.min.x, c & 2 ? bounds.max.y : bounds.min.y,
+                               c & 4 ? bounds.max.z : bounds.min.z);
+        depth = std::max(depth, glm::length(corner - eye));
+    }
+    if (!(depth > 0.0f) || !std::isfinite(depth)) return "";
+    const double ratio = double(znear) / double(depth);
+    char text[160];
+    std::snprintf(text, sizeof text, ": znear %.3g is %.2g of the scene's depth from it (%.3g)", double(znear), ratio,
+                  double(depth));
+    const std::string problem = what + text;
+    if (ratio < 1e-6) {
+        std::snprintf(text, sizeof text, "%.3g", double(depth) * 1e-4);
+        throw Error(problem + "; the depth buffer cannot resolve that (use znear >= " + text + ")");
+    }
+    if (ratio < 1e-4) return problem + "; depth precision will show in the rasterizer (a larger znear helps)";
+    return "";
 }
 
 }  // namespace gis

@@ -134,9 +134,21 @@ Scene loadGltfFile(const std::string& path);
 Scene loadGltfMemory(const uint8_t* data, size_t size, const std::string& baseDir);
 Scene makeBuiltinScene(const std::string& name);
 // Writes `scene` as PATH.gltf plus PATH.bin beside it (renderer/scene/gltf_writer.cpp: geometry,
-// materials, lights, cameras; no textures, no environment). Throws gis::Error on failure.
+// materials, lights, cameras; no textures, no environment). Throws gis::Error on failure, and
+// leaves both files as they were (scene/atomic_file.h).
 void writeGltf(const Scene& scene, const std::string& path);
+// The bytes writeGltf writes: the .gltf JSON naming `binName` as its buffer, and the buffer.
+struct GltfBytes {
+    std::string json, bin;
+};
+GltfBytes serializeGltf(const Scene& scene, const std::string& binName);
 std::vector<std::string> builtinSceneNames();
+
+// A perspective camera at `eye` with `znear`, against the scene's bounds: throws gis::Error
+// (starting with `what`) when the depth buffer cannot resolve the scene, returns a warning
+// (empty when none) when its precision will show. The one check for glTF cameras, settings
+// files and the viewer's camera.
+std::string checkCameraDepth(const Aabb& bounds, glm::vec3 eye, float znear, const std::string& what);
 
 // After loading: generate missing normals (area-weighted) and, where a normal map is used,
 // tangents; compute bounds; reject NaN/Inf positions. Loaders call it; scenes built by hand

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "gl/dispatch.h"
 #include "renderer.h"
 #include "scene/scene.h"
 #include "sdf/sdf_uniforms.h"
@@ -18,7 +19,7 @@ constexpr int kGroup = 4;  // local size of every shaders/sdf/*.comp, per axis
 
 GLuint groups(int n) { return GLuint((n + kGroup - 1) / kGroup); }
 
-void dispatch(int n) { glDispatchCompute(groups(n), groups(n), groups(n)); }
+void dispatch(int n) { gl::dispatchCompute(groups(n), groups(n), groups(n), "distance field"); }
 
 int coarseSize(int resolution) { return (resolution + kSdfCoarseFactor - 1) / kSdfCoarseFactor; }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "emitters/emitter_lights.h"
+#include "gl/dispatch.h"
 #include "voxel/voxel_uniforms.h"
 
 namespace gis {
@@ -25,7 +26,9 @@ void setVolumeSampling(const gl::Texture& t) {
         glTextureParameteri(t.id(), wrap, GL_CLAMP_TO_EDGE);
 }
 
-void dispatch3D(int w, int h, int d) { glDispatchCompute(GLuint((w + 3) / 4), GLuint((h + 3) / 4), GLuint((d + 3) / 4)); }
+void dispatch3D(int w, int h, int d) {
+    gl::dispatchCompute(gl::groupsFor(w, 4), gl::groupsFor(h, 4), gl::groupsFor(d, 4), "voxel radiance");
+}
 
 int64_t chainTexels(int n) {
     int64_t sum = 0;

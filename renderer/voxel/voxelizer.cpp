@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "gl/dispatch.h"
 #include "voxel/voxel_uniforms.h"
 
 namespace gis {
@@ -146,8 +147,8 @@ void Voxelizer::voxelize(const GpuScene& scene) {
     glBindImageTexture(0, grid_.albedo.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
     glBindImageTexture(1, grid_.normal.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
     glBindImageTexture(2, grid_.emission.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    const GLuint groups = GLuint((n + 3) / 4);
-    glDispatchCompute(groups, groups, groups);
+    const GLuint groups = gl::groupsFor(n, 4);
+    gl::dispatchCompute(groups, groups, groups, "voxelizer");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -421,9 +422,9 @@ TEST(Heatmap, ImageLayoutColourBarAndMask) {
 TEST(Heatmap, FailedWriteLeavesNoFile) {
     namespace fs = std::filesystem;
     const ErrorMap map{64, 64, std::vector<float>(64 * 64, 0.5f)};
-    const fs::path dir = fs::temp_directory_path() / ("gis_heatmap_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    std::string pattern = (fs::temp_directory_path() / "gis_heatmap_XXXXXX").string();
+    ASSERT_NE(::mkdtemp(pattern.data()), nullptr);  // private: a pid-named folder is predictable
+    const fs::path dir = pattern;
     const std::string path = (dir / "heat.png").string();
 
     const pid_t child = ::fork();
@@ -439,8 +440,8 @@ TEST(Heatmap, FailedWriteLeavesNoFile) {
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "status " << status;
     EXPECT_TRUE(fs::is_empty(dir)) << "a partial or temporary file was left in " << dir;
 
-    fs::create_directory(path);  // the target is a directory: the rename must fail
-    EXPECT_NE(errorOf([&] { writeHeatmap(path, map, 1.0f); }).find("cannot rename"), std::string::npos);
+    fs::create_directory(path);  // the target is a directory: refused before anything is written
+    EXPECT_NE(errorOf([&] { writeHeatmap(path, map, 1.0f); }).find("is a directory"), std::string::npos);
     EXPECT_TRUE(fs::is_directory(path));
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1) << "temporary file left";
 

@@ -16,6 +16,7 @@
 
 #include "cli_util.h"
 #include "image.h"
+#include "scene/atomic_file.h"
 
 namespace gis::test {
 namespace {
@@ -167,10 +168,9 @@ TEST(Cli, SignalDuringWriteRemovesTemporaryFile) {
         const pid_t child = ::fork();
         ASSERT_GE(child, 0);
         if (child == 0) {
-            gis::writeAtomically(target, [&](const std::string& tmp) {
-                std::ofstream(tmp) << "partial";
-                ::raise(sig);
-            });
+            gis::AtomicFile f(target);
+            f.write("partial");
+            ::raise(sig);
             ::_exit(0);  // not reached when the signal ends the process
         }
         int status = 0;

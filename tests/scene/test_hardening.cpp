@@ -6,9 +6,11 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <stdexcept>
 #include <string>
 
 #include "test_util.h"
@@ -35,10 +37,23 @@ double secondsToLoad(const std::string& json, gis::Scene* out = nullptr) {
     return dt;
 }
 
+// One private directory per test process, made by mkdtemp (a name nobody can predict or pre-create)
+// and removed when the process ends.
 std::string tempPath(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("gis_hardening_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-    return (dir / name).string();
+    struct PrivateDir {
+        std::string path;
+        PrivateDir() {
+            std::string pattern = (fs::temp_directory_path() / "gis_hardening_XXXXXX").string();
+            if (::mkdtemp(pattern.data())) path = pattern;
+        }
+        ~PrivateDir() {
+            std::error_code ec;
+            if (!path.empty()) fs::remove_all(path, ec);
+        }
+    };
+    static const PrivateDir dir;
+    if (dir.path.empty()) throw std::runtime_error("mkdtemp failed");
+    return (fs::path(dir.path) / name).string();
 }
 
 }  // namespace

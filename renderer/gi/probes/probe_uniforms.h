@@ -19,5 +19,6 @@ enum ProbeUniform : int {
     UP_SHADE_PARAMS = 513,   // bias (x min probe step), intensity, visibility on, probe radius (debug)
     UP_MODE = 514,           // blend: 0 irradiance, 1 distance; classify: 0 relocate, 1 off; views: mode / probe
     UP_VIEW_PROJ = 515,
+    UP_SLOT_OFFSET = 516,    // trace/blend: batch slot of work group 0 (a batch past the group limit is split)
 };
 }  // namespace gis::probes

@@ -10,6 +10,7 @@
 
 #include "gi/method.h"
 #include "gi/probes/probe_uniforms.h"
+#include "gl/dispatch.h"
 #include "services/scene_services.h"
 #include "voxel/voxelizer.h"
 
@@ -128,6 +129,11 @@ void ProbesPass::setGridUniforms(GLuint p) const {
     glProgramUniform3fv(p, UP_GRID_STEP, 1, &grid_.step[0]);
     glProgramUniform3i(p, UP_GRID_COUNTS, grid_.counts.x, grid_.counts.y, grid_.counts.z);
     glProgramUniform1i(p, UP_STORAGE, built_.storage);
+}
+
+// Only the programs that read the distance field declare these: setting a location a program
+// does not have is GL_INVALID_OPERATION.
+void ProbesPass::setVolumeUniforms(GLuint p) const {
     glProgramUniform4f(p, UP_VOLUME, fit_.origin.x, fit_.origin.y, fit_.origin.z, fit_.size);
     glProgramUniform1i(p, UP_SDF_RESOLUTION, fit_.resolution);
 }
@@ -144,11 +150,12 @@ void ProbesPass::classify() {
     const GLuint p = classifyProgram_.id();
     glUseProgram(p);
     setGridUniforms(p);
+    setVolumeUniforms(p);
     glProgramUniform1i(p, UP_MODE, built_.inside);
     volume_->field().bind(0);
     glBindSamplers(0, 2, nullptr);
     bindProbeBuffers();
-    glDispatchCompute(GLuint((grid_.count() + 63) / 64), 1, 1);
+    gl::dispatchCompute(gl::groupsFor(grid_.count(), 64), 1, 1, "probes: classify");
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     needClassify_ = false;
     // A grid with no usable probe gives black indirect light everywhere: say so once (a read-back
@@ -169,6 +176,7 @@ void ProbesPass::trace(const Frame& frame, const ProbeSettings& s, int first, in
     const glm::vec3 environment = frame.settings.background.value_or(frame.scene.cpu.background);
     glUseProgram(p);
     setGridUniforms(p);
+    setVolumeUniforms(p);
     glProgramUniform1i(p, UP_RAYS, built_.rays);
     glProgramUniform1i(p, UP_FIRST_PROBE, first);
     glProgramUniformMatrix3fv(p, UP_ROTATION, 1, GL_FALSE, &rotation_[0][0]);
@@ -183,7 +191,7 @@ void ProbesPass::trace(const Frame& frame, const ProbeSettings& s, int first, in
     const GLuint samplers[2] = {sampler_.id(), sampler_.id()};
     glBindSamplers(2, 2, samplers);
     bindProbeBuffers();
-    glDispatchCompute(GLuint(batch), 1, 1);
+    gl::dispatchComputeSplit(batch, [&](GLuint slot) { glProgramUniform1i(p, UP_SLOT_OFFSET, int(slot)); });
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glBindSamplers(2, 2, nullptr);
 }
@@ -198,7 +206,7 @@ void ProbesPass::blend(int mode, const ProbeSettings& s, int first, int batch) {
     glProgramUniform4f(p, UP_BLEND_PARAMS, s.hysteresis, 0.0f, 0.0f, 0.0f);
     glProgramUniform1i(p, UP_MODE, mode);
     bindProbeBuffers();
-    glDispatchCompute(GLuint(batch), 1, 1);
+    gl::dispatchComputeSplit(batch, [&](GLuint slot) { glProgramUniform1i(p, UP_SLOT_OFFSET, int(slot)); });
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
@@ -256,7 +264,7 @@ void ProbesPass::shade(const Frame& frame, const ProbeSettings& s) {
     glBindSamplers(4, 2, nullptr);
     bindProbeBuffers();
     glBindImageTexture(0, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(GLuint((diffuse_.width + 7) / 8), GLuint((diffuse_.height + 7) / 8), 1);
+    gl::dispatchCompute(gl::groupsFor(diffuse_.width, 8), gl::groupsFor(diffuse_.height, 8), 1, "probes");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
@@ -338,7 +346,7 @@ void ProbesPass::dispatchDebugDraw(const Frame& frame, GLuint target) {
     glBindSamplers(4, 1, nullptr);
     bindProbeBuffers();
     glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(GLuint((diffuse_.width + 7) / 8), GLuint((diffuse_.height + 7) / 8), 1);
+    gl::dispatchCompute(gl::groupsFor(diffuse_.width, 8), gl::groupsFor(diffuse_.height, 8), 1, "probes");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 

@@ -68,6 +68,7 @@ private:
     void blend(int mode, const ProbeSettings& live, int first, int batch);
     void shade(const Frame& frame, const ProbeSettings& live);
     void setGridUniforms(GLuint program) const;
+    void setVolumeUniforms(GLuint program) const;
     void bindProbeBuffers() const;
     ProbeSettings built_;
     probes::ProbeGrid grid_;

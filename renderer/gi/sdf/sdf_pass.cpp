@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "gl/dispatch.h"
 #include "debug_view.h"
 #include "gi/method.h"
 #include "gi/sdf/sdf_gi_uniforms.h"
@@ -17,7 +18,7 @@ namespace {
 
 constexpr int kGroup = 8;  // local size of the 2D shaders/gi/sdf/*.comp
 
-void dispatch2D(int w, int h) { glDispatchCompute(GLuint((w + kGroup - 1) / kGroup), GLuint((h + kGroup - 1) / kGroup), 1); }
+void dispatch2D(int w, int h) { gl::dispatchCompute(gl::groupsFor(w, kGroup), gl::groupsFor(h, kGroup), 1, "sdf"); }
 
 int tracedSize(int fullSize, int scale) { return (fullSize + scale - 1) / scale; }
 

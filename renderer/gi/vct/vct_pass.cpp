@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "gl/dispatch.h"
 #include "debug_view.h"
 #include "gi/method.h"
 #include "services/scene_services.h"
@@ -95,7 +96,7 @@ void VctPass::trace(const Frame& frame, const VctSettings& s) {
     glBindImageTexture(0, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(2, ao_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
-    glDispatchCompute(GLuint((diffuse_.width + 7) / 8), GLuint((diffuse_.height + 7) / 8), 1);
+    gl::dispatchCompute(gl::groupsFor(diffuse_.width, 8), gl::groupsFor(diffuse_.height, 8), 1, "vct");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
@@ -126,7 +127,7 @@ void VctPass::drawDebugView(const std::string& view, const Frame& frame, GLuint 
     glBindTextures(0, 3, textures);
     glBindSamplers(0, 3, nullptr);
     glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(GLuint((diffuse_.width + 7) / 8), GLuint((diffuse_.height + 7) / 8), 1);
+    gl::dispatchCompute(gl::groupsFor(diffuse_.width, 8), gl::groupsFor(diffuse_.height, 8), 1, "vct");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 

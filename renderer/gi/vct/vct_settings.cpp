@@ -42,6 +42,11 @@ void checkVctSettings(const VctSettings& s) {
     const int r = s.resolution;
     if (r < 8 || r > 512 || (r & (r - 1)) != 0)
         throw Error("vct.resolution: " + std::to_string(r) + " must be a power of two in [8, 512]");
+    // The albedo and emission grids have no mip chain: their view at a coarser level is black.
+    if (s.debugLevel > 0 && s.debugChannel < 2)
+        throw Error("vct.debug-level " + std::to_string(s.debugLevel) + ": the " +
+                    (s.debugChannel == 0 ? "albedo" : "emission") +
+                    " grid exists at level 0 only (use vct.debug-channel=radiance or occupancy)");
 }
 
 }  // namespace gis

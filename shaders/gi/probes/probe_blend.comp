@@ -12,6 +12,7 @@ layout(std430, binding = 3) readonly buffer Rays { vec4 rayResults[]; };
 layout(std430, binding = 4) buffer Change { uint u_change; };
 layout(location = UP_RAYS) uniform int u_rays;
 layout(location = UP_FIRST_PROBE) uniform int u_firstProbe;
+layout(location = UP_SLOT_OFFSET) uniform int u_slotOffset;  // several dispatches past the work-group limit
 layout(location = UP_ROTATION) uniform mat3 u_rotation;
 layout(location = UP_BLEND_PARAMS) uniform vec4 u_blendParams;
 layout(location = UP_MODE) uniform int u_mode;
@@ -56,7 +57,7 @@ vec4 blendDistance(int c) {
 }
 
 void main() {
-    int slot = int(gl_WorkGroupID.x);
+    int slot = u_slotOffset + int(gl_WorkGroupID.x);
     int probe = (u_firstProbe + slot) % probeCount();
     for (int r = int(gl_LocalInvocationID.x); r < u_rays; r += int(gl_WorkGroupSize.x)) {
         s_rays[r] = rayResults[slot * u_rays + r];

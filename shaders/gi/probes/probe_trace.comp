@@ -16,6 +16,7 @@ layout(binding = 3) uniform sampler3D s_voxelAlbedo;    // a = occupancy
 
 layout(location = UP_RAYS) uniform int u_rays;
 layout(location = UP_FIRST_PROBE) uniform int u_firstProbe;
+layout(location = UP_SLOT_OFFSET) uniform int u_slotOffset;  // several dispatches past the work-group limit
 layout(location = UP_ROTATION) uniform mat3 u_rotation;
 layout(location = UP_ENVIRONMENT) uniform vec3 u_environment;
 layout(location = UP_VOLUME) uniform vec4 u_volume;
@@ -42,7 +43,7 @@ vec3 shadeHit(SdfHit h, SdfVolume vol) {
 }
 
 void main() {
-    int slot = int(gl_WorkGroupID.x);
+    int slot = u_slotOffset + int(gl_WorkGroupID.x);
     int probe = (u_firstProbe + slot) % probeCount();
     bool off = probeOff(probe);
     vec3 origin = probePosition(probe);

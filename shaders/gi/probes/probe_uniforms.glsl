@@ -16,3 +16,4 @@
 #define UP_SHADE_PARAMS 513
 #define UP_MODE 514
 #define UP_VIEW_PROJ 515
+#define UP_SLOT_OFFSET 516

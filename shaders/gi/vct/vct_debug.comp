@@ -1,5 +1,5 @@
 // VCT debug views. "vct.voxels": the grid ray-marched from the camera, showing the first voxel with
-// occupancy >= 0.5 at the chosen mip level. "vct.slice": one slice of the grid, stretched over the
+// occupancy >= 0.5 / 2^level at the chosen mip level. "vct.slice": one slice of the grid, stretched over the
 // image. Channels: 0 albedo, 1 emission, 2 radiance, 3 occupancy. Albedo and emission exist at
 // level 0 only; radiance and occupancy at every level of the radiance chain.
 #include "common.glsl"
@@ -48,11 +48,14 @@ void main() {
         vec3 t0 = (vec3(0.0) - o) * inv, t1 = (vec3(float(n)) - o) * inv;
         float tIn = max(max(max(min(t0.x, t1.x), min(t0.y, t1.y)), min(t0.z, t1.z)), 0.0);
         float tOut = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), max(t0.z, t1.z));
+        // A wall one finest voxel thick fills 1/2^level of a voxel at `level`: a fixed 0.5 showed
+        // nothing of thin walls (a Cornell box) from level 1 on.
+        float solid = 0.5 / float(1 << level);
         for (float t = tIn; t < tOut && t - tIn < 4.0 * float(n); t += 0.25) {
             ivec3 v = ivec3(floor(o + d * t));
             if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(n)))) continue;
             vec4 s = texelAt(v, channel, level);
-            if (texelFetch(s_radiance, v, level).a >= 0.5 || (level == 0 && texelFetch(s_albedo, v, 0).a > 0.0)) {
+            if (texelFetch(s_radiance, v, level).a >= solid || (level == 0 && texelFetch(s_albedo, v, 0).a > 0.0)) {
                 result.rgb = s.rgb;
                 break;
             }
