@@ -208,7 +208,9 @@ TEST(Vct, CornellErrorAgainstResolutionIsMeasured) {
         ++i;
     }
     for (const auto& [name, r] : ratio[0])
-        if (name != "ceiling") EXPECT_LE(std::abs(ratio[1].at(name) - 1.0), std::abs(r - 1.0) + 0.02) << name;
+        if (name != "ceiling") {
+            EXPECT_LE(std::abs(ratio[1].at(name) - 1.0), std::abs(r - 1.0) + 0.02) << name;
+        }
 }
 
 TEST(Vct, CameraMoveReusesVoxels) {
