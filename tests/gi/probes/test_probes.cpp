@@ -265,7 +265,8 @@ TEST(Probe, ExtremesStayFinite) {
     one.renderUntilConverged(40);
     const double reference = meanRgb(one.diffuse());
     for (float scale : {1e-3f, 1e3f}) {
-        ProbeRun run(scaledScene(cornell, scale), s);
+        const Scene scaled = scaledScene(cornell, scale);  // the renderer keeps a reference to it
+        ProbeRun run(scaled, s);
         run.renderUntilConverged(40);
         const ImageF d = run.diffuse();
         ASSERT_TRUE(allFinite(d));
