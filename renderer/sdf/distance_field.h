@@ -13,9 +13,9 @@
 // view-independent: build() again only when the geometry changes.
 //
 // Layers: one field can hold several volumes of the same resolution (the cascades of
-// sdf_cascades.h), stacked along z in one texture - layer k's cells are z in [k*n, (k+1)*n) - so
-// a marcher switches cascade by changing a coordinate, not a sampler (indexing an array of
-// samplers per ray is not allowed in GLSL). Each layer is built on its own.
+// volume/volume_cascades.h), stacked along z in one texture - layer k's cells are z in
+// [k*n, (k+1)*n) - so a marcher switches cascade by changing a coordinate, not a sampler (indexing
+// an array of samplers per ray is not allowed in GLSL). Each layer is built on its own.
 #pragma once
 
 #include <cstdint>

@@ -229,8 +229,8 @@ TEST(SdfMarch, FindsAJumpFloodedSphereWithinACell) {
     std::printf("jump-flooded sphere: worst distance of a hit from the surface %.3f cells\n", worst);
 }
 
-// Three cascades centred on the origin (edges 2, 4 and 8, 32 cells each, as sdf_cascades.h places
-// them), each layer holding the exact distance to the part of the plane y = planeY inside its cube
+// Three cascades centred on the origin (edges 2, 4 and 8, 32 cells each, as volume_cascades.h
+// places them), each layer holding the exact distance to the part of the plane y = planeY inside its cube
 // and the "far" value where the plane misses the cube - what a cascade jump-flooded from its own
 // voxels holds.
 struct PlaneCascades {
