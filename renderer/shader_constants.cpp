@@ -1,13 +1,18 @@
-// The limits and sizes C++ and GLSL share, each from the one C++ constant that declares it, emitted
-// as #defines before every shader's source (gl/shader.h, preprocessShader): GLSL never writes one
-// of these numbers itself, so `gisandbox shaders --dump` and the glslangValidator test compile every
-// program against this table.
+// What C++ and GLSL share, each from the one C++ declaration of it, emitted as #defines before
+// every shader's source (gl/shader.h, preprocessShader): the limits and sizes below and every
+// module's uniform-location table (gl/uniform_table.h). GLSL writes none of these numbers itself,
+// so `gisandbox shaders --dump` and the glslangValidator test compile every program against them.
 #include <string>
 
-#include "gi/ssao/ssao_pass.h"
+#include "emitters/emitter_uniforms.h"
+#include "gi/probes/probe_uniforms.h"
+#include "gi/sdf/sdf_gi_uniforms.h"
 #include "gl/gl.h"
 #include "gl/shader.h"
+#include "sdf/sdf_uniforms.h"
+#include "uniforms.h"
 #include "volume/volume_cascades.h"
+#include "voxel/voxel_uniforms.h"
 
 namespace gis {
 
@@ -16,14 +21,37 @@ std::string glslFloat(float v) {
     std::string s = std::to_string(v);
     return s.find('.') == std::string::npos ? s + ".0" : s;
 }
+
+template <size_t N>
+void addTable(std::vector<gl::UniformSlot>& all, const gl::UniformSlot (&table)[N]) {
+    all.insert(all.end(), table, table + N);
+}
 }  // namespace
 
+const std::vector<gl::UniformSlot>& uniformSlots() {
+    static const std::vector<gl::UniformSlot> all = [] {
+        std::vector<gl::UniformSlot> v;
+        addTable(v, kUniforms);
+        addTable(v, voxel::kVoxelUniforms);
+        addTable(v, emitters::kEmitterUniforms);
+        addTable(v, sdf::kSdfUniforms);
+        addTable(v, sdfgi::kSdfGiUniforms);
+        addTable(v, probes::kProbeUniforms);
+        return v;
+    }();
+    return all;
+}
+
 const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
-    static const std::vector<std::pair<std::string, std::string>> defines{
-        {"MAX_HALF_FLOAT", glslFloat(gl::kMaxHalfFloat)},
-        {"SDF_MAX_CASCADES", std::to_string(kMaxCascades)},
-        {"MAX_AO_KERNEL", std::to_string(kSsaoMaxKernel)},
-    };
+    static const std::vector<std::pair<std::string, std::string>> defines = [] {
+        std::vector<std::pair<std::string, std::string>> d{
+            {"MAX_HALF_FLOAT", glslFloat(gl::kMaxHalfFloat)},
+            {"SDF_MAX_CASCADES", std::to_string(kMaxCascades)},
+            {"MAX_AO_KERNEL", std::to_string(kSsaoMaxKernel)},
+        };
+        for (const gl::UniformSlot& u : uniformSlots()) d.emplace_back(u.name, std::to_string(u.location));
+        return d;
+    }();
     return defines;
 }
 

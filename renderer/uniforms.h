@@ -1,49 +1,56 @@
-// Explicit uniform locations shared by C++ and GLSL (shaders/uniforms.glsl mirrors this file).
-// Fixed locations mean no glGetUniformLocation lookups and no silent name mismatches.
+// Explicit uniform locations of the core passes and the methods without a table of their own
+// (gl/uniform_table.h: emitted into every shader as #defines).
 #pragma once
 
+#include "gl/uniform_table.h"
+
 namespace gis {
-enum UniformLocation : int {
-    // per draw (scene geometry)
-    U_MODEL = 0,
-    U_NORMAL_MATRIX = 1,
-    U_VIEW_PROJ = 2,
-    U_BASE_COLOR_FACTOR = 3,
-    U_MATERIAL_PARAMS = 4,   // metallic, roughness, specularFactor, occlusionStrength
-    U_EMISSIVE = 5,
-    U_ALPHA_PARAMS = 6,      // alpha cutoff (<0: opaque), normal scale, has normal map, double sided
-    U_BRDF_OVERRIDE = 7,     // the material's diffuse, specular model (-1: the render's setting)
-    // shadow pass
-    U_LIGHT_POS_FAR = 10,    // point light position, 1/far
-    // lighting pass
-    U_INV_VIEW_PROJ = 20,
-    U_CAMERA_POS = 21,
-    U_LIGHT_COUNT = 22,
-    U_AMBIENT = 23,
-    U_BACKGROUND = 24,
-    U_BRDF_MODELS = 25,      // diffuse model, specular model
-    U_SHADOWS_ENABLED = 26,
-    U_MAX_RADIANCE = 27,     // largest value the radiance target can hold
-    // path tracer
-    U_SAMPLE_INDEX = 40,
-    U_SEED = 41,
-    U_MAX_BOUNCES = 42,
-    U_EMITTER_COUNT = 43,
-    U_RR_START = 44,
-    U_CAUSTICS = 45,        // 0: no light through glossy bounces after a diffuse one
-    // ambient occlusion (SSAO, its blur and temporal passes, the ray-traced reference)
-    U_AO_RADIUS = 50,
-    U_AO_PARAMS = 51,        // bias (fraction of radius), power, steps per direction, noise offset
-    U_PROJ = 52,
-    U_INV_PROJ = 53,
-    U_VIEW = 54,
-    U_AO_KERNEL_SIZE = 55,
-    U_FRAME_INDEX = 56,
-    U_PREV_VIEW_PROJ = 57,
-    U_TEMPORAL_PARAMS = 58,  // max frames, has history, depth tolerance
-    U_AO_KERNEL = 64,        // array of 256 vec4: locations 64..319
-    // tonemap pass
-    U_EXPOSURE = 30,
-    U_TONEMAPPER = 31,
-};
+
+// Directions the hemisphere AO kernel's uniform array holds (GLSL's MAX_AO_KERNEL).
+constexpr int kSsaoMaxKernel = 256;
+#define GIS_UNIFORMS(X) \
+    /* per draw (scene geometry) */ \
+    X(U_MODEL, 0, 1) \
+    X(U_NORMAL_MATRIX, 1, 1) \
+    X(U_VIEW_PROJ, 2, 1) \
+    X(U_BASE_COLOR_FACTOR, 3, 1) \
+    X(U_MATERIAL_PARAMS, 4, 1) /* metallic, roughness, specularFactor, occlusionStrength */ \
+    X(U_EMISSIVE, 5, 1) \
+    X(U_ALPHA_PARAMS, 6, 1) /* alpha cutoff (<0: opaque), normal scale, has normal map, double sided */ \
+    X(U_BRDF_OVERRIDE, 7, 1) /* the material's diffuse, specular model (-1: the render's setting) */ \
+    /* shadow pass */ \
+    X(U_LIGHT_POS_FAR, 10, 1) /* point light position, 1/far */ \
+    /* lighting pass */ \
+    X(U_INV_VIEW_PROJ, 20, 1) \
+    X(U_CAMERA_POS, 21, 1) \
+    X(U_LIGHT_COUNT, 22, 1) \
+    X(U_AMBIENT, 23, 1) \
+    X(U_BACKGROUND, 24, 1) \
+    X(U_BRDF_MODELS, 25, 1) /* diffuse model, specular model */ \
+    X(U_SHADOWS_ENABLED, 26, 1) \
+    X(U_MAX_RADIANCE, 27, 1) /* largest value the radiance target can hold */ \
+    /* path tracer */ \
+    X(U_SAMPLE_INDEX, 40, 1) \
+    X(U_SEED, 41, 1) \
+    X(U_MAX_BOUNCES, 42, 1) \
+    X(U_EMITTER_COUNT, 43, 1) \
+    X(U_RR_START, 44, 1) \
+    X(U_CAUSTICS, 45, 1) /* 0: no light through glossy bounces after a diffuse one */ \
+    /* ambient occlusion (SSAO, its blur and temporal passes, the ray-traced reference) */ \
+    X(U_AO_RADIUS, 50, 1) \
+    X(U_AO_PARAMS, 51, 1) /* bias (fraction of radius), power, steps per direction, noise offset */ \
+    X(U_PROJ, 52, 1) \
+    X(U_INV_PROJ, 53, 1) \
+    X(U_VIEW, 54, 1) \
+    X(U_AO_KERNEL_SIZE, 55, 1) \
+    X(U_FRAME_INDEX, 56, 1) \
+    X(U_PREV_VIEW_PROJ, 57, 1) \
+    X(U_TEMPORAL_PARAMS, 58, 1) /* max frames, has history, depth tolerance */ \
+    X(U_AO_KERNEL, 600, kSsaoMaxKernel) /* a vec4 per direction; past every table, within GL's 1024 */ \
+    /* tonemap pass */ \
+    X(U_EXPOSURE, 30, 1) \
+    X(U_TONEMAPPER, 31, 1)
+
+enum UniformLocation : int { GIS_UNIFORMS(GIS_UNIFORM_ENUM) };
+inline constexpr gl::UniformSlot kUniforms[] = {GIS_UNIFORMS(GIS_UNIFORM_SLOT)};
 }  // namespace gis

@@ -5,7 +5,6 @@
 #include "brdf.glsl"
 #include "gbuffer_layout.glsl"
 #include "lights.glsl"
-#include "uniforms.glsl"
 
 layout(binding = 0) uniform sampler2D s_depth;
 layout(binding = 1) uniform sampler2D s_gbufBaseColor;

@@ -1,5 +1,4 @@
 // glTF metallic-roughness material inputs, sampled at a surface point.
-#include "uniforms.glsl"
 
 layout(binding = 0) uniform sampler2D s_baseColor;
 layout(binding = 1) uniform sampler2D s_metallicRoughness;   // G = roughness, B = metallic (glTF)

@@ -1,5 +1,4 @@
 // Scene geometry for the G-buffer and the shadow maps: object -> world -> clip.
-#include "uniforms.glsl"
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;

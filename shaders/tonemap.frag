@@ -1,6 +1,5 @@
 // Exposure, tone mapping and sRGB encoding: linear radiance -> display 8-bit.
 #include "common.glsl"
-#include "uniforms.glsl"
 
 layout(binding = 0) uniform sampler2D s_radiance;
 layout(location = U_EXPOSURE) uniform float u_exposureScale;   // 2^EV

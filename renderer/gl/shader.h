@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gl/gl.h"
+#include "gl/uniform_table.h"
 
 namespace gis {
 
@@ -37,6 +38,8 @@ PreprocessedShader preprocessShader(const std::string& file,
 // Every limit and size C++ and GLSL share, as #define NAME VALUE from the one C++ constant that
 // declares it (renderer/shader_constants.cpp), so the two cannot drift apart.
 const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines();
+// Every module's uniform-location rows together (what sharedShaderDefines emits of them).
+const std::vector<gl::UniformSlot>& uniformSlots();
 // Rewrites "0:LINE(COL): msg" (Mesa) and "0(LINE) : msg" (NVIDIA) into "shaders/file:LINE: msg".
 std::string mapShaderLog(const std::string& log, const PreprocessedShader& shader);
 

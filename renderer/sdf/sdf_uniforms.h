@@ -1,17 +1,21 @@
-// Explicit uniform locations of the distance-field module: shaders/sdf/sdf_uniforms.glsl mirrors
-// it. 400 and up, clear of renderer/uniforms.h (0-319 with the AO kernel) and the voxel module
-// (100-119), because the SDF method's trace shader includes all three.
+// Explicit uniform locations of the distance-field module (gl/uniform_table.h: emitted into every
+// shader; the shader-constants test checks no two tables overlap, since the SDF method's trace
+// shader uses this, the voxel and the core tables together).
 #pragma once
 
+#include "gl/uniform_table.h"
+
 namespace gis::sdf {
-enum SdfUniform : int {
-    US_RESOLUTION = 400,    // cells per edge
-    US_JFA_STEP = 401,      // the jump of this flood pass, in cells
-    US_ORIGIN = 402,        // world position of the volume's minimum corner
-    US_CELL_SIZE = 403,     // world edge of one cell
-    US_FAR = 404,           // the value of cells no seed reaches
-    US_HAS_NORMALS = 405,   // 1: sign from the seeds' normals; 0: unsigned
-    US_COARSE_FACTOR = 406, // fine cells per coarse cell along an edge
-    US_LAYER = 407,         // the layer (cascade) of a layered field written by this dispatch
-};
+#define GIS_SDF_UNIFORMS(X) \
+    X(US_RESOLUTION, 400, 1) /* cells per edge */ \
+    X(US_JFA_STEP, 401, 1) /* the jump of this flood pass, in cells */ \
+    X(US_ORIGIN, 402, 1) /* world position of the volume's minimum corner */ \
+    X(US_CELL_SIZE, 403, 1) /* world edge of one cell */ \
+    X(US_FAR, 404, 1) /* the value of cells no seed reaches */ \
+    X(US_HAS_NORMALS, 405, 1) /* 1: sign from the seeds' normals; 0: unsigned */ \
+    X(US_COARSE_FACTOR, 406, 1) /* fine cells per coarse cell along an edge */ \
+    X(US_LAYER, 407, 1) /* the layer (cascade) of a layered field written by this dispatch */
+
+enum SdfUniform : int { GIS_SDF_UNIFORMS(GIS_UNIFORM_ENUM) };
+inline constexpr gl::UniformSlot kSdfUniforms[] = {GIS_SDF_UNIFORMS(GIS_UNIFORM_SLOT)};
 }  // namespace gis::sdf

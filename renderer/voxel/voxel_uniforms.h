@@ -1,29 +1,34 @@
-// Explicit uniform locations of the voxel module and VCT: shaders/voxel/voxel_uniforms.glsl mirrors it.
+// Explicit uniform locations of the voxel module and VCT (gl/uniform_table.h: emitted into every
+// shader; the shader-constants test checks no two tables overlap).
 #pragma once
 
+#include "gl/uniform_table.h"
+
 namespace gis::voxel {
-enum VoxelUniform : int {
-    UV_WORLD_TO_VOXEL = 100,
-    UV_RESOLUTION = 101,
-    UV_CONSERVATIVE = 102,     // 0 off, 1 geometry-shader dilation, 2 hardware
-    UV_EMISSION_SCALE = 103,   // 1 / the largest emission, so sums stay in fixed-point range
-    UV_VOXEL_TO_WORLD = 104,
-    UV_VOXEL_SIZE = 105,
-    UV_LIGHT_COUNT = 106,
-    UV_SHADOWS_ENABLED = 107,
-    UV_MIP_LEVEL = 108,        // the level being written
-    UV_DIRECTION = 109,        // anisotropic mip: 0..5 = +X -X +Y -Y +Z -Z
-    UV_INV_VIEW_PROJ = 110,
-    UV_CAMERA_POS = 111,
-    UV_CONE_SET = 112,         // 0 = six cones (60 degrees), 1 = four (90), 2 = many (32 of 14)
-    UV_TRACE_PARAMS = 113,     // step factor, max distance (voxels), start offset (voxels), specular scale
-    UV_ENVIRONMENT = 114,
-    UV_ANISOTROPIC = 115,      // 0 isotropic, 1 directional mips, 2 directional without back faces
-    UV_INTENSITY = 116,
-    UV_DEBUG_PARAMS = 117,     // channel, mip level, slice axis, slice position
-    UV_BOUNCE = 118,
-    UV_NORMAL_WEIGHT = 119,    // directional mip from level 0: 1 weigh voxels by |normal . axis|, 2 cull back faces
-    UV_EMISSION_WEIGHT = 120,  // injection: 1 = emission is a light source of the volume, 0 = not (emitters.mode)
-    UV_EMITTER_SAMPLES = 121,  // injection with emitter light: emitter count, samples per voxel
-};
+#define GIS_VOXEL_UNIFORMS(X) \
+    X(UV_WORLD_TO_VOXEL, 100, 1) \
+    X(UV_RESOLUTION, 101, 1) \
+    X(UV_CONSERVATIVE, 102, 1) /* 0 off, 1 geometry-shader dilation, 2 hardware */ \
+    X(UV_EMISSION_SCALE, 103, 1) /* 1 / the largest emission, so sums stay in fixed-point range */ \
+    X(UV_VOXEL_TO_WORLD, 104, 1) \
+    X(UV_VOXEL_SIZE, 105, 1) \
+    X(UV_LIGHT_COUNT, 106, 1) \
+    X(UV_SHADOWS_ENABLED, 107, 1) \
+    X(UV_MIP_LEVEL, 108, 1) /* the level being written */ \
+    X(UV_DIRECTION, 109, 1) /* anisotropic mip: 0..5 = +X -X +Y -Y +Z -Z */ \
+    X(UV_INV_VIEW_PROJ, 110, 1) \
+    X(UV_CAMERA_POS, 111, 1) \
+    X(UV_CONE_SET, 112, 1) /* 0 = six cones (60 degrees), 1 = four (90), 2 = many (32 of 14) */ \
+    X(UV_TRACE_PARAMS, 113, 1) /* step factor, max distance (voxels), start offset (voxels), specular scale */ \
+    X(UV_ENVIRONMENT, 114, 1) \
+    X(UV_ANISOTROPIC, 115, 1) /* 0 isotropic, 1 directional mips, 2 directional without back faces */ \
+    X(UV_INTENSITY, 116, 1) \
+    X(UV_DEBUG_PARAMS, 117, 1) /* channel, mip level, slice axis, slice position */ \
+    X(UV_BOUNCE, 118, 1) \
+    X(UV_NORMAL_WEIGHT, 119, 1) /* directional mip from level 0: 1 weigh voxels by |normal . axis|, 2 cull back faces */ \
+    X(UV_EMISSION_WEIGHT, 120, 1) /* injection: 1 = emission is a light source of the volume, 0 = not (emitters.mode) */ \
+    X(UV_EMITTER_SAMPLES, 121, 1) /* injection with emitter light: emitter count, samples per voxel */
+
+enum VoxelUniform : int { GIS_VOXEL_UNIFORMS(GIS_UNIFORM_ENUM) };
+inline constexpr gl::UniformSlot kVoxelUniforms[] = {GIS_VOXEL_UNIFORMS(GIS_UNIFORM_SLOT)};
 }  // namespace gis::voxel

@@ -17,7 +17,6 @@
 #include "gbuffer_layout.glsl"
 #include "random.glsl"
 #include "ray_scene.glsl"
-#include "emitters/emitter_uniforms.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 

@@ -1,6 +1,5 @@
 // The nearest-seed field of the jump flood: one uint per cell, the seed's cell packed 10 bits per
 // axis (so resolutions up to 1024), or JFA_NONE where no seed has arrived yet.
-#include "sdf/sdf_uniforms.glsl"
 
 const uint JFA_NONE = 0xFFFFFFFFu;
 

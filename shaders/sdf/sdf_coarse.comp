@@ -3,7 +3,6 @@
 // within half a cell diagonal (sqrt(3)/2 cells) of that cell's centre, and distance is 1-Lipschitz,
 // so min over the region's cells of |d| minus that half diagonal bounds it from below. A marcher
 // may step by this value without a fine lookup while it is far from everything.
-#include "sdf/sdf_uniforms.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0) uniform sampler3D s_distance;

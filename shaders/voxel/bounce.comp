@@ -2,7 +2,6 @@
 // diffuse cones around its mean normal and adds albedo * (E / pi) to what injection gave it
 // (direct light and emission, in s_direct).
 #include "common.glsl"
-#include "voxel/voxel_uniforms.glsl"
 #define VOXEL_TEXTURE_UNIT 3
 #include "voxel/cone_trace.glsl"
 

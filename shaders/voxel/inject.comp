@@ -3,7 +3,6 @@
 // Stored premultiplied by occupancy (rgb = L * a, a = occupancy), ready for averaging into mips.
 #include "common.glsl"
 #include "lights.glsl"
-#include "voxel/voxel_uniforms.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0) uniform sampler3D s_albedo;

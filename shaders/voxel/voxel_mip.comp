@@ -6,7 +6,6 @@
 // also weighs each surface voxel by how squarely its mean normal faces the axis (|n.axis|): a
 // plane seen edge-on covers nothing, but its one-voxel-thick voxelization would cover 1/D of every
 // coarse cell beside it, so a bright ceiling would glow into every cone running along it.
-#include "voxel/voxel_uniforms.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0) uniform sampler3D s_source;  // the level below, read with texelFetch

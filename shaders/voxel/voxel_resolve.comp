@@ -1,5 +1,4 @@
 // Voxelization, step 3: the fixed-point sums become averages in the voxel textures.
-#include "voxel/voxel_uniforms.glsl"
 #include "voxel/voxel_sums.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;

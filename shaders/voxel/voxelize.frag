@@ -4,7 +4,6 @@
 // the triangle's box grown by half a pixel are dropped (the dilated triangle's sharp corners).
 #include "common.glsl"
 #include "material.glsl"
-#include "voxel/voxel_uniforms.glsl"
 #include "voxel/voxel_sums.glsl"
 
 in VoxelData {

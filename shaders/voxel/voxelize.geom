@@ -3,7 +3,6 @@
 // triangle is dilated by half a pixel diagonal per edge (Hasselgren et al., GPU Gems 2 ch. 42): the
 // edges move outward and the new corners are the offset edges' intersections. The fragment shader
 // clips the over-estimate of sharp corners with the triangle's bounding box.
-#include "voxel/voxel_uniforms.glsl"
 
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;

@@ -9,16 +9,19 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cli_util.h"
 #include "commands.h"
 #include "gi/method.h"
+#include "gl/shader.h"
 #include "render_test_util.h"
 #include "settings_io.h"
 #include "view_session.h"
 #include "view_state.h"
+#include "uniforms.h"
 
 namespace gis::test {
 namespace {
@@ -364,6 +367,26 @@ TEST(Methods, AnUndeclaredReadOrWriteNamesThePassAndTheResource) {
             EXPECT_NE(what.find(write ? "indirect.specular" : "gbuffer.normal"), std::string::npos) << what;
         }
     }
+}
+
+// Every shader gets every module's uniform table as #defines, and the SDF and probe shaders use
+// several tables at once: no two rows may share a name or a location (arrays take one per element).
+TEST(Shaders, UniformTablesShareNoNameAndNoLocation) {
+    std::map<int, std::string> owner;
+    std::set<std::string> names;
+    for (const gl::UniformSlot& u : uniformSlots()) {
+        EXPECT_TRUE(names.insert(u.name).second) << u.name << " is declared twice";
+        ASSERT_GE(u.count, 1) << u.name;
+        EXPECT_LE(u.location + u.count, 1024) << u.name << ": past the 1024 locations GL 4.3 guarantees";
+        for (int l = u.location; l < u.location + u.count; ++l) {
+            auto [it, fresh] = owner.emplace(l, u.name);
+            EXPECT_TRUE(fresh) << u.name << " and " << it->second << " both use location " << l;
+        }
+    }
+    // What the shaders are compiled with: each row as a #define of its location.
+    std::map<std::string, std::string> defines(sharedShaderDefines().begin(), sharedShaderDefines().end());
+    for (const gl::UniformSlot& u : uniformSlots()) EXPECT_EQ(defines[u.name], std::to_string(u.location)) << u.name;
+    EXPECT_EQ(defines["U_AO_KERNEL"], std::to_string(U_AO_KERNEL));
 }
 
 TEST(Methods, DuplicateOutputsAreRefusedAtConstruction) {

@@ -4,11 +4,9 @@
 #pragma once
 
 #include "renderer.h"
+#include "uniforms.h"
 
 namespace gis {
-
-// Directions the hemisphere kernel's uniform array holds (shaders/gi/ssao/ssao.frag's MAX_AO_KERNEL).
-constexpr int kSsaoMaxKernel = 256;
 
 enum class SsaoKernel { Hemisphere, Gtao };
 

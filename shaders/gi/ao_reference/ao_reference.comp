@@ -4,7 +4,6 @@
 // same quantity as Cycles' AO pass (1 = open, background = 0). One sample per pixel per dispatch.
 #include "common.glsl"
 #include "random.glsl"
-#include "uniforms.glsl"
 #include "ray_scene.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -6,7 +6,6 @@
 #include "brdf.glsl"
 #include "lights.glsl"
 #include "random.glsl"
-#include "uniforms.glsl"
 #include "ray_scene.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

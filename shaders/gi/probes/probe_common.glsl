@@ -3,7 +3,6 @@
 // octahedral texel, per probe), distance moments (vec2 per texel of a 14x14 octahedral map), state
 // (two vec4 per probe: relocation offset + state 0 active / 1 relocated / 2 off; update count).
 #include "common.glsl"
-#include "gi/probes/probe_uniforms.glsl"
 
 #define PROBE_SH1 0
 #define PROBE_SH2 1

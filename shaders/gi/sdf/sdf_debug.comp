@@ -6,7 +6,6 @@
 //   1 sdf.steps:   the marcher's steps per diffuse ray as a heatmap (black 0 ... white max steps);
 //   2 sdf.normals: the normal at the first diffuse ray's hit (* 0.5 + 0.5; black where it missed).
 #include "common.glsl"
-#include "gi/sdf/sdf_gi_uniforms.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 3) uniform sampler3D s_distance;

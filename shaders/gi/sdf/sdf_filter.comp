@@ -5,7 +5,6 @@
 // indirect.diffuse, indirect.specular (the mirror ray blended towards the filtered diffuse as
 // roughness rises) and ao.
 #include "common.glsl"
-#include "gi/sdf/sdf_gi_uniforms.glsl"
 #include "gi/sdf/sdf_gbuffer.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -7,7 +7,6 @@
 // of up to MAX_STATIC_FRAMES, so a static view keeps converging instead of flickering at the
 // exponential average's noise floor.
 #include "common.glsl"
-#include "gi/sdf/sdf_gi_uniforms.glsl"
 #include "gi/sdf/sdf_gbuffer.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -9,7 +9,6 @@
 #include "common.glsl"
 #include "random.glsl"
 #include "sampling.glsl"
-#include "gi/sdf/sdf_gi_uniforms.glsl"
 #include "gi/sdf/sdf_gbuffer.glsl"
 #include "sdf/sdf_march.glsl"
 

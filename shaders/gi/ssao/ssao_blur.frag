@@ -4,7 +4,6 @@
 // (halos). A plane test rather than a depth difference: a floor seen at a grazing angle changes
 // depth quickly from pixel to pixel yet is one surface.
 #include "common.glsl"
-#include "uniforms.glsl"
 
 layout(binding = 0) uniform sampler2D s_ao;          // r = AO, g = view depth
 layout(binding = 1) uniform sampler2D s_gbufNormal;

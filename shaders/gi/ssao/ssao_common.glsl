@@ -2,7 +2,6 @@
 // slice) read and share: the G-buffer inputs, the per-pixel rotation from the 4x4 noise tile, and
 // view-space reconstruction from window depth.
 #include "common.glsl"
-#include "uniforms.glsl"
 
 layout(binding = 0) uniform sampler2D s_depth;       // window depth; the pass binds a linear sampler
 layout(binding = 1) uniform sampler2D s_gbufNormal;

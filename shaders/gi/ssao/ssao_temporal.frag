@@ -4,7 +4,6 @@
 // off-screen) the history is dropped. With the noise rotating every frame, the mean converges to
 // the noise-free AO.
 #include "common.glsl"
-#include "uniforms.glsl"
 
 layout(binding = 0) uniform sampler2D s_ao;          // current (blurred) AO, g = view depth
 layout(binding = 1) uniform sampler2D s_history;     // r = accumulated AO, g = view depth, b = frames

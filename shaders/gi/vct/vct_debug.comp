@@ -3,7 +3,6 @@
 // image. Channels: 0 albedo, 1 emission, 2 radiance, 3 occupancy. Albedo and emission exist at
 // level 0 only; radiance and occupancy at every level of the radiance chain.
 #include "common.glsl"
-#include "voxel/voxel_uniforms.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler3D s_albedo;

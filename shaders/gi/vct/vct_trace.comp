@@ -2,7 +2,6 @@
 // incoming radiance, E / pi), indirect.specular (radiance along one cone around the mirror
 // direction whose aperture follows roughness) and ao (1 - the diffuse cones' mean opacity).
 #include "common.glsl"
-#include "voxel/voxel_uniforms.glsl"
 #define VOXEL_TEXTURE_UNIT 4
 #include "voxel/cone_trace.glsl"
 
