@@ -109,7 +109,7 @@ void SceneVolume::refresh(Frame& frame, int i, const ConeSettings& bounceCones) 
     Cascade& c = cascades_[size_t(i)];
     const std::string prefix = stepPrefix(i);
     const bool fieldStale = field_ && !c.fieldValid;
-    c.lastUpdate = !c.voxelsValid || fieldStale ? "rebuilt" : !c.radianceValid ? "relit" : "cached";
+    c.lastUpdate = !c.voxelsValid || fieldStale ? Update::Rebuilt : !c.radianceValid ? Update::Relit : Update::Cached;
     if (!c.voxelsValid) {
         voxelizeFrame(frame, *c.voxelizer, prefix);
         ++c.builds.voxelizations;
@@ -163,7 +163,11 @@ const DistanceField& SceneVolume::field() const {
     return *field_;
 }
 
-const char* SceneVolume::lastUpdate(int cascade) const { return cascades_.at(size_t(cascade)).lastUpdate; }
+SceneVolume::Update SceneVolume::lastUpdate(int cascade) const { return cascades_.at(size_t(cascade)).lastUpdate; }
+
+const char* SceneVolume::updateName(Update u) {
+    return u == Update::Rebuilt ? "rebuilt" : u == Update::Relit ? "relit" : "cached";
+}
 
 glm::ivec3 SceneVolume::offset(int cascade) const { return cascades_.at(size_t(cascade)).offset; }
 

@@ -79,8 +79,10 @@ public:
     const DistanceField& field() const;  // throws unless request.distanceField
     bool hasField() const { return field_ != nullptr; }
 
-    // What the last update() did to cascade i: "rebuilt" (voxels or field), "relit" or "cached".
-    const char* lastUpdate(int cascade) const;
+    // What the last update() did to a cascade: rebuilt its voxels or field, relit it, or nothing.
+    enum class Update { Rebuilt, Relit, Cached };
+    static const char* updateName(Update u);  // "rebuilt", "relit", "cached"
+    Update lastUpdate(int cascade) const;
     glm::ivec3 offset(int cascade) const;   // in the cascade's cells from the scene cube's corner
     // How often cascade i (or all together, for -1) was voxelized, flooded and lit.
     struct Builds {
@@ -96,7 +98,7 @@ private:
         std::unique_ptr<VoxelRadiance> radiance;
         glm::ivec3 offset{0};
         bool placed = false, voxelsValid = false, fieldValid = false, radianceValid = false;
-        const char* lastUpdate = "cached";
+        Update lastUpdate = Update::Cached;
         Builds builds;
     };
     void place(const glm::vec3& camera);

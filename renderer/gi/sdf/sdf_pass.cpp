@@ -222,7 +222,7 @@ std::vector<std::string> SdfGiPass::stats() const {
                       "%d times, radiance %d; last frame %s",
                       i, v.resolution, double(v.cellSize()), double(v.size), double(v.origin.x), double(v.origin.y),
                       double(v.origin.z), double(bytes) / (1024.0 * 1024.0), b.fields, b.injections,
-                      volume_->lastUpdate(i));
+                      SceneVolume::updateName(volume_->lastUpdate(i)));
         out.push_back(line);
     }
     return out;

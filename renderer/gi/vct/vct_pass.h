@@ -32,7 +32,7 @@ public:
     // The trace runs every frame, so the pass as a whole never reuses its result; the volume's
     // voxelize, inject and mips steps do (they show as cached in --timings).
     bool reusedLastFrame() const override { return false; }
-    bool voxelsReusedLastFrame() const { return volume_->lastUpdate(0) == std::string("cached"); }
+    bool voxelsReusedLastFrame() const { return volume_->lastUpdate(0) == SceneVolume::Update::Cached; }
     int voxelizations() const { return volume_->builds().voxelizations; }  // how often the scene was voxelized
     int injections() const { return volume_->builds().injections; }        // how often light was injected
     bool writesImagesOrBuffers() const override { return true; }
