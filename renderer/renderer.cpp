@@ -4,8 +4,6 @@
 #include <cmath>
 #include <set>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include "debug_view.h"
 #include "emitters/emitter_lights.h"
 #include "gi/method.h"
