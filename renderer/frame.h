@@ -107,6 +107,11 @@ public:
     virtual void execute(Frame& frame) = 0;
     // True when the last execute() reused cached results (e.g. static shadow maps).
     virtual bool reusedLastFrame() const { return false; }
+    // True when executing again would reproduce the outputs the pass put last time: nothing it
+    // depends on changed since (no invalidate() since its last execute()) and its temporal or
+    // progressive work has converged. The renderer then skips execute() and keeps those outputs,
+    // so a static view costs no GI step.
+    virtual bool settled() const { return false; }
     // Something changed: drop what depends on it. Progressive passes start over.
     virtual void invalidate(Changes) {}
     // Image load/store or SSBO writes that later passes read.
