@@ -5,7 +5,7 @@
 #include <string>
 
 #include "emitters/emitter_uniforms.h"
-#include "gi/probes/probe_uniforms.h"
+#include "probes/probe_uniforms.h"
 #include "gi/sdf/sdf_gi_uniforms.h"
 #include "gl/gl.h"
 #include "gl/shader.h"

@@ -189,7 +189,7 @@ TEST(Hardening, EveryMethodRendersWithoutAGlError) {
 TEST(Hardening, ProbesPastTheWorkGroupLimitStillLightTheScene) {
     const std::string dir = tempDir("hardening_probes");
     const std::string base = "render --gl-debug --scene builtin:cornell --gi probes --size 16x16 "
-                             "--set probes.spacing=0.0245 --set probes.rays=8 --set probes.per-frame=0 "
+                             "--set probes.spacing=0.0245 --set probes.rays=8 --set probes.ray-budget=0 "
                              "--set probes.max-updates=1 --out ";
     const gis::test::CliResult lit = runCli(base + quoted(dir + "/lit.exr"));
     ASSERT_EQ(lit.status, 0) << lit.err;

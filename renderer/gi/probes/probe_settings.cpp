@@ -16,8 +16,10 @@ const ParamTable<ProbeSettings>& probeParams() {
                 "of distance moments and 32 B of state per probe",
                 {"sh1", "sh2", "octahedral"}, U::Rebuild)
         .boolean(&S::visibility, "visibility", "Visibility", "Chebyshev visibility from the distance moments", U::Live)
-        .integer(&S::probesPerFrame, "per-frame", "Probes per frame", "probes updated per frame, 0 = all", 0, 1 << 18,
-                 U::Rebuild)
+        .integer(&S::rayBudget, "ray-budget", "Ray budget",
+                 "probe rays per frame, spent on the due probes most urgent first (visible, least updated, most "
+                 "changed); 0 = every due probe each frame",
+                 0, 1 << 26, U::Rebuild)
         .integer(&S::sdfResolution, "sdf-resolution", "SDF resolution",
                  "voxels and distance-field cells per edge (a power of two)", 8, 256, U::Rebuild)
         .choice(&S::inside, "inside", "Probes inside geometry",
@@ -41,7 +43,24 @@ const ParamTable<ProbeSettings>& probeParams() {
     return table;
 }
 
+probes::FieldSettings ProbeSettings::field() const {
+    probes::FieldSettings f;
+    f.storage = storageKind();
+    f.rays = rays;
+    f.rayBudget = rayBudget;
+    f.relocate = inside == 0;
+    f.visibility = visibility;
+    f.bounces = bounces;
+    f.hysteresis = hysteresis;
+    f.threshold = threshold;
+    f.maxUpdates = maxUpdates;
+    f.normalBias = normalBias;
+    f.debugProbe = debugProbe;
+    return f;
+}
+
 void checkProbeSettings(const ProbeSettings& s) {
+    probes::checkFieldSettings(s.field(), "probes.ray-budget", "probes.rays");
     const int r = s.sdfResolution;
     if (r < 8 || r > 256 || (r & (r - 1)) != 0)
         throw Error("probes.sdf-resolution: " + std::to_string(r) + " must be a power of two in [8, 256]");

@@ -1,10 +1,10 @@
 // Probe GI's parameters: one row each in probeParams() (names that scripts and other checks use:
-// probes.spacing, probes.rays, probes.storage, probes.visibility), defaults in the initialisers
-// below.
+// probes.spacing, probes.rays, probes.storage, probes.visibility, probes.ray-budget), defaults in
+// the initialisers below.
 #pragma once
 
 #include "gi/params.h"
-#include "gi/probes/probe_math.h"
+#include "probes/probe_field.h"
 
 namespace gis {
 
@@ -13,7 +13,7 @@ struct ProbeSettings {
     int rays = 128;             // probes.rays: rays per probe per update (rebuild: sizes the ray buffer)
     int storage = 1;            // probes.storage: sh1 | sh2 | octahedral (rebuild)
     bool visibility = true;     // probes.visibility: Chebyshev visibility from the distance moments (live)
-    int probesPerFrame = 0;     // probes.per-frame: probes updated per frame, 0 = all (rebuild)
+    int rayBudget = 0;          // probes.ray-budget: probe rays per frame, most urgent probes first, 0 = all due (rebuild)
     int sdfResolution = 64;     // probes.sdf-resolution: voxels and distance-field cells per edge (rebuild)
     int inside = 0;             // probes.inside: relocate | off, for probes inside solid geometry (rebuild)
     bool bounces = true;        // probes.multibounce: ray hits also get the probes' own irradiance (live)
@@ -24,6 +24,7 @@ struct ProbeSettings {
     float intensity = 1.0f;     // probes.intensity: scales indirect.diffuse (live)
     int debugProbe = -1;        // probes.debug-probe: whose rays probes.rays draws; -1 = the middle one (live)
     probes::Storage storageKind() const { return probes::Storage(storage); }
+    probes::FieldSettings field() const;  // what the shared probe pipeline reads
 };
 
 const ParamTable<ProbeSettings>& probeParams();

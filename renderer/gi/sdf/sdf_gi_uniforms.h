@@ -26,7 +26,8 @@ namespace gis::sdfgi {
     X(UG_DEBUG, 436, 1) /* view (0 slice, 1 steps, 2 normals), slice axis, slice position, max steps */ \
     X(UG_CASCADES, 437, kMaxCascades) /* vec4 per cascade: origin xyz, edge; finest first */ \
     X(UG_CASCADE_COUNT, 441, 1) \
-    X(UG_SLICE_CASCADE, 442, 1) /* the cascade (layer) sdf.slice shows */
+    X(UG_SLICE_CASCADE, 442, 1) /* the cascade (layer) sdf.slice shows */ \
+    X(UG_GATHER, 443, 1) /* diffuse from the probes (0/1), gather bias x the probe step */
 
 enum SdfGiUniform : int { GIS_SDF_GI_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kSdfGiUniforms[] = {GIS_SDF_GI_UNIFORMS(GIS_UNIFORM_SLOT)};

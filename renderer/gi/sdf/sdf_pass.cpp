@@ -8,6 +8,7 @@
 #include "debug_view.h"
 #include "gi/method.h"
 #include "gi/sdf/sdf_gi_uniforms.h"
+#include "probes/probe_uniforms.h"
 #include "services/scene_services.h"
 
 namespace gis {
@@ -21,6 +22,12 @@ constexpr int kGroup = 8;  // local size of the 2D shaders/gi/sdf/*.comp
 void dispatch2D(int w, int h) { gl::dispatchCompute(gl::groupsFor(w, kGroup), gl::groupsFor(h, kGroup), 1, "sdf"); }
 
 int tracedSize(int fullSize, int scale) { return (fullSize + scale - 1) / scale; }
+
+// A static view's history is a running mean (up to 256 frames): after 4 / (1 - temporal) frames
+// (40 at the default) the frame-to-frame change is below 1% (the convergence test).
+int sdfFramesToConverge(float temporal) {
+    return temporal <= 0.0f ? 1 : std::min(64, int(std::ceil(4.0f / (1.0f - temporal))));
+}
 
 ParamValue choiceValue(const char* name) {
     ParamValue v;
@@ -37,7 +44,7 @@ const ProgramDesc kDebugProgram{"sdf_gi_debug", {"gi/sdf/sdf_debug.comp"}, {}};
 
 std::vector<ProgramDesc> SdfGiPass::programs() {
     std::vector<ProgramDesc> all = Voxelizer::programs();
-    for (const auto& list : {VoxelRadiance::programs(), DistanceField::programs()})
+    for (const auto& list : {VoxelRadiance::programs(), DistanceField::programs(), probes::fieldPrograms()})
         all.insert(all.end(), list.begin(), list.end());
     for (const ProgramDesc* p : {&kTraceProgram, &kTemporalProgram, &kFilterProgram, &kDebugProgram}) all.push_back(*p);
     return all;
@@ -58,13 +65,31 @@ VolumeRequest volumeRequest(const SdfGiSettings& s) {
     r.cascadeExtent = s.cascadeExtent;
     return r;
 }
+
+// Cascade i's probe grid: cells of sdf.probe-spacing x the cascade's extent. The coarsest cascade
+// (which never moves) is fitted to the scene's bounds, so no probe sits on its outer walls; a finer
+// one to its cube, so its probes move with it and their counts stay the same.
+probes::ProbeGrid probeGridFor(const SceneVolume& volume, const Aabb& sceneBounds, float spacing, int cascade) {
+    if (cascade == volume.cascadeCount() - 1) return probes::fitProbeGrid(sceneBounds, spacing);
+    const SdfVolume& v = volume.field().volume(cascade);
+    return probes::fitProbeGrid(Aabb{v.origin, v.origin + glm::vec3(v.size)}, spacing);
+}
+
+int probeCount(const Aabb& bounds, const CascadeLayout& layout, float spacing) {
+    int count = probes::fitProbeGrid(bounds, spacing).count();
+    const float e = layout.extent(0);
+    if (layout.count > 1)
+        count += (layout.count - 1) * probes::fitProbeGrid(Aabb{glm::vec3(0.0f), glm::vec3(e)}, spacing).count();
+    return count;
+}
 }  // namespace
 
 std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Scene& scene, const RenderSettings& settings) {
     const SdfGiSettings s = sdfParams().read("sdf", settings.params);
     const int n = s.resolution, scale = s.halfResolution ? 2 : 1;
     const VolumeRequest request = volumeRequest(s);
-    const int count = layoutCascades(scene.bounds, n, s.cascadeExtent, s.cascades).count;
+    const CascadeLayout layout = layoutCascades(scene.bounds, n, s.cascadeExtent, s.cascades);
+    const int count = layout.count;
     const uint64_t traced = uint64_t(tracedSize(settings.width, scale)) * uint64_t(tracedSize(settings.height, scale));
     const uint64_t full = uint64_t(settings.width) * uint64_t(settings.height);
     std::vector<std::pair<std::string, uint64_t>> rows;
@@ -74,12 +99,26 @@ std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Sc
     // raw, reflection, info, 2 histories (RGBA16F), occlusion (R16F), 2 distances (R32F);
     // full resolution: diffuse, specular (RGBA16F), ao (R16F)
     rows.push_back({"SDF trace", traced * (5 * 8 + 2 + 2 * 4) + full * (2 * 8 + 2)});
+    if (s.probeGather()) {
+        const int probes = probeCount(scene.bounds, layout, s.probeSpacing);
+        rows.push_back({"SDFGI probes (" + std::to_string(probes) + ": irradiance, distance moments, state)",
+                        uint64_t(probes::fieldStorageBytes(s.probeField(), probes))});
+        rows.push_back({"SDFGI probe rays", uint64_t(probes::fieldRayBytes(s.probeField(), probes))});
+    }
     return rows;
 }
 
 SdfGiPass::SdfGiPass(SceneServices& services, const RenderSettings& settings)
     : built_(sdfParams().read("sdf", settings.params)), scope_{&services.ledger, name()} {
     volume_ = &services.volume(volumeRequest(built_));
+    sceneBounds_ = services.bounds();
+    if (built_.probeGather()) {
+        probes::checkFieldSettings(built_.probeField(), "sdf.ray-budget", "sdf.probe-rays");
+        std::vector<probes::ProbeGrid> grids;
+        for (int i = 0; i < volume_->cascadeCount(); ++i)
+            grids.push_back(probeGridFor(*volume_, sceneBounds_, built_.probeSpacing, i));
+        field_ = std::make_unique<probes::ProbeField>(scope_, *volume_, std::move(grids), built_.probeField());
+    }
     scale_ = built_.halfResolution ? 2 : 1;
     const int tw = tracedSize(settings.width, scale_), th = tracedSize(settings.height, scale_);
     raw_ = gl::createTexture2D(scope_, GL_RGBA16F, tw, th);
@@ -108,6 +147,34 @@ SdfGiPass::SdfGiPass(SceneServices& services, const RenderSettings& settings)
 // anything that changes what a ray sees starts the history over.
 void SdfGiPass::invalidate(Changes c) {
     if (c & (ChangeGeometry | ChangeMaterials | ChangeLights | ChangeLiveParams)) hasHistory_ = false;
+    if (field_) field_->invalidate(c);
+    changed_ = true;
+}
+
+// The probes follow their cascades: a grid whose cascade moved is classified again and restarts.
+void SdfGiPass::placeProbes() {
+    for (int i = 0; i < volume_->cascadeCount(); ++i)
+        field_->place(i, probeGridFor(*volume_, sceneBounds_, built_.probeSpacing, i));
+}
+
+// Probes: converged. Rays: the history has had its frames to converge (framesToConverge).
+bool SdfGiPass::settled() const {
+    if (changed_) return false;
+    if (field_) return field_->converged();
+    return built_.temporal > 0.0f && historyFrames_ >= sdfFramesToConverge(built_.temporal);
+}
+
+Pass::Progress SdfGiPass::progress() const {
+    if (!field_) return {};
+    const int done = field_->finishedUpdates();
+    if (field_->converged()) return {done, done, "updates"};
+    const int target = field_->maxUpdates();
+    return {std::min(done, target - 1), target, "updates"};
+}
+
+std::optional<RayCounts> SdfGiPass::raysTraced() const {
+    if (!field_) return std::nullopt;
+    return field_->raysTraced();
 }
 
 void SdfGiPass::setCommonUniforms(GLuint p, const Frame& frame) const {
@@ -126,7 +193,7 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     setCommonUniforms(p, frame);
     const glm::vec3 environment = frame.settings.background.value_or(frame.scene.cpu.background);
     glProgramUniform4f(p, UG_MARCH, s.hitThreshold, s.relaxation, float(s.maxSteps), s.offset);
-    glProgramUniform1i(p, UG_RAYS, s.rays);
+    glProgramUniform1i(p, UG_RAYS, field_ ? 0 : s.rays);  // with probes, no diffuse rays per pixel
     glProgramUniform1ui(p, UG_FRAME, GLuint(frame.index * 7919u + frame.settings.seed));
     glProgramUniform3fv(p, UG_ENVIRONMENT, 1, &environment[0]);
     glProgramUniform2f(p, UG_SPECULAR, s.specular ? 1.0f : 0.0f, s.specularRoughness);
@@ -174,6 +241,8 @@ void SdfGiPass::filter(const Frame& frame, const SdfGiSettings& s) {
     setCommonUniforms(p, frame);
     glProgramUniform1i(p, UG_FILTER, s.filterRadius);
     glProgramUniform1f(p, UG_INTENSITY, s.intensity);
+    glProgramUniform2f(p, UG_GATHER, field_ ? 1.0f : 0.0f, built_.probeField().normalBias);
+    if (field_) field_->bindForGather(p);
     const GLuint inputs[3] = {history_[current_].id(), reflection_.id(), occlusion_.id()};
     glBindTextures(2, 3, inputs);
     glBindImageTexture(0, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -186,11 +255,15 @@ void SdfGiPass::filter(const Frame& frame, const SdfGiSettings& s) {
 void SdfGiPass::execute(Frame& frame) {
     const SdfGiSettings live = sdfParams().read("sdf", frame.settings.params);
     volume_->update(frame);
+    if (field_) {
+        placeProbes();
+        field_->update(frame, built_.probeField());
+    }
     {
         auto t = frame.step("trace");
         trace(frame, live);
     }
-    {
+    if (!field_) {
         auto t = frame.step("temporal");
         accumulate(frame, live);
     }
@@ -200,7 +273,9 @@ void SdfGiPass::execute(Frame& frame) {
     }
     prevViewProj_ = frame.camera.viewProj;
     prevCameraPos_ = frame.camera.position;
+    historyFrames_ = hasHistory_ ? historyFrames_ + 1 : 1;
     hasHistory_ = true;
+    changed_ = false;
     frame.put(resource::kIndirectDiffuse, diffuse_);
     frame.put(resource::kIndirectSpecular, specular_);
     frame.put(resource::kAo, ao_);
@@ -213,6 +288,7 @@ std::vector<std::string> SdfGiPass::stats() const {
                   layout.count, layout.count > 1 ? "s" : "", built_.cascades > 0 ? "sdf.cascades" : "auto",
                   double(layout.scene.size), double(built_.cascadeExtent));
     std::vector<std::string> out = {line};
+    if (field_) out.push_back("SDFGI " + field_->describe());
     const int64_t bytes = sceneVolumeBytes(volume_->request(), layout.count) / layout.count;
     for (int i = 0; i < layout.count; ++i) {
         const SdfVolume& v = volume_->field().volume(i);
@@ -229,16 +305,26 @@ std::vector<std::string> SdfGiPass::stats() const {
 }
 
 std::vector<DebugViewDesc> SdfGiPass::debugViews() const {
-    return {{"sdf.slice", "one slice of the signed distance field (sdf.slice-axis, sdf.slice-position): blue outside, "
+    std::vector<DebugViewDesc> views = {{"sdf.slice", "one slice of the signed distance field (sdf.slice-axis, sdf.slice-position): blue outside, "
                           "red inside, a band per cell, black on the surface"},
-            {"sdf.steps", "sphere-tracing steps per diffuse ray, black 0 to white sdf.max-steps"},
-            {"sdf.normals", "the normal at the first diffuse ray's hit (x 0.5 + 0.5), black where it missed"},
+            {"sdf.steps", "sphere-tracing steps per diffuse ray (sdf.diffuse=rays), black 0 to white sdf.max-steps"},
+            {"sdf.normals", "the normal at the first diffuse ray's hit (sdf.diffuse=rays; x 0.5 + 0.5), black where it "
+                            "missed"},
             {"ao", "the near-field soft occlusion written to \"ao\" (1 = open)"}};
+    if (field_)
+        for (const DebugViewDesc& d : field_->debugViews("sdf.probes", "the middle probe of the finest grid"))
+            views.push_back(d);
+    return views;
 }
 
 void SdfGiPass::drawDebugView(const std::string& view, const Frame& frame, GLuint target) {
     if (view == "ao") {
         drawChannel(DisplayChannel::Grey, ao_.id(), frame, target);
+        return;
+    }
+    const std::string probeViews = "sdf.probes.";
+    if (field_ && view.compare(0, probeViews.size(), probeViews) == 0) {
+        field_->drawDebugView(view.substr(probeViews.size()), frame, target, built_.probeField());
         return;
     }
     const SdfGiSettings live = sdfParams().read("sdf", frame.settings.params);
@@ -266,27 +352,30 @@ GiMethod sdfMethod() {
                 "edge-aware filter";
     m.params = sdfParams().rows;
     m.presets = {
-        {"low", "32^3, one volume, plain JFA, 2 rays at half resolution, 32 steps",
+        {"low", "32^3, one volume, plain JFA, probes every 1/3 with 64 rays, 32 steps",
          {{"sdf.resolution", {32.0}},
           {"sdf.cascades", {1.0}},
           {"sdf.jfa", choiceValue("plain")},
-          {"sdf.rays", {2.0}},
+          {"sdf.probe-spacing", {0.34}},
+          {"sdf.probe-rays", {64.0}},
           {"sdf.max-steps", {32.0}}}},
-        {"medium", "64^3, JFA+2, 4 rays at half resolution, 64 steps", {}},
-        {"high", "128^3, JFA+2, 8 rays at full resolution, 128 steps",
+        {"medium", "64^3, JFA+2, probes every 1/4 with 128 rays, mirror rays at half resolution, 64 steps", {}},
+        {"high", "128^3, JFA+2, probes every 1/6 with 256 rays, mirror rays at full resolution, 128 steps",
          {{"sdf.resolution", {128.0}},
-          {"sdf.rays", {8.0}},
+          {"sdf.probe-spacing", {0.167}},
+          {"sdf.probe-rays", {256.0}},
           {"sdf.half-res", {0.0}},
           {"sdf.max-steps", {128.0}}}},
+        {"realtime", "medium's probes within a budget of 8192 rays per frame (64 probes), filter radius 1",
+         {{"sdf.ray-budget", {8192.0}}, {"sdf.filter-radius", {1.0}}}},
     };
     m.programs = &SdfGiPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) { return SdfGiPass::estimateMemory(scene, s); };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<SdfGiPass>(b.services, b.settings)); };
-    // A static view's history is a running mean (up to 256 frames): after 4 / (1 - temporal) frames
-    // (40 at the default) the frame-to-frame change is below 1% (the convergence test).
     m.framesToConverge = [](const RenderSettings& s) {
-        const float w = sdfParams().read("sdf", s.params).temporal;
-        return w <= 0.0f ? 1 : std::min(64, int(std::ceil(4.0f / (1.0f - w))));
+        const SdfGiSettings g = sdfParams().read("sdf", s.params);
+        // Probes: until none is due (render stops there: progress()), at most max-updates each.
+        return g.probeGather() ? std::min(g.probeField().maxUpdates, 200) : sdfFramesToConverge(g.temporal);
     };
     return m;
 }

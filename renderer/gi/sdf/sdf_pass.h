@@ -1,9 +1,13 @@
 // SDF GI (`--gi sdf`): the scene volume (renderer/volume: voxels, their direct light and emission,
-// a signed distance field jump-flooded from its surface voxels); per pixel a few
-// cosine-distributed rays sphere-traced through the field and shaded from the voxels' light at
-// their hits (misses: the environment), accumulated over frames with reprojection and filtered
-// edge-aware into the lighting contract's indirect.diffuse; a mirror ray for smooth surfaces into
-// indirect.specular; near-field soft occlusion from the field into ao.
+// a signed distance field jump-flooded from its surface voxels) and, as Godot's SDFGI, a grid of
+// probes per cascade kept by the shared probe pipeline (renderer/probes/probe_field.h: rays
+// sphere-traced through the field within a ray budget, every bounce through the probes' own
+// irradiance); per pixel the lighting contract's indirect.diffuse gathered from the 8 probes
+// around it, a mirror ray sphere-traced only where the surface is smoother than
+// sdf.specular-roughness (indirect.specular), and near-field soft occlusion from the field (ao).
+// With sdf.diffuse=rays the diffuse term is instead a few cosine rays per traced pixel,
+// accumulated over frames with reprojection and filtered edge-aware (the method before SDFGI, kept
+// to compare).
 //
 // Cascades (renderer/volume/volume_cascades.h): a scene whose cube is larger than
 // sdf.cascade-extent gets up to four nested volumes around the camera, each with its own voxels,
@@ -16,6 +20,7 @@
 #include <memory>
 
 #include "gi/sdf/sdf_settings.h"
+#include "probes/probe_field.h"
 #include "renderer.h"
 #include "volume/scene_volume.h"
 
@@ -34,6 +39,9 @@ public:
         return {resource::kIndirectDiffuse, resource::kIndirectSpecular, resource::kAo};
     }
     void execute(Frame& frame) override;
+    bool settled() const override;
+    Progress progress() const override;
+    std::optional<RayCounts> raysTraced() const override;
     void invalidate(Changes c) override;
     bool writesImagesOrBuffers() const override { return true; }
     std::vector<std::string> stats() const override;
@@ -53,16 +61,20 @@ public:
     int fieldBuilds(int cascade = -1) const { return volume_->builds(cascade).fields; }
     int radianceBuilds(int cascade = -1) const { return volume_->builds(cascade).injections; }
     glm::ivec3 cascadeOffset(int cascade) const { return volume_->offset(cascade); }
+    const probes::ProbeField* probeField() const { return field_.get(); }  // null with sdf.diffuse=rays
 
 private:
     void trace(const Frame& frame, const SdfGiSettings& s);
     void accumulate(const Frame& frame, const SdfGiSettings& s);
     void filter(const Frame& frame, const SdfGiSettings& s);
     void setCommonUniforms(GLuint program, const Frame& frame) const;
+    void placeProbes();
 
     SdfGiSettings built_;
     gl::MemoryScope scope_;
     SceneVolume* volume_ = nullptr;   // the renderer's, shared (SceneServices)
+    Aabb sceneBounds_;
+    std::unique_ptr<probes::ProbeField> field_;   // sdf.diffuse=probes: a grid per cascade
     int scale_ = 1;  // full-resolution pixels per traced pixel
     // Traced resolution: this frame's diffuse, mirror ray, occlusion, debug data; the history
     // and each history pixel's distance from its camera, ping-ponged.
@@ -73,7 +85,9 @@ private:
     glm::mat4 prevViewProj_{1.0f};
     glm::vec3 prevCameraPos_{0.0f};
     int current_ = 0;
+    int historyFrames_ = 0;      // frames accumulated into the history since it restarted
     bool hasHistory_ = false;
+    bool changed_ = true;        // something arrived through invalidate() since the last execute
 };
 
 }  // namespace gis

@@ -20,9 +20,21 @@ const ParamTable<SdfGiSettings>& sdfParams() {
               1e-6, 1e9, U::Rebuild)
         .integer(&S::bounces, "bounces", "Bounces",
                  "1 = ray hits see direct light and emission; more gather in voxel space again", 1, 4, U::Rebuild)
+        .choice(&S::diffuse, "diffuse", "Diffuse from",
+                "probes = SDFGI: a probe grid per cascade, traced through the field and gathered per pixel; rays = "
+                "cosine rays per traced pixel, accumulated over frames and filtered",
+                {"probes", "rays"}, U::Rebuild)
+        .real(&S::probeSpacing, "probe-spacing", "Probe spacing",
+              "probe cell as a fraction of each cascade's extent (sdf.diffuse=probes)", 0.02, 1.0, U::Rebuild)
+        .integer(&S::probeRays, "probe-rays", "Rays per probe", "rays each probe traces per update", 8, 512,
+                 U::Rebuild)
+        .integer(&S::rayBudget, "ray-budget", "Probe ray budget",
+                 "probe rays per frame, spent on the due probes most urgent first; 0 = every due probe each frame", 0,
+                 1 << 26, U::Rebuild)
         .boolean(&S::halfResolution, "half-res", "Half resolution", "trace at half resolution, filter back up",
                  U::Rebuild)
-        .integer(&S::rays, "rays", "Rays per pixel", "cosine-distributed diffuse rays per traced pixel and frame", 1,
+        .integer(&S::rays, "rays", "Rays per pixel",
+                 "cosine-distributed diffuse rays per traced pixel and frame (sdf.diffuse=rays)", 1,
                  64, U::Live)
         .integer(&S::maxSteps, "max-steps", "Max steps", "sphere-tracing steps before a ray counts as a miss", 4, 1024,
                  U::Live)
@@ -37,7 +49,7 @@ const ParamTable<SdfGiSettings>& sdfParams() {
                  0, 4, U::Live)
         .boolean(&S::specular, "specular", "Reflection ray", "trace a mirror ray where roughness is low", U::Live)
         .real(&S::specularRoughness, "specular-roughness", "Reflection roughness",
-              "above this roughness the specular term is the diffuse one", 0.0, 1.0, U::Live)
+              "below this roughness a mirror ray is traced per pixel; above it the specular term is the diffuse one", 0.0, 1.0, U::Live)
         .real(&S::aoStrength, "ao", "Soft occlusion", "strength of the near-field occlusion written to \"ao\"", 0.0,
               1.0, U::Live)
         .real(&S::intensity, "intensity", "Intensity", "scales the indirect terms", 0.0, 16.0, U::Live)
@@ -46,6 +58,13 @@ const ParamTable<SdfGiSettings>& sdfParams() {
         .integer(&S::sliceCascade, "slice-cascade", "Slice cascade", "which cascade sdf.slice shows (0 = the finest)", 0,
                  kMaxCascades - 1, U::Live);
     return table;
+}
+
+probes::FieldSettings SdfGiSettings::probeField() const {
+    probes::FieldSettings f;
+    f.rays = probeRays;
+    f.rayBudget = rayBudget;
+    return f;
 }
 
 }  // namespace gis

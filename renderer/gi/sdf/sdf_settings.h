@@ -1,8 +1,9 @@
 // SDF GI's parameters: one row each in sdfParams() (names that scripts and other checks use:
-// sdf.resolution, sdf.jfa, sdf.rays), defaults in the initialisers below.
+// sdf.resolution, sdf.jfa, sdf.diffuse, sdf.rays, sdf.ray-budget), defaults in the initialisers below.
 #pragma once
 
 #include "gi/params.h"
+#include "probes/probe_field.h"
 #include "sdf/distance_field.h"
 
 namespace gis {
@@ -13,6 +14,10 @@ struct SdfGiSettings {
     int cascades = 0;           // sdf.cascades: 0 = from the scene's extent, else 1..4 (rebuild)
     float cascadeExtent = 8.0f; // sdf.cascade-extent: the finest cascade's largest edge, world units (rebuild)
     int bounces = 1;            // sdf.bounces: 1 = hits see direct light and emission; more gather again (rebuild)
+    int diffuse = 0;            // sdf.diffuse: probes (SDFGI's gather) | rays (per pixel) (rebuild)
+    float probeSpacing = 0.25f; // sdf.probe-spacing: probe cell as a fraction of each cascade's extent (rebuild)
+    int probeRays = 128;        // sdf.probe-rays: rays per probe per update (rebuild)
+    int rayBudget = 0;          // sdf.ray-budget: probe rays per frame, 0 = every due probe (rebuild)
     bool halfResolution = true; // sdf.half-res: trace at half the frame's resolution, filter back up (rebuild)
     int rays = 4;               // sdf.rays: cosine-distributed diffuse rays per traced pixel per frame (live)
     int maxSteps = 64;          // sdf.max-steps: marcher steps before a ray counts as a miss (live)
@@ -22,7 +27,7 @@ struct SdfGiSettings {
     float temporal = 0.9f;      // sdf.temporal: largest weight of the reprojected history (live)
     int filterRadius = 2;       // sdf.filter-radius: edge-aware filter half-width, traced pixels (live)
     bool specular = true;       // sdf.specular: trace a reflection ray where roughness is low (live)
-    float specularRoughness = 0.5f;  // sdf.specular-roughness: above it, specular uses the diffuse term (live)
+    float specularRoughness = 0.2f;  // sdf.specular-roughness: above it, specular uses the diffuse term (live)
     float aoStrength = 1.0f;    // sdf.ao: strength of the near-field soft occlusion written to "ao" (live)
     float intensity = 1.0f;     // sdf.intensity: scales the indirect terms (live)
     // What the debug views show (live).
@@ -31,6 +36,8 @@ struct SdfGiSettings {
     int sliceCascade = 0;       // sdf.slice-cascade: which cascade sdf.slice cuts (clamped to the count)
 
     JfaVariant jfaVariant() const { return JfaVariant(jfa); }
+    bool probeGather() const { return diffuse == 0; }
+    probes::FieldSettings probeField() const;  // what the shared probe pipeline reads
 };
 
 const ParamTable<SdfGiSettings>& sdfParams();

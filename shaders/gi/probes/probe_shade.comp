@@ -2,7 +2,7 @@
 // the shading point, moved off the surface along the normal and towards the eye (DDGI's bias, in
 // units of the smallest probe step) so that a probe's distance moments do not shadow the very
 // surface they were measured on.
-#include "gi/probes/probe_common.glsl"
+#include "probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 4) uniform sampler2D s_depth;
@@ -27,7 +27,7 @@ void main() {
     vec3 N = normalize(texelFetch(s_gbufNormal, pixel, 0).xyz);
     vec3 toEye = u_cameraPos - P;
     vec3 V = length(toEye) > 0.0 ? normalize(toEye) : N;
-    float bias = u_shadeParams.x * min(u_gridStep.x, min(u_gridStep.y, u_gridStep.z));
+    float bias = u_shadeParams.x * gridMinStep(gridAt(P));
     vec3 e = sampleProbes(P + (0.2 * N + 0.8 * V) * bias, N, u_shadeParams.z > 0.5);
     imageStore(i_diffuse, pixel, vec4(finiteOrZero(e * u_shadeParams.y), 1.0));
 }

@@ -113,8 +113,8 @@ void main() {
         reflection = vec4(rayRadiance(h), 1.0 - roughness / max(u_specular.y, 1e-6));
     }
 
-    imageStore(i_diffuse, pixel, vec4(finiteOrZero(sum / float(u_rays)), 1.0));
+    imageStore(i_diffuse, pixel, vec4(finiteOrZero(sum / float(max(u_rays, 1))), 1.0));
     imageStore(i_reflection, pixel, vec4(finiteOrZero(reflection.rgb), reflection.a));
     imageStore(i_ao, pixel, vec4(nearFieldOcclusion(vol, home, s.position, s.normal, max(u_march.w, 0.5) * cell)));
-    imageStore(i_info, pixel, vec4(steps / float(u_rays), firstNormal));
+    imageStore(i_info, pixel, vec4(steps / float(max(u_rays, 1)), firstNormal));
 }

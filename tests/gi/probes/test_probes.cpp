@@ -8,7 +8,7 @@
 #include <cstdlib>
 
 #include "gi/method.h"
-#include "gi/probes/probe_math.h"
+#include "probes/probe_math.h"
 #include "gi/probes/probes_pass.h"
 #include "memory_budget.h"
 #include "metrics.h"
@@ -433,16 +433,46 @@ TEST(Probe, ThinWallLeakIsLowerWithVisibility) {
     std::printf("PROBES-TABLE leak builtin:leak vct medium: dark room / lit room = %.4f\n", leakRatio(vct));
 }
 
-// The update budget: a few probes per frame, round robin, still converges (in proportionally more
-// frames), and the debug view draws the probes.
-TEST(Probe, RoundRobinBudgetConvergesAndTheSpheresViewDrawsProbes) {
+// The ray budget: every frame's probe rays, counted on the GPU, stay within probes.ray-budget; the
+// most urgent probes go first (the camera's view before the hidden ones); the field still
+// converges (in proportionally more frames), converged probes cost nothing, and the debug view
+// draws the probes.
+TEST(Probe, RayBudgetIsRespectedAndStillConvergesAndTheSpheresViewDrawsProbes) {
     const Scene s = makeBuiltinScene("cornell");
     RenderSettings r = small(32);
-    applyPreset(r, "probes", "low");
-    setParam(r, "probes.per-frame", "8");  // 27 probes: 4 frames per pass over all of them
+    applyPreset(r, "probes", "low");  // 27 probes of 64 rays
+    setParam(r, "probes.ray-budget", "512");  // 8 probes per frame
     ProbeRun run(s, r);
-    const int frames = run.renderUntilConverged(400);
-    std::printf("PROBES-TABLE low, 8 probes per frame: converged after %d updates (frames)\n", frames);
+    const probes::ProbeField& field = run.pass->field();
+    int frames = 0;
+    uint64_t total = 0;
+    while (!run.pass->converged() && frames < 400) {
+        run.renderer->renderFrame();
+        ++frames;
+        if (frames > 1) {  // the rays of the previous frame's update, read back this frame
+            EXPECT_LE(field.lastBatchRays(), 512u) << "frame " << frames;
+            total += field.lastBatchRays();
+        }
+        EXPECT_LE(field.lastBatch(), 8);
+    }
+    std::printf("PROBES-TABLE low, ray budget 512 (8 probes per frame): converged after %d updates (frames), %llu "
+                "rays\n",
+                frames, static_cast<unsigned long long>(total));
+    EXPECT_GT(frames, 4) << "27 probes at 8 per frame cannot converge in fewer than 4 frames per update";
+    EXPECT_EQ(field.raysTraced().bounce, total);
+    // Converged: a further frame traces nothing.
+    run.renderer->renderFrame();
+    EXPECT_FALSE(run.pass->updatedLastFrame());
+    // A budget that pays for no probe is one clear error naming both keys.
+    RenderSettings bad = small(32);
+    setParam(bad, "probes.ray-budget", "10");
+    try {
+        ProbeRun fail(s, bad);
+        ADD_FAILURE() << "a budget below the rays per probe was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("probes.ray-budget"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("probes.rays"), std::string::npos) << e.what();
+    }
     EXPECT_TRUE(run.pass->converged());
     EXPECT_TRUE(allFinite(run.diffuse()));
     EXPECT_GT(meanRgb(run.diffuse()), 0.0);

@@ -3,7 +3,7 @@
 // radiance the ray brought back, hidden behind nearer G-buffer surfaces. Lines are found per pixel
 // by projecting each segment: NDC depth is linear in screen space, so the depth test interpolates
 // it directly.
-#include "gi/probes/probe_common.glsl"
+#include "probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 3) readonly buffer Rays { vec4 rayResults[]; };
@@ -11,7 +11,7 @@ layout(binding = 4) uniform sampler2D s_depth;
 layout(rgba16f, binding = 0) uniform writeonly image2D i_target;
 layout(location = UP_VIEW_PROJ) uniform mat4 u_viewProj;
 layout(location = UP_RAYS) uniform int u_rays;
-layout(location = UP_FIRST_PROBE) uniform int u_slot;   // the probe's slot in the last batch, -1: none
+layout(location = UP_BATCH_SLOT) uniform int u_slot;   // the probe's slot in the last batch, -1: none
 layout(location = UP_ROTATION) uniform mat3 u_rotation;
 layout(location = UP_MODE) uniform int u_probe;
 

@@ -3,15 +3,16 @@
 // (u_mode 1: mean and mean^2 of the hit distance under a sharp cosine power per texel). A probe's
 // first updates are a growing-weight running mean (weight 2/(n+2)), later ones an exponential moving average of
 // weight 1 - hysteresis: noise falls fast at first and a light change is still followed. The
-// largest relative change of the irradiance level goes to u_change (atomicMax on the float's bits, which
-// order like the floats for non-negative values) so the CPU can stop updating a converged scene.
-#include "gi/probes/probe_common.glsl"
+// largest relative change of the irradiance level goes to the probe's state (its own convergence)
+// and to u_change (atomicMax on the float's bits, which order like the floats for non-negative
+// values: the batch's largest).
+#include "probes/probe_common.glsl"
 
 layout(local_size_x = 64) in;
 layout(std430, binding = 3) readonly buffer Rays { vec4 rayResults[]; };
-layout(std430, binding = 4) buffer Change { uint u_change; };
+layout(std430, binding = 4) buffer Change { uint u_change; uint u_rayCount; };
+layout(std430, binding = 5) readonly buffer Batch { int u_batch[]; };
 layout(location = UP_RAYS) uniform int u_rays;
-layout(location = UP_FIRST_PROBE) uniform int u_firstProbe;
 layout(location = UP_SLOT_OFFSET) uniform int u_slotOffset;  // several dispatches past the work-group limit
 layout(location = UP_ROTATION) uniform mat3 u_rotation;
 layout(location = UP_BLEND_PARAMS) uniform vec4 u_blendParams;
@@ -20,6 +21,7 @@ layout(location = UP_MODE) uniform int u_mode;
 const int MAX_RAYS = 512;
 shared vec4 s_rays[MAX_RAYS];
 shared vec3 s_dirs[MAX_RAYS];
+shared uint s_change;
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
@@ -58,7 +60,8 @@ vec4 blendDistance(int c) {
 
 void main() {
     int slot = u_slotOffset + int(gl_WorkGroupID.x);
-    int probe = (u_firstProbe + slot) % probeCount();
+    int probe = u_batch[slot];
+    if (gl_LocalInvocationID.x == 0u) s_change = 0u;
     for (int r = int(gl_LocalInvocationID.x); r < u_rays; r += int(gl_WorkGroupSize.x)) {
         s_rays[r] = rayResults[slot * u_rays + r];
         s_dirs[r] = normalize(u_rotation * fibonacciDirection(r, u_rays));
@@ -81,7 +84,7 @@ void main() {
                 // less. Octahedral: every texel, each already a cosine-weighted mean.
                 bool measured = u_storage == PROBE_OCTAHEDRAL || c == 0;
                 float ref = u_storage == PROBE_OCTAHEDRAL ? luminance(old) + 1e-4 : level;
-                if (updates > 0.5 && measured) atomicMax(u_change, floatBitsToUint(luminance(abs(value - old)) / ref));
+                if (updates > 0.5 && measured) atomicMax(s_change, floatBitsToUint(luminance(abs(value - old)) / ref));
             }
         } else {
             int size = OCT_DISTANCE_SIZE * OCT_DISTANCE_SIZE;
@@ -93,6 +96,10 @@ void main() {
         }
     }
     barrier();
-    // The distance step runs last in an update: it counts the update.
+    // The irradiance step records the change; the distance step runs last in an update: it counts it.
+    if (u_mode == 0 && gl_LocalInvocationID.x == 0u) {
+        probeState[2 * probe + 1].y = uintBitsToFloat(s_change);
+        atomicMax(u_change, s_change);
+    }
     if (u_mode == 1 && gl_LocalInvocationID.x == 0u) probeState[2 * probe + 1].x = updates + 1.0;
 }

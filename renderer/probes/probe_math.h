@@ -1,6 +1,6 @@
 // Probe GI's storage and math on the CPU: the probe grid fitted to the scene, spherical-Fibonacci
 // ray directions, spherical harmonics (L1, L2) with the cosine-lobe convolution of Ramamoorthi &
-// Hanrahan 2001, and octahedral maps. shaders/gi/probes/probe_common.glsl is the GPU twin of every
+// Hanrahan 2001, and octahedral maps. shaders/probes/probe_common.glsl is the GPU twin of every
 // function here (same constants, same layouts); the tests check the math here and read the GPU's
 // probes back through the same evaluation.
 #pragma once

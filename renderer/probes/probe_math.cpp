@@ -1,4 +1,4 @@
-#include "gi/probes/probe_math.h"
+#include "probes/probe_math.h"
 
 #include <algorithm>
 #include <cmath>

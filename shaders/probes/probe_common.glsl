@@ -1,7 +1,10 @@
-// Probe GI's storage and lookups on the GPU: the twin of renderer/gi/probes/probe_math.{h,cpp}
-// (same constants and layouts). Buffers (std430): irradiance (one vec4 per SH coefficient or
+// The probe pipeline's storage and lookups on the GPU (renderer/probes/): the twin of
+// renderer/probes/probe_math.{h,cpp} (same constants and layouts). One or more grids (one per
+// cascade for SDF GI, one fitted to the scene for probe GI), their probes numbered one grid after
+// the other, finest first. Buffers (std430): irradiance (one vec4 per SH coefficient or
 // octahedral texel, per probe), distance moments (vec2 per texel of a 14x14 octahedral map), state
-// (two vec4 per probe: relocation offset + state 0 active / 1 relocated / 2 off; update count).
+// (two vec4 per probe: relocation offset + state 0 active / 1 relocated / 2 off; update count,
+// last relative change).
 #include "common.glsl"
 
 #define PROBE_SH1 0
@@ -10,24 +13,42 @@
 #define OCT_IRRADIANCE_SIZE 6
 #define OCT_DISTANCE_SIZE 14
 #define PROBE_OFF 2.0
+#define PROBE_MAX_GRIDS SDF_MAX_CASCADES
 
 layout(std430, binding = 0) buffer ProbeIrradiance { vec4 probeIrradiance[]; };
 layout(std430, binding = 1) buffer ProbeDistance { vec2 probeDistance[]; };
 layout(std430, binding = 2) buffer ProbeState { vec4 probeState[]; };
 
-layout(location = UP_GRID_FIRST) uniform vec3 u_gridFirst;
-layout(location = UP_GRID_STEP) uniform vec3 u_gridStep;
-layout(location = UP_GRID_COUNTS) uniform ivec3 u_gridCounts;
+layout(location = UP_GRID_FIRST) uniform vec3 u_gridFirst[PROBE_MAX_GRIDS];
+layout(location = UP_GRID_STEP) uniform vec3 u_gridStep[PROBE_MAX_GRIDS];
+layout(location = UP_GRID_COUNTS) uniform ivec3 u_gridCounts[PROBE_MAX_GRIDS];
+layout(location = UP_GRID_COUNT) uniform int u_gridCount;
 layout(location = UP_STORAGE) uniform int u_storage;
 
-int probeCount() { return u_gridCounts.x * u_gridCounts.y * u_gridCounts.z; }
-int probeIndex(ivec3 c) { return c.x + u_gridCounts.x * (c.y + u_gridCounts.y * c.z); }
+int gridProbes(int g) { return u_gridCounts[g].x * u_gridCounts[g].y * u_gridCounts[g].z; }
+int gridBase(int g) {
+    int base = 0;
+    for (int k = 0; k < g; ++k) base += gridProbes(k);
+    return base;
+}
+int probeCount() { return gridBase(u_gridCount); }
+int probeGrid(int i) {
+    int g = 0;
+    for (int base = gridProbes(0); g < u_gridCount - 1 && i >= base; base += gridProbes(g)) ++g;
+    return g;
+}
+float gridMinStep(int g) { return min(u_gridStep[g].x, min(u_gridStep[g].y, u_gridStep[g].z)); }
+int probeIndex(int g, ivec3 c) { return gridBase(g) + c.x + u_gridCounts[g].x * (c.y + u_gridCounts[g].y * c.z); }
 ivec3 probeCoord(int i) {
-    return ivec3(i % u_gridCounts.x, (i / u_gridCounts.x) % u_gridCounts.y, i / (u_gridCounts.x * u_gridCounts.y));
+    int g = probeGrid(i);
+    int l = i - gridBase(g);
+    ivec3 n = u_gridCounts[g];
+    return ivec3(l % n.x, (l / n.x) % n.y, l / (n.x * n.y));
 }
 bool probeOff(int i) { return probeState[2 * i].w > 1.5; }
-// Grid position plus the relocation offset.
-vec3 probePosition(int i) { return u_gridFirst + vec3(probeCoord(i)) * u_gridStep + probeState[2 * i].xyz; }
+// Grid position (without the relocation offset), and with it.
+vec3 probeGridPosition(int i) { return u_gridFirst[probeGrid(i)] + vec3(probeCoord(i)) * u_gridStep[probeGrid(i)]; }
+vec3 probePosition(int i) { return probeGridPosition(i) + probeState[2 * i].xyz; }
 
 int irradianceStride() {
     return u_storage == PROBE_SH1 ? 4 : (u_storage == PROBE_SH2 ? 9 : OCT_IRRADIANCE_SIZE * OCT_IRRADIANCE_SIZE);
@@ -118,19 +139,30 @@ vec2 probeDistanceMoments(int i, vec3 d) {
     return m;
 }
 
-// Indirect diffuse (E / pi) at P (already biased off the surface) with normal N: trilinear over
-// the 8 surrounding probes, weighted by how the normal faces each (wrapped, as in DDGI, so probes
-// behind still count a little) and, with `visibility`, by Chebyshev's bound on the probe seeing P
-// (from its distance moments: light behind a wall the probe saw closer than P is cut).
-vec3 sampleProbes(vec3 P, vec3 N, bool visibility) {
-    vec3 g = (P - u_gridFirst) / u_gridStep;
-    ivec3 base = clamp(ivec3(floor(g)), ivec3(0), max(u_gridCounts - 2, ivec3(0)));
-    vec3 alpha = clamp(g - vec3(base), 0.0, 1.0);
+// The finest grid whose probes surround P with half a step to spare (the coarsest otherwise).
+int gridAt(vec3 P) {
+    for (int g = 0; g < u_gridCount - 1; ++g) {
+        vec3 lo = u_gridFirst[g] + 0.5 * u_gridStep[g];
+        vec3 hi = u_gridFirst[g] + (vec3(u_gridCounts[g]) - 1.5) * u_gridStep[g];
+        if (all(greaterThanEqual(P, lo)) && all(lessThanEqual(P, hi))) return g;
+    }
+    return u_gridCount - 1;
+}
+
+// Indirect diffuse (E / pi) at P (already biased off the surface) with normal N from grid g:
+// trilinear over the 8 surrounding probes, weighted by how the normal faces each (wrapped, as in
+// DDGI, so probes behind still count a little) and, with `visibility`, by Chebyshev's bound on the
+// probe seeing P (from its distance moments: light behind a wall the probe saw closer than P is cut).
+vec3 sampleProbeGrid(int g, vec3 P, vec3 N, bool visibility) {
+    ivec3 counts = u_gridCounts[g];
+    vec3 gp = (P - u_gridFirst[g]) / u_gridStep[g];
+    ivec3 base = clamp(ivec3(floor(gp)), ivec3(0), max(counts - 2, ivec3(0)));
+    vec3 alpha = clamp(gp - vec3(base), 0.0, 1.0);
     vec3 sum = vec3(0.0);
     float weights = 0.0;
     for (int k = 0; k < 8; ++k) {
         ivec3 off = ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1);
-        int i = probeIndex(min(base + off, u_gridCounts - 1));
+        int i = probeIndex(g, min(base + off, counts - 1));
         if (probeOff(i)) continue;
         vec3 tri = mix(1.0 - alpha, alpha, vec3(off));
         float w = tri.x * tri.y * tri.z;
@@ -154,3 +186,4 @@ vec3 sampleProbes(vec3 P, vec3 N, bool visibility) {
     }
     return weights > 0.0 ? sum / weights : vec3(0.0);
 }
+vec3 sampleProbes(vec3 P, vec3 N, bool visibility) { return sampleProbeGrid(gridAt(P), P, N, visibility); }

@@ -2,7 +2,7 @@
 // (E / pi) in the direction of the sphere's normal there, over the G-buffer's depth (nearer
 // surfaces hide it); switched-off probes dark red, relocated ones with a blue rim. probes.state
 // (u_mode 1): the same spheres flat-coloured by state: green active, blue relocated, red off.
-#include "gi/probes/probe_common.glsl"
+#include "probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 4) uniform sampler2D s_depth;

@@ -1,34 +1,39 @@
 // Probes inside solid geometry (negative distance) see only the inside of a wall and would leak
 // it into every room around: each is pushed out along the field's gradient to where the field is
 // half a cell outside, when that is within 0.45 of a probe step (u_mode 0, relocate), else (and
-// always with u_mode 1, off) switched off.
-// Writes each probe's state (offset, 0 active / 1 relocated / 2 off) and clears its update count.
-#include "gi/probes/probe_common.glsl"
+// always with u_mode 1, off) switched off. The field is read in the finest cascade that holds the
+// probe. Writes the state of grid u_classifyGrid's probes (offset, 0 active / 1 relocated / 2 off)
+// and clears their update counts.
+#include "probes/probe_common.glsl"
 #include "sdf/sdf_march.glsl"
 
 layout(local_size_x = 64) in;
 layout(binding = 0) uniform sampler3D s_distance;
-layout(location = UP_VOLUME) uniform vec4 u_volume;
+layout(location = UP_CASCADES) uniform vec4 u_cascades[SDF_MAX_CASCADES];
+layout(location = UP_CASCADE_COUNT) uniform int u_cascadeCount;
 layout(location = UP_SDF_RESOLUTION) uniform int u_sdfResolution;
 layout(location = UP_MODE) uniform int u_mode;
+layout(location = UP_CLASSIFY_GRID) uniform int u_classifyGrid;
 
 void main() {
     int i = int(gl_GlobalInvocationID.x);
-    if (i >= probeCount()) return;
-    SdfVolume vol = SdfVolume(u_volume.xyz, u_volume.w, u_sdfResolution);
-    vec3 p = u_gridFirst + vec3(probeCoord(i)) * u_gridStep;
-    float d = sdfSample(s_distance, vol, p);
+    if (i >= probeCount() || (u_classifyGrid >= 0 && probeGrid(i) != u_classifyGrid)) return;
+    SdfCascades cs = SdfCascades(u_cascades, u_cascadeCount, u_sdfResolution);
+    vec3 p = probeGridPosition(i);
+    int layer = sdfCascadeAt(cs, p);
+    SdfVolume vol = sdfCascadeVolume(cs, layer);
+    float d = sdfSample(s_distance, vol, layer, p);
     vec4 state = vec4(0.0);
     if (d < 0.0) {
         // Walk out along the gradient from |d| until the field says "outside by half a cell": the
         // zero level set of a jump-flooded field sits on the seed voxels' centres, not exactly at
         // |d| (and at a block's centre the gradient is only a tie-break direction).
-        vec3 n = sdfNormal(s_distance, vol, p);
+        vec3 n = sdfNormal(s_distance, vol, layer, p);
         float cell = sdfCellSize(vol);
-        float limit = 0.45 * min(u_gridStep.x, min(u_gridStep.y, u_gridStep.z));
+        float limit = 0.45 * gridMinStep(probeGrid(i));
         state = vec4(0.0, 0.0, 0.0, PROBE_OFF);
         for (float t = -d; u_mode == 0 && t <= limit; t += 0.5 * cell) {
-            if (sdfSample(s_distance, vol, p + n * t) > 0.5 * cell) {
+            if (sdfSample(s_distance, vol, layer, p + n * t) > 0.5 * cell) {
                 state = vec4(n * t, 1.0);
                 break;
             }

@@ -1,0 +1,35 @@
+// Explicit uniform locations of the shared probe pipeline and its gathers (gl/uniform_table.h:
+// emitted into every shader; the shader-constants test checks no two tables overlap). The grid
+// arrays hold one entry per probe grid (a cascade's probes each: PROBE_MAX_GRIDS = SDF_MAX_CASCADES).
+#pragma once
+
+#include "gl/uniform_table.h"
+#include "volume/volume_cascades.h"
+
+namespace gis::probes {
+constexpr int kMaxGrids = kMaxCascades;
+#define GIS_PROBE_UNIFORMS(X) \
+    X(UP_GRID_FIRST, 500, kMaxGrids) /* per grid: world position of its probe (0, 0, 0) */ \
+    X(UP_GRID_STEP, 504, kMaxGrids) /* per grid: world step between neighbours per axis */ \
+    X(UP_GRID_COUNTS, 508, kMaxGrids) /* per grid: probes per axis */ \
+    X(UP_GRID_COUNT, 512, 1) /* grids in use, finest first */ \
+    X(UP_STORAGE, 513, 1) /* 0 sh1, 1 sh2, 2 octahedral */ \
+    X(UP_RAYS, 514, 1) /* rays per probe */ \
+    X(UP_ROTATION, 515, 1) /* mat3: this update's random rotation of the ray set */ \
+    X(UP_ENVIRONMENT, 516, 1) /* sky radiance for rays that miss */ \
+    X(UP_CASCADES, 517, kMaxGrids) /* the distance field's cascades: origin xyz, edge; finest first */ \
+    X(UP_CASCADE_COUNT, 521, 1) \
+    X(UP_SDF_RESOLUTION, 522, 1) /* cells per cascade edge */ \
+    X(UP_BLEND_PARAMS, 523, 1) /* hysteresis, multi-bounce on, miss distance, visibility on */ \
+    X(UP_INV_VIEW_PROJ, 524, 1) \
+    X(UP_CAMERA_POS, 525, 1) \
+    X(UP_SHADE_PARAMS, 526, 1) /* bias (x min probe step), intensity, visibility on, probe radius (debug) */ \
+    X(UP_MODE, 527, 1) /* blend: 0 irradiance, 1 distance; classify: 0 relocate, 1 off; views: mode / probe */ \
+    X(UP_VIEW_PROJ, 528, 1) \
+    X(UP_SLOT_OFFSET, 529, 1) /* trace/blend: batch slot of work group 0 (a batch past the group limit is split) */ \
+    X(UP_BATCH_SLOT, 530, 1) /* probes.rays view: the drawn probe's slot in the last batch, -1 none */ \
+    X(UP_CLASSIFY_GRID, 531, 1) /* classify: the grid whose probes are (re)classified, -1 all */
+
+enum ProbeUniform : int { GIS_PROBE_UNIFORMS(GIS_UNIFORM_ENUM) };
+inline constexpr gl::UniformSlot kProbeUniforms[] = {GIS_PROBE_UNIFORMS(GIS_UNIFORM_SLOT)};
+}  // namespace gis::probes

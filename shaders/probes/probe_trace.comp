@@ -1,0 +1,85 @@
+// One probe update, step 1: every probe of the batch (u_batch, most urgent first) shoots u_rays
+// rays (a spherical-Fibonacci set under this update's random rotation), sphere-traced through the
+// distance field's cascades (sdf/sdf_march.glsl), starting in the finest that holds the probe. A
+// hit is shaded from the voxel radiance of the cascade it was found in (direct light and emission
+// as the volume injected them) plus, for multi-bounce, the probes' own irradiance there times the
+// voxel albedo; a miss sees the sky. One workgroup per probe; rays go to the ray buffer for the
+// blend steps, and their count to the change buffer (what a ray budget is checked against).
+#include "probes/probe_common.glsl"
+#include "sdf/sdf_march.glsl"
+
+layout(local_size_x = 64) in;
+layout(std430, binding = 3) writeonly buffer Rays { vec4 rayResults[]; };
+layout(std430, binding = 4) buffer Change { uint u_change; uint u_rayCount; };
+layout(std430, binding = 5) readonly buffer Batch { int u_batch[]; };
+layout(binding = 0) uniform sampler3D s_distance;
+layout(binding = 1) uniform sampler3D s_coarse;
+layout(binding = 2) uniform sampler3D s_voxelRadiance;  // premultiplied by occupancy (a); a layer per cascade
+// Albedo (a = occupancy) of each cascade, its own texture each.
+layout(binding = 3) uniform sampler3D s_voxelAlbedo0;
+layout(binding = 4) uniform sampler3D s_voxelAlbedo1;
+layout(binding = 5) uniform sampler3D s_voxelAlbedo2;
+layout(binding = 6) uniform sampler3D s_voxelAlbedo3;
+
+layout(location = UP_RAYS) uniform int u_rays;
+layout(location = UP_SLOT_OFFSET) uniform int u_slotOffset;  // several dispatches past the work-group limit
+layout(location = UP_ROTATION) uniform mat3 u_rotation;
+layout(location = UP_ENVIRONMENT) uniform vec3 u_environment;
+layout(location = UP_CASCADES) uniform vec4 u_cascades[SDF_MAX_CASCADES];
+layout(location = UP_CASCADE_COUNT) uniform int u_cascadeCount;
+layout(location = UP_SDF_RESOLUTION) uniform int u_sdfResolution;
+layout(location = UP_BLEND_PARAMS) uniform vec4 u_blendParams;  // hysteresis, multi-bounce, miss distance, visibility
+layout(location = UP_SHADE_PARAMS) uniform vec4 u_shadeParams;  // bias (x min step), ...
+
+shared uint s_traced;
+
+// The voxels store occupancy-weighted values; trilinear lookups then blend in empty voxels, which
+// dividing by the blended occupancy undoes (the surface's own value, not half of it).
+vec3 unpremultiply(vec4 v) { return v.a > 1e-4 ? v.rgb / v.a : vec3(0.0); }
+
+vec3 voxelAlbedo(int cascade, vec3 uvw) {
+    switch (cascade) {
+    case 0: return unpremultiply(textureLod(s_voxelAlbedo0, uvw, 0.0));
+    case 1: return unpremultiply(textureLod(s_voxelAlbedo1, uvw, 0.0));
+    case 2: return unpremultiply(textureLod(s_voxelAlbedo2, uvw, 0.0));
+    default: return unpremultiply(textureLod(s_voxelAlbedo3, uvw, 0.0));
+    }
+}
+
+vec3 shadeHit(SdfHit h, SdfCascades cs) {
+    SdfVolume vol = sdfCascadeVolume(cs, h.cascade);
+    vec3 radiance = unpremultiply(textureLod(s_voxelRadiance, sdfLayerCoord(vol, h.cascade, cs.count, h.position), 0.0));
+    if (u_blendParams.y > 0.5) {
+        vec3 albedo = voxelAlbedo(h.cascade, (h.position - vol.origin) / vol.size);
+        vec3 P = h.position;
+        float bias = u_shadeParams.x * gridMinStep(gridAt(P));
+        radiance += albedo * sampleProbes(P + h.normal * bias, h.normal, u_blendParams.w > 0.5);
+    }
+    return finiteOrZero(radiance);
+}
+
+void main() {
+    int slot = u_slotOffset + int(gl_WorkGroupID.x);
+    int probe = u_batch[slot];
+    bool off = probeOff(probe);
+    vec3 origin = probePosition(probe);
+    SdfCascades cs = SdfCascades(u_cascades, u_cascadeCount, u_sdfResolution);
+    SdfMarchParams params = sdfDefaultParams(u_blendParams.z);
+    params.maxSteps = 128;
+    if (gl_LocalInvocationID.x == 0u) s_traced = 0u;
+    barrier();
+    uint traced = 0u;
+    for (int r = int(gl_LocalInvocationID.x); r < u_rays; r += int(gl_WorkGroupSize.x)) {
+        vec4 result = vec4(0.0, 0.0, 0.0, u_blendParams.z);
+        if (!off) {
+            vec3 dir = normalize(u_rotation * fibonacciDirection(r, u_rays));
+            SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, dir, params);
+            result = h.hit ? vec4(shadeHit(h, cs), max(h.t, 0.0)) : vec4(u_environment, u_blendParams.z);
+            ++traced;
+        }
+        rayResults[slot * u_rays + r] = result;
+    }
+    atomicAdd(s_traced, traced);
+    barrier();
+    if (gl_LocalInvocationID.x == 0u) atomicAdd(u_rayCount, s_traced);
+}
