@@ -23,6 +23,7 @@ namespace fs = std::filesystem;
 // frames (framesToConverge, from the registry): the median per frame of `frames` frames after
 // warm-up, measured once converged, and the image scored is the converged one.
 void measure(Renderer& renderer, const GiMethod& method, int frames, int warmup, BenchRow& row) {
+    renderer.setSkipSettled(false);  // the cost of a frame that runs, as the peers' frames do
     const bool progressive = !renderer.converged();
     row.msToConverge = progressive;
     const int converge = method.framesToConverge ? std::max(1, method.framesToConverge(renderer.settings())) : 1;

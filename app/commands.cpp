@@ -65,6 +65,15 @@ void checkWritable(const std::string& path, const char* flag) {
     }
 }
 
+// --frames N when given; otherwise the method's frames to converge, so a temporal method writes its
+// accumulated image (as bench scores it), and with --timings at least --frames' default.
+int framesToRender(const RenderOptions& o, const RenderSettings& s) {
+    if (o.given && o.given("--frames")) return o.frames;
+    const GiMethod& method = giMethod(s.gi);
+    const int converge = method.framesToConverge ? std::max(1, method.framesToConverge(s)) : 1;
+    return o.timings ? std::max(o.frames, converge) : converge;
+}
+
 void printWarnings(const Scene& scene) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "gisandbox: warning: %s\n", w.c_str());
 }
@@ -200,8 +209,13 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
         ->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable shadow maps");
     cmd.add_flag("--hdr32", o.hdr32, "Light into RGBA32F instead of RGBA16F");
-    cmd.add_flag("--timings", o.timings, "Render --frames frames and print GPU ms per pass (median after warm-up)");
-    cmd.add_option("--frames", o.frames, "Frames rendered with --timings")->capture_default_str();
+    cmd.add_flag("--timings", o.timings, "Print GPU ms per pass (median after warm-up) over the frames rendered");
+    cmd.add_option("--frames", o.frames,
+                   "Frames to render; without it the method's frames to converge (temporal methods), with "
+                   "--timings at least 30. Progressive methods (pathtrace) still render all their samples");
+    cmd.add_flag("--rerun-settled", o.rerunSettled,
+                 "Execute every pass every frame, also those whose outputs would not change (frame-cost "
+                 "comparisons with engines that re-render a static view)");
     cmd.add_option("--warmup", o.warmup, "Frames left out of the --timings median")->capture_default_str();
     cmd.add_flag("--gl-debug", o.glDebug, "Debug context; print KHR_debug messages (always on in Debug builds)");
     cmd.add_flag("-v,--verbose", o.verbose, "Print the backend, GL_RENDERER and GL_VERSION");
@@ -238,7 +252,7 @@ int runRender(const RenderOptions& o) {
     if (!listViews && std::filesystem::is_directory(o.out)) throw Error("--out '" + o.out + "' is a directory");
     if (!listViews && !exr && !endsWith(o.out, ".png")) throw Error("--out '" + o.out + "' must end in .png or .exr");
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
-    if (o.warmup < 0 || o.warmup >= o.frames) throw Error("--warmup must be in [0, --frames)");
+    if (o.timings && (o.warmup < 0 || o.warmup >= o.frames)) throw Error("--warmup must be in [0, --frames)");
     if (o.ambient.size() != 1 && o.ambient.size() != 3) throw Error("--ambient takes one value or R,G,B");
     if (use("--gi")) s.gi = o.gi;
     giMethod(s.gi);  // throws for an unknown method
@@ -324,16 +338,21 @@ int runRender(const RenderOptions& o) {
     if (viewSettings && viewSettings->camera.free && !use("--camera") && !use("--camera-pos")) {  // the free camera
         renderer.setCamera(view::viewCameraMatrices(*viewSettings, scene, float(s.width) / float(s.height)));
     }
-    const int frames = o.timings ? o.frames : 1;
+    renderer.setSkipSettled(!o.rerunSettled);
+    const int frames = framesToRender(o, s);
     // Wall-clock per frame with the GPU finished, comparable with other engines' wall-clock figures
     // (Godot's frame time) where GPU timer queries are not.
     std::vector<double> wallMs;
+    std::optional<ProgressBar> frameProgress;
+    if (frames > 1) frameProgress.emplace(frames, "", "frames");
     for (int i = 0; i < frames; ++i) {
         const auto t0 = std::chrono::steady_clock::now();
         renderer.renderFrame();
-        if (o.timings) glFinish();
+        if (o.timings || frameProgress) glFinish();
         wallMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        if (frameProgress) frameProgress->update(i + 1);
     }
+    if (frameProgress) frameProgress->finish();
     if (!renderer.converged()) {
         Pass::Progress longest;
         for (const auto& pass : renderer.passes())

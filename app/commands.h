@@ -29,6 +29,7 @@ struct RenderOptions {
     bool noShadows = false;
     bool hdr32 = false;
     bool timings = false;
+    bool rerunSettled = false;   // --rerun-settled: execute every pass every frame (frame-cost measurements)
     int frames = 30;
     int warmup = 5;
     std::vector<float> background;

@@ -224,7 +224,10 @@ void lightControls(PanelContext& ctx) {
 
 void timingControls(PanelContext& ctx) {
     const ViewSession& session = ctx.session;
-    ImGui::Text("CPU frame %.1f ms on %s", ctx.cpuFrameMs, ctx.glRenderer.c_str());
+    const FrameTimes& t = ctx.times;
+    ImGui::Text("frame %.1f ms = GPU passes %.1f + CPU and waits %.1f", t.frameMs, t.gpuMs,
+                std::max(0.0f, t.frameMs - t.gpuMs));
+    ImGui::TextDisabled("on %s; a settled view renders nothing", ctx.glRenderer.c_str());
     ImGui::Text("GPU memory, all panes and references: %.2f MiB", mib(session.gpuBytes()));
     for (int i = 0; i < session.visiblePanes(); ++i) {
         const PaneView& p = session.pane(i);

@@ -10,6 +10,13 @@
 
 namespace gis::view {
 
+// The app's frame, smoothed alike: wall ms from the end of the event wait to the swap, and the GPU
+// ms of the pass timings that arrived during it (ViewSession::gpuMsCollected); the difference is
+// the CPU's own work (panel, uploads) and its waits for the GPU and the swap.
+struct FrameTimes {
+    float frameMs = 0.0f, gpuMs = 0.0f;
+};
+
 struct PanelContext {
     ViewState& state;
     ViewSession& session;
@@ -17,7 +24,7 @@ struct PanelContext {
     std::string& scenePath;        // text fields
     std::string& settingsPath;
     std::string glRenderer;
-    float cpuFrameMs = 0.0f;
+    FrameTimes times;
     bool screenshotRequested = false;  // set by the button
 };
 

@@ -9,9 +9,12 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <utility>
+#include <vector>
 
 #include "commands.h"
 #include "image.h"
@@ -27,6 +30,28 @@ namespace {
 using namespace gis::view;
 
 constexpr float kPanelWidth = 420.0f;  // window pixels; less on narrow windows
+// GPU ms a full-scale frame may take before a moving camera renders at a lower scale: about 30
+// frames a second while dragging.
+constexpr double kMotionBudgetMs = 33.0;
+
+// A key or mouse button going down or up, as GLFW's callbacks report it: queued until the next
+// frame reads them, so a press shorter than a frame still counts.
+struct InputEvent {
+    bool button = false;  // a mouse button, else a key
+    int code = 0;         // GLFW_KEY_* or GLFW_MOUSE_BUTTON_*
+    bool press = false;
+};
+
+// The keys a script may press (`key NAME`) by the name docs/viewer.md gives them.
+int scriptKey(const std::string& name) {
+    static const std::pair<const char*, int> keys[] = {
+        {"F12", GLFW_KEY_F12}, {"F", GLFW_KEY_F}, {"R", GLFW_KEY_R}, {"1", GLFW_KEY_1}, {"2", GLFW_KEY_2},
+        {"3", GLFW_KEY_3},     {"B", GLFW_KEY_B}, {"I", GLFW_KEY_I}, {"W", GLFW_KEY_W}, {"A", GLFW_KEY_A},
+        {"S", GLFW_KEY_S},     {"D", GLFW_KEY_D}, {"Q", GLFW_KEY_Q}, {"E", GLFW_KEY_E}};
+    for (const auto& [n, code] : keys)
+        if (name == n) return code;
+    throw Error("key '" + name + "' is not one of F12 F R 1 2 3 B I W A S D Q E");
+}
 
 class ViewApp final : public ScriptHost {
 public:
@@ -56,14 +81,22 @@ public:
         }
     }
     void quit() override { quit_ = true; }
+    // Down and up before the next frame reads them: a tap shorter than any frame.
+    void pressKey(const std::string& name) override {
+        const int key = scriptKey(name);
+        onKey(window_, key, 0, GLFW_PRESS, 0);
+        onKey(window_, key, 0, GLFW_RELEASE, 0);
+    }
     bool settled() const override { return session_->settled(); }
     double seconds() const override {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     }
 
 private:
+    static void onKey(GLFWwindow* w, int key, int scancode, int action, int mods);
+    static void onMouseButton(GLFWwindow* w, int button, int action, int mods);
     void handleInput(float viewW, float viewH, float dt);
-    bool keyPressed(int key);
+    void applyKey(int key, bool fly);
     void takeScreenshot();
     void captureWindow(const std::string& path, int width, int height);
 
@@ -80,7 +113,7 @@ private:
     std::string message_, scenePath_, settingsPath_ = "gisandbox_view.json";
     std::string droppedPath_;
     double scroll_ = 0.0;
-    bool keyWasDown_[GLFW_KEY_LAST + 1] = {};
+    std::vector<InputEvent> events_;  // since the last frame, in order
     bool inspect_ = false;  // I: the pixel inspector's tooltip follows the cursor
     enum class Drag { None, Orbit, Pan, Look, Divider } drag_ = Drag::None;
     double lastX_ = 0.0, lastY_ = 0.0;
@@ -95,11 +128,32 @@ ViewApp::~ViewApp() {
     }
 }
 
-bool ViewApp::keyPressed(int key) {
-    const bool down = glfwGetKey(window_, key) == GLFW_PRESS;
-    const bool pressed = down && !keyWasDown_[key];
-    keyWasDown_[key] = down;
-    return pressed;
+void ViewApp::onKey(GLFWwindow* w, int key, int, int action, int) {
+    if (action == GLFW_REPEAT || key < 0) return;
+    static_cast<ViewApp*>(glfwGetWindowUserPointer(w))->events_.push_back({false, key, action == GLFW_PRESS});
+}
+
+void ViewApp::onMouseButton(GLFWwindow* w, int button, int action, int) {
+    static_cast<ViewApp*>(glfwGetWindowUserPointer(w))->events_.push_back({true, button, action == GLFW_PRESS});
+}
+
+void ViewApp::applyKey(int key, bool fly) {
+    PanelAction a;
+    switch (key) {
+        case GLFW_KEY_F12: screenshot_ = true; return;
+        case GLFW_KEY_F:
+            a.kind = PanelAction::SetCameraMode;
+            a.text = fly ? "orbit" : "fly";
+            break;
+        case GLFW_KEY_R: a.kind = PanelAction::ResetCamera; break;
+        case GLFW_KEY_1: a = PanelAction::viewMode(ViewMode::Single); break;
+        case GLFW_KEY_2: a = PanelAction::viewMode(ViewMode::Split); break;
+        case GLFW_KEY_3: a = PanelAction::viewMode(ViewMode::Grid); break;
+        case GLFW_KEY_I: inspect_ = !inspect_; return;
+        case GLFW_KEY_B: a.kind = PanelAction::SwapSides; break;  // A/B: which difference is which
+        default: return;
+    }
+    applyPanelAction(state_, a);
 }
 
 void ViewApp::handleInput(float viewW, float viewH, float dt) {
@@ -109,9 +163,15 @@ void ViewApp::handleInput(float viewW, float viewH, float dt) {
     const double dx = mx - lastX_, dy = my - lastY_;
     lastX_ = mx;
     lastY_ = my;
-    const bool left = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    const bool right = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
-                       glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    // A button or key counts as down this frame when it is down now or went down since the last.
+    const std::vector<InputEvent> events = std::exchange(events_, {});
+    auto pressedSince = [&](bool button, int code) {
+        return std::any_of(events.begin(), events.end(),
+                           [&](const InputEvent& e) { return e.press && e.button == button && e.code == code; });
+    };
+    auto buttonDown = [&](int b) { return glfwGetMouseButton(window_, b) == GLFW_PRESS || pressedSince(true, b); };
+    const bool left = buttonDown(GLFW_MOUSE_BUTTON_LEFT);
+    const bool right = buttonDown(GLFW_MOUSE_BUTTON_RIGHT) || buttonDown(GLFW_MOUSE_BUTTON_MIDDLE);
     const bool inView = mx >= 0.0 && mx < viewW && my >= 0.0 && my < viewH;
     ViewCamera& cam = state_.camera;
     const bool fly = cam.mode == CameraMode::Fly;
@@ -146,34 +206,11 @@ void ViewApp::handleInput(float viewW, float viewH, float dt) {
     }
     scroll_ = 0.0;
 
-    if (io.WantCaptureKeyboard) {
-        for (int k : {GLFW_KEY_F12, GLFW_KEY_F, GLFW_KEY_R, GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_B, GLFW_KEY_I})
-            keyWasDown_[k] = glfwGetKey(window_, k) == GLFW_PRESS;
-        return;
-    }
-    if (keyPressed(GLFW_KEY_F12)) screenshot_ = true;
-    if (keyPressed(GLFW_KEY_F)) {
-        PanelAction a;
-        a.kind = PanelAction::SetCameraMode;
-        a.text = fly ? "orbit" : "fly";
-        applyPanelAction(state_, a);
-    }
-    if (keyPressed(GLFW_KEY_R)) {
-        PanelAction a;
-        a.kind = PanelAction::ResetCamera;
-        applyPanelAction(state_, a);
-    }
-    if (keyPressed(GLFW_KEY_1)) applyPanelAction(state_, PanelAction::viewMode(ViewMode::Single));
-    if (keyPressed(GLFW_KEY_2)) applyPanelAction(state_, PanelAction::viewMode(ViewMode::Split));
-    if (keyPressed(GLFW_KEY_3)) applyPanelAction(state_, PanelAction::viewMode(ViewMode::Grid));
-    if (keyPressed(GLFW_KEY_I)) inspect_ = !inspect_;
-    if (keyPressed(GLFW_KEY_B)) {  // A/B: flip the split's sides to see which difference is which
-        PanelAction a;
-        a.kind = PanelAction::SwapSides;
-        applyPanelAction(state_, a);
-    }
+    if (io.WantCaptureKeyboard) return;  // typed into a panel field: ImGui had its own events
+    for (const InputEvent& e : events)  // every press in order: two taps within a frame are two
+        if (!e.button && e.press) applyKey(e.code, state_.camera.mode == CameraMode::Fly);
     if (fly) {
-        auto down = [&](int k) { return glfwGetKey(window_, k) == GLFW_PRESS ? 1.0f : 0.0f; };
+        auto down = [&](int k) { return glfwGetKey(window_, k) == GLFW_PRESS || pressedSince(false, k) ? 1.0f : 0.0f; };
         const glm::vec3 dir(down(GLFW_KEY_D) - down(GLFW_KEY_A), down(GLFW_KEY_E) - down(GLFW_KEY_Q),
                             down(GLFW_KEY_W) - down(GLFW_KEY_S));
         if (dir != glm::vec3(0.0f)) {
@@ -237,6 +274,8 @@ int ViewApp::run() {
     glfwSwapInterval(1);
     glfwSetWindowUserPointer(window_, this);
     // Before ImGui installs its callbacks, which chain to these.
+    glfwSetKeyCallback(window_, &ViewApp::onKey);
+    glfwSetMouseButtonCallback(window_, &ViewApp::onMouseButton);
     glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double y) {
         static_cast<ViewApp*>(glfwGetWindowUserPointer(w))->scroll_ += y;
     });
@@ -245,6 +284,7 @@ int ViewApp::run() {
     });
 
     session_ = std::make_unique<ViewSession>();
+    session_->setMotionBudget(kMotionBudgetMs);
     state_.viewWidth = std::max(1, width - int(kPanelWidth));
     state_.viewHeight = height;
     state_.lighting = lightingModeName(parseLightingMode(options_.setup.lighting));
@@ -271,7 +311,7 @@ int ViewApp::run() {
     imgui_ = true;
 
     auto last = std::chrono::steady_clock::now();
-    float cpuMs = 0.0f;
+    FrameTimes times;
     while (!quit_ && !glfwWindowShouldClose(window_)) {
         // Nothing moving and nothing accumulating: wait for input instead of spinning.
         if (!script_.active() && drag_ == Drag::None && state_.camera.mode == CameraMode::Orbit && session_->settled())
@@ -316,7 +356,7 @@ int ViewApp::run() {
         drawViewOverlay(state_, *session_, 0.0f, 0.0f, viewW, viewH);
         if (inspect_ && !ImGui::GetIO().WantCaptureMouse)
             drawPixelInspector(state_, *session_, float(lastX_), float(lastY_), viewW, viewH);
-        view::PanelContext panel{state_, *session_, message_, scenePath_, settingsPath_, ctx_->renderer, cpuMs};
+        view::PanelContext panel{state_, *session_, message_, scenePath_, settingsPath_, ctx_->renderer, times};
         drawPanel(panel, viewW, 0.0f, float(ww) - viewW, viewH);
         if (panel.screenshotRequested) screenshot_ = true;
         ImGui::Render();
@@ -335,8 +375,10 @@ int ViewApp::run() {
         }
         if (!capturePath_.empty()) captureWindow(std::exchange(capturePath_, std::string()), fbw, fbh);
         glfwSwapBuffers(window_);
-        cpuMs = 0.9f * cpuMs + 0.1f * 1000.0f *
-                                   std::chrono::duration<float>(std::chrono::steady_clock::now() - now).count();
+        // From after the event wait to after the swap, smoothed alike so the parts still add up.
+        const float frameMs = 1000.0f * std::chrono::duration<float>(std::chrono::steady_clock::now() - now).count();
+        times.frameMs = 0.9f * times.frameMs + 0.1f * frameMs;
+        times.gpuMs = 0.9f * times.gpuMs + 0.1f * float(session_->gpuMsCollected());
     }
     return 0;
 }

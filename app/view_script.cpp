@@ -80,6 +80,10 @@ std::vector<ScriptStep> parseScript(const std::string& text, const std::string& 
                 s.kind = ScriptStep::Resize;
                 s.width = int(a);
                 s.height = int(b);
+            } else if (cmd == "key") {
+                need(2, "key NAME");
+                s.kind = ScriptStep::Key;
+                s.path = w[1];
             } else if (cmd == "quit") {
                 need(1, "quit");
                 s.kind = ScriptStep::Quit;
@@ -153,6 +157,7 @@ void ScriptRunner::frame(ScriptHost& host) {
                     host.resize(s.width, s.height);
                     ++next_;
                     return;
+                case ScriptStep::Key: host.pressKey(s.path); break;
                 case ScriptStep::Quit:
                     host.quit();
                     ++next_;

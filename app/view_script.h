@@ -7,6 +7,8 @@
 //   scene SPEC          open a scene (glTF path or builtin:NAME); a failure is shown, not fatal
 //   settings FILE       load a settings file      save-settings FILE
 //   resize W H          resize the window         quit
+//   key NAME            tap a key (F12 F R 1 2 3 B I W A S D Q E): down and up before the frame reads
+//                       its input, as a press shorter than a frame
 //   anything else       a panel action (view_state.h parsePanelAction), e.g. "method 1 pathtrace"
 #pragma once
 
@@ -18,13 +20,13 @@
 namespace gis::view {
 
 struct ScriptStep {
-    enum Kind { Action, Wait, Sleep, Converge, OpenScene, LoadSettings, SaveSettings, Screenshot, Capture, Resize, Quit };
+    enum Kind { Action, Wait, Sleep, Converge, OpenScene, LoadSettings, SaveSettings, Screenshot, Capture, Resize, Quit, Key };
     Kind kind = Action;
     int line = 0;
     PanelAction action;
     int frames = 0;
     double seconds = 0.0;
-    std::string path;
+    std::string path;                 // or the key's name
     int width = 0, height = 0;
 };
 
@@ -44,6 +46,7 @@ public:
     virtual void requestCapture(const std::string& path) = 0; // after this frame is drawn
     virtual void resize(int width, int height) = 0;
     virtual void quit() = 0;
+    virtual void pressKey(const std::string& name) = 0;      // throws gis::Error for an unknown key
     virtual bool settled() const = 0;
     virtual double seconds() const = 0;                       // a monotonic clock
 };

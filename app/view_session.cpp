@@ -58,11 +58,30 @@ std::string progressText(const Renderer& r) {
     return "";
 }
 
+// Nearest-neighbour resampling: a motion frame read back at the pane's size.
+ImageU8 resizeNearest(const ImageU8& src, int width, int height) {
+    ImageU8 out;
+    out.width = width;
+    out.height = height;
+    out.rgba.resize(size_t(width) * height * 4);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const int sx = std::min(src.width - 1, x * src.width / width), sy = std::min(src.height - 1, y * src.height / height);
+            std::copy_n(&src.rgba[(size_t(sy) * src.width + sx) * 4], 4, &out.rgba[(size_t(y) * width + x) * 4]);
+        }
+    return out;
+}
+
 std::string describe(const std::exception& e) {
     return dynamic_cast<const std::bad_alloc*>(&e) ? std::string("out of memory") : std::string(e.what());
 }
 
 }  // namespace
+
+float motionScale(double lastFullFrameMs, double budgetMs) {
+    if (budgetMs <= 0.0 || lastFullFrameMs <= budgetMs) return 1.0f;
+    return lastFullFrameMs <= 4.0 * budgetMs ? 0.5f : 0.25f;
+}
 
 std::string structuralKey(const RenderSettings& settings) {
     nlohmann::ordered_json j = renderSettingsToJson(settings);
@@ -150,8 +169,10 @@ void ViewSession::syncLights(const ViewState& state) {
     // takes them again, and progressive passes start over.
     scene_->lights = lights;
     lightsKey_ = key;
-    for (PaneView& p : panes_)
+    for (PaneView& p : panes_) {
         if (p.renderer) p.renderer->lightsChanged();
+        if (p.motion) p.motion->lightsChanged();
+    }
     for (auto& [refKey, ref] : references_) {
         ref.renderer->lightsChanged();
         ref.image = ImageF{};
@@ -159,6 +180,7 @@ void ViewSession::syncLights(const ViewState& state) {
 }
 
 void ViewSession::renderFrame(const ViewState& state, int viewWidth, int viewHeight) {
+    gpuMsCollected_ = 0.0;
     if (!scene_) return;
     ++frame_;
     syncLights(state);
@@ -209,16 +231,31 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
     }
     Renderer& r = *p.renderer;
     try {
+        const PaneDisplay display = state.panes[index].display;
+        p.movingFrames = p.cameraSet && !sameCamera(p.lastCamera, camera) ? p.movingFrames + 1 : 0;
+        p.lastCamera = camera;
+        // From the second frame of a move on (a single step renders at full scale); heatmaps
+        // compare full frames only.
+        const float scale = p.movingFrames >= 2 && display != PaneDisplay::Heatmap
+                                ? motionScale(p.fullFrameMs, motionBudgetMs_) : 1.0f;
+        if (scale < 1.0f) {
+            renderMotionFrame(state, index, camera, scale);
+            return;
+        }
         r.setLiveSettings(want);
         if (!p.cameraSet || !sameCamera(p.camera, camera)) {
             r.setCamera(camera);
             p.camera = camera;
             p.cameraSet = true;
         }
-        r.renderFrame();
+        if (!r.settled()) {  // a settled renderer would reproduce the frame it shows
+            r.renderFrame();
+            ++framesRendered_;
+        }
         collectTimings(p);
         p.status = progressText(r);
-        const PaneDisplay display = state.panes[index].display;
+        p.scale = 1.0f;
+        p.shownSize = paneSize_;
         p.heatmapWanted = display == PaneDisplay::Heatmap;
         if (display == PaneDisplay::Heatmap) {
             updateHeatmap(state, index, camera);
@@ -234,6 +271,32 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
     }
 }
 
+// The pane's settings at `scale` of its size, through the pane's motion renderer (built on the
+// first move, kept for the next). Its timings count in the frame's GPU time, not in the pass table.
+void ViewSession::renderMotionFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale) {
+    PaneView& p = panes_[index];
+    const glm::ivec2 size = glm::max(glm::ivec2(glm::round(glm::vec2(paneSize_) * scale)), glm::ivec2(1));
+    const RenderSettings want = paneSettings(state, index, size);
+    if (!p.motion || requiresRebuild(p.motion->settings(), want)) {
+        p.motion.reset();  // never two motion renderers of one pane in GPU memory
+        p.motion = std::make_unique<Renderer>(*scene_, want);
+        ++rebuilds_;
+    }
+    Renderer& m = *p.motion;
+    m.setLiveSettings(want);
+    m.setCamera(camera);
+    m.renderFrame();
+    ++framesRendered_;
+    for (const auto& pass : m.passes()) {
+        for (double ms : pass->timer.samples) gpuMsCollected_ += ms;
+        pass->timer.clear();
+    }
+    p.shown = m.frameTexture("display");
+    p.shownSize = size;
+    p.scale = scale;
+    p.status = "moving: " + std::string(scale == 0.5f ? "1/2" : "1/4") + " scale";
+}
+
 void ViewSession::collectTimings(PaneView& p) {
     const auto& passes = p.renderer->passes();
     if (p.passes.size() != passes.size()) {
@@ -243,15 +306,22 @@ void ViewSession::collectTimings(PaneView& p) {
     bool fresh = false;
     float total = 0.0f;
     const auto& owners = p.renderer->memory().bytesByOwner;
+    p.fullFrameMs = 0.0;
     for (size_t k = 0; k < passes.size(); ++k) {
-        std::vector<double>& samples = passes[k]->timer.samples;  // read and cleared: bounded memory
-        for (double ms : samples) push(p.passes[k].ms, float(ms));
-        fresh = fresh || !samples.empty();
-        samples.clear();
+        gl::GpuTimer& timer = passes[k]->timer;  // read and cleared: bounded memory
+        for (size_t i = 0; i < timer.samples.size(); ++i) {
+            push(p.passes[k].ms, float(timer.samples[i]));
+            gpuMsCollected_ += timer.samples[i];
+            if (i >= timer.worked.size() || timer.worked[i]) p.passes[k].workedMs = timer.samples[i];
+        }
+        fresh = fresh || !timer.samples.empty();
+        timer.clear();
+        for (auto& step : passes[k]->steps.steps) step.second->clear();
+        p.fullFrameMs += p.passes[k].workedMs;
         if (!p.passes[k].ms.empty()) total += p.passes[k].ms.back();
         auto it = owners.find(p.passes[k].pass);
         p.passes[k].bytes = it == owners.end() ? 0 : it->second;
-        p.passes[k].cached = passes[k]->reusedLastFrame();
+        p.passes[k].cached = p.renderer->skippedLastFrame()[k] || passes[k]->reusedLastFrame();
     }
     if (fresh) push(p.totalMs, total);
 }
@@ -289,7 +359,10 @@ ViewSession::Reference* ViewSession::reference(const ViewState& state, int index
     }
     if (ref.image.rgba.empty() && ref.lastUsed != frame_) {  // a sample per frame, however many panes use it
         ref.renderer->renderFrame();
-        for (const auto& pass : ref.renderer->passes()) pass->timer.samples.clear();
+        for (const auto& pass : ref.renderer->passes()) {
+            for (double ms : pass->timer.samples) gpuMsCollected_ += ms;
+            pass->timer.clear();
+        }
         if (ref.renderer->converged()) ref.image = ref.renderer->readHdr();
     }
     ref.lastUsed = frame_;
@@ -361,25 +434,28 @@ void ViewSession::updateHeatmap(const ViewState& state, int index, const CameraM
 void ViewSession::drawToFramebuffer(const ViewState& state, int x, int y, int w, int h) const {
     if (visible_ == 0 || w <= 0 || h <= 0) return;
     const int sw = paneSize_.x, sh = paneSize_.y;
-    auto blit = [&](GLuint tex, int sx0, int sy0, int sx1, int sy1, int dx0, int dy0, int dx1, int dy1) {
-        if (!tex || sx1 <= sx0 || dx1 <= dx0) return;
-        glNamedFramebufferTexture(readFbo_.id(), GL_COLOR_ATTACHMENT0, tex, 0);
-        glBlitNamedFramebuffer(readFbo_.id(), 0, sx0, sy0, sx1, sy1, dx0, dy0, dx1, dy1, GL_COLOR_BUFFER_BIT,
-                               GL_LINEAR);
+    // Source rectangles in pane pixels; a motion frame's texture is smaller by its scale.
+    auto blit = [&](const PaneView& p, int sx0, int sy0, int sx1, int sy1, int dx0, int dy0, int dx1, int dy1) {
+        if (!p.shown || sx1 <= sx0 || dx1 <= dx0) return;
+        const glm::dvec2 k = glm::dvec2(p.shownSize) / glm::dvec2(sw, sh);
+        glNamedFramebufferTexture(readFbo_.id(), GL_COLOR_ATTACHMENT0, p.shown, 0);
+        glBlitNamedFramebuffer(readFbo_.id(), 0, int(std::lround(sx0 * k.x)), int(std::lround(sy0 * k.y)),
+                               int(std::lround(sx1 * k.x)), int(std::lround(sy1 * k.y)), dx0, dy0, dx1, dy1,
+                               GL_COLOR_BUFFER_BIT, GL_LINEAR);
     };
     glDisable(GL_SCISSOR_TEST);
     if (state.mode == ViewMode::Single || visible_ == 1) {
-        blit(panes_[0].shown, 0, 0, sw, sh, x, y, x + w, y + h);
+        blit(panes_[0], 0, 0, sw, sh, x, y, x + w, y + h);
     } else if (state.mode == ViewMode::Split) {
         const int sx = int(std::lround(state.divider * sw)), dx = int(std::lround(state.divider * w));
-        blit(panes_[0].shown, 0, 0, sx, sh, x, y, x + dx, y + h);
-        blit(panes_[1].shown, sx, 0, sw, sh, x + dx, y, x + w, y + h);
+        blit(panes_[0], 0, 0, sx, sh, x, y, x + dx, y + h);
+        blit(panes_[1], sx, 0, sw, sh, x + dx, y, x + w, y + h);
     } else {
         const std::vector<PaneRect> rects = paneRects(ViewMode::Grid, w, h);
         for (int i = 0; i < visible_ && i < int(rects.size()); ++i) {
             const PaneRect& r = rects[i];
             const int y0 = y + (h - r.y - r.h);
-            blit(panes_[i].shown, 0, 0, sw, sh, x + r.x, y0, x + r.x + r.w, y0 + r.h);
+            blit(panes_[i], 0, 0, sw, sh, x + r.x, y0, x + r.x + r.w, y0 + r.h);
         }
     }
     glNamedFramebufferTexture(readFbo_.id(), GL_COLOR_ATTACHMENT0, 0, 0);
@@ -389,7 +465,7 @@ bool ViewSession::settled() const {
     for (int i = 0; i < visible_; ++i) {
         const PaneView& p = panes_[i];
         if (!p.renderer) continue;  // failed: nothing more will happen
-        if (!p.renderer->converged() || (p.heatmapWanted && !p.heatmapReady)) return false;
+        if (!p.renderer->converged() || (p.heatmapWanted && !p.heatmapReady) || p.scale < 1.0f) return false;
     }
     return true;
 }
@@ -413,7 +489,11 @@ std::optional<ViewSession::PixelReadout> ViewSession::inspectPixel(const ViewSta
 
 ImageU8 ViewSession::readPane(int index) const {
     const GLuint tex = index < visible_ ? panes_[index].shown : 0;
-    if (tex) return readTextureBytes(tex, paneSize_.x, paneSize_.y);
+    if (tex) {
+        const glm::ivec2 shown = panes_[index].shownSize;
+        const ImageU8 img = readTextureBytes(tex, shown.x, shown.y);
+        return shown == paneSize_ ? img : resizeNearest(img, paneSize_.x, paneSize_.y);  // a motion frame
+    }
     ImageU8 img;  // a pane with nothing shown yet: opaque black
     img.width = paneSize_.x;
     img.height = paneSize_.y;
@@ -531,6 +611,7 @@ int64_t ViewSession::gpuBytes() const {
     int64_t sum = 0;
     for (const PaneView& p : panes_) {
         if (p.renderer) sum += p.renderer->memory().total();
+        if (p.motion) sum += p.motion->memory().total();
         if (p.display.id()) sum += int64_t(p.display.width) * p.display.height * 4;
     }
     for (const auto& [key, ref] : references_) sum += ref.renderer->memory().total();

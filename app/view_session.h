@@ -9,6 +9,12 @@
 // accumulation. A camera move never rebuilds either (Renderer::setCamera). A rebuild costs what
 // `gisandbox render` pays before its first frame: the scene upload, shader compilation and, for the
 // path tracer, the BVH build (docs/viewer.md has llvmpipe numbers).
+//
+// Frame policy: a pane whose renderer is settled (Renderer::settled: nothing changed and every
+// pass converged) is not rendered at all; it shows its last frame. While the camera moves (two
+// session frames in a row with a new camera) and the pane's last full frame took longer than the
+// motion budget, the pane renders through a second renderer at half or quarter scale
+// (motionScale), and at full scale again once the camera stops.
 #pragma once
 
 #include <deque>
@@ -29,11 +35,17 @@ namespace gis::view {
 
 constexpr int kHistoryFrames = 240;  // frames of GPU timings kept for the live graph
 
+// The render scale of a frame while the camera moves, from the last full-scale frame's GPU time:
+// 1 within the budget, else 1/2, or 1/4 past four budgets (a frame's cost follows its pixels).
+// A budget of 0 or less keeps full scale.
+float motionScale(double lastFullFrameMs, double budgetMs);
+
 struct PassHistory {
     std::string pass;
     std::deque<float> ms;     // GPU ms per frame, oldest first
     int64_t bytes = 0;        // GPU memory the pass holds
     bool cached = false;      // the last frame reused its results
+    float workedMs = 0.0f;    // GPU ms of the last frame in which it did work
 };
 
 // One visible pane: its renderer and what it shows.
@@ -44,6 +56,13 @@ struct PaneView {
     bool cameraSet = false;
     gl::Texture display;              // RGBA8: debug and heatmap displays
     GLuint shown = 0;                 // the texture this pane shows this frame
+    glm::ivec2 shownSize{0, 0};       // its pixels: the pane's size, less for a motion frame
+    // While the camera moves: the same settings at motionScale, shown instead of `renderer`.
+    std::unique_ptr<Renderer> motion;
+    float scale = 1.0f;               // of the frame shown: 1, or the motion frame's scale
+    CameraMatrices lastCamera;        // the session's previous frame's camera
+    int movingFrames = 0;             // session frames in a row with a new camera
+    double fullFrameMs = 0.0;         // GPU ms of a full-scale frame: each pass's last worked time
     std::vector<PassHistory> passes;
     std::deque<float> totalMs;
     std::string status;               // "12/64 spp", "reference 5/64 spp", errors
@@ -86,8 +105,16 @@ public:
     int visiblePanes() const { return visible_; }
     const PaneView& pane(int i) const { return panes_[i]; }
     glm::ivec2 paneSize() const { return paneSize_; }
-    // Every visible pane finished (progressive methods converged, heatmaps computed).
+    // Every visible pane finished (progressive methods converged, heatmaps computed, no motion
+    // frame waiting for its full-scale refinement).
     bool settled() const;
+    // Frames the panes' renderers rendered so far (a settled pane's frames are not rendered).
+    int framesRendered() const { return framesRendered_; }
+    // GPU ms of the pass timings that arrived during the last renderFrame, every pane and motion
+    // renderer: the GPU share of the app's frame time.
+    double gpuMsCollected() const { return gpuMsCollected_; }
+    // GPU ms a full-scale frame may take before a moving camera renders at a lower scale (0: never).
+    void setMotionBudget(double ms) { motionBudgetMs_ = ms; }
     ImageU8 readPane(int pane) const;             // what the pane shows, rows top to bottom
     // The pixel inspector: pane `index`'s linear radiance (or its debug view's values) at pane
     // pixel `pixel` (x right, y down, render pixels), and the path-traced reference's radiance
@@ -123,6 +150,7 @@ private:
     void updateHeatmap(const ViewState& state, int index, const CameraMatrices& camera);
     Reference* reference(const ViewState& state, int index, const CameraMatrices& camera);
     void collectTimings(PaneView& pane);
+    void renderMotionFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale);
     GLuint ensureDisplay(PaneView& pane);
 
     std::unique_ptr<Scene> scene_;
@@ -134,6 +162,9 @@ private:
     glm::ivec2 paneSize_{1, 1};
     int visible_ = 0;
     int rebuilds_ = 0;
+    int framesRendered_ = 0;
+    double gpuMsCollected_ = 0.0;
+    double motionBudgetMs_ = 0.0;
     uint64_t frame_ = 0;
     std::string lastError_;
 };

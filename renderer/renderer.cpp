@@ -149,15 +149,55 @@ bool Renderer::converged() const {
     return true;
 }
 
+bool Renderer::settled() const {
+    return frameIndex_ > 0 && std::all_of(passes_.begin(), passes_.end(), [](const auto& p) { return p->settled(); });
+}
+
+// A settled pass is skipped only when no pass before it executed this frame that outputs one of its
+// inputs: invalidate() reaches every pass, so this is the guard for a producer that changes its
+// outputs without a Change (a pass still converging, ReSTIR accumulating).
+bool Renderer::canSkip(const Pass& pass, const std::set<std::string>& reproduced) const {
+    if (!skipSettled_ || frameIndex_ == 0 || !pass.settled()) return false;
+    for (const std::string& in : pass.inputs())
+        if (reproduced.count(in)) return false;
+    return true;
+}
+
+// What a skipped pass put last frame stays in the frame for its consumers; its timers record a
+// frame without work, so --timings and the panel show it cached.
+void Renderer::keepOutputs(Pass& pass, Frame& frame) const {
+    for (const std::string& out : pass.outputs()) {
+        const auto it = frameResources_.find(out);
+        if (it != frameResources_.end()) frame.resources[out] = it->second;
+    }
+    pass.timer.begin();
+    pass.timer.end(false);
+    for (auto& step : pass.steps.steps) {
+        step.second->begin();
+        step.second->end(false);
+    }
+}
+
 void Renderer::renderFrame() {
     Frame frame{settings_, *gpuScene_, *services_, camera_, {}, frameIndex_};
-    for (const auto& pass : passes_) {
-        frame.steps = &pass->steps;
-        frame.pass = pass.get();
-        pass->timer.begin();
-        pass->execute(frame);
-        pass->timer.end(!pass->reusedLastFrame());
-        if (pass->writesImagesOrBuffers()) glMemoryBarrier(barrierBitsFor(*pass, frame));
+    std::set<std::string> reproduced;  // outputs a pass wrote anew this frame
+    skipped_.assign(passes_.size(), false);
+    for (size_t k = 0; k < passes_.size(); ++k) {
+        Pass& pass = *passes_[k];
+        if (canSkip(pass, reproduced)) {
+            keepOutputs(pass, frame);
+            skipped_[k] = true;
+            continue;
+        }
+        frame.steps = &pass.steps;
+        frame.pass = &pass;
+        pass.timer.begin();
+        pass.execute(frame);
+        pass.timer.end(!pass.reusedLastFrame());
+        // Executed, even if it reused a cache: its consumers run too (conservative, and cheap:
+        // a pass that runs while settled was forced by an input of its own).
+        for (const std::string& out : pass.outputs()) reproduced.insert(out);
+        if (pass.writesImagesOrBuffers()) glMemoryBarrier(barrierBitsFor(pass, frame));
     }
     frame.pass = nullptr;
     ++frameIndex_;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,15 @@ public:
     const std::vector<std::unique_ptr<Pass>>& passes() const { return passes_; }
     int samplesDone() const;     // progressive methods: samples accumulated so far
     bool converged() const;
+    // True when renderFrame() would execute no pass: every pass is settled (Pass::settled), so the
+    // last frame's image is the one a new frame would give.
+    bool settled() const;
+    // Whether renderFrame() skips settled passes (the default: a static view costs nothing once
+    // converged). Frame-cost measurements (bench, `render --rerun-settled`) turn it off, so every
+    // pass executes every frame as a real-time engine re-renders a static view.
+    void setSkipSettled(bool skip) { skipSettled_ = skip; }
+    // Per pass, in passes() order: true when the last frame skipped it as settled.
+    const std::vector<bool>& skippedLastFrame() const { return skipped_; }
     // Debug views the passes offer ("final" first).
     std::vector<DebugViewDesc> views() const;
 
@@ -50,6 +60,8 @@ public:
 
 private:
     void drawDebugView(Frame& frame);
+    bool canSkip(const Pass& pass, const std::set<std::string>& reproduced) const;
+    void keepOutputs(Pass& pass, Frame& frame) const;
     RenderSettings settings_;
     gl::MemoryLedger ledger_;
     std::unique_ptr<GpuScene> gpuScene_;
@@ -60,6 +72,8 @@ private:
     gl::Texture debugTarget_;          // RGBA16F, when settings.view is not "final"
     uint64_t frameIndex_ = 0;
     std::map<std::string, FrameResource> frameResources_;  // the last frame's named resources
+    bool skipSettled_ = true;
+    std::vector<bool> skipped_;
 };
 
 // True when going from `built` to `wanted` needs a new Renderer: anything baked into GPU

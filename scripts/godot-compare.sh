@@ -15,7 +15,7 @@ godot() {  # variant -> median ms per frame
   bash "$peer/run.sh" "$1" | sed -n 's/.*FRAME_MS[^0-9]*\([0-9.]*\).*/\1/p' | head -1
 }
 ours() {  # flags -> median wall ms per frame
-  "$bin" render --scene "$scene" --size 256x256 --timings --frames 40 --warmup 10 --out /tmp/gis_compare.png "$@" |
+  "$bin" render --scene "$scene" --size 256x256 --timings --rerun-settled --frames 40 --warmup 10 --out /tmp/gis_compare.png "$@" |
     awk '$1 == "wall" {print $2}'
 }
 g0="" o0=""  # the direct frames: what each variant adds is measured over them

@@ -51,6 +51,8 @@ public:
     void execute(Frame& frame) override;
     bool writesImagesOrBuffers() const override { return true; }
     bool reusedLastFrame() const override { return idle_; }
+    // The still view's average is complete (every change restarts it).
+    bool settled() const override { return target_ > 0 && accumulated_ >= target_; }
     void invalidate(Changes c) override;
     Progress progress() const override { return {accumulated_, target_, "frames"}; }
     std::vector<std::string> stats() const override;

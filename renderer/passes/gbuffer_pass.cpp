@@ -85,6 +85,7 @@ void GBufferPass::execute(Frame& frame) {
     frame.put(resource::kGbufferNormal, normal_);
     frame.put(resource::kGbufferMaterial, material_);
     frame.put(resource::kGbufferEmissive, emissive_);
+    stale_ = false;
 }
 
 namespace {

@@ -15,6 +15,11 @@ public:
         return {resource::kGbufferDepth, resource::kGbufferBaseColor, resource::kGbufferNormal, resource::kGbufferMaterial, resource::kGbufferEmissive};
     }
     void execute(Frame& frame) override;
+    // Rasterised from the camera, the geometry and the materials (their textures and overrides).
+    void invalidate(Changes c) override {
+        if (c & (ChangeCamera | ChangeGeometry | ChangeMaterials | ChangeBrdfModels)) stale_ = true;
+    }
+    bool settled() const override { return !stale_; }
     std::vector<DebugViewDesc> debugViews() const override { return views(); }
     // The G-buffer views, also listed for methods that build a G-buffer only when one is asked for.
     static std::vector<DebugViewDesc> views();
@@ -27,6 +32,7 @@ private:
     gl::Texture depth_, baseColor_, normal_, material_, emissive_;
     gl::Object fbo_;
     std::map<unsigned, gl::Object> programs_;  // by GpuMaterial::textures, built on first need
+    bool stale_ = true;  // a change since the last execute()
 };
 
 }  // namespace gis

@@ -164,6 +164,7 @@ void LightingPass::execute(Frame& frame) {
     glProgramUniform1f(p, U_MAX_RADIANCE, radiance_.format == GL_RGBA16F ? gl::kMaxHalfFloat : kMaxFloat);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     frame.put(resource::kRadiance, radiance_);
+    stale_ = false;
 }
 
 std::vector<ProgramDesc> TonemapPass::programs() {
@@ -191,6 +192,7 @@ void TonemapPass::execute(Frame& frame) {
     glProgramUniform1i(p, U_TONEMAPPER, int(frame.settings.tonemap));
     glDrawArrays(GL_TRIANGLES, 0, 3);
     frame.put(resource::kDisplay, display_);
+    stale_ = false;
 }
 
 }  // namespace gis

@@ -28,10 +28,15 @@ public:
     std::vector<std::string> inputs() const override;
     std::vector<std::string> outputs() const override { return {resource::kRadiance}; }
     void execute(Frame& frame) override;
+    // Every kind of change alters the lit image (camera position, lights, BRDFs, ambient ...); the
+    // renderer re-runs it too when an input was re-produced (ReSTIR accumulating, a GI pass).
+    void invalidate(Changes) override { stale_ = true; }
+    bool settled() const override { return !stale_; }
     static std::vector<ProgramDesc> programs();
 
 private:
     GLuint programFor(const Frame& frame);  // the variant the frame needs (LightingVariant)
+    bool stale_ = true;
 
     gl::Texture radiance_, unit_;   // unit_: a 1x1 stand-in (ao = 1) for terms no method gives
     gl::Object fbo_, vao_;
@@ -46,9 +51,15 @@ public:
     std::vector<std::string> inputs() const override { return {resource::kRadiance}; }
     std::vector<std::string> outputs() const override { return {resource::kDisplay}; }
     void execute(Frame& frame) override;
+    // Exposure and tone mapper are live parameters; the radiance is an input.
+    void invalidate(Changes c) override {
+        if (c & ChangeLiveParams) stale_ = true;
+    }
+    bool settled() const override { return !stale_; }
     static std::vector<ProgramDesc> programs();
 
 private:
+    bool stale_ = true;
     gl::Texture display_;
     gl::Object fbo_, program_, vao_;
 };

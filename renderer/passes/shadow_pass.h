@@ -19,6 +19,7 @@ public:
     std::vector<std::string> outputs() const override { return {resource::kLights, resource::kShadowMaps, resource::kShadowCubes}; }
     void execute(Frame& frame) override;
     bool reusedLastFrame() const override { return reused_; }
+    bool settled() const override { return valid_; }
     void invalidate(Changes changes) override;
     static std::vector<ProgramDesc> programs();
     const std::vector<GpuLight>& lights() const { return lights_; }

@@ -297,7 +297,8 @@ TEST(Methods, CameraMovesKeepViewIndependentWork) {
     moved.invViewProj = glm::inverse(moved.viewProj);
     r.setCamera(moved);
     r.renderFrame();
-    EXPECT_TRUE(shadows.reusedLastFrame()) << "a camera move re-rendered the shadow maps";
+    // Skipped as settled (renderer.h) or executed on its cache: not rendered again either way.
+    EXPECT_TRUE(r.skippedLastFrame().front() || shadows.reusedLastFrame()) << "a camera move re-rendered the shadow maps";
     r.invalidate(ChangeLights);
     r.renderFrame();
     EXPECT_FALSE(shadows.reusedLastFrame()) << "a light change must re-render them";

@@ -185,5 +185,22 @@ TEST(Window, ScriptedSplitViewScreenshotUnderXvfb) {
     EXPECT_EQ(viewStateToJson(loadViewSettings(dir + "/saved.json")).dump(), viewStateToJson(loadViewSettings(sidecar)).dump());
 }
 
+// Keys are read from GLFW's callbacks, queued until the frame reads them: a tap whose press and
+// release both come before the next frame (a press shorter than a frame) still switches the view.
+TEST(Window, AKeyTapShorterThanAFrameTakesEffectUnderXvfb) {
+    const std::string dir = tempDir("view_key_tap");
+    { std::ofstream(dir + "/script.txt") << "wait 1\nmethod 1 ssao\nkey 2\nkey B\nwait 1\nsave-settings " << dir
+                                         << "/saved.json\nquit\n"; }
+    CliResult r = runCli("view --size 560x200 --script " + dir + "/script.txt", "xvfb-run -a");
+    ASSERT_EQ(r.status, 0) << r.err << r.out;
+    const ViewState saved = loadViewSettings(dir + "/saved.json");
+    EXPECT_EQ(saved.mode, ViewMode::Split) << "the tap of 2 was lost";
+    EXPECT_EQ(saved.panes[0].gi, "ssao") << "B, tapped in the same frame as 2, did not swap the sides";
+    { std::ofstream(dir + "/bad.txt") << "wait 1\nkey F13\nquit\n"; }
+    r = runCli("view --size 560x200 --script " + dir + "/bad.txt", "xvfb-run -a");
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("bad.txt:2:"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace gis::test

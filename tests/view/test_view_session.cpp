@@ -47,6 +47,64 @@ struct Sandbox {
     }
 };
 
+// A settled view renders nothing: once the pane's renderer is settled, session frames show the
+// last image without a renderer frame; a camera move renders again (#24).
+TEST(Session, AStaticViewRendersNoFrame) {
+    Sandbox sb;
+    sb.act("method 0 ssao");
+    const int w = 40, h = 32;
+    for (int i = 0; i < 40 && !(sb.session->pane(0).renderer && sb.session->pane(0).renderer->settled()); ++i)
+        sb.session->renderFrame(sb.state, w, h);
+    ASSERT_TRUE(sb.session->pane(0).renderer->settled());
+    const int rendered = sb.session->framesRendered();
+    const ImageU8 before = sb.session->readPane(0);
+    for (int i = 0; i < 5; ++i) sb.session->renderFrame(sb.state, w, h);
+    EXPECT_EQ(sb.session->framesRendered(), rendered) << "a static, settled view rendered again";
+    EXPECT_EQ(meanAbsDiff(before, sb.session->readPane(0)), 0.0);
+    sb.act("camera orbit 10 0");
+    sb.session->renderFrame(sb.state, w, h);
+    EXPECT_EQ(sb.session->framesRendered(), rendered + 1);
+    EXPECT_GT(meanAbsDiff(before, sb.session->readPane(0)), 0.0);
+}
+
+// While the camera moves and full frames are over the budget, the pane renders at a lower scale
+// (shown and read back at the pane's size); when it stops, the full-scale frame is back: the same
+// pixels a session that never moved renders there (#24).
+TEST(Session, AMovingCameraRendersAtALowerScaleAndRefines) {
+    EXPECT_EQ(motionScale(20.0, 33.0), 1.0f);
+    EXPECT_EQ(motionScale(60.0, 33.0), 0.5f);
+    EXPECT_EQ(motionScale(200.0, 33.0), 0.25f);
+    EXPECT_EQ(motionScale(200.0, 0.0), 1.0f) << "no budget: always full scale";
+    Sandbox sb;
+    sb.session->setMotionBudget(1e-9);  // every full frame is over it
+    const int w = 64, h = 48;
+    sb.session->renderFrame(sb.state, w, h);
+    glFinish();  // its timer results are there for the next frame to collect
+    sb.act("camera orbit 5 0");
+    sb.session->renderFrame(sb.state, w, h);  // the first frame of a move: full scale
+    EXPECT_EQ(sb.session->pane(0).shownSize, sb.session->paneSize());
+    ASSERT_GT(sb.session->pane(0).fullFrameMs, 0.0) << "no GPU time collected";
+    const int builds = sb.session->rebuilds();
+    sb.act("camera orbit 5 0");
+    sb.session->renderFrame(sb.state, w, h);  // still moving: a quarter of the pixels per side
+    const PaneView& pane = sb.session->pane(0);
+    EXPECT_EQ(pane.scale, 0.25f);
+    EXPECT_EQ(pane.shownSize, glm::ivec2(16, 12));
+    EXPECT_EQ(sb.session->rebuilds(), builds + 1) << "the motion renderer is built on the first move";
+    EXPECT_FALSE(sb.session->settled()) << "a motion frame waits for its refinement";
+    const ImageU8 moving = sb.session->readPane(0);
+    EXPECT_EQ(moving.width, w);
+    EXPECT_EQ(moving.height, h);
+    sb.session->renderFrame(sb.state, w, h);  // stopped: full scale again
+    EXPECT_EQ(pane.scale, 1.0f);
+    EXPECT_EQ(pane.shownSize, sb.session->paneSize());
+    Sandbox still;
+    still.state.camera = sb.state.camera;
+    still.session->renderFrame(still.state, w, h);
+    EXPECT_EQ(meanAbsDiff(sb.session->readPane(0), still.session->readPane(0)), 0.0);
+    EXPECT_GT(meanAbsDiff(moving, still.session->readPane(0)), 0.0) << "the motion frame was not reduced";
+}
+
 TEST(Session, PanelActionsChangeTheRenderedImage) {
     Sandbox s;
     const ImageU8 base = s.view(48, 48);

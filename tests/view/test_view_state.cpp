@@ -264,6 +264,7 @@ struct FakeHost : ScriptHost {
     void requestCapture(const std::string& p) override { log.push_back("capture " + p); }
     void resize(int w, int h) override { log.push_back("resize " + std::to_string(w) + "x" + std::to_string(h)); }
     void quit() override { log.push_back("quit"); }
+    void pressKey(const std::string& k) override { log.push_back("key " + k); }
     bool settled() const override { return isSettled; }
     double seconds() const override { return clock; }
 };

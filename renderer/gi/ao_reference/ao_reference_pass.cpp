@@ -33,10 +33,12 @@ void AoReferencePass::execute(Frame& frame) {
     const AoReferenceSettings now = aoReferenceParams().read("ao-reference", frame.settings.params);
     if (now.radius != params_.radius || now.spp < samples_.done) samples_.done = 0;
     params_ = now;
+    liveChanged_ = false;
     samples_.target = params_.spp;
     samples_.perFrame = frame.settings.samplesPerFrame;
     frame.put(resource::kRadiance, samples_.mean);
-    if (samples_.finished()) return;
+    reused_ = samples_.finished();
+    if (reused_) return;
     const GLuint p = program_.id();
     glUseProgram(p);
     rays_.bind();

@@ -20,13 +20,16 @@ public:
     const char* name() const override { return "ao-reference"; }
     std::vector<std::string> outputs() const override { return {resource::kRadiance}; }
     void execute(Frame& frame) override;
-    bool reusedLastFrame() const override { return samples_.finished(); }
+    bool reusedLastFrame() const override { return reused_; }  // finished before the last execute()
+    // Finished, and no live parameter (spp, radius) since, which execute() would compare.
+    bool settled() const override { return samples_.finished() && !liveChanged_; }
     bool writesImagesOrBuffers() const override { return true; }
     static std::vector<ProgramDesc> programs();
     Progress progress() const override { return {samples_.done, samples_.target}; }
     // AO depends on geometry and camera only: lights, BRDFs and exposure leave it as it is.
     void invalidate(Changes c) override {
         if (c & (ChangeCamera | ChangeGeometry)) samples_.done = 0;
+        if (c & ChangeLiveParams) liveChanged_ = true;
     }
     std::vector<DebugViewDesc> debugViews() const override {
         return {{"ao", "the ray-traced ambient occlusion (the image itself), linear"}};
@@ -38,6 +41,8 @@ private:
     SampleAccumulator samples_;
     AoReferenceSettings params_;
     gl::Object program_;
+    bool liveChanged_ = false;
+    bool reused_ = false;
 };
 
 }  // namespace gis

@@ -55,11 +55,13 @@ void PathTracePass::execute(Frame& frame) {
         samples_.done = 0;
     if (now.spp < samples_.done) samples_.done = 0;
     params_ = now;
+    liveChanged_ = false;
     samples_.target = params_.spp;
     samples_.perFrame = s.samplesPerFrame;
 
     frame.put(resource::kRadiance, samples_.mean);
-    if (samples_.finished()) return;  // converged to the requested sample count: nothing changes
+    reused_ = samples_.finished();
+    if (reused_) return;  // converged to the requested sample count: nothing changes
     const GLuint p = program_.id();
     glUseProgram(p);
     rays_.bind();

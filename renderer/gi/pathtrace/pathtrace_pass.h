@@ -23,7 +23,9 @@ public:
     const char* name() const override { return "pathtrace"; }
     std::vector<std::string> outputs() const override { return {resource::kRadiance}; }
     void execute(Frame& frame) override;
-    bool reusedLastFrame() const override { return samples_.finished(); }
+    bool reusedLastFrame() const override { return reused_; }  // finished before the last execute()
+    // Finished, and no live parameter (spp, bounces) since, which execute() would compare.
+    bool settled() const override { return samples_.finished() && !liveChanged_; }
     bool writesImagesOrBuffers() const override { return true; }
     static std::vector<ProgramDesc> programs();
 
@@ -31,6 +33,7 @@ public:
     // Camera, lights, scene or BRDFs alter the image; live parameters are compared in execute().
     void invalidate(Changes c) override {
         if (c & ~Changes(ChangeLiveParams)) samples_.done = 0;
+        if (c & ChangeLiveParams) liveChanged_ = true;
     }
     const Bvh& bvh() const { return rays_.bvh; }
     std::optional<RayCounts> raysTraced() const override;
@@ -40,6 +43,8 @@ private:
     SampleAccumulator samples_;
     PathTraceSettings params_;
     gl::Object program_;
+    bool liveChanged_ = false;
+    bool reused_ = false;
     gl::Buffer rayCounts_;  // 3 x (low, high) uint: primary, bounce, shadow rays (pathtrace.comp)
 };
 

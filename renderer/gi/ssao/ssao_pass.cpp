@@ -197,7 +197,10 @@ void SsaoPass::execute(Frame& frame) {
     }
     frame.put(resource::kAo, *result);
     result_ = result;
+    ++stillFrames_;
 }
+
+bool SsaoPass::settled() const { return stillFrames_ >= (params_.temporal ? int(kTemporalFrames) : 1); }
 
 void SsaoPass::drawDebugView(const std::string&, const Frame& frame, GLuint target) {
     drawChannel(DisplayChannel::Grey, result_->id(), frame, target);

@@ -37,7 +37,11 @@ public:
     void execute(Frame& frame) override;
     void invalidate(Changes c) override {
         if (c & (ChangeGeometry | ChangeLiveParams)) hasHistory_ = false;  // reprojection handles the camera
+        if (c & (ChangeCamera | ChangeGeometry | ChangeMaterials | ChangeLiveParams)) stillFrames_ = 0;
     }
+    // Executed since the last change (the G-buffer's view, the radius ...) and, with temporal
+    // accumulation, for as many frames as its running mean holds.
+    bool settled() const override;
     std::vector<DebugViewDesc> debugViews() const override {
         return {{"ao", "the ambient occlusion term alone (1 = unoccluded), linear"}};
     }
@@ -59,6 +63,7 @@ private:
     glm::mat4 prevViewProj_{1.0f};
     int current_ = 0;
     bool hasHistory_ = false;
+    int stillFrames_ = 0;  // frames executed since the last change
 };
 
 }  // namespace gis
