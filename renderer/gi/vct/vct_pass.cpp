@@ -22,16 +22,41 @@ ParamValue choiceValue(const char* name) {
     v.text = name;
     return v;
 }
+
+int tracedSize(int fullSize, int scale) { return (fullSize + scale - 1) / scale; }
+
+// The traced diffuse, specular (RGBA16F) and ao (R16F); above scale 1 two full-resolution
+// histories of three RGBA16F textures each.
+uint64_t screenTargetBytes(const VctSettings& v, int width, int height) {
+    const int scale = v.tracePixels();
+    const uint64_t traced = uint64_t(tracedSize(width, scale)) * uint64_t(tracedSize(height, scale)) * 18;
+    return traced + (scale == 1 ? 0 : uint64_t(width) * uint64_t(height) * 2 * 3 * 8);
+}
+
+// The pixel of its scale x scale block a traced texel stands for in frame `frame`: the phases in
+// Bayer order, so consecutive frames sample far-apart pixels of the block and every scale^2
+// consecutive frames sample each pixel once.
+glm::ivec2 jitterPhase(int scale, uint32_t frame) {
+    glm::ivec2 phase{0};
+    uint32_t k = frame % uint32_t(scale * scale);
+    for (int n = scale / 2; n >= 1; n /= 2, k >>= 2) {
+        const int low = int(k & 1u), high = int((k >> 1) & 1u);
+        phase += glm::ivec2(low ^ high, low) * n;
+    }
+    return phase;
+}
 }  // namespace
 
 const ProgramDesc kTraceProgram{"vct_trace", {"gi/vct/vct_trace.comp"}, {}};
 const ProgramDesc kDebugProgram{"vct_debug", {"gi/vct/vct_debug.comp"}, {}};
+const ProgramDesc kUpsampleProgram{"vct_upsample", {"gi/vct/vct_upsample.comp"}, {}};
 
 std::vector<ProgramDesc> VctPass::programs() {
     std::vector<ProgramDesc> all = Voxelizer::programs();
     for (const ProgramDesc& p : VoxelRadiance::programs()) all.push_back(p);
     all.push_back(kDebugProgram);
     all.push_back(kTraceProgram);
+    all.push_back(kUpsampleProgram);
     return all;
 }
 
@@ -65,14 +90,27 @@ VctPass::VctPass(SceneServices& services, const RenderSettings& settings)
     // footprint on its row (its README page lists it per texture).
     volume_ = &services.volume(volumeRequest(built_));
     const gl::MemoryScope trace{&services.ledger, name()};
-    diffuse_ = gl::createTexture2D(trace, GL_RGBA16F, settings.width, settings.height);
-    specular_ = gl::createTexture2D(trace, GL_RGBA16F, settings.width, settings.height);
-    ao_ = gl::createTexture2D(trace, GL_R16F, settings.width, settings.height);
+    const int scale = built_.tracePixels();
+    const int tw = tracedSize(settings.width, scale), th = tracedSize(settings.height, scale);
+    diffuse_ = gl::createTexture2D(trace, GL_RGBA16F, tw, th);
+    specular_ = gl::createTexture2D(trace, GL_RGBA16F, tw, th);
+    ao_ = gl::createTexture2D(trace, GL_R16F, tw, th);
     traceProgram_ = buildProgram(kTraceProgram);
     debugProgram_ = buildProgram(kDebugProgram);
+    if (scale == 1) return;
+    for (History& h : history_)
+        for (gl::Texture* t : {&h.diffuse, &h.specular, &h.geometry})
+            *t = gl::createTexture2D(trace, GL_RGBA16F, settings.width, settings.height);
+    upsampleProgram_ = buildProgram(kUpsampleProgram);
 }
 
-void VctPass::trace(const Frame& frame, const VctSettings& s) {
+void VctPass::invalidate(Changes changes) {
+    framesUnchanged_ = 0;
+    if (changes & ChangeCamera) cameraMoved_ = true;
+    if (changes & ~Changes(ChangeCamera)) hasHistory_ = false;
+}
+
+void VctPass::trace(const Frame& frame, const VctSettings& s, glm::ivec2 jitter) {
     const GLuint p = traceProgram_.id();
     const VolumeFit& fit = volume_->grid().fit;
     const glm::mat4 worldToVoxel = fit.worldToVoxelMatrix();
@@ -88,6 +126,8 @@ void VctPass::trace(const Frame& frame, const VctSettings& s) {
     glProgramUniform3fv(p, UV_ENVIRONMENT, 1, &environment[0]);
     glProgramUniform1i(p, UV_ANISOTROPIC, volume_->radiance().mipMode());
     glProgramUniform1f(p, UV_INTENSITY, s.intensity);
+    glProgramUniform3i(p, UV_TRACE_JITTER, built_.tracePixels(), jitter.x, jitter.y);
+    glProgramUniform1f(p, UV_SPECULAR_ROUGHNESS, s.specularRoughness);
     const GLuint gbuffer[3] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal),
                                frame.texture(resource::kGbufferMaterial)};
     glBindTextures(0, 3, gbuffer);
@@ -100,10 +140,35 @@ void VctPass::trace(const Frame& frame, const VctSettings& s) {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
+void VctPass::upsample(const Frame& frame, glm::ivec2 jitter) {
+    const GLuint p = upsampleProgram_.id();
+    const History& previous = history_[current_];
+    const History& next = history_[1 - current_];
+    glUseProgram(p);
+    glProgramUniformMatrix4fv(p, UV_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
+    glProgramUniform3fv(p, UV_CAMERA_POS, 1, &frame.camera.position[0]);
+    glProgramUniform3i(p, UV_TRACE_JITTER, built_.tracePixels(), jitter.x, jitter.y);
+    glProgramUniformMatrix4fv(p, UV_PREV_VIEW_PROJ, 1, GL_FALSE, &lastCamera_.viewProj[0][0]);
+    glProgramUniform3fv(p, UV_PREV_CAMERA_POS, 1, &lastCamera_.position[0]);
+    glProgramUniform2i(p, UV_HISTORY, hasHistory_ ? 1 : 0, cameraMoved_ ? 1 : 0);
+    const GLuint inputs[7] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal),
+                              diffuse_.id(), specular_.id(), previous.diffuse.id(), previous.specular.id(),
+                              previous.geometry.id()};
+    glBindTextures(0, 7, inputs);
+    glBindSamplers(0, 7, nullptr);
+    glBindImageTexture(0, next.diffuse.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, next.specular.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(2, next.geometry.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    gl::dispatchCompute(gl::groupsFor(next.diffuse.width, 8), gl::groupsFor(next.diffuse.height, 8), 1, "vct upsample");
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    current_ = 1 - current_;
+}
+
 std::vector<DebugViewDesc> VctPass::debugViews() const {
     return {{"vct.voxels", "the voxel grid ray-marched from the camera (vct.debug-channel, vct.debug-level)"},
             {"vct.slice", "one slice of the voxel grid (vct.slice-axis, vct.slice-position, vct.debug-channel)"},
-            {"vct.ao", "the diffuse cones' occlusion (1 = open), already part of indirect.diffuse"}};
+            {"vct.ao", "the diffuse cones' occlusion (1 = open), already part of indirect.diffuse (as traced: one "
+                       "texel per vct.trace-scale block)"}};
 }
 
 void VctPass::drawDebugView(const std::string& view, const Frame& frame, GLuint target) {
@@ -127,7 +192,7 @@ void VctPass::drawDebugView(const std::string& view, const Frame& frame, GLuint 
     glBindTextures(0, 3, textures);
     glBindSamplers(0, 3, nullptr);
     glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl::dispatchCompute(gl::groupsFor(diffuse_.width, 8), gl::groupsFor(diffuse_.height, 8), 1, "vct");
+    gl::dispatchCompute(gl::groupsFor(frame.settings.width, 8), gl::groupsFor(frame.settings.height, 8), 1, "vct");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
@@ -136,12 +201,26 @@ void VctPass::execute(Frame& frame) {
     VctSettings cones = live_;  // further bounces gather with the live cones at the built resolution
     cones.resolution = built_.resolution;
     volume_->update(frame, coneSettingsOf(cones));
+    const glm::ivec2 jitter = jitterPhase(built_.tracePixels(), framesTraced_++);
     {
         auto t = frame.step("trace");
-        trace(frame, live_);
+        trace(frame, live_, jitter);
     }
-    frame.put(resource::kIndirectDiffuse, diffuse_);
-    frame.put(resource::kIndirectSpecular, specular_);
+    if (built_.tracePixels() == 1) {
+        frame.put(resource::kIndirectDiffuse, diffuse_);
+        frame.put(resource::kIndirectSpecular, specular_);
+    } else {
+        {
+            auto t = frame.step("upsample");
+            upsample(frame, jitter);
+        }
+        frame.put(resource::kIndirectDiffuse, history_[current_].diffuse);
+        frame.put(resource::kIndirectSpecular, history_[current_].specular);
+        hasHistory_ = true;
+        cameraMoved_ = false;
+        lastCamera_ = frame.camera;
+    }
+    ++framesUnchanged_;
 }
 
 GiMethod vctMethod() {
@@ -157,20 +236,37 @@ GiMethod vctMethod() {
           {"vct.specular", {0.0}},
           {"vct.cones", choiceValue("four")}}},
         {"medium", "64^3, directional mips, six cones", {}},
-        {"high", "128^3, directional mips, two bounces, step 0.33",
-         {{"vct.resolution", {128.0}}, {"vct.bounces", {2.0}}, {"vct.step", {0.33}}}},
+        // Traced at half resolution: once converged (framesToConverge) its image is the full-
+        // resolution trace's, at a quarter of the cones per frame.
+        {"high", "128^3, directional mips, two bounces, step 0.33, trace scale 2",
+         {{"vct.resolution", {128.0}},
+          {"vct.bounces", {2.0}},
+          {"vct.step", {0.33}},
+          {"vct.trace-scale", choiceValue("2")}}},
+        // The cheapest settings found that keep cornell_point at 24.5 dB PSNR or more against
+        // Cycles (the table in renderer/gi/vct/README.md): the trace is the per-frame cost, so it
+        // is cut on every axis.
+        {"realtime",
+         "32^3, directional mips, four cones, step 2, half-length cones, specular cone below roughness 0.5, "
+         "trace scale 4",
+         {{"vct.resolution", {32.0}},
+          {"vct.cones", choiceValue("four")},
+          {"vct.step", {2.0}},
+          {"vct.max-distance", {0.5}},
+          {"vct.specular-roughness", {0.5}},
+          {"vct.trace-scale", choiceValue("4")}}},
     };
     m.programs = &VctPass::programs;
     m.estimateMemory = [](const Scene&, const RenderSettings& s) {
         const VctSettings v = vctParams().read("vct", s.params);
-        const uint64_t n = uint64_t(v.resolution), pixels = uint64_t(s.width) * uint64_t(s.height);
+        const uint64_t n = uint64_t(v.resolution);
         return std::vector<std::pair<std::string, uint64_t>>{
             {"VCT voxel grid and voxelization sums", uint64_t(voxelGridBytes(int(n)))},
             {"VCT radiance mips", uint64_t(voxelRadianceBytes(int(n), v.anisotropic, v.bounces))},
-            {"VCT screen targets", pixels * 18}};
+            {"VCT screen targets", screenTargetBytes(v, s.width, s.height)}};
     };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<VctPass>(b.services, b.settings)); };
-    m.framesToConverge = [](const RenderSettings&) { return 1; };
+    m.framesToConverge = [](const RenderSettings& s) { return vctParams().read("vct", s.params).framesToConverge(); };
     return m;
 }
 

@@ -5,6 +5,8 @@
 // alone. The cones' occlusion is already
 // in indirect.diffuse, so the pass does not write "ao" (the lighting pass would multiply it in a
 // second time); it is the debug view "vct.ao".
+// At vct.trace-scale 2 or 4 the cones run for one pixel of each 2x2 or 4x4 block, a different one
+// each frame, and vct_upsample.comp gathers them at full resolution with the reprojected history.
 #pragma once
 
 #include <memory>
@@ -32,6 +34,10 @@ public:
     // The trace runs every frame, so the pass as a whole never reuses its result; the volume's
     // voxelize, inject and mips steps do (they show as cached in --timings).
     bool reusedLastFrame() const override { return false; }
+    // Nothing changed for as many frames as a static view takes to converge.
+    bool settled() const override { return framesUnchanged_ >= built_.framesToConverge(); }
+    // Camera moves keep the history (it is reprojected); anything else starts it over.
+    void invalidate(Changes changes) override;
     bool voxelsReusedLastFrame() const { return volume_->lastUpdate(0) == SceneVolume::Update::Cached; }
     int voxelizations() const { return volume_->builds().voxelizations; }  // how often the scene was voxelized
     int injections() const { return volume_->builds().injections; }        // how often light was injected
@@ -47,12 +53,25 @@ public:
     const VctSettings& rebuildSettings() const { return built_; }
 
 private:
-    void trace(const Frame& frame, const VctSettings& live);
+    // What a reduced-resolution frame leaves for the next one: the full-resolution terms and the
+    // surfaces they belong to.
+    struct History {
+        gl::Texture diffuse, specular, geometry;
+    };
+    void trace(const Frame& frame, const VctSettings& live, glm::ivec2 jitter);
+    void upsample(const Frame& frame, glm::ivec2 jitter);
     VctSettings built_;    // the rebuild parameters this pass was made with
     VctSettings live_;     // the live parameters of the last frame
     SceneVolume* volume_ = nullptr;         // the renderer's, shared (SceneServices)
-    gl::Texture diffuse_, specular_, ao_;
-    gl::Object traceProgram_, debugProgram_;
+    gl::Texture diffuse_, specular_, ao_;   // what the cones traced: one texel per vct.trace-scale block
+    History history_[2];                    // trace scale above 1: written alternately, [current_] last
+    int current_ = 0;
+    bool hasHistory_ = false;               // history_[current_] belongs to this scene and these settings
+    bool cameraMoved_ = false;              // since the last frame
+    CameraMatrices lastCamera_;
+    int framesUnchanged_ = 0;               // frames executed since the last invalidate()
+    uint32_t framesTraced_ = 0;             // picks the jitter phase
+    gl::Object traceProgram_, upsampleProgram_, debugProgram_;
 };
 
 }  // namespace gis

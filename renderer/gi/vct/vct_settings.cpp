@@ -29,6 +29,13 @@ const ParamTable<VctSettings>& vctParams() {
               U::Live)
         .real(&S::intensity, "intensity", "Intensity", "scales the indirect terms", 0.0, 16.0, U::Live)
         .boolean(&S::specular, "specular", "Specular cone", "trace the specular cone", U::Live)
+        .real(&S::specularRoughness, "specular-roughness", "Specular cone up to roughness",
+              "above this roughness the specular term takes the diffuse cones' result instead of a cone of its own",
+              0.0, 1.0, U::Live)
+        .choice(&S::traceScale, "trace-scale", "Trace scale",
+                "full-resolution pixels per traced texel per axis: 1 = every pixel; 2 and 4 trace a quarter or a "
+                "sixteenth of them, upsampled by depth and normal and gathered over jittered frames",
+                {"1", "2", "4"}, U::Rebuild)
         .choice(&S::debugChannel, "debug-channel", "Debug channel", "what vct.voxels and vct.slice show",
                 {"albedo", "emission", "radiance", "occupancy"}, U::Live)
         .integer(&S::debugLevel, "debug-level", "Debug mip level", "mip level for radiance and occupancy", 0, 9,

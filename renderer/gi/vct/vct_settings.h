@@ -22,6 +22,8 @@ struct VctSettings {
     float offset = 1.5f;       // vct.offset: self-occlusion offset along the normal, voxels (live)
     float intensity = 1.0f;    // vct.intensity: scales the indirect terms (live)
     bool specular = true;      // vct.specular: trace the specular cone (live)
+    float specularRoughness = 1.0f;  // vct.specular-roughness: rougher surfaces take the diffuse cones' result (live)
+    int traceScale = 0;        // vct.trace-scale: 1 | 2 | 4 full-resolution pixels per traced texel per axis (rebuild)
     // What the debug views vct.voxels and vct.slice show (live).
     int debugChannel = 0;      // vct.debug-channel: albedo | emission | radiance | occupancy
     int debugLevel = 0;        // vct.debug-level: mip level (radiance and occupancy)
@@ -29,6 +31,10 @@ struct VctSettings {
     float slicePosition = 0.5f;  // vct.slice-position: 0..1 across the volume
 
     ConservativeMode conservativeMode() const { return ConservativeMode(conservative); }
+    int tracePixels() const { return 1 << traceScale; }  // full-resolution pixels per traced texel per axis
+    // Frames a static view takes to reach the full-resolution result: one per jitter phase of a
+    // traced texel (one frame without reduced-resolution tracing).
+    int framesToConverge() const { return tracePixels() * tracePixels(); }
 };
 
 const ParamTable<VctSettings>& vctParams();

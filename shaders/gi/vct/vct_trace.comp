@@ -1,6 +1,8 @@
 // Voxel cone tracing per pixel: the lighting contract's indirect.diffuse (cosine-weighted mean
 // incoming radiance, E / pi), indirect.specular (radiance along one cone around the mirror
 // direction whose aperture follows roughness) and ao (1 - the diffuse cones' mean opacity).
+// At a trace scale above 1 each texel traces one full-resolution pixel of its block, the one this
+// frame's jitter picks (vct_upsample.comp brings the texels to full resolution).
 #include "common.glsl"
 #define VOXEL_TEXTURE_UNIT 4
 #include "voxel/cone_trace.glsl"
@@ -22,20 +24,23 @@ layout(location = UV_TRACE_PARAMS) uniform vec4 u_traceParams;  // step factor, 
 layout(location = UV_ENVIRONMENT) uniform vec3 u_environment;
 layout(location = UV_ANISOTROPIC) uniform int u_anisotropic;
 layout(location = UV_INTENSITY) uniform float u_intensity;
+layout(location = UV_TRACE_JITTER) uniform ivec3 u_traceJitter;  // pixels per texel, this frame's pixel in the block
+layout(location = UV_SPECULAR_ROUGHNESS) uniform float u_specularRoughness;
 
 // tan(half aperture) of the specular cone: the GGX lobe widens with alpha = roughness^2; a floor
 // keeps mirrors from stepping a fraction of a voxel at a time.
 float specularConeTan(float roughness) { return clamp(roughness * roughness, 0.03, 1.0); }
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = imageSize(i_diffuse);
-    if (any(greaterThanEqual(pixel, size))) return;
+    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(texel, imageSize(i_diffuse)))) return;
+    ivec2 size = textureSize(s_depth, 0);
+    ivec2 pixel = min(texel * u_traceJitter.x + u_traceJitter.yz, size - 1);
     float depth = texelFetch(s_depth, pixel, 0).r;
     if (depth >= 1.0) {  // background: nothing to light
-        imageStore(i_diffuse, pixel, vec4(0.0));
-        imageStore(i_specular, pixel, vec4(0.0));
-        imageStore(i_ao, pixel, vec4(1.0));
+        imageStore(i_diffuse, texel, vec4(0.0));
+        imageStore(i_specular, texel, vec4(0.0));
+        imageStore(i_ao, texel, vec4(1.0));
         return;
     }
     vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
@@ -48,14 +53,18 @@ void main() {
 
     vec4 diffuse = traceDiffuse(t, origin, N, u_coneSet, 1.0, u_environment, 0.0);
     vec3 specular = vec3(0.0);
-    if (u_traceParams.w > 0.5) {
+    if (u_traceParams.w > 0.5 && material.y > u_specularRoughness) {
+        // So rough a lobe takes in most of the hemisphere: it sees about what the diffuse cones
+        // see (the lighting pass weighs indirect.specular by the split-sum albedo either way).
+        specular = diffuse.rgb;
+    } else if (u_traceParams.w > 0.5) {
         vec3 V = normalize(u_cameraPos - P);
         vec3 R = reflect(-V, N);
         bool escaped;
         vec4 c = traceCone(t, origin, R, specularConeTan(material.y), 1.0, N, escaped);
         specular = c.rgb + (escaped ? (1.0 - c.a) * u_environment : vec3(0.0));
     }
-    imageStore(i_diffuse, pixel, vec4(finiteOrZero(diffuse.rgb * u_intensity), 1.0));
-    imageStore(i_specular, pixel, vec4(finiteOrZero(specular * u_intensity), 1.0));
-    imageStore(i_ao, pixel, vec4(saturate(1.0 - diffuse.a), 0.0, 0.0, 0.0));
+    imageStore(i_diffuse, texel, vec4(finiteOrZero(diffuse.rgb * u_intensity), 1.0));
+    imageStore(i_specular, texel, vec4(finiteOrZero(specular * u_intensity), 1.0));
+    imageStore(i_ao, texel, vec4(saturate(1.0 - diffuse.a), 0.0, 0.0, 0.0));
 }
