@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct Case {
     const char* gi;
     const char* args;  // settings that shorten the progressive work (the same for every view)
 };
+void PrintTo(const Case& c, std::ostream* os) { *os << c.gi << " on " << c.scene; }
 
 // `render --view VIEW` of the case at 64x64, read back from its EXR. --hdr32: the final image is
 // then float, so the only rounding the sum sees is the terms' own in the RGBA16F debug target.
