@@ -62,13 +62,13 @@ TEST_P(TermViews, AddUpToTheFinalImageBeforeToneMapping) {
     // Relative to the pixel, with a floor for black pixels: storing a term as a half float loses
     // less than 2^-10 = 9.8e-4 of it (llvmpipe truncates; measured worst 9.1e-4 of the sum).
     constexpr double kRelative = 1e-3, kAbsolute = 1e-5;
-    int bad = 0;
+    int bad = 0, negative = 0;
     double worst = 0.0;
     for (size_t i = 0; i < final.rgba.size(); ++i) {
         if (i % 4 == 3) continue;  // alpha
         double sum = 0.0;
         for (const ImageF& t : terms) {
-            EXPECT_GE(t.rgba[i], 0.0f);
+            negative += t.rgba[i] < 0.0f;
             sum += t.rgba[i];
         }
         const double error = std::abs(sum - final.rgba[i]);
@@ -76,6 +76,7 @@ TEST_P(TermViews, AddUpToTheFinalImageBeforeToneMapping) {
         bad += error > kRelative * final.rgba[i] + kAbsolute;
     }
     EXPECT_EQ(bad, 0) << "channels where the terms do not add up to final";
+    EXPECT_EQ(negative, 0) << "negative radiance in a term";
     std::printf("%s --gi %s: worst |sum - final| / (final + 0.01) %.2e; mean final %.4f = direct %.4f + "
                 "indirect.diffuse %.4f + indirect.specular %.4f + emission %.4f\n",
                 c.scene, c.gi, worst, meanRgb(final), meanRgb(terms[0]), meanRgb(terms[1]), meanRgb(terms[2]),
@@ -85,13 +86,33 @@ TEST_P(TermViews, AddUpToTheFinalImageBeforeToneMapping) {
     // light from the method (or the constant ambient of `none`); the area light's own emission.
     EXPECT_GT(maxChannel(terms[0]), 0.1f) << "direct";
     EXPECT_GT(maxChannel(terms[1]), 0.01f) << "indirect.diffuse";
-    if (std::string(c.scene) == "builtin:cornell-area") EXPECT_GT(maxChannel(terms[3]), 10.0f) << "emission";
-    else EXPECT_EQ(maxChannel(terms[3]), 0.0f) << "emission: builtin:cornell emits nothing, its background is black";
-    // AO: a grey occlusion in [0, 1].
+    const std::string scene = c.scene;
+    if (scene == "builtin:cornell-area") {
+        EXPECT_GT(maxChannel(terms[3]), 10.0f) << "emission";
+    }
+    if (scene == "builtin:cornell") {
+        EXPECT_EQ(maxChannel(terms[3]), 0.0f) << "emission: nothing emits, no background";
+    }
+    // The gallery's glossy spheres (the Cornell boxes are Lambertian: no specular lobe).
+    if (scene == "builtin:brdf-gallery") {
+        EXPECT_GT(maxChannel(terms[2]), 0.01f) << "indirect.specular";
+    }
+    // AO: a grey occlusion in [0, 1]; partly occluded pixels (the box's corners) where the method
+    // computes an occlusion, none else (the materials have no occlusion texture).
+    int partly = 0;
     for (size_t i = 0; i < ao.rgba.size(); i += 4) {
         ASSERT_GE(ao.rgba[i], 0.0f);
         ASSERT_LE(ao.rgba[i], 1.0f);
         ASSERT_EQ(ao.rgba[i], ao.rgba[i + 1]);
+        partly += ao.rgba[i] > 0.05f && ao.rgba[i] < 0.9f;
+    }
+    const double partlyShare = double(partly) / double(ao.rgba.size() / 4);
+    std::printf("ao in (0.05, 0.9): %.1f%% of the pixels\n", 100.0 * partlyShare);
+    const std::string gi = c.gi;
+    if (gi == "ssao" || gi == "sdf") {
+        EXPECT_GT(partlyShare, 0.02);
+    } else {
+        EXPECT_EQ(partly, 0);
     }
 }
 
@@ -99,7 +120,8 @@ INSTANTIATE_TEST_SUITE_P(, TermViews,
                          ::testing::Values(Case{"builtin:cornell", "none", ""}, Case{"builtin:cornell", "ssao", ""},
                                            Case{"builtin:cornell", "vct", ""}, Case{"builtin:cornell", "sdf", ""},
                                            Case{"builtin:cornell", "probes", "--preset low --set probes.max-updates=8"},
-                                           Case{"builtin:cornell-area", "vct", "--set emitters.accumulate=4"}),
+                                           Case{"builtin:cornell-area", "vct", "--set emitters.accumulate=4"},
+                                           Case{"builtin:brdf-gallery", "vct", ""}),
                          [](const ::testing::TestParamInfo<Case>& info) {
                              std::string name = std::string(info.param.gi) + "_" + (info.param.scene + 8);
                              std::replace(name.begin(), name.end(), '-', '_');
