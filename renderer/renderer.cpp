@@ -129,8 +129,14 @@ Renderer::~Renderer() = default;
 
 std::vector<DebugViewDesc> Renderer::views() const {
     std::vector<DebugViewDesc> all{{"final", "the lit, tone-mapped image"}};
+    // A name two passes offer is the first's, as drawDebugView draws it: a method's own "ao" (the
+    // occlusion it computed) before the lighting pass's (that times the material's occlusion).
+    auto offered = [&all](const std::string& name) {
+        return std::any_of(all.begin(), all.end(), [&name](const DebugViewDesc& v) { return v.name == name; });
+    };
     for (const auto& pass : passes_)
-        for (const DebugViewDesc& v : pass->debugViews()) all.push_back(v);
+        for (const DebugViewDesc& v : pass->debugViews())
+            if (!offered(v.name)) all.push_back(v);
     // G-buffer displays exist for every method: methods without a G-buffer build one on request.
     if (!std::any_of(passes_.begin(), passes_.end(), [](const auto& p) { return std::string(p->name()) == "gbuffer"; }))
         for (const DebugViewDesc& v : GBufferPass::views()) all.push_back(v);

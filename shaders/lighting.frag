@@ -1,6 +1,8 @@
 // Deferred lighting: every punctual light with its shadow map, emission, and the indirect light a
 // GI method gives through the lighting contract (README "The lighting contract"), or else the
-// constant ambient term that is the `--gi none` baseline. Output is linear radiance.
+// constant ambient term that is the `--gi none` baseline. Output is linear radiance: the sum of the
+// terms, or with one TERM_* defined that term alone (the lighting pass's debug views; the radiance
+// terms add up to the sum).
 #include "common.glsl"
 #include "brdf.glsl"
 #include "gbuffer_layout.glsl"
@@ -40,37 +42,17 @@ layout(location = U_MAX_RADIANCE) uniform float u_maxRadiance;  // 65504 for an 
 #ifndef EMITTER_DIRECT
 #define EMITTER_DIRECT 0
 #endif
+// One of TERM_DIRECT, TERM_INDIRECT_DIFFUSE, TERM_INDIRECT_SPECULAR, TERM_EMISSION, TERM_AO may be
+// defined (LightingPass's term views): the output is that term instead of the lit sum.
 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_radiance;
 
 #include "shadows.glsl"
 
-void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
-    float depth = texelFetch(s_depth, pixel, 0).r;
-    if (depth >= 1.0) {
-        o_radiance = vec4(min(u_background, vec3(u_maxRadiance)), 1.0);
-        return;
-    }
-    // Methods may work at a lower resolution: bilinear upsampling of their (already filtered) terms.
-#if AO_INPUT
-    float ao = texture(s_ao, v_uv).r;
-#else
-    const float ao = 1.0;
-#endif
-    vec4 world = u_invViewProj * vec4(v_uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
-    vec3 P = world.xyz / world.w;
-    vec4 normalAndModels = texelFetch(s_gbufNormal, pixel, 0);
-    vec3 N = normalize(normalAndModels.xyz);
-    ivec2 models = decodeBrdfOverride(normalAndModels.w, u_brdfModels);  // a material may override them
-    vec3 baseColor = texelFetch(s_gbufBaseColor, pixel, 0).rgb;
-    vec4 material = texelFetch(s_gbufMaterial, pixel, 0);  // metallic, roughness, occlusion, specular
-    vec3 emissive = texelFetch(s_gbufEmissive, pixel, 0).rgb;
-    vec3 V = normalize(u_cameraPos - P);
-
-    SurfaceBrdf surface = makeSurfaceBrdf(baseColor, material.x, material.y, material.w);
-    vec3 radiance = emissive;
+// Adds the direct light to `radiance`: every punctual light with its shadow, then the emissive
+// triangles as lights. (The lit sum starts it at the emission, the order it always had.)
+vec3 addDirectLight(vec3 radiance, SurfaceBrdf surface, vec3 P, vec3 N, vec3 V, ivec2 models, ivec2 pixel) {
     for (int i = 0; i < u_lightCount; ++i) {
         GpuLight light = u_lights[i];
         int type = int(light.positionType.w);
@@ -98,25 +80,78 @@ void main() {
 #if EMITTER_DIRECT
     radiance += texelFetch(s_emitterDirect, pixel, 0).rgb;  // emissive triangles as lights (ReSTIR)
 #endif
-    // Indirect light. Without a method's terms: L_ind = ambient * (diffuse colour + F0) * AO, the
-    // constant-ambient baseline. With them (the lighting contract):
-    //   diffuse:  diffuseColor * indirect.diffuse (E / pi: a Lambert lobe integrated over the
-    //             incoming radiance, as evaluateBrdfCosine's diffuse term under uniform light);
-    //   specular: specularAlbedoSplitSum(F0, F90, roughness, N.V) * indirect.specular (the split-sum
-    //             approximation: the lobe's radiance times the lobe's directional albedo).
-    // AO (material occlusion x the method's "ao") multiplies only these terms, never direct light.
-#if INDIRECT_DIFFUSE || INDIRECT_SPECULAR
-    vec3 diffuseIndirect = INDIRECT_DIFFUSE != 0 ? texture(s_indirectDiffuse, v_uv).rgb : u_ambient;
-    vec3 indirect = diffuseIndirect * surface.diffuseColor;
+    return radiance;
+}
+
+// Indirect light before occlusion, by lobe. Without a method's terms each is the constant ambient
+// times the lobe's colour (diffuse colour, F0): the constant-ambient baseline. With them (the
+// lighting contract):
+//   diffuse:  diffuseColor * indirect.diffuse (E / pi: a Lambert lobe integrated over the
+//             incoming radiance, as evaluateBrdfCosine's diffuse term under uniform light);
+//   specular: specularAlbedoSplitSum(F0, F90, roughness, N.V) * indirect.specular (the split-sum
+//             approximation: the lobe's radiance times the lobe's directional albedo).
+void indirectLight(SurfaceBrdf surface, vec3 N, vec3 V, int specularModel, out vec3 diffuse, out vec3 specular) {
+#if INDIRECT_DIFFUSE
+    diffuse = texture(s_indirectDiffuse, v_uv).rgb * surface.diffuseColor;
+#else
+    diffuse = u_ambient * surface.diffuseColor;
+#endif
 #if INDIRECT_SPECULAR
     float NoV = max(dot(N, V), MIN_N_DOT_V);
-    indirect += texture(s_indirectSpecular, v_uv).rgb * specularAlbedoSplitSum(surface, NoV, models.y);
+    specular = texture(s_indirectSpecular, v_uv).rgb * specularAlbedoSplitSum(surface, NoV, specularModel);
 #else
-    indirect += u_ambient * surface.f0;
+    specular = u_ambient * surface.f0;
 #endif
-    radiance += indirect * (material.z * ao);
+}
+
+vec4 radianceOut(vec3 value) { return vec4(min(finiteOrZero(value), vec3(u_maxRadiance)), 1.0); }
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(s_depth, pixel, 0).r;
+    if (depth >= 1.0) {  // the background: emitted radiance, open
+#if defined(TERM_AO)
+        o_radiance = vec4(1.0);
+#elif defined(TERM_DIRECT) || defined(TERM_INDIRECT_DIFFUSE) || defined(TERM_INDIRECT_SPECULAR)
+        o_radiance = vec4(0.0, 0.0, 0.0, 1.0);
 #else
-    radiance += u_ambient * (surface.diffuseColor + surface.f0) * material.z * ao;
+        o_radiance = radianceOut(u_background);
 #endif
-    o_radiance = vec4(min(finiteOrZero(radiance), vec3(u_maxRadiance)), 1.0);
+        return;
+    }
+    // Methods may work at a lower resolution: bilinear upsampling of their (already filtered) terms.
+#if AO_INPUT
+    float ao = texture(s_ao, v_uv).r;
+#else
+    const float ao = 1.0;
+#endif
+    vec4 world = u_invViewProj * vec4(v_uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    vec3 P = world.xyz / world.w;
+    vec4 normalAndModels = texelFetch(s_gbufNormal, pixel, 0);
+    vec3 N = normalize(normalAndModels.xyz);
+    ivec2 models = decodeBrdfOverride(normalAndModels.w, u_brdfModels);  // a material may override them
+    vec3 baseColor = texelFetch(s_gbufBaseColor, pixel, 0).rgb;
+    vec4 material = texelFetch(s_gbufMaterial, pixel, 0);  // metallic, roughness, occlusion, specular
+    vec3 emissive = texelFetch(s_gbufEmissive, pixel, 0).rgb;
+    vec3 V = normalize(u_cameraPos - P);
+    SurfaceBrdf surface = makeSurfaceBrdf(baseColor, material.x, material.y, material.w);
+    // AO (material occlusion x the method's "ao") multiplies only the indirect terms, never direct light.
+    float occlusion = material.z * ao;
+    vec3 diffuse, specular;  // (a term view that does not use them compiles their reads away)
+    indirectLight(surface, N, V, models.y, diffuse, specular);
+
+#if defined(TERM_DIRECT)
+    o_radiance = radianceOut(addDirectLight(vec3(0.0), surface, P, N, V, models, pixel));
+#elif defined(TERM_INDIRECT_DIFFUSE)
+    o_radiance = radianceOut(diffuse * occlusion);
+#elif defined(TERM_INDIRECT_SPECULAR)
+    o_radiance = radianceOut(specular * occlusion);
+#elif defined(TERM_EMISSION)
+    o_radiance = radianceOut(emissive);
+#elif defined(TERM_AO)
+    o_radiance = vec4(vec3(occlusion), 1.0);
+#else
+    vec3 radiance = addDirectLight(emissive, surface, P, N, V, models, pixel);
+    o_radiance = radianceOut(radiance + (diffuse + specular) * occlusion);
+#endif
 }

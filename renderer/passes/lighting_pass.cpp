@@ -23,6 +23,25 @@ ShadowKinds shadowKinds(const std::vector<Light>& lights) {
     return others ? (points ? kBothKinds : kMapsOnly) : kCubesOnly;
 }
 
+// The terms lighting.frag can output alone, as debug views: the define that selects each.
+struct TermView {
+    const char* name;
+    const char* define;
+    const char* help;
+};
+constexpr TermView kTermViews[] = {
+    {"direct", "TERM_DIRECT",
+     "radiance of the direct light: punctual lights with their shadows, emissive triangles as lights; "
+     "direct + indirect.diffuse + indirect.specular + emission = final before tone mapping"},
+    {"indirect.diffuse", "TERM_INDIRECT_DIFFUSE",
+     "indirect diffuse radiance as lit: the method's indirect.diffuse (or the ambient) x diffuse colour x ao"},
+    {"indirect.specular", "TERM_INDIRECT_SPECULAR",
+     "indirect specular radiance as lit: the method's indirect.specular (or the ambient) x lobe albedo x ao"},
+    {"emission", "TERM_EMISSION", "emitted radiance seen directly: surfaces' emission, the background elsewhere"},
+    {"ao", "TERM_AO", "the occlusion the indirect terms got: material occlusion x the method's \"ao\" (1 = open)"},
+};
+constexpr int kTermViewCount = int(sizeof(kTermViews) / sizeof(kTermViews[0]));
+
 constexpr unsigned kAllModels = (1u << kDiffuseModelCount) - 1;
 static_assert(kDiffuseModelCount == kSpecularModelCount, "one mask width for both");
 
@@ -37,12 +56,14 @@ struct LightingVariant {
     unsigned diffuseModels = kAllModels, specularModels = kAllModels;
     bool ao = true, indirectDiffuse = true, indirectSpecular = true;
     bool emitterDirect = true;  // "emitters.direct" (renderer/emitters/)
+    int term = -1;              // a kTermViews index: output that term alone; -1: the lit sum
 
     std::string name() const {
         static const char* kindNames[] = {"-cubes", "-maps", ""};
         return std::string(uniformBlock ? "lighting" : "lighting-many-lights") + kindNames[kinds] + "-d" +
                std::to_string(diffuseModels) + "s" + std::to_string(specularModels) + (ao ? "-ao" : "") +
-               (indirectDiffuse ? "-id" : "") + (indirectSpecular ? "-is" : "") + (emitterDirect ? "-em" : "");
+               (indirectDiffuse ? "-id" : "") + (indirectSpecular ? "-is" : "") + (emitterDirect ? "-em" : "") +
+               (term >= 0 ? std::string("-") + kTermViews[term].name : "");
     }
     ProgramDesc program() const {
         auto flag = [](bool b) { return std::string(b ? "1" : "0"); };
@@ -57,6 +78,7 @@ struct LightingVariant {
                        {"INDIRECT_SPECULAR", flag(indirectSpecular)},
                        {"EMITTER_DIRECT", flag(emitterDirect)}}};
         if (uniformBlock) d.defines.push_back({"LIGHTS_UNIFORM_BLOCK_CAPACITY", std::to_string(kUniformBlockLights)});
+        if (term >= 0) d.defines.push_back({kTermViews[term].define, "1"});
         return d;
     }
 };
@@ -86,6 +108,11 @@ std::vector<ProgramDesc> LightingPass::programs() {
     LightingVariant none;
     none.ao = none.indirectDiffuse = none.indirectSpecular = none.emitterDirect = false;
     all.push_back(none.program());
+    for (int term = 0; term < kTermViewCount; ++term) {
+        LightingVariant v;
+        v.term = term;
+        all.push_back(v.program());
+    }
     return all;
 }
 
@@ -100,11 +127,12 @@ LightingPass::LightingPass(int width, int height, bool hdr32, const std::set<std
     const float one[2] = {1.0f, 0.0f};
     glTextureSubImage2D(unit_.id(), 0, 0, 0, 1, 1, GL_RG, GL_FLOAT, one);
     fbo_ = gl::createColorTarget(radiance_, "lighting");
+    viewFbo_ = gl::createFramebuffer();
     vao_ = gl::createVertexArray();
 }
 
 // Built on first need: a scene uses one variant, and a light or BRDF edit builds at most one more.
-GLuint LightingPass::programFor(const Frame& frame) {
+GLuint LightingPass::programFor(const Frame& frame, int term) {
     const std::vector<Light>& lights = frame.scene.cpu.lights;
     LightingVariant v;
     v.uniformBlock = lights.size() <= size_t(kUniformBlockLights);
@@ -114,6 +142,7 @@ GLuint LightingPass::programFor(const Frame& frame) {
     v.indirectDiffuse = hasDiffuse_;
     v.indirectSpecular = hasSpecular_;
     v.emitterDirect = hasEmitters_;
+    v.term = term;
     gl::Object& program = programs_[v.name()];
     if (!program.id()) program = buildProgram(v.program());
     return program.id();
@@ -131,9 +160,33 @@ std::vector<std::string> LightingPass::inputs() const {
 }
 
 void LightingPass::execute(Frame& frame) {
+    draw(frame, programFor(frame, -1), fbo_.id(),
+         radiance_.format == GL_RGBA16F ? gl::kMaxHalfFloat : kMaxFloat);
+    frame.put(resource::kRadiance, radiance_);
+    stale_ = false;
+}
+
+std::vector<DebugViewDesc> LightingPass::debugViews() const {
+    std::vector<DebugViewDesc> views;
+    for (const TermView& t : kTermViews) views.push_back({t.name, t.help});
+    return views;
+}
+
+// The same program with one term kept, into the debug target (RGBA16F).
+void LightingPass::drawDebugView(const std::string& view, const Frame& frame, GLuint target) {
+    int term = 0;
+    while (term < kTermViewCount && view != kTermViews[term].name) ++term;
+    if (term == kTermViewCount) throw Error("internal: the lighting pass has no view '" + view + "'");
+    glNamedFramebufferTexture(viewFbo_.id(), GL_COLOR_ATTACHMENT0, target, 0);
+    gl::checkFramebuffer(viewFbo_.id(), "lighting term view");
+    draw(frame, programFor(frame, term), viewFbo_.id(), gl::kMaxHalfFloat);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+// `maxRadiance`: the largest finite value of the target's format.
+void LightingPass::draw(const Frame& frame, GLuint p, GLuint fbo, float maxRadiance) {
     const RenderSettings& s = frame.settings;
-    const GLuint p = programFor(frame);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, radiance_.width, radiance_.height);
     glDisable(GL_DEPTH_TEST);
     glUseProgram(p);
@@ -161,10 +214,8 @@ void LightingPass::execute(Frame& frame) {
     glProgramUniform3fv(p, U_BACKGROUND, 1, &background[0]);
     glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));
     glProgramUniform1i(p, U_SHADOWS_ENABLED, s.shadows ? 1 : 0);
-    glProgramUniform1f(p, U_MAX_RADIANCE, radiance_.format == GL_RGBA16F ? gl::kMaxHalfFloat : kMaxFloat);
+    glProgramUniform1f(p, U_MAX_RADIANCE, maxRadiance);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    frame.put(resource::kRadiance, radiance_);
-    stale_ = false;
 }
 
 std::vector<ProgramDesc> TonemapPass::programs() {

@@ -11,6 +11,11 @@
 // emissive triangles, added as it is.
 // Any that is missing falls back to the constant ambient (or to 1 for "ao"). No method edits this
 // pass or lighting.frag.
+//
+// Its debug views are the terms of what it outputs, each drawn by the same shader with one term
+// kept: "direct", "indirect.diffuse", "indirect.specular" and "emission" are radiance
+// contributions that add up to "radiance" (before tone mapping), "ao" the occlusion the indirect
+// terms were multiplied by.
 #pragma once
 
 #include <map>
@@ -32,14 +37,19 @@ public:
     // renderer re-runs it too when an input was re-produced (ReSTIR accumulating, a GI pass).
     void invalidate(Changes) override { stale_ = true; }
     bool settled() const override { return !stale_; }
+    std::vector<DebugViewDesc> debugViews() const override;
+    void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     static std::vector<ProgramDesc> programs();
 
 private:
-    GLuint programFor(const Frame& frame);  // the variant the frame needs (LightingVariant)
+    // The variant the frame needs (LightingVariant), outputting the term view `term` names (an
+    // index into the term views) or, for -1, the lit sum.
+    GLuint programFor(const Frame& frame, int term);
+    void draw(const Frame& frame, GLuint program, GLuint fbo, float maxRadiance);
     bool stale_ = true;
 
     gl::Texture radiance_, unit_;   // unit_: a 1x1 stand-in (ao = 1) for terms no method gives
-    gl::Object fbo_, vao_;
+    gl::Object fbo_, viewFbo_, vao_;  // viewFbo_: a term view's target
     std::map<std::string, gl::Object> programs_;  // by variant name, built on first need
     bool hasAo_, hasDiffuse_, hasSpecular_, hasEmitters_;
 };
