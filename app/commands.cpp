@@ -353,7 +353,10 @@ int runRender(const RenderOptions& o) {
         if (frameProgress) frameProgress->update(i + 1);
     }
     if (frameProgress) frameProgress->finish();
-    if (!renderer.converged()) {
+    // The references count their samples with --spp, so they render them all whatever --frames
+    // says; other progressive methods (probe updates) stop at --frames when it is given.
+    const bool framesGiven = o.given && o.given("--frames");
+    if (!renderer.converged() && (!framesGiven || giMethod(s.gi).role != MethodRole::Method)) {
         Pass::Progress longest;
         for (const auto& pass : renderer.passes())
             if (pass->progress().target > longest.target) longest = pass->progress();
