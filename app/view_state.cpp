@@ -9,10 +9,16 @@
 
 #include "brdf_cpu.h"
 #include "gi/method.h"
+#include "passes/lighting_pass.h"
 
 namespace gis::view {
 
 namespace {
+// The lighting's term views ("direct", "emission" ...) are pane views too; "ao" is a pane display.
+bool isTermView(const std::string& name) {
+    const std::vector<std::string> terms = LightingPass::termViewNames();
+    return name != "ao" && std::find(terms.begin(), terms.end(), name) != terms.end();
+}
 
 constexpr float kMaxPitch = 1.5533430f;  // 89 degrees: never straight up or down (lookAt's up vector)
 
@@ -340,7 +346,9 @@ void applyPanelAction(ViewState& state, const PanelAction& a) {
             break;
         case PanelAction::SetDisplay:
             checkPane(a.index);
-            if (a.text.find('.') != std::string::npos && a.text.rfind("gbuffer.", 0) != 0) {
+            // A method's views have a dot ("vct.slice"; the renderer says whether it exists), the
+            // lighting's term views are named by the lighting pass ("direct", "emission").
+            if ((a.text.find('.') != std::string::npos && a.text.rfind("gbuffer.", 0) != 0) || isTermView(a.text)) {
                 s.panes[a.index].display = PaneDisplay::Method;  // the renderer says whether it exists
                 s.panes[a.index].methodView = a.text;
             } else {

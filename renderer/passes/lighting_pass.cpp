@@ -166,6 +166,12 @@ void LightingPass::execute(Frame& frame) {
     stale_ = false;
 }
 
+std::vector<std::string> LightingPass::termViewNames() {
+    std::vector<std::string> names;
+    for (const TermView& t : kTermViews) names.push_back(t.name);
+    return names;
+}
+
 std::vector<DebugViewDesc> LightingPass::debugViews() const {
     std::vector<DebugViewDesc> views;
     for (const TermView& t : kTermViews) views.push_back({t.name, t.help});

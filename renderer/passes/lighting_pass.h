@@ -40,6 +40,8 @@ public:
     std::vector<DebugViewDesc> debugViews() const override;
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     static std::vector<ProgramDesc> programs();
+    // The names of the term views ("direct", "indirect.diffuse" ...), for callers without a pass.
+    static std::vector<std::string> termViewNames();
 
 private:
     // The variant the frame needs (LightingVariant), outputting the term view `term` names (an

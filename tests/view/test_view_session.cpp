@@ -223,6 +223,12 @@ TEST(Session, GBufferDisplaysShowTheirChannels) {
     const uint8_t* rightWall = &base.rgba[(20 * 40 + 36) * 4];
     EXPECT_GT(leftWall[0], leftWall[1] + 50);
     EXPECT_GT(rightWall[1], rightWall[0] + 50);
+    // The lighting's term views without a dot ("direct", "emission") are displays too; a typo is not.
+    s.act("display 0 direct");
+    const ImageU8 directTerm = s.view(40, 40);
+    s.act("display 0 emission");
+    EXPECT_GT(meanAbsDiff(directTerm, s.view(40, 40)), 1.0) << "the direct term looks like the (black) emission";
+    EXPECT_THROW(s.act("display 0 lti"), Error);
     // Direct only removes the ambient term of --gi none.
     s.act("display 0 lit");
     s.act("direct-only 0 on");
