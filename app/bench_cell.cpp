@@ -128,10 +128,9 @@ void runFlythroughCell(const BenchJob& job, const SweepDirs& dirs, const GlOpene
     const std::string png = imagePath(dirs, job);
     writePng(png, renderer.readLdr());
     const FlythroughStats& f = *row.flythrough;
-    std::fprintf(stderr, "%-14s %-10s %-8s flythrough %d frames: GPU ms median %.2f, worst %.2f; %d moved a cascade "
-                         "(median %.2f ms), the others %.2f ms\n",
+    std::fprintf(stderr, "%-14s %-10s %-8s flythrough %d frames: GPU ms median %.2f, worst %.2f; %d moved a cascade\n",
                  row.scene.c_str(), row.method.c_str(), row.preset.c_str(), f.frames, f.medianMs, f.worstMs,
-                 f.moveFrames, f.moveMedianMs, f.stillMedianMs);
+                 f.moveFrames);
     nlohmann::ordered_json body{{"id", job.id}, {"kind", "cell"}, {"machine", machine}, {"row", rowToJson(row)}};
     writeRecord(recordPath(dirs, job), body, {fs::path(png).filename().string()});
 }

@@ -259,8 +259,8 @@ int mergeBench(const std::vector<BenchJob>& jobs, const SweepDirs& dirs, const s
     }
     addTables(out, cells, machine, dirs);
     writeFilesAtomically(out);
-    std::printf("wrote %s/bench.json, %s/bench.csv and a grid and chart per scene (%zu cells)\n", dirs.outDir.c_str(),
-                dirs.outDir.c_str(), cells.size());
+    std::printf("wrote %s/bench.json, %s/bench.csv and a grid%s per scene (%zu cells)\n", dirs.outDir.c_str(),
+                dirs.outDir.c_str(), cells.front().job->flythrough ? "" : " and chart", cells.size());
     return 0;
 }
 
