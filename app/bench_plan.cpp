@@ -65,7 +65,8 @@ void validateFlags(const BenchOptions& o) {
     RenderSettings s;
     parseRenderSize(o.size, s.width, s.height);
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
-    if (o.flythrough < 0 || o.flythrough > 100000) throw Error("--flythrough=N must be in [1, 100000]");
+    if (o.flythrough < 0 || o.flythrough > 100000)
+        throw Error("--flythrough=N must be in [0, 100000] (0: a still camera)");
     if (o.warmup < 0 || o.warmup >= o.frames)
         throw Error("--warmup " + std::to_string(o.warmup) + " must be in [0, --frames " + std::to_string(o.frames) +
                     ") (the default warm-up is 5 frames: with fewer --frames, lower --warmup too)");

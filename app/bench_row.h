@@ -5,11 +5,10 @@
 
 #include <cstdint>
 #include <ostream>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <optional>
 
 #include <nlohmann/json.hpp>
 

@@ -259,7 +259,8 @@ int runRender(const RenderOptions& o) {
     if (!listViews && !exr && !endsWith(o.out, ".png")) throw Error("--out '" + o.out + "' must end in .png or .exr");
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
     if (o.warmup < 0 || o.warmup >= o.frames) throw Error("--warmup must be in [0, --frames)");
-    if (o.flythrough < 0 || o.flythrough > 100000) throw Error("--flythrough=N must be in [1, 100000]");
+    if (o.flythrough < 0 || o.flythrough > 100000)
+        throw Error("--flythrough=N must be in [0, 100000] (0: a still camera)");
     if (o.ambient.size() != 1 && o.ambient.size() != 3) throw Error("--ambient takes one value or R,G,B");
     if (use("--gi")) s.gi = o.gi;
     giMethod(s.gi);  // throws for an unknown method

@@ -82,7 +82,7 @@ for i in "${!rows[@]}"; do
   IFS='|' read -r label variant flags <<<"${rows[$i]}"
   gb=${before[$variant]} ga=${after[$variant]}
   if [ "${results[$i]}" = no-preset ]; then
-    echo "| $label | $variant: $gb / $ga | \`$flags\`: no such preset | | | | |"
+    printf '| %s | %s: %.1f / %.1f | `%s`: no such preset | | | | |\n' "$label" "$variant" "$gb" "$ga" "$flags"
     continue
   fi
   read -r o psnr updates <<<"${results[$i]}"
@@ -91,5 +91,6 @@ for i in "${!rows[@]}"; do
       -v g0="$g0" -v o0="$o0" 'BEGIN {
     g = (gb + ga) / 2;
     added = (g > g0 && v != "direct") ? sprintf("+%.1f / +%.1f = %.2f", o - o0, g - g0, (o - o0) / (g - g0)) : "";
-    printf "| %s | %s: %.1f / %.1f | `%s`: %.1f | %s | %s | %.2f | %s |\n", l, v, gb, ga, f, o, p, (u == "-" ? "" : u), o / g, added }'
+    printf "| %s | %s: %.1f / %.1f | `%s`: %.1f | %s | %s | %.2f | %s |\n", l, v, gb, ga, f, o,
+           (p == "" ? "" : sprintf("%.1f dB", p)), (u == "-" ? "" : u), o / g, added }'
 done
