@@ -5,13 +5,13 @@
 # frames moved (rebuilt) a cascade, and the median frame with a cascade move against one without.
 #
 # Usage (project root, after a build):
-#   bash scripts/flythrough-table.sh [BIN] [OUT_DIR] [more bench flags, e.g. --backend egl]
+#   bash scripts/flythrough-table.sh [BIN] [OUT_DIR (bench/flythrough)] [more bench flags, e.g. --backend egl]
 # Environment: SIZE (256x256), METHODS (none,vct,sdf,probes), PRESETS (low,medium,high).
 # The bench's own lines go to stderr, the table to stdout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${1:-build/gisandbox}
-out=${2:-flythrough-out}
+out=${2:-bench/flythrough}   # under bench/, which git ignores
 shift $(($# < 2 ? $# : 2))
 "$bin" bench --flythrough --scenes builtin:atrium --size "${SIZE:-256x256}" --methods "${METHODS:-none,vct,sdf,probes}" \
   --presets "${PRESETS:-low,medium,high}" --out-dir "$out" "$@" >&2
