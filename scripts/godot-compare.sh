@@ -82,6 +82,7 @@ for i in "${!rows[@]}"; do
   IFS='|' read -r label variant flags <<<"${rows[$i]}"
   gb=${before[$variant]} ga=${after[$variant]}
   if [ "${results[$i]}" = no-preset ]; then
+    # shellcheck disable=SC2016 # the backticks are Markdown
     printf '| %s | %s: %.1f / %.1f | `%s`: no such preset | | | | |\n' "$label" "$variant" "$gb" "$ga" "$flags"
     continue
   fi
