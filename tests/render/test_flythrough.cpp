@@ -61,7 +61,8 @@ TEST(Flythrough, StaysInTheAtriumSmoothlyAndNeverLooksStraightUpOrDown) {
 // Two runs of the same fly-through write the same bytes; a longer one ends elsewhere.
 TEST(Flythrough, RendersTheSameImagesOnEveryRun) {
     const std::string dir = tempDir("flythrough_images");
-    // sdf with its cascades (3 on the atrium) at 32^3: every frame of a 6-frame loop moves the finest.
+    // sdf with its cascades (3 on the atrium) at 32^3: each frame after the first (the warm-up
+    // frame's pose) of a 6-frame loop moves the finer two.
     const std::string common = "render --scene builtin:atrium --size 64x64 --gi sdf --set sdf.resolution=32 ";
     const CliResult a = runCli(common + "--flythrough=6 --timings --out " + dir + "/a.png");
     ASSERT_EQ(a.status, 0) << a.err;
