@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "bench_flythrough.h"
 #include "bench_record.h"
 #include "bench_row.h"
 #include "gi/method.h"
@@ -55,6 +56,22 @@ void measure(Renderer& renderer, const GiMethod& method, int frames, int warmup,
     row.bytes = renderer.memory().total();
 }
 
+// A fly-through cell: the path's frames (after the warm-up frame), summarised; the passes' and
+// steps' figures are their medians over the path.
+void measureFlythrough(Renderer& renderer, const Aabb& bounds, int frames, BenchRow& row) {
+    const FlythroughStats stats = summarizeFlythrough(flyThrough(renderer, bounds, frames));
+    row.ms = stats.medianMs;
+    row.wallMs = stats.medianWallMs;
+    row.flythrough = stats;
+    for (const PassTiming& t : renderer.timings(1)) {
+        if (t.step)
+            row.steps.push_back({t.pass, t.medianMs, t.firstMs});
+        else
+            row.passMs.emplace_back(t.pass, t.medianMs);
+    }
+    row.bytes = renderer.memory().total();
+}
+
 // The job as the manifest describes it, made concrete; refuses one whose inputs changed since the
 // plan (its id would be another).
 RenderSettings resolveChecked(const BenchJob& job, PreparedScene& prepared) {
@@ -96,6 +113,27 @@ ImageF loadReference(const BenchJob& cell, const std::string& refId, const Sweep
         throw Error("cell " + cell.id + " needs reference " + refId + ", which is " + check.problem + " in " +
                     dirs.cacheDir + " (run bench --cell " + refId + " first)");
     return readExr(dirs.cacheDir + "/" + refId + ".exr");
+}
+
+void runFlythroughCell(const BenchJob& job, const SweepDirs& dirs, const GlOpener& openGl) {
+    PreparedScene prepared;
+    const RenderSettings settings = resolveChecked(job, prepared);
+    const nlohmann::ordered_json machine = openGl();
+    BenchRow row;
+    row.scene = job.sceneName;
+    row.method = job.method;
+    row.preset = job.preset;
+    row.description = giMethod(job.method).preset(job.preset).description;
+    Renderer renderer(prepared.scene, settings);
+    measureFlythrough(renderer, prepared.scene.bounds, job.frames, row);
+    const std::string png = imagePath(dirs, job);
+    writePng(png, renderer.readLdr());
+    const FlythroughStats& f = *row.flythrough;
+    std::fprintf(stderr, "%-14s %-10s %-8s flythrough %d frames: GPU ms median %.2f, worst %.2f; %d moved a cascade\n",
+                 row.scene.c_str(), row.method.c_str(), row.preset.c_str(), f.frames, f.medianMs, f.worstMs,
+                 f.moveFrames);
+    nlohmann::ordered_json body{{"id", job.id}, {"kind", "cell"}, {"machine", machine}, {"row", rowToJson(row)}};
+    writeRecord(recordPath(dirs, job), body, {fs::path(png).filename().string()});
 }
 
 void runCell(const BenchJob& job, const SweepDirs& dirs, const GlOpener& openGl) {
@@ -171,6 +209,8 @@ JobOutcome runJob(const BenchJob& job, const SweepDirs& dirs, bool force, const 
     try {
         if (job.kind == JobKind::Reference)
             runReference(job, dirs, openGl);
+        else if (job.flythrough)
+            runFlythroughCell(job, dirs, openGl);
         else
             runCell(job, dirs, openGl);
     } catch (const std::exception& e) {

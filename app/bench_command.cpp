@@ -17,6 +17,7 @@
 #include "bench_cell.h"
 #include "bench_merge.h"
 #include "bench_plan.h"
+#include "camera_path.h"
 #include "commands.h"
 #include "scene/atomic_file.h"
 
@@ -44,6 +45,10 @@ void addBenchOptions(CLI::App& cmd, BenchOptions& o) {
     cmd.add_option("--background", o.background, "Environment radiance R,G,B (or one value), overriding the scene's")
         ->delimiter(',')
         ->expected(1, 3);
+    cmd.add_flag("--flythrough{" + std::to_string(kFlythroughFrames) + "}", o.flythrough,
+                 "Measure camera motion: each cell flies the scripted path (--flythrough=N: N frames, default " +
+                     std::to_string(kFlythroughFrames) + "), median and worst frame, frames that moved a cascade; "
+                     "no reference, no error");
     CLI::Option* plan = cmd.add_flag("--plan", o.plan, "Print the sweep's jobs (JSON Lines, references first) and exit");
     CLI::Option* cell = cmd.add_option("--cell", o.cell, "Run the one job ID of --manifest (a reference or a cell)");
     CLI::Option* merge = cmd.add_option("--merge", o.merge, "Gather the results in DIR into bench.json, bench.csv, charts, grids");

@@ -88,7 +88,7 @@ std::string describe(const BenchJob& job) {
 std::string sceneKey(const BenchJob& job) {
     ojson j = jobToJson(job);
     for (const char* k : {"id", "kind", "method", "preset", "frames", "warmup", "reference", "ao_reference",
-                          "reference_spp", "scene_name", "scene_sha256"})
+                          "reference_spp", "scene_name", "scene_sha256", "flythrough"})
         j.erase(k);
     return j.dump();
 }
@@ -175,6 +175,22 @@ void addSceneImages(OutputSet& out, const std::string& sceneName, const BenchJob
                                                  timeAxisLabel(glRenderer, totals), yLabel)));
 }
 
+// A fly-through scene's grid: every cell's last frame, labelled with its median and worst frame.
+// No reference and no chart: a fly-through is scored against nothing.
+void addFlythroughGrid(OutputSet& out, const std::string& sceneName, const std::vector<MergedCell>& cells,
+                       const SweepDirs& dirs) {
+    std::vector<std::pair<std::string, ImageU8>> tiles;
+    for (const MergedCell& c : cells) {
+        if (c.job->sceneName != sceneName || !c.row.flythrough) continue;
+        char caption[200];
+        std::snprintf(caption, sizeof caption, "%s/%s  median %.1f ms, worst %.1f", c.row.method.c_str(),
+                      c.row.preset.c_str(), c.row.flythrough->medianMs, c.row.flythrough->worstMs);
+        tiles.emplace_back(caption, readPng(imagePath(dirs, *c.job)));
+    }
+    out.emplace_back(dirs.outDir + "/" + fileSafeName(sceneName) + "_grid.png",
+                     encodePng(composeGrid(tiles, std::min<int>(4, int(tiles.size())))));
+}
+
 void addTables(OutputSet& out, const std::vector<MergedCell>& cells, const ojson& machine, const SweepDirs& dirs) {
     const BenchJob& first = *cells.front().job;
     ojson j;
@@ -230,6 +246,12 @@ int mergeBench(const std::vector<BenchJob>& jobs, const SweepDirs& dirs, const s
     // previous merge's: a failure half way (a full disk) leaves the old set whole.
     OutputSet out;
     for (const std::string& scene : scenes) {
+        const bool flown = std::any_of(cells.begin(), cells.end(),
+                                       [&](const MergedCell& c) { return c.job->sceneName == scene && c.job->flythrough; });
+        if (flown) {
+            addFlythroughGrid(out, scene, cells, dirs);
+            continue;
+        }
         const auto reference = references.find(scene);
         if (reference == references.end())
             throw Error("scene " + scene + " has cells but no path-traced reference line in the manifest");
@@ -237,8 +259,8 @@ int mergeBench(const std::vector<BenchJob>& jobs, const SweepDirs& dirs, const s
     }
     addTables(out, cells, machine, dirs);
     writeFilesAtomically(out);
-    std::printf("wrote %s/bench.json, %s/bench.csv and a grid and chart per scene (%zu cells)\n", dirs.outDir.c_str(),
-                dirs.outDir.c_str(), cells.size());
+    std::printf("wrote %s/bench.json, %s/bench.csv and a grid%s per scene (%zu cells)\n", dirs.outDir.c_str(),
+                dirs.outDir.c_str(), cells.front().job->flythrough ? "" : " and chart", cells.size());
     return 0;
 }
 

@@ -65,6 +65,8 @@ void validateFlags(const BenchOptions& o) {
     RenderSettings s;
     parseRenderSize(o.size, s.width, s.height);
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
+    if (o.flythrough < 0 || o.flythrough > 100000)
+        throw Error("--flythrough=N must be in [0, 100000] (0: a still camera)");
     if (o.warmup < 0 || o.warmup >= o.frames)
         throw Error("--warmup " + std::to_string(o.warmup) + " must be in [0, --frames " + std::to_string(o.frames) +
                     ") (the default warm-up is 5 frames: with fewer --frames, lower --warmup too)");
@@ -168,6 +170,7 @@ std::string contentId(const BenchJob& job, const RenderSettings& settings) {
               {"look_at", job.setup.lookAt},
               {"fov", job.setup.fov},
               {"settings", view::renderSettingsToJson(settings)}};
+    if (job.flythrough) key["flythrough"] = true;  // only then: the ids of still-camera jobs stay as they were
     if (job.kind == JobKind::Cell) {
         key["frames"] = job.frames;
         key["warmup"] = job.warmup;
@@ -204,11 +207,15 @@ std::vector<BenchJob> planBench(const BenchOptions& o) {
             to.back().id = contentId(to.back(), jobSettings(to.back(), prepared.base));
             return to.back().id;
         };
-        const std::string reference = add(references, JobKind::Reference, methodInRole(MethodRole::Reference).name, "");
+        // A fly-through's frames have no reference (each is a new view): its cells need none.
+        const bool fly = o.flythrough > 0;
+        const std::string reference =
+            fly ? "" : add(references, JobKind::Reference, methodInRole(MethodRole::Reference).name, "");
         const std::string aoReference =
-            wantsAo ? add(references, JobKind::Reference, methodInRole(MethodRole::AoReference).name, "") : "";
-        common.frames = o.frames;
-        common.warmup = o.warmup;
+            wantsAo && !fly ? add(references, JobKind::Reference, methodInRole(MethodRole::AoReference).name, "") : "";
+        common.frames = fly ? o.flythrough : o.frames;
+        common.warmup = fly ? 0 : o.warmup;
+        common.flythrough = fly;
         common.reference = reference;
         for (const std::string& method : methods) {
             common.aoReference = giMethod(method).scoredAgainstAo ? aoReference : "";
@@ -241,6 +248,7 @@ ojson jobToJson(const BenchJob& job) {
         j["warmup"] = job.warmup;
         j["reference"] = job.reference;
         if (!job.aoReference.empty()) j["ao_reference"] = job.aoReference;
+        if (job.flythrough) j["flythrough"] = true;
     }
     return j;
 }
@@ -272,6 +280,7 @@ BenchJob jobFromJson(const nlohmann::json& j) {
             job.warmup = j.at("warmup").get<int>();
             job.reference = j.at("reference").get<std::string>();
             job.aoReference = j.value("ao_reference", std::string());
+            job.flythrough = j.value("flythrough", false);
         }
     } catch (const nlohmann::json::exception& e) {
         throw Error(std::string("not a bench job: ") + e.what());

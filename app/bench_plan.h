@@ -35,7 +35,8 @@ struct BenchJob {
     SceneSetupOptions setup;
     std::vector<float> ambient, background;   // as given (empty: not given)
     int referenceSpp = 0;
-    int frames = 0, warmup = 0;               // cells
+    int frames = 0, warmup = 0;               // cells; with flythrough, frames is the path's, warmup 0
+    bool flythrough = false;                  // cells: fly the scripted camera path, scored against nothing
     std::string reference, aoReference;       // cells: the ids of the references they are scored against
 };
 

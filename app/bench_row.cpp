@@ -8,11 +8,31 @@ namespace gis {
 
 namespace {
 
+using CsvWriter = std::function<void(std::ostream&, const BenchRow&)>;
+
 struct CsvColumn {
     const char* name;
     bool timing;
-    std::function<void(std::ostream&, const BenchRow&)> write;
+    CsvWriter write;
 };
+
+// An error column: empty for a fly-through, which is scored against nothing.
+CsvWriter scored(CsvWriter write) {
+    return [write](std::ostream& f, const BenchRow& r) {
+        if (!r.flythrough) write(f, r);
+    };
+}
+
+// A fly-through column: empty for a still camera.
+CsvWriter flown(std::function<void(std::ostream&, const FlythroughStats&)> write) {
+    return [write](std::ostream& f, const BenchRow& r) {
+        if (r.flythrough) write(f, *r.flythrough);
+    };
+}
+
+void optionalMs(std::ostream& f, double ms) {  // -1: no such frame
+    if (ms >= 0.0) f << ms;
+}
 
 // bench.csv, left to right. Numbers print with the stream's default precision (as they always
 // have); PSNR through formatMetric so +inf (identical images) reads "inf".
@@ -24,18 +44,23 @@ const std::vector<CsvColumn>& csvColumns() {
         {"gpu_ms", true, [](std::ostream& f, const BenchRow& r) { f << r.ms; }},
         {"wall_ms", true, [](std::ostream& f, const BenchRow& r) { f << r.wallMs; }},
         {"gpu_bytes", false, [](std::ostream& f, const BenchRow& r) { f << r.bytes; }},
-        {"rmse", false, [](std::ostream& f, const BenchRow& r) { f << r.error.rmse; }},
-        {"relmse", false, [](std::ostream& f, const BenchRow& r) { f << r.error.relMse; }},
-        {"psnr_linear", false, [](std::ostream& f, const BenchRow& r) { f << formatMetric(r.error.psnrLinear); }},
-        {"psnr_srgb", false, [](std::ostream& f, const BenchRow& r) { f << formatMetric(r.error.psnrSrgb); }},
-        {"ssim", false, [](std::ostream& f, const BenchRow& r) { f << r.error.ssim; }},
-        {"flip", false, [](std::ostream& f, const BenchRow& r) { f << r.error.flip; }},
+        {"rmse", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.rmse; })},
+        {"relmse", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.relMse; })},
+        {"psnr_linear", false, scored([](std::ostream& f, const BenchRow& r) { f << formatMetric(r.error.psnrLinear); })},
+        {"psnr_srgb", false, scored([](std::ostream& f, const BenchRow& r) { f << formatMetric(r.error.psnrSrgb); })},
+        {"ssim", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.ssim; })},
+        {"flip", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.flip; })},
         {"ao_rmse", false,
          [](std::ostream& f, const BenchRow& r) { f << (r.aoRmse >= 0.0 ? std::to_string(r.aoRmse) : std::string()); }},
         {"mrays_per_s", true,
          [](std::ostream& f, const BenchRow& r) {
              if (r.megaRaysPerSecond >= 0.0) f << r.megaRaysPerSecond;
          }},
+        {"fly_frames", false, flown([](std::ostream& f, const FlythroughStats& s) { f << s.frames; })},
+        {"fly_worst_ms", true, flown([](std::ostream& f, const FlythroughStats& s) { f << s.worstMs; })},
+        {"fly_move_frames", false, flown([](std::ostream& f, const FlythroughStats& s) { f << s.moveFrames; })},
+        {"fly_move_ms", true, flown([](std::ostream& f, const FlythroughStats& s) { optionalMs(f, s.moveMedianMs); })},
+        {"fly_still_ms", true, flown([](std::ostream& f, const FlythroughStats& s) { optionalMs(f, s.stillMedianMs); })},
     };
     return columns;
 }
@@ -45,13 +70,56 @@ double psnrFromJson(const nlohmann::ordered_json& v) {
     return v.is_null() ? std::numeric_limits<double>::infinity() : v.get<double>();
 }
 
+nlohmann::ordered_json errorToJson(const ImageMetrics& m) {
+    return {{"rmse", m.rmse}, {"relmse", m.relMse}, {"psnr_linear", m.psnrLinear},
+            {"psnr_srgb", m.psnrSrgb}, {"ssim", m.ssim}, {"flip", m.flip}};
+}
+
+ImageMetrics errorFromJson(const nlohmann::ordered_json& j) {
+    ImageMetrics m;
+    m.rmse = j.at("rmse").get<double>();
+    m.relMse = j.at("relmse").get<double>();
+    m.psnrLinear = psnrFromJson(j.at("psnr_linear"));
+    m.psnrSrgb = psnrFromJson(j.at("psnr_srgb"));
+    m.ssim = j.at("ssim").get<double>();
+    m.flip = j.at("flip").get<double>();
+    return m;
+}
+
+// JSON has no -1 convention: a median over no frame is null.
+nlohmann::ordered_json optionalMsJson(double ms) { return ms >= 0.0 ? nlohmann::ordered_json(ms) : nullptr; }
+double optionalMsFromJson(const nlohmann::ordered_json& v) { return v.is_null() ? -1.0 : v.get<double>(); }
+
+nlohmann::ordered_json flythroughToJson(const FlythroughStats& s) {
+    return {{"frames", s.frames},           {"gpu_ms_median", s.medianMs},
+            {"gpu_ms_worst", s.worstMs},    {"wall_ms_median", s.medianWallMs},
+            {"move_frames", s.moveFrames},  {"move_gpu_ms_median", optionalMsJson(s.moveMedianMs)},
+            {"still_gpu_ms_median", optionalMsJson(s.stillMedianMs)}};
+}
+
+FlythroughStats flythroughFromJson(const nlohmann::ordered_json& j) {
+    FlythroughStats s;
+    s.frames = j.at("frames").get<int>();
+    s.medianMs = j.at("gpu_ms_median").get<double>();
+    s.worstMs = j.at("gpu_ms_worst").get<double>();
+    s.medianWallMs = j.at("wall_ms_median").get<double>();
+    s.moveFrames = j.at("move_frames").get<int>();
+    s.moveMedianMs = optionalMsFromJson(j.at("move_gpu_ms_median"));
+    s.stillMedianMs = optionalMsFromJson(j.at("still_gpu_ms_median"));
+    return s;
+}
+
 }  // namespace
 
 nlohmann::ordered_json rowToJson(const BenchRow& r) {
     nlohmann::ordered_json e{{"scene", r.scene}, {"method", r.method}, {"preset", r.preset},
-                             {"description", r.description}, {"gpu_ms", r.ms}, {"wall_ms", r.wallMs}, {"gpu_bytes", r.bytes},
-                             {"rmse", r.error.rmse}, {"relmse", r.error.relMse}, {"psnr_linear", r.error.psnrLinear},
-                             {"psnr_srgb", r.error.psnrSrgb}, {"ssim", r.error.ssim}, {"flip", r.error.flip}};
+                             {"description", r.description}, {"gpu_ms", r.ms}, {"wall_ms", r.wallMs}, {"gpu_bytes", r.bytes}};
+    if (r.flythrough) {
+        e["flythrough"] = flythroughToJson(*r.flythrough);
+    } else {
+        const nlohmann::ordered_json error = errorToJson(r.error);
+        for (const auto& [key, value] : error.items()) e[key] = value;
+    }
     for (const auto& [pass, ms] : r.passMs) e["pass_ms"][pass] = ms;
     for (const BenchRow::StepTime& t : r.steps) e["step_ms"][t.step] = {{"frame", t.ms}, {"first", t.firstMs}};
     if (r.aoRmse >= 0.0) e["ao_rmse_vs_raytraced"] = r.aoRmse;
@@ -69,12 +137,10 @@ BenchRow rowFromJson(const nlohmann::ordered_json& j) {
     r.ms = j.at("gpu_ms").get<double>();
     r.wallMs = j.at("wall_ms").get<double>();
     r.bytes = j.at("gpu_bytes").get<int64_t>();
-    r.error.rmse = j.at("rmse").get<double>();
-    r.error.relMse = j.at("relmse").get<double>();
-    r.error.psnrLinear = psnrFromJson(j.at("psnr_linear"));
-    r.error.psnrSrgb = psnrFromJson(j.at("psnr_srgb"));
-    r.error.ssim = j.at("ssim").get<double>();
-    r.error.flip = j.at("flip").get<double>();
+    if (j.contains("flythrough"))
+        r.flythrough = flythroughFromJson(j.at("flythrough"));
+    else
+        r.error = errorFromJson(j);
     r.msToConverge = j.value("gpu_ms_to_converge", false);  // absent in rows of per-frame methods
     if (j.contains("pass_ms"))
         for (const auto& [pass, ms] : j.at("pass_ms").items()) r.passMs.emplace_back(pass, ms.get<double>());

@@ -5,12 +5,14 @@
 
 #include <cstdint>
 #include <ostream>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "bench_flythrough.h"
 #include "metrics.h"
 
 namespace gis {
@@ -29,9 +31,11 @@ struct BenchRow {
     };
     std::vector<StepTime> steps;
     int64_t bytes = 0;
-    ImageMetrics error;
+    ImageMetrics error;                       // not measured for a fly-through (no reference for its views)
     double aoRmse = -1.0;                     // SSAO only: its AO term against ray-traced AO
     double megaRaysPerSecond = -1.0;          // passes that count their rays (the path tracer); -1: none
+    // A fly-through (bench --flythrough): ms and wallMs are its medians, passMs and steps too.
+    std::optional<FlythroughStats> flythrough;
 };
 
 nlohmann::ordered_json rowToJson(const BenchRow& row);

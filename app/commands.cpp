@@ -15,7 +15,9 @@
 #include <cerrno>
 #include <cstring>
 
+#include "bench_flythrough.h"
 #include "bvh.h"
+#include "camera_path.h"
 #include "progress.h"
 #include "gi/method.h"
 #include "gl/shader.h"
@@ -151,6 +153,21 @@ void applyRenderPreset(RenderSettings& s, const std::string& given) {
     if (has || !given.empty()) applyPreset(s, s.gi, preset);
 }
 
+// `render --flythrough`: the scripted path's frames (renderer/camera_path.h), the last one written;
+// with --timings each frame's GPU and wall ms and the cascades it rebuilt, then the passes' medians
+// over the path (the warm-up frame left out).
+int renderFlythrough(Renderer& renderer, const Scene& scene, const RenderOptions& o, bool exr) {
+    const std::vector<FlythroughFrame> frames = flyThrough(renderer, scene.bounds, o.flythrough);
+    if (exr) writeExr(o.out, renderer.readHdr());
+    else writePng(o.out, renderer.readLdr());
+    if (o.timings) {
+        printFlythrough(frames);
+        printTimings(renderer, o.flythrough + 1, 1);
+    }
+    std::printf("wrote %s (frame %d of the fly-through)\n", o.out.c_str(), o.flythrough - 1);
+    return 0;
+}
+
 }  // namespace
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
@@ -217,6 +234,9 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
                  "Execute every pass every frame, also those whose outputs would not change (frame-cost "
                  "comparisons with engines that re-render a static view)");
     cmd.add_option("--warmup", o.warmup, "Frames left out of the --timings median")->capture_default_str();
+    cmd.add_flag("--flythrough{" + std::to_string(kFlythroughFrames) + "}", o.flythrough,
+                 "Fly the scripted camera path through the scene (--flythrough=N: N frames, default " +
+                     std::to_string(kFlythroughFrames) + "); writes the last frame, --timings prints every frame");
     cmd.add_flag("--gl-debug", o.glDebug, "Debug context; print KHR_debug messages (always on in Debug builds)");
     cmd.add_flag("-v,--verbose", o.verbose, "Print the backend, GL_RENDERER and GL_VERSION");
     cmd.add_option("--settings", o.settings,
@@ -253,6 +273,8 @@ int runRender(const RenderOptions& o) {
     if (!listViews && !exr && !endsWith(o.out, ".png")) throw Error("--out '" + o.out + "' must end in .png or .exr");
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
     if (o.timings && (o.warmup < 0 || o.warmup >= o.frames)) throw Error("--warmup must be in [0, --frames)");
+    if (o.flythrough < 0 || o.flythrough > 100000)
+        throw Error("--flythrough=N must be in [0, 100000] (0: a still camera)");
     if (o.ambient.size() != 1 && o.ambient.size() != 3) throw Error("--ambient takes one value or R,G,B");
     if (use("--gi")) s.gi = o.gi;
     giMethod(s.gi);  // throws for an unknown method
@@ -339,6 +361,7 @@ int runRender(const RenderOptions& o) {
         renderer.setCamera(view::viewCameraMatrices(*viewSettings, scene, float(s.width) / float(s.height)));
     }
     renderer.setSkipSettled(!o.rerunSettled);
+    if (o.flythrough > 0) return renderFlythrough(renderer, scene, o, exr);
     const int frames = framesToRender(o, s);
     // Wall-clock per frame with the GPU finished, comparable with other engines' wall-clock figures
     // (Godot's frame time) where GPU timer queries are not.

@@ -32,6 +32,7 @@ struct RenderOptions {
     bool rerunSettled = false;   // --rerun-settled: execute every pass every frame (frame-cost measurements)
     int frames = 30;
     int warmup = 5;
+    int flythrough = 0;                  // --flythrough[=N]: N frames of the scripted camera path; 0: still camera
     std::vector<float> background;
     std::string preset;                      // --preset low|medium|high: the method's preset
     std::vector<std::string> sets;           // --set METHOD.KEY=VALUE, in order
@@ -88,6 +89,7 @@ struct BenchOptions {
     SceneSetupOptions setup;
     std::vector<float> ambient;
     std::vector<float> background;
+    int flythrough = 0;               // --flythrough[=N]: each cell flies N frames of the scripted path, unscored
     bool useCurrentContext = false;   // in-process callers (tests) that hold a current GL context
     // A sweep spread over processes (app/bench_command.cpp): --plan prints the jobs, --cell ID
     // runs one of --manifest, --merge DIR gathers their results, --ids KIND lists job ids.
