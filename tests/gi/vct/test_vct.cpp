@@ -3,6 +3,8 @@
 // measured PSNR/timing table of the README (printed, "VCT-TABLE" lines).
 #include <gtest/gtest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -214,9 +216,30 @@ TEST(Vct, CornellErrorAgainstResolutionIsMeasured) {
         }
 }
 
+// A camera move traces again (the pass is not settled) but keeps the voxels and their light.
 TEST(Vct, CameraMoveReusesVoxels) {
-    const VctImages v = renderVct(makeBuiltinScene("cornell"), vctSettings(), 2);
-    EXPECT_TRUE(v.cachedSecondFrame);
+    context();
+    const Scene scene = makeBuiltinScene("cornell");
+    RenderSettings s = vctSettings();
+    s.gi = "vct";
+    Renderer r(scene, s);
+    const VctPass* pass = nullptr;
+    size_t index = 0;
+    for (size_t i = 0; i < r.passes().size(); ++i)
+        if (auto* v = dynamic_cast<const VctPass*>(r.passes()[i].get())) pass = v, index = i;
+    ASSERT_NE(pass, nullptr);
+    r.renderFrame();
+    EXPECT_FALSE(pass->voxelsReusedLastFrame());
+    CameraMatrices c = r.camera();
+    c.view = glm::translate(c.view, glm::vec3(0.05f, 0.0f, 0.0f));
+    c.viewProj = c.proj * c.view;
+    c.invViewProj = glm::inverse(c.viewProj);
+    c.position = glm::vec3(glm::inverse(c.view)[3]);
+    r.setCamera(c);
+    r.renderFrame();
+    EXPECT_FALSE(r.skippedLastFrame()[index]) << "a camera move must trace again";
+    EXPECT_TRUE(pass->voxelsReusedLastFrame());
+    EXPECT_EQ(pass->voxelizations(), 1);
 }
 
 // A light edit keeps the voxels (occupancy, albedo, normals) and injects the light again: the
