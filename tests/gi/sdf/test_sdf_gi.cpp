@@ -71,13 +71,19 @@ SdfImages read(const Renderer& r) {
     return out;
 }
 
-// Renders `frames` frames (the method's framesToConverge when 0) of a static view.
+// Renders `frames` frames of a static view; 0: until converged (SDFGI's probes: until the field
+// says so, at most the method's framesToConverge; per-pixel rays: framesToConverge).
 SdfImages renderSdf(const Scene& scene, RenderSettings s, int frames = 0) {
     context();
     s.gi = "sdf";
-    if (frames <= 0) frames = giMethod("sdf").framesToConverge(s);
+    const bool untilConverged = frames <= 0;
+    if (untilConverged) frames = giMethod("sdf").framesToConverge(s);
     Renderer r(scene, s);
-    for (int f = 0; f < frames; ++f) r.renderFrame();
+    for (int f = 0; f < frames; ++f) {
+        r.renderFrame();
+        const probes::ProbeField* field = sdfPass(r).probeField();
+        if (untilConverged && field && field->converged()) break;
+    }
     return read(r);
 }
 
