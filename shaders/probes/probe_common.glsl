@@ -111,22 +111,40 @@ void octBilinear(vec3 d, int size, out ivec2 texels[4], out vec4 weights) {
     weights = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
 }
 
-// E / pi (the cosine-weighted mean incoming radiance) of probe i for normal n.
-vec3 probeIrradianceOverPi(int i, vec3 n) {
-    int base = i * irradianceStride();
+// What reading any probe's irradiance for one normal needs, worked out once per shading point
+// (a gather reads 8 probes with the same normal): SH, each coefficient's basis x cosine-lobe
+// factor; octahedral, the four texels around the normal and their bilinear weights.
+struct IrradianceLookup {
+    float sh[9];
+    int texels[4];
+    vec4 weights;
+};
+
+IrradianceLookup irradianceLookup(vec3 n) {
+    IrradianceLookup l;
     if (u_storage == PROBE_OCTAHEDRAL) {
         ivec2 t[4];
-        vec4 w;
-        octBilinear(n, OCT_IRRADIANCE_SIZE, t, w);
-        vec3 e = vec3(0.0);
-        for (int k = 0; k < 4; ++k) e += w[k] * probeIrradiance[base + t[k].y * OCT_IRRADIANCE_SIZE + t[k].x].rgb;
+        octBilinear(n, OCT_IRRADIANCE_SIZE, t, l.weights);
+        for (int k = 0; k < 4; ++k) l.texels[k] = t[k].y * OCT_IRRADIANCE_SIZE + t[k].x;
+    } else {
+        for (int c = 0; c < 9; ++c) l.sh[c] = shCosine(c) * shBasis(c, n);
+    }
+    return l;
+}
+
+// E / pi (the cosine-weighted mean incoming radiance) of probe i for the lookup's normal.
+vec3 probeIrradianceOverPi(int i, IrradianceLookup l) {
+    int stride = irradianceStride();
+    int base = i * stride;
+    vec3 e = vec3(0.0);
+    if (u_storage == PROBE_OCTAHEDRAL) {
+        for (int k = 0; k < 4; ++k) e += l.weights[k] * probeIrradiance[base + l.texels[k]].rgb;
         return e;
     }
-    vec3 e = vec3(0.0);
-    int n9 = irradianceStride();
-    for (int c = 0; c < n9; ++c) e += shCosine(c) * shBasis(c, n) * probeIrradiance[base + c].rgb;
+    for (int c = 0; c < stride; ++c) e += l.sh[c] * probeIrradiance[base + c].rgb;
     return max(e, vec3(0.0)) * INV_PI;  // low orders ring below zero behind strong lights
 }
+vec3 probeIrradianceOverPi(int i, vec3 n) { return probeIrradianceOverPi(i, irradianceLookup(n)); }
 
 // Mean and mean^2 of the distance probe i saw around direction d.
 vec2 probeDistanceMoments(int i, vec3 d) {
@@ -155,18 +173,22 @@ int gridAt(vec3 P) {
 // probe seeing P (from its distance moments: light behind a wall the probe saw closer than P is cut).
 vec3 sampleProbeGrid(int g, vec3 P, vec3 N, bool visibility) {
     ivec3 counts = u_gridCounts[g];
+    int first = gridBase(g);
     vec3 gp = (P - u_gridFirst[g]) / u_gridStep[g];
     ivec3 base = clamp(ivec3(floor(gp)), ivec3(0), max(counts - 2, ivec3(0)));
     vec3 alpha = clamp(gp - vec3(base), 0.0, 1.0);
+    IrradianceLookup lookup = irradianceLookup(N);
     vec3 sum = vec3(0.0);
     float weights = 0.0;
     for (int k = 0; k < 8; ++k) {
         ivec3 off = ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1);
-        int i = probeIndex(g, min(base + off, counts - 1));
-        if (probeOff(i)) continue;
+        ivec3 c = min(base + off, counts - 1);
+        int i = first + c.x + counts.x * (c.y + counts.y * c.z);
+        vec4 state = probeState[2 * i];
+        if (state.w > 1.5) continue;  // switched off
         vec3 tri = mix(1.0 - alpha, alpha, vec3(off));
         float w = tri.x * tri.y * tri.z;
-        vec3 toProbe = probePosition(i) - P;
+        vec3 toProbe = u_gridFirst[g] + vec3(c) * u_gridStep[g] + state.xyz - P;
         float d = length(toProbe);
         vec3 dir = d > 1e-30 ? toProbe / d : N;
         float facing = 0.5 * (dot(dir, N) + 1.0);
@@ -181,7 +203,7 @@ vec3 sampleProbeGrid(int g, vec3 P, vec3 N, bool visibility) {
             }
         }
         w = max(w, 1e-7);
-        sum += w * probeIrradianceOverPi(i, N);
+        sum += w * probeIrradianceOverPi(i, lookup);
         weights += w;
     }
     return weights > 0.0 ? sum / weights : vec3(0.0);

@@ -59,7 +59,7 @@ void main() {
             float w = exp(-float(x * x + y * y) / (2.0 * sigma * sigma)) * exp(-plane) *
                       pow(saturate(dot(t.normal, s.normal)), 16.0);
             if (w < 1e-6) continue;
-            diffuse += w * texelFetch(s_diffuse, q, 0).rgb;
+            if (u_gather.x < 0.5) diffuse += w * texelFetch(s_diffuse, q, 0).rgb;
             ao += w * texelFetch(s_occlusion, q, 0).r;
             total += w;
             // The mirror ray is sharp: only the nearest ring smooths it.
