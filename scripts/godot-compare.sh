@@ -6,6 +6,7 @@
 # their mean): two figures far apart mean the machine was not quiet. Needs godot3 and xvfb (Debian):
 #   apt-get install -y --no-install-recommends godot3 xvfb
 # Usage (project root, after a build): bash scripts/godot-compare.sh [build/gisandbox]
+# ONLY=sdf,probes keeps the direct row and the rows of those methods (a shorter sitting).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${1:-build/gisandbox}
@@ -35,6 +36,14 @@ rows=(
   "probe GI (GIProbe 64 / our probes realtime)|gi64|--gi probes --preset realtime"
 )
 variants="direct ssao gi64 gi128"
+if [ -n "${ONLY:-}" ]; then
+  kept=("${rows[0]}")
+  for row in "${rows[@]:1}"; do
+    for m in ${ONLY//,/ }; do [[ "$row" == *"--gi $m "* ]] && kept+=("$row"); done
+  done
+  rows=("${kept[@]}")
+  variants="direct gi64 gi128"
+fi
 
 godot() {  # variant -> median ms per frame
   bash "$peer/run.sh" "$1" | sed -n 's/.*FRAME_MS[^0-9]*\([0-9.]*\).*/\1/p' | head -1

@@ -28,7 +28,8 @@ constexpr int kMaxGrids = kMaxCascades;
     X(UP_VIEW_PROJ, 528, 1) \
     X(UP_SLOT_OFFSET, 529, 1) /* trace/blend: batch slot of work group 0 (a batch past the group limit is split) */ \
     X(UP_BATCH_SLOT, 530, 1) /* probes.rays view: the drawn probe's slot in the last batch, -1 none */ \
-    X(UP_CLASSIFY_GRID, 531, 1) /* classify: the grid whose probes are (re)classified, -1 all */
+    X(UP_CLASSIFY_GRID, 531, 1) /* classify: the grid whose probes are (re)classified, -1 all */ \
+    X(UP_GATHER_SCALE, 532, 1) /* probe GI: full-resolution pixels per gathered pixel (1, 2, 4) */
 
 enum ProbeUniform : int { GIS_PROBE_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kProbeUniforms[] = {GIS_PROBE_UNIFORMS(GIS_UNIFORM_SLOT)};

@@ -36,6 +36,10 @@ const ParamTable<ProbeSettings>& probeParams() {
                  100000, U::Live)
         .real(&S::normalBias, "normal-bias", "Normal/view bias", "offset of the shading point, x the probe step",
               0.0, 1.0, U::Live)
+        .choice(&S::gatherScale, "gather-scale", "Gather scale",
+                "1 = gather every pixel; 2, 4 = every 2x2 / 4x4 block's first pixel, spread by joint bilateral "
+                "upsampling (pixels on an edge gather their own)",
+                {"1", "2", "4"}, U::Rebuild)
         .real(&S::intensity, "intensity", "Intensity", "scales indirect.diffuse", 0.0, 16.0, U::Live)
         .integer(&S::debugProbe, "debug-probe", "Debug probe",
                  "the probe whose last rays probes.rays draws (x fastest, then y, z); -1 = the middle one", -1,

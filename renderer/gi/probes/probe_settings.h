@@ -21,10 +21,12 @@ struct ProbeSettings {
     float threshold = 0.01f;    // probes.threshold: relative change below which updates stop (live)
     int maxUpdates = 100;       // probes.max-updates: updates per probe after which they stop anyway (live)
     float normalBias = 0.1f;    // probes.normal-bias: along the normal and towards the eye, x probe step (live)
+    int gatherScale = 0;        // probes.gather-scale: 1 | 2 | 4 pixels per gathered pixel, upsampled (rebuild)
     float intensity = 1.0f;     // probes.intensity: scales indirect.diffuse (live)
     int debugProbe = -1;        // probes.debug-probe: whose rays probes.rays draws; -1 = the middle one (live)
     probes::Storage storageKind() const { return probes::Storage(storage); }
     probes::FieldSettings field() const;  // what the shared probe pipeline reads
+    int gatherPixels() const { return 1 << gatherScale; }  // full-resolution pixels per gathered one, per axis
 };
 
 const ParamTable<ProbeSettings>& probeParams();

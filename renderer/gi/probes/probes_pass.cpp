@@ -23,12 +23,14 @@ ParamValue choiceValue(const char* name) {
 }  // namespace
 
 const ProgramDesc kShadeProgram{"probe_shade", {"gi/probes/probe_shade.comp"}, {}};
+const ProgramDesc kUpsampleProgram{"probe_upsample", {"gi/probes/probe_upsample.comp"}, {}};
 
 std::vector<ProgramDesc> ProbesPass::programs() {
     std::vector<ProgramDesc> all = Voxelizer::programs();
     for (const auto& list : {VoxelRadiance::programs(), DistanceField::programs(), fieldPrograms()})
         all.insert(all.end(), list.begin(), list.end());
     all.push_back(kShadeProgram);
+    all.push_back(kUpsampleProgram);
     return all;
 }
 
@@ -54,6 +56,11 @@ ProbesPass::ProbesPass(SceneServices& services, const RenderSettings& settings)
                                           built_.field());
     diffuse_ = gl::createTexture2D(scope, GL_RGBA16F, settings.width, settings.height);
     shadeProgram_ = buildProgram(kShadeProgram);
+    const int k = built_.gatherPixels();
+    if (k > 1) {
+        gathered_ = gl::createTexture2D(scope, GL_RGBA16F, (settings.width + k - 1) / k, (settings.height + k - 1) / k);
+        upsampleProgram_ = buildProgram(kUpsampleProgram);
+    }
 }
 
 // The scene volume rebuilds what the change touched (a light edit relights it alone); the probes
@@ -63,19 +70,30 @@ void ProbesPass::invalidate(Changes c) {
     changed_ = true;
 }
 
+// The gather (probe_gather.glsl) into indirect.diffuse, or at 1/probes.gather-scale and upsampled.
 void ProbesPass::shade(const Frame& frame, const ProbeSettings& s) {
-    const GLuint p = shadeProgram_.id();
-    glUseProgram(p);
-    field_->bindForGather(p);
-    glProgramUniformMatrix4fv(p, UP_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
-    glProgramUniform3fv(p, UP_CAMERA_POS, 1, &frame.camera.position[0]);
-    glProgramUniform4f(p, UP_SHADE_PARAMS, s.normalBias, s.intensity, s.visibility ? 1.0f : 0.0f, 0.0f);
+    const int k = built_.gatherPixels();
     const GLuint gbuffer[2] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal)};
-    glBindTextures(4, 2, gbuffer);
-    glBindSamplers(4, 2, nullptr);
-    glBindImageTexture(0, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl::dispatchCompute(gl::groupsFor(diffuse_.width, 8), gl::groupsFor(diffuse_.height, 8), 1, "probes");
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    auto run = [&](GLuint p, const gl::Texture& out) {
+        glUseProgram(p);
+        field_->bindForGather(p);
+        glProgramUniformMatrix4fv(p, UP_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
+        glProgramUniform3fv(p, UP_CAMERA_POS, 1, &frame.camera.position[0]);
+        glProgramUniform4f(p, UP_SHADE_PARAMS, s.normalBias, s.intensity, s.visibility ? 1.0f : 0.0f, 0.0f);
+        glProgramUniform1i(p, UP_GATHER_SCALE, k);
+        glBindTextures(4, 2, gbuffer);
+        glBindSamplers(4, 3, nullptr);
+        glBindImageTexture(0, out.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        gl::dispatchCompute(gl::groupsFor(out.width, 8), gl::groupsFor(out.height, 8), 1, "probes");
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    };
+    if (k == 1) {
+        run(shadeProgram_.id(), diffuse_);
+        return;
+    }
+    run(shadeProgram_.id(), gathered_);
+    glBindTextureUnit(6, gathered_.id());
+    run(upsampleProgram_.id(), diffuse_);
 }
 
 Pass::Progress ProbesPass::progress() const {
@@ -117,11 +135,12 @@ GiMethod probesMethod() {
         {"medium", "SH L2, spacing 1/4, 128 rays, 64^3 field", {}},
         {"high", "octahedral maps, spacing 1/6, 256 rays, 64^3 field",
          {{"probes.spacing", {0.167}}, {"probes.rays", {256.0}}, {"probes.storage", choiceValue("octahedral")}}},
-        {"realtime", "high's probes within a budget of 16384 rays per frame (64 probes), most urgent first",
+        {"realtime", "high's probes within 16384 rays per frame (64 probes), gathered every 4x4 pixels and upsampled",
          {{"probes.spacing", {0.167}},
           {"probes.rays", {256.0}},
           {"probes.storage", choiceValue("octahedral")},
-          {"probes.ray-budget", {16384.0}}}},
+          {"probes.ray-budget", {16384.0}},
+          {"probes.gather-scale", choiceValue("4")}}},
     };
     m.programs = &ProbesPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) {

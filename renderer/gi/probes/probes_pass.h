@@ -59,8 +59,8 @@ private:
     ProbeSettings built_;
     SceneVolume* volume_ = nullptr;   // the renderer's, shared (SceneServices)
     std::unique_ptr<probes::ProbeField> field_;
-    gl::Texture diffuse_;
-    gl::Object shadeProgram_;
+    gl::Texture diffuse_, gathered_;   // gathered_: at 1/probes.gather-scale, when above 1
+    gl::Object shadeProgram_, upsampleProgram_;
     bool changed_ = true;             // something arrived through invalidate() since the last execute
 };
 

@@ -198,6 +198,8 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     glProgramUniform3fv(p, UG_ENVIRONMENT, 1, &environment[0]);
     glProgramUniform2f(p, UG_SPECULAR, s.specular ? 1.0f : 0.0f, s.specularRoughness);
     glProgramUniform1f(p, UG_AO, s.aoStrength);
+    glProgramUniform2f(p, UG_GATHER, field_ ? 1.0f : 0.0f, built_.probeField().normalBias);
+    if (field_) field_->bindForGather(p);
     std::vector<glm::vec4> volumes;
     const DistanceField& field = volume_->field();
     for (int i = 0; i < field.layers(); ++i) {
@@ -241,9 +243,8 @@ void SdfGiPass::filter(const Frame& frame, const SdfGiSettings& s) {
     setCommonUniforms(p, frame);
     glProgramUniform1i(p, UG_FILTER, s.filterRadius);
     glProgramUniform1f(p, UG_INTENSITY, s.intensity);
-    glProgramUniform2f(p, UG_GATHER, field_ ? 1.0f : 0.0f, built_.probeField().normalBias);
-    if (field_) field_->bindForGather(p);
-    const GLuint inputs[3] = {history_[current_].id(), reflection_.id(), occlusion_.id()};
+    // SDFGI's gathered diffuse needs no history: it is not noisy.
+    const GLuint inputs[3] = {field_ ? raw_.id() : history_[current_].id(), reflection_.id(), occlusion_.id()};
     glBindTextures(2, 3, inputs);
     glBindImageTexture(0, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);

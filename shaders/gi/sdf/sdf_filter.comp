@@ -3,12 +3,10 @@
 // how well its surface agrees with this one - distance from this pixel's tangent plane and normal
 // similarity - so light does not bleed across edges. Writes the lighting contract's terms:
 // indirect.diffuse, indirect.specular (the mirror ray blended towards the diffuse as roughness
-// rises) and ao. With SDFGI's probes (u_gather.x) the diffuse term is gathered from the probes
-// around the pixel instead (shaders/probes/probe_common.glsl), moved off the surface along the
-// normal and towards the eye as probe GI does.
+// rises) and ao. With SDFGI's probes the diffuse term filtered is the probes' gathered at the
+// traced pixels (sdf_trace.comp), so joint bilateral upsampling spreads it too.
 #include "common.glsl"
 #include "gi/sdf/sdf_gbuffer.glsl"
-#include "probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 2) uniform sampler2D s_diffuse;      // temporally accumulated, traced resolution
@@ -21,15 +19,6 @@ layout(r16f, binding = 2) uniform writeonly image2D i_ao;
 layout(location = UG_FILTER) uniform int u_radius;
 layout(location = UG_CAMERA_POS) uniform vec3 u_cameraPos;
 layout(location = UG_INTENSITY) uniform float u_intensity;
-layout(location = UG_GATHER) uniform vec2 u_gather;   // from the probes (0/1), bias x the probe step
-
-vec3 gatherProbes(Surface s) {
-    vec3 toEye = u_cameraPos - s.position;
-    vec3 V = length(toEye) > 0.0 ? normalize(toEye) : s.normal;
-    float bias = u_gather.y * gridMinStep(gridAt(s.position));
-    return sampleProbes(s.position + (0.2 * s.normal + 0.8 * V) * bias, s.normal, true);
-}
-
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, imageSize(i_diffuse)))) return;
@@ -59,7 +48,7 @@ void main() {
             float w = exp(-float(x * x + y * y) / (2.0 * sigma * sigma)) * exp(-plane) *
                       pow(saturate(dot(t.normal, s.normal)), 16.0);
             if (w < 1e-6) continue;
-            if (u_gather.x < 0.5) diffuse += w * texelFetch(s_diffuse, q, 0).rgb;
+            diffuse += w * texelFetch(s_diffuse, q, 0).rgb;
             ao += w * texelFetch(s_occlusion, q, 0).r;
             total += w;
             // The mirror ray is sharp: only the nearest ring smooths it.
@@ -75,7 +64,7 @@ void main() {
         ao = texelFetch(s_occlusion, centre, 0).r;
         total = 1.0;
     }
-    diffuse = u_gather.x > 0.5 ? gatherProbes(s) : diffuse / total;
+    diffuse /= total;
     vec3 specular = diffuse;
     if (reflectionWeight > 0.0) {
         float a = saturate(reflectionWeight / reflectionTotal);

@@ -11,6 +11,7 @@
 #include "sampling.glsl"
 #include "gi/sdf/sdf_gbuffer.glsl"
 #include "sdf/sdf_march.glsl"
+#include "probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 2) uniform sampler2D s_gbufMaterial;  // metallic, roughness, occlusion, specular
@@ -32,6 +33,16 @@ layout(location = UG_FRAME) uniform uint u_frame;
 layout(location = UG_ENVIRONMENT) uniform vec3 u_environment;
 layout(location = UG_SPECULAR) uniform vec2 u_specular;
 layout(location = UG_AO) uniform float u_aoStrength;
+layout(location = UG_GATHER) uniform vec2 u_gather;   // from SDFGI's probes (0/1), bias x the probe step
+
+// SDFGI: the diffuse term from the probes around the surface (shaders/probes/probe_common.glsl),
+// moved off it along the normal and towards the eye as probe GI does.
+vec3 gatherProbes(Surface s) {
+    vec3 toEye = u_cameraPos - s.position;
+    vec3 V = length(toEye) > 0.0 ? normalize(toEye) : s.normal;
+    float bias = u_gather.y * gridMinStep(gridAt(s.position));
+    return sampleProbes(s.position + (0.2 * s.normal + 0.8 * V) * bias, s.normal, true);
+}
 
 SdfCascades cascades() { return SdfCascades(u_cascades, u_cascadeCount, u_resolution); }
 
@@ -113,7 +124,8 @@ void main() {
         reflection = vec4(rayRadiance(h), 1.0 - roughness / max(u_specular.y, 1e-6));
     }
 
-    imageStore(i_diffuse, pixel, vec4(finiteOrZero(sum / float(max(u_rays, 1))), 1.0));
+    vec3 diffuse = u_gather.x > 0.5 ? gatherProbes(s) : sum / float(max(u_rays, 1));
+    imageStore(i_diffuse, pixel, vec4(finiteOrZero(diffuse), 1.0));
     imageStore(i_reflection, pixel, vec4(finiteOrZero(reflection.rgb), reflection.a));
     imageStore(i_ao, pixel, vec4(nearFieldOcclusion(vol, home, s.position, s.normal, max(u_march.w, 0.5) * cell)));
     imageStore(i_info, pixel, vec4(steps / float(max(u_rays, 1)), firstNormal));

@@ -1,0 +1,35 @@
+// Probe GI's gather at one full-resolution pixel: the lighting contract's indirect.diffuse (E / pi)
+// from the 8 probes around the shading point, moved off the surface along the normal and towards
+// the eye (DDGI's bias, in units of the smallest probe step) so that a probe's distance moments do
+// not shadow the very surface they were measured on. Shared by the gather at the traced
+// resolution (probe_shade.comp) and the upsampling's fall-back (probe_upsample.comp).
+#include "probes/probe_common.glsl"
+
+layout(binding = 4) uniform sampler2D s_depth;
+layout(binding = 5) uniform sampler2D s_gbufNormal;
+layout(location = UP_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
+layout(location = UP_CAMERA_POS) uniform vec3 u_cameraPos;
+layout(location = UP_SHADE_PARAMS) uniform vec4 u_shadeParams;  // bias, intensity, visibility on, -
+
+struct GatherSurface {
+    bool valid;     // false: background
+    vec3 position;  // world
+    vec3 normal;
+};
+
+GatherSurface gatherSurface(ivec2 pixel) {
+    ivec2 size = textureSize(s_depth, 0);
+    pixel = clamp(pixel, ivec2(0), size - 1);
+    float depth = texelFetch(s_depth, pixel, 0).r;
+    vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
+    vec4 world = u_invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    return GatherSurface(depth < 1.0, world.xyz / world.w, normalize(texelFetch(s_gbufNormal, pixel, 0).xyz));
+}
+
+vec3 gatherAt(GatherSurface s) {
+    vec3 toEye = u_cameraPos - s.position;
+    vec3 V = length(toEye) > 0.0 ? normalize(toEye) : s.normal;
+    float bias = u_shadeParams.x * gridMinStep(gridAt(s.position));
+    vec3 e = sampleProbes(s.position + (0.2 * s.normal + 0.8 * V) * bias, s.normal, u_shadeParams.z > 0.5);
+    return finiteOrZero(e * u_shadeParams.y);
+}
