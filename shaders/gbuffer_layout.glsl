@@ -13,3 +13,14 @@ ivec2 decodeBrdfOverride(float encoded, ivec2 global) {
     int d = (e & 15) - 1, s = ((e >> 4) & 15) - 1;
     return ivec2(d >= 0 ? d : global.x, s >= 0 ? s : global.y);
 }
+
+// The world position of full-resolution pixel `pixel` of a depth target of `size`, through the
+// inverse view-projection; false where no surface was drawn (the background).
+bool gbufferPosition(sampler2D depth, mat4 invViewProj, ivec2 pixel, out vec3 position) {
+    ivec2 size = textureSize(depth, 0);
+    float d = texelFetch(depth, pixel, 0).r;
+    vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
+    vec4 world = invViewProj * vec4(uv * 2.0 - 1.0, d * 2.0 - 1.0, 1.0);
+    position = world.xyz / world.w;
+    return d < 1.0;
+}

@@ -3,6 +3,7 @@
 // the eye (DDGI's bias, in units of the smallest probe step) so that a probe's distance moments do
 // not shadow the very surface they were measured on. Shared by the gather at the traced
 // resolution (probe_shade.comp) and the upsampling's fall-back (probe_upsample.comp).
+#include "gbuffer_layout.glsl"
 #include "probes/probe_common.glsl"
 
 layout(binding = 4) uniform sampler2D s_depth;
@@ -18,12 +19,11 @@ struct GatherSurface {
 };
 
 GatherSurface gatherSurface(ivec2 pixel) {
-    ivec2 size = textureSize(s_depth, 0);
-    pixel = clamp(pixel, ivec2(0), size - 1);
-    float depth = texelFetch(s_depth, pixel, 0).r;
-    vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
-    vec4 world = u_invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
-    return GatherSurface(depth < 1.0, world.xyz / world.w, normalize(texelFetch(s_gbufNormal, pixel, 0).xyz));
+    pixel = clamp(pixel, ivec2(0), textureSize(s_depth, 0) - 1);
+    GatherSurface s;
+    s.valid = gbufferPosition(s_depth, u_invViewProj, pixel, s.position);
+    s.normal = normalize(texelFetch(s_gbufNormal, pixel, 0).xyz);
+    return s;
 }
 
 vec3 gatherAt(GatherSurface s) {
