@@ -124,6 +124,12 @@ void ProbeField::invalidate(Changes c) {
     }
 }
 
+Pass::Progress ProbeField::progress() const {
+    if (converged_) return {finished_, finished_, "updates"};
+    const int target = maxUpdates();
+    return {std::min(finished_, target - 1), target, "updates"};
+}
+
 int ProbeField::maxUpdates() const { return maxUpdates_ * ((count_ + capacity_ - 1) / capacity_); }
 
 void ProbeField::setGridUniforms(GLuint p) const {
@@ -266,17 +272,21 @@ void ProbeField::trace(const Frame& frame, const FieldSettings& s, int batch) {
                        s.visibility ? 1.0f : 0.0f);
     glProgramUniform4f(p, UP_SHADE_PARAMS, s.normalBias, 1.0f, 0.0f, 0.0f);
     volume_->field().bind(0);
-    // Albedo per cascade (its own texture each), for the multi-bounce term.
-    GLuint textures[6] = {volume_->radianceTexture()};
-    for (int c = 0; c < 4; ++c) textures[1 + c] = volume_->grid(std::min(c, volume_->cascadeCount() - 1)).albedo.id();
-    glBindTextures(2, 5, textures);
+    // Units 2.. (probe_trace.comp): the radiance, then each cascade's albedo (its own texture each,
+    // for the multi-bounce term; unused units repeat the last cascade's).
+    constexpr int kUnits = 1 + kMaxGrids;
+    GLuint textures[kUnits] = {volume_->radianceTexture()};
+    for (int c = 0; c < kMaxGrids; ++c)
+        textures[1 + c] = volume_->grid(std::min(c, volume_->cascadeCount() - 1)).albedo.id();
+    glBindTextures(2, kUnits, textures);
     glBindSamplers(0, 2, nullptr);
-    const GLuint samplers[5] = {sampler_.id(), sampler_.id(), sampler_.id(), sampler_.id(), sampler_.id()};
-    glBindSamplers(2, 5, samplers);
+    GLuint samplers[kUnits];
+    std::fill_n(samplers, kUnits, sampler_.id());
+    glBindSamplers(2, kUnits, samplers);
     bindBuffers();
     gl::dispatchComputeSplit(batch, [&](GLuint slot) { glProgramUniform1i(p, UP_SLOT_OFFSET, int(slot)); });
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glBindSamplers(2, 5, nullptr);
+    glBindSamplers(2, 1 + kMaxGrids, nullptr);
 }
 
 void ProbeField::blend(int mode, const FieldSettings& s, int batch) {

@@ -79,8 +79,9 @@ public:
     bool converged() const { return converged_; }
     bool updatedLastFrame() const { return updatedLastFrame_; }
     int updates() const { return updates_; }            // frames with an update since the last restart
-    int finishedUpdates() const { return finished_; }   // of those, read back
-    int maxUpdates() const;                             // the most update frames there can be
+    // Update frames as a pass's progress: done = read back, target = the most there can be, both
+    // the updates done once converged (so `--timings` divides by those).
+    Pass::Progress progress() const;
     float lastChange() const { return lastChange_; }    // largest relative change of the last batch read back
     int lastBatch() const { return lastBatch_; }        // probes the last update traced
     uint64_t lastBatchRays() const { return lastRays_; }  // rays it traced, counted on the GPU
@@ -98,6 +99,7 @@ public:
     std::string describe() const;   // "probes 5x5x5 = 125, sh2 storage, ..."
 
 private:
+    int maxUpdates() const;   // the most update frames there can be
     void classify(int grid);
     void readBack(const FieldSettings& live);
     std::vector<int> schedule(const Frame& frame, const FieldSettings& live) const;

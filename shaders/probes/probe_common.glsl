@@ -209,3 +209,13 @@ vec3 sampleProbeGrid(int g, vec3 P, vec3 N, bool visibility) {
     return weights > 0.0 ? sum / weights : vec3(0.0);
 }
 vec3 sampleProbes(vec3 P, vec3 N, bool visibility) { return sampleProbeGrid(gridAt(P), P, N, visibility); }
+
+// A gather at a surface seen from `eye`: the shading point moved off the surface along
+// 0.2 N + 0.8 V by `normalBias` x the probe step (DDGI's normal/view bias), so a probe's distance
+// moments do not shadow the very surface they were measured on.
+vec3 sampleProbesSeenFrom(vec3 P, vec3 N, vec3 eye, float normalBias, bool visibility) {
+    vec3 toEye = eye - P;
+    vec3 V = length(toEye) > 0.0 ? normalize(toEye) : N;
+    float bias = normalBias * gridMinStep(gridAt(P));
+    return sampleProbes(P + (0.2 * N + 0.8 * V) * bias, N, visibility);
+}

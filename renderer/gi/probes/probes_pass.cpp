@@ -96,13 +96,7 @@ void ProbesPass::shade(const Frame& frame, const ProbeSettings& s) {
     run(upsampleProgram_.id(), diffuse_);
 }
 
-Pass::Progress ProbesPass::progress() const {
-    const int done = field_->finishedUpdates();
-    // Converged early: the target becomes the updates done, so `--timings` divides by those.
-    if (field_->converged()) return {done, done, "updates"};
-    const int target = field_->maxUpdates();
-    return {std::min(done, target - 1), target, "updates"};
-}
+Pass::Progress ProbesPass::progress() const { return field_->progress(); }
 
 void ProbesPass::execute(Frame& frame) {
     const ProbeSettings live = probeParams().read("probes", frame.settings.params);

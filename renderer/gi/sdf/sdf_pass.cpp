@@ -165,11 +165,7 @@ bool SdfGiPass::settled() const {
 }
 
 Pass::Progress SdfGiPass::progress() const {
-    if (!field_) return {};
-    const int done = field_->finishedUpdates();
-    if (field_->converged()) return {done, done, "updates"};
-    const int target = field_->maxUpdates();
-    return {std::min(done, target - 1), target, "updates"};
+    return field_ ? field_->progress() : Progress{};
 }
 
 std::optional<RayCounts> SdfGiPass::raysTraced() const {

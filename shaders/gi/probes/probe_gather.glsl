@@ -27,9 +27,6 @@ GatherSurface gatherSurface(ivec2 pixel) {
 }
 
 vec3 gatherAt(GatherSurface s) {
-    vec3 toEye = u_cameraPos - s.position;
-    vec3 V = length(toEye) > 0.0 ? normalize(toEye) : s.normal;
-    float bias = u_shadeParams.x * gridMinStep(gridAt(s.position));
-    vec3 e = sampleProbes(s.position + (0.2 * s.normal + 0.8 * V) * bias, s.normal, u_shadeParams.z > 0.5);
+    vec3 e = sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_shadeParams.x, u_shadeParams.z > 0.5);
     return finiteOrZero(e * u_shadeParams.y);
 }

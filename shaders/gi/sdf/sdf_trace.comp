@@ -35,14 +35,6 @@ layout(location = UG_SPECULAR) uniform vec2 u_specular;
 layout(location = UG_AO) uniform float u_aoStrength;
 layout(location = UG_GATHER) uniform vec2 u_gather;   // from SDFGI's probes (0/1), bias x the probe step
 
-// SDFGI: the diffuse term from the probes around the surface (shaders/probes/probe_common.glsl),
-// moved off it along the normal and towards the eye as probe GI does.
-vec3 gatherProbes(Surface s) {
-    vec3 toEye = u_cameraPos - s.position;
-    vec3 V = length(toEye) > 0.0 ? normalize(toEye) : s.normal;
-    float bias = u_gather.y * gridMinStep(gridAt(s.position));
-    return sampleProbes(s.position + (0.2 * s.normal + 0.8 * V) * bias, s.normal, true);
-}
 
 SdfCascades cascades() { return SdfCascades(u_cascades, u_cascadeCount, u_resolution); }
 
@@ -124,7 +116,9 @@ void main() {
         reflection = vec4(rayRadiance(h), 1.0 - roughness / max(u_specular.y, 1e-6));
     }
 
-    vec3 diffuse = u_gather.x > 0.5 ? gatherProbes(s) : sum / float(max(u_rays, 1));
+    // SDFGI: the diffuse term from the probes around the surface (shaders/probes/probe_common.glsl).
+    vec3 diffuse = u_gather.x > 0.5 ? sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_gather.y, true)
+                                    : sum / float(max(u_rays, 1));
     imageStore(i_diffuse, pixel, vec4(finiteOrZero(diffuse), 1.0));
     imageStore(i_reflection, pixel, vec4(finiteOrZero(reflection.rgb), reflection.a));
     imageStore(i_ao, pixel, vec4(nearFieldOcclusion(vol, home, s.position, s.normal, max(u_march.w, 0.5) * cell)));
