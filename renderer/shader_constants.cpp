@@ -11,6 +11,7 @@
 #include "gl/shader.h"
 #include "sdf/sdf_uniforms.h"
 #include "uniforms.h"
+#include "volume/occupancy.h"
 #include "volume/volume_cascades.h"
 #include "voxel/voxel_uniforms.h"
 
@@ -48,6 +49,10 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
             {"MAX_HALF_FLOAT", glslFloat(gl::kMaxHalfFloat)},
             {"SDF_MAX_CASCADES", std::to_string(kMaxCascades)},
             {"MAX_AO_KERNEL", std::to_string(kSsaoMaxKernel)},
+            {"OCC_BLOCK", std::to_string(kOccupancyBlock)},
+            {"OCC_REGION", std::to_string(kOccupancyRegion)},
+            {"OCC_BLOCKS_BINDING", std::to_string(kOccupancyBlocksBinding)},
+            {"OCC_REGIONS_BINDING", std::to_string(kOccupancyRegionsBinding)},
         };
         for (const gl::UniformSlot& u : uniformSlots()) d.emplace_back(u.name, std::to_string(u.location));
         return d;

@@ -32,7 +32,10 @@ namespace gis::voxel {
     X(UV_SPECULAR_ROUGHNESS, 123, 1) /* VCT: above it the specular term is the diffuse cones' */ \
     X(UV_PREV_VIEW_PROJ, 124, 1) \
     X(UV_PREV_CAMERA_POS, 125, 1) \
-    X(UV_HISTORY, 126, 1) /* VCT upsample: history valid (0/1), camera moved (0/1) */
+    X(UV_HISTORY, 126, 1) /* VCT upsample: history valid (0/1), camera moved (0/1) */ \
+    X(UV_CASCADE, 127, 1) /* occupancy build: the cascade written */ \
+    X(UV_KEEP_LO, 128, 1) /* scrolled voxelization: voxels in [lo, hi) were kept (moved), not voxelized again */ \
+    X(UV_KEEP_HI, 129, 1)
 
 enum VoxelUniform : int { GIS_VOXEL_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kVoxelUniforms[] = {GIS_VOXEL_UNIFORMS(GIS_UNIFORM_SLOT)};
