@@ -31,10 +31,7 @@ glm::mat3 randomRotation(int n) {
 }
 
 // The farthest a probe ray may go, and the distance a miss records: the coarsest cascade's diagonal.
-float missDistance(const SceneVolume& v) {
-    const DistanceField& f = v.field();
-    return f.volume(f.layers() - 1).size * 1.7320508f;
-}
+float missDistance(const SceneVolume& v) { return v.cascadeVolume(v.cascadeCount() - 1).size * 1.7320508f; }
 
 bool sameGrid(const ProbeGrid& a, const ProbeGrid& b) {
     return a.first == b.first && a.step == b.step && a.counts == b.counts;
@@ -42,13 +39,16 @@ bool sameGrid(const ProbeGrid& a, const ProbeGrid& b) {
 
 const ProgramDesc kClassifyProgram{"probe_classify", {"probes/probe_classify.comp"}, {}};
 const ProgramDesc kTraceProgram{"probe_trace", {"probes/probe_trace.comp"}, {}};
+const ProgramDesc kClassifyOccupancyProgram{"probe_classify_occupancy", {"probes/probe_classify.comp"}, {{"PROBE_TRACER_OCCUPANCY", "1"}}};
+const ProgramDesc kTraceOccupancyProgram{"probe_trace_occupancy", {"probes/probe_trace.comp"}, {{"PROBE_TRACER_OCCUPANCY", "1"}}};
 const ProgramDesc kBlendProgram{"probe_blend", {"probes/probe_blend.comp"}, {}};
 const ProgramDesc kDebugProgram{"probe_debug", {"probes/probe_debug.comp"}, {}};
 const ProgramDesc kRaysProgram{"probe_rays", {"probes/probe_rays.comp"}, {}};
 }  // namespace
 
 std::vector<ProgramDesc> fieldPrograms() {
-    return {kClassifyProgram, kTraceProgram, kBlendProgram, kDebugProgram, kRaysProgram};
+    return {kClassifyProgram, kTraceProgram, kClassifyOccupancyProgram, kTraceOccupancyProgram,
+            kBlendProgram,    kDebugProgram, kRaysProgram};
 }
 
 int batchCapacity(const FieldSettings& s, int probes) {
@@ -96,8 +96,9 @@ ProbeField::ProbeField(const gl::MemoryScope& scope, SceneVolume& volume, std::v
     glSamplerParameteri(sampler_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
         glSamplerParameteri(sampler_.id(), w, GL_CLAMP_TO_EDGE);
-    classifyProgram_ = buildProgram(kClassifyProgram);
-    traceProgram_ = buildProgram(kTraceProgram);
+    const bool occupancy = built_.tracer == Tracer::Occupancy;
+    classifyProgram_ = buildProgram(occupancy ? kClassifyOccupancyProgram : kClassifyProgram);
+    traceProgram_ = buildProgram(occupancy ? kTraceOccupancyProgram : kTraceProgram);
     blendProgram_ = buildProgram(kBlendProgram);
     debugProgram_ = buildProgram(kDebugProgram);
     raysProgram_ = buildProgram(kRaysProgram);
@@ -150,12 +151,22 @@ void ProbeField::setGridUniforms(GLuint p) const {
 // Only the programs that read the distance field declare these: setting a location a program
 // does not have is GL_INVALID_OPERATION.
 void ProbeField::setFieldUniforms(GLuint p) const {
-    const DistanceField& f = volume_->field();
     glm::vec4 cascades[kMaxGrids]{};
-    for (int i = 0; i < f.layers(); ++i) cascades[i] = glm::vec4(f.volume(i).origin, f.volume(i).size);
+    const int count = volume_->cascadeCount();
+    for (int i = 0; i < count; ++i) {
+        const SdfVolume v = built_.tracer == Tracer::Occupancy ? volume_->cascadeVolume(i) : volume_->field().volume(i);
+        cascades[i] = glm::vec4(v.origin, v.size);
+    }
     glProgramUniform4fv(p, UP_CASCADES, kMaxGrids, &cascades[0][0]);
-    glProgramUniform1i(p, UP_CASCADE_COUNT, f.layers());
-    glProgramUniform1i(p, UP_SDF_RESOLUTION, f.volume(0).resolution);
+    glProgramUniform1i(p, UP_CASCADE_COUNT, count);
+    glProgramUniform1i(p, UP_SDF_RESOLUTION, volume_->layout().resolution());
+}
+
+void ProbeField::bindTracer() const {
+    if (built_.tracer == Tracer::Occupancy)
+        volume_->occupancy().bind();
+    else
+        volume_->field().bind(0);
 }
 
 void ProbeField::bindBuffers() const {
@@ -179,7 +190,7 @@ void ProbeField::classify(int grid) {
     setFieldUniforms(p);
     glProgramUniform1i(p, UP_MODE, built_.relocate ? 0 : 1);
     glProgramUniform1i(p, UP_CLASSIFY_GRID, grid);
-    volume_->field().bind(0);
+    bindTracer();
     glBindSamplers(0, 2, nullptr);
     bindBuffers();
     gl::dispatchCompute(gl::groupsFor(count_, 64), 1, 1, "probes: classify");
@@ -271,7 +282,7 @@ void ProbeField::trace(const Frame& frame, const FieldSettings& s, int batch) {
     glProgramUniform4f(p, UP_BLEND_PARAMS, s.hysteresis, s.bounces ? 1.0f : 0.0f, missDistance(*volume_),
                        s.visibility ? 1.0f : 0.0f);
     glProgramUniform4f(p, UP_SHADE_PARAMS, s.normalBias, 1.0f, 0.0f, 0.0f);
-    volume_->field().bind(0);
+    bindTracer();
     // Units 2.. (probe_trace.comp): the radiance, then each cascade's albedo (its own texture each,
     // for the multi-bounce term; unused units repeat the last cascade's).
     constexpr int kUnits = 1 + kMaxGrids;

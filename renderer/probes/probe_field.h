@@ -28,8 +28,13 @@ struct DebugViewDesc;
 
 namespace probes {
 
+// How probe rays find the scene: sphere-traced through the volume's distance field, or walked
+// through its occupancy hierarchy by HDDA (volume/occupancy.h; no field).
+enum class Tracer { DistanceField, Occupancy };
+
 // What the field is built with (changing one rebuilds it) and what it reads live each frame.
 struct FieldSettings {
+    Tracer tracer = Tracer::DistanceField;
     Storage storage = Storage::Sh2;
     int rays = 128;           // per probe per update
     int rayBudget = 0;        // rays per frame over every probe, 0 = every due probe each frame
@@ -55,7 +60,8 @@ void checkFieldSettings(const FieldSettings& s, const std::string& budgetKey, co
 class ProbeField {
 public:
     // `grids`: at most kMaxGrids, finest first; their probe counts are fixed from here on (place()
-    // may move them). The volume must hold a distance field with one cascade per grid or one.
+    // may move them). The volume must hold what `built.tracer` walks (a distance field or the
+    // occupancy hierarchy), with one cascade per grid or one.
     ProbeField(const gl::MemoryScope& scope, SceneVolume& volume, std::vector<ProbeGrid> grids,
                const FieldSettings& built);
     ProbeField(const ProbeField&) = delete;
@@ -107,6 +113,7 @@ private:
     void blend(int mode, const FieldSettings& live, int batch);
     void setGridUniforms(GLuint program) const;
     void setFieldUniforms(GLuint program) const;
+    void bindTracer() const;   // the field's textures or the occupancy buffers
     void bindBuffers() const;
     void dispatchDebugDraw(const Frame& frame, GLuint target);
     void restart();
@@ -131,7 +138,7 @@ private:
     bool converged_ = false, updatedLastFrame_ = false, pending_ = false, warnedAllOff_ = false;
 };
 
-std::vector<ProgramDesc> fieldPrograms();
+std::vector<ProgramDesc> fieldPrograms();   // both tracers' variants
 
 }  // namespace probes
 }  // namespace gis

@@ -8,8 +8,8 @@ namespace gis {
 namespace {
 auto tied(const VolumeRequest& r) {
     return std::tie(r.method, r.resolution, r.resolutionKey, r.conservative, r.conservativeKey, r.marginVoxels,
-                    r.anisotropic, r.cullBackfaces, r.mips, r.bounces, r.distanceField, r.jfa, r.cascades,
-                    r.cascadeExtent);
+                    r.anisotropic, r.cullBackfaces, r.mips, r.bounces, r.distanceField, r.jfa, r.occupancy,
+                    r.scroll, r.cascades, r.cascadeExtent);
 }
 
 // Level 0 of every cascade's light in one RGBA16F texture, when there is more than one.
@@ -38,7 +38,7 @@ int64_t sceneVolumeBytes(const VolumeRequest& r, int cascades) {
     const int n = r.resolution;
     const int64_t perCascade = voxelGridBytes(n) + voxelRadianceBytes(n, r.anisotropic, r.bounces);
     return cascades * perCascade + (r.distanceField ? distanceFieldBuildBytes(n, cascades) : 0) +
-           radianceAtlasBytes(n, cascades);
+           (r.occupancy ? occupancyBytes(n, cascades) : 0) + radianceAtlasBytes(n, cascades);
 }
 
 SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::MemoryLedger& ledger)
@@ -63,6 +63,7 @@ SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::M
     }
     if (request.distanceField)
         field_ = std::make_unique<DistanceField>(layout_.volume(count - 1, glm::ivec3(0)), scope_, count);
+    if (request.occupancy) occupancy_ = std::make_unique<OccupancyHierarchy>(scope_, n, count);
     if (count > 1) {
         radianceAtlas_ = gl::createTexture3D(scope_, GL_RGBA16F, n, n, n * count);
         glTextureParameteri(radianceAtlas_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -74,6 +75,7 @@ SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::M
 
 void SceneVolume::invalidate(Changes c) {
     for (Cascade& k : cascades_) {
+        if (c & (ChangeGeometry | ChangeMaterials)) k.scrolled = false;  // every cell is voxelized again
         if (c & ChangeGeometry) k.voxelsValid = k.fieldValid = false;
         if (c & ChangeMaterials) k.voxelsValid = false;  // albedo and emission; occupancy, so the field, stays
         if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) k.radianceValid = false;
@@ -85,18 +87,43 @@ std::string SceneVolume::stepPrefix(int cascade) const {
 }
 
 // Cascades follow the camera beyond the snap distance (one cascade is the scene cube and never
-// moves). A moved one keeps its voxelizer, moved to its new cube, and is rebuilt whole.
+// moves). A moved one keeps its voxelizer and is rebuilt whole at its new cube, or, when the
+// request scrolls and its voxels were valid, scrolled there (refresh()).
 void SceneVolume::place(const glm::vec3& camera) {
     for (int i = 0; i < layout_.count; ++i) {
         Cascade& c = cascades_[size_t(i)];
         const glm::ivec3 centred = layout_.centredOffset(i, camera);
         if (c.placed && !layout_.mustMove(c.offset, centred)) continue;
+        const bool scroll = request_.scroll && c.placed && c.voxelsValid;
+        c.scrollBy = scroll ? centred - c.offset : glm::ivec3(0);
+        c.scrolled = scroll;
         c.offset = centred;
         c.placed = true;
         const SdfVolume v = layout_.volume(i, centred);
-        c.voxelizer->moveTo(fitOf(v));
+        if (!scroll) c.voxelizer->moveTo(fitOf(v));
         if (field_) field_->setVolume(i, v);
         c.voxelsValid = c.fieldValid = c.radianceValid = false;
+    }
+}
+
+void SceneVolume::revoxelize(Frame& frame, int i) {
+    Cascade& c = cascades_[size_t(i)];
+    const std::string prefix = stepPrefix(i);
+    const int n = layout_.resolution();
+    if (c.scrolled) {
+        auto t = frame.step(prefix + "voxelize");
+        c.builds.voxelizedCells += c.voxelizer->scroll(fitOf(layout_.volume(i, c.offset)), c.scrollBy, frame.scene);
+        ++c.builds.scrolls;
+    } else {
+        c.voxelizer->moveTo(fitOf(layout_.volume(i, c.offset)));   // a scroll called off by an edit
+        voxelizeFrame(frame, *c.voxelizer, prefix);
+        c.builds.voxelizedCells += int64_t(n) * n * n;
+        ++c.builds.voxelizations;
+    }
+    c.scrollBy = glm::ivec3(0);
+    if (occupancy_) {
+        auto t = frame.step(prefix + "occupancy");
+        occupancy_->build(c.voxelizer->grid(), i);
     }
 }
 
@@ -109,11 +136,14 @@ void SceneVolume::refresh(Frame& frame, int i, const ConeSettings& bounceCones) 
     Cascade& c = cascades_[size_t(i)];
     const std::string prefix = stepPrefix(i);
     const bool fieldStale = field_ && !c.fieldValid;
-    c.lastUpdate = !c.voxelsValid || fieldStale ? Update::Rebuilt : !c.radianceValid ? Update::Relit : Update::Cached;
+    c.lastUpdate = !c.voxelsValid && c.scrolled ? Update::Scrolled
+                   : !c.voxelsValid || fieldStale   ? Update::Rebuilt
+                   : !c.radianceValid               ? Update::Relit
+                                                    : Update::Cached;
     if (!c.voxelsValid) {
-        voxelizeFrame(frame, *c.voxelizer, prefix);
-        ++c.builds.voxelizations;
+        revoxelize(frame, i);
         c.voxelsValid = true;
+        c.scrolled = false;
         c.radianceValid = false;
     }
     if (fieldStale) {
@@ -163,10 +193,20 @@ const DistanceField& SceneVolume::field() const {
     return *field_;
 }
 
+const OccupancyHierarchy& SceneVolume::occupancy() const {
+    if (!occupancy_) throw Error("scene volume: " + request_.method + " asked for no occupancy hierarchy");
+    return *occupancy_;
+}
+
+SdfVolume SceneVolume::cascadeVolume(int i) const {
+    const VolumeFit& f = grid(i).fit;
+    return {f.origin, f.size, f.resolution};
+}
+
 SceneVolume::Update SceneVolume::lastUpdate(int cascade) const { return cascades_.at(size_t(cascade)).lastUpdate; }
 
 const char* SceneVolume::updateName(Update u) {
-    return u == Update::Rebuilt ? "rebuilt" : u == Update::Relit ? "relit" : "cached";
+    return u == Update::Rebuilt ? "rebuilt" : u == Update::Scrolled ? "scrolled" : u == Update::Relit ? "relit" : "cached";
 }
 
 glm::ivec3 SceneVolume::offset(int cascade) const { return cascades_.at(size_t(cascade)).offset; }
@@ -176,6 +216,8 @@ SceneVolume::Builds SceneVolume::builds(int cascade) const {
     Builds sum;
     for (const Cascade& c : cascades_) {
         sum.voxelizations += c.builds.voxelizations;
+        sum.scrolls += c.builds.scrolls;
+        sum.voxelizedCells += c.builds.voxelizedCells;
         sum.fields += c.builds.fields;
         sum.injections += c.builds.injections;
     }

@@ -10,8 +10,9 @@
 // - lights: the light only: no voxelization and no flood;
 // - the camera: only cascades it takes with it (volume_cascades.h) are rebuilt whole.
 // Each step is timed under the executing pass's step timers with the names the methods report
-// ("voxelize", "seed", "jfa.K.STEP", "resolve", "inject", "mips", "bounce"; "cN." before each with
-// more than one cascade).
+// ("voxelize", "occupancy", "seed", "jfa.K.STEP", "resolve", "inject", "mips", "bounce"; "cN."
+// before each with more than one cascade). With `occupancy`, each cascade's occupancy hierarchy
+// (volume/occupancy.h) is rebuilt with its voxels.
 #pragma once
 
 #include <memory>
@@ -21,6 +22,7 @@
 #include "renderer.h"
 #include "sdf/distance_field.h"
 #include "voxel/voxel_radiance.h"
+#include "volume/occupancy.h"
 #include "volume/volume_cascades.h"
 
 namespace gis {
@@ -39,6 +41,8 @@ struct VolumeRequest {
     int bounces = 1;
     bool distanceField = false;
     JfaVariant jfa = JfaVariant::OnePlusJfa;
+    bool occupancy = false;           // the occupancy hierarchy (HDDA traversal)
+    bool scroll = false;              // a moved cascade voxelizes only the cells it gained
     // Cascades around the camera: `cascades` > 0 a fixed count, 0 from `cascadeExtent`.
     int cascades = 1;
     float cascadeExtent = 1.0f;
@@ -78,15 +82,21 @@ public:
     GLuint radianceTexture() const;
     const DistanceField& field() const;  // throws unless request.distanceField
     bool hasField() const { return field_ != nullptr; }
+    const OccupancyHierarchy& occupancy() const;  // throws unless request.occupancy
+    // Cascade i's cube as the voxels have it now.
+    SdfVolume cascadeVolume(int i) const;
 
-    // What the last update() did to a cascade: rebuilt its voxels or field, relit it, or nothing.
-    enum class Update { Rebuilt, Relit, Cached };
-    static const char* updateName(Update u);  // "rebuilt", "relit", "cached"
+    // What the last update() did to a cascade: rebuilt its voxels or field, scrolled them (voxelized
+    // the cells it gained), relit it, or nothing.
+    enum class Update { Rebuilt, Scrolled, Relit, Cached };
+    static const char* updateName(Update u);  // "rebuilt", "scrolled", "relit", "cached"
     Update lastUpdate(int cascade) const;
     glm::ivec3 offset(int cascade) const;   // in the cascade's cells from the scene cube's corner
-    // How often cascade i (or all together, for -1) was voxelized, flooded and lit.
+    // How often cascade i (or all together, for -1) was voxelized (whole or scrolled), flooded and
+    // lit, and how many cells were voxelized in all.
     struct Builds {
-        int voxelizations = 0, fields = 0, injections = 0;
+        int voxelizations = 0, scrolls = 0, fields = 0, injections = 0;
+        int64_t voxelizedCells = 0;
     };
     Builds builds(int cascade = -1) const;
     // The step-name prefix of cascade i ("" with one cascade, else "cN.").
@@ -97,12 +107,14 @@ private:
         std::unique_ptr<Voxelizer> voxelizer;   // moved with the cascade
         std::unique_ptr<VoxelRadiance> radiance;
         glm::ivec3 offset{0};
-        bool placed = false, voxelsValid = false, fieldValid = false, radianceValid = false;
+        glm::ivec3 scrollBy{0};   // a pending scroll (request.scroll) of valid voxels, in cells
+        bool placed = false, voxelsValid = false, fieldValid = false, radianceValid = false, scrolled = false;
         Update lastUpdate = Update::Cached;
         Builds builds;
     };
     void place(const glm::vec3& camera);
     void refresh(Frame& frame, int cascade, const ConeSettings& bounceCones);
+    void revoxelize(Frame& frame, int cascade);
     void relight(Frame& frame, int cascade, const ConeSettings& bounceCones);
     VolumeRequest request_;
     gl::MemoryScope scope_;
@@ -110,6 +122,7 @@ private:
     CascadeLayout layout_;
     std::vector<Cascade> cascades_;
     std::unique_ptr<DistanceField> field_;   // one layer per cascade
+    std::unique_ptr<OccupancyHierarchy> occupancy_;
     gl::Texture radianceAtlas_;              // more than one cascade: their light, a layer each
 };
 

@@ -103,7 +103,31 @@ void Voxelizer::moveTo(const VolumeFit& fit) {
     grid_.fit = fit;
 }
 
-void Voxelizer::voxelize(const GpuScene& scene) {
+void Voxelizer::voxelize(const GpuScene& scene) { voxelizeAround(scene, glm::ivec3(0), glm::ivec3(0)); }
+
+int64_t Voxelizer::scroll(const VolumeFit& fit, const glm::ivec3& shift, const GpuScene& scene) {
+    const int n = grid_.fit.resolution;
+    moveTo(fit);
+    const glm::ivec3 lo = glm::max(glm::ivec3(0), -shift), hi = glm::min(glm::ivec3(n), glm::ivec3(n) - shift);
+    if (glm::any(glm::lessThanEqual(hi, lo))) {
+        voxelize(scene);
+        return int64_t(n) * n * n;
+    }
+    // The kept cells, from where they were (lo + shift) to where they are now (lo), through a
+    // scratch copy: a copy within one texture must not overlap itself.
+    const glm::ivec3 size = hi - lo, from = lo + shift;
+    for (const gl::Texture* t : {&grid_.albedo, &grid_.normal, &grid_.emission}) {
+        gl::Texture scratch = gl::createTexture3D(scope_, t->format, size.x, size.y, size.z);
+        glCopyImageSubData(t->id(), GL_TEXTURE_3D, 0, from.x, from.y, from.z, scratch.id(), GL_TEXTURE_3D, 0, 0, 0, 0,
+                           size.x, size.y, size.z);
+        glCopyImageSubData(scratch.id(), GL_TEXTURE_3D, 0, 0, 0, 0, t->id(), GL_TEXTURE_3D, 0, lo.x, lo.y, lo.z, size.x,
+                           size.y, size.z);
+    }
+    voxelizeAround(scene, lo, hi);
+    return int64_t(n) * n * n - int64_t(size.x) * size.y * size.z;
+}
+
+void Voxelizer::voxelizeAround(const GpuScene& scene, const glm::ivec3& keepLo, const glm::ivec3& keepHi) {
     const int n = grid_.fit.resolution;
     // The sums live only while voxelizing: at 256^3 they are 640 MiB that nothing else needs.
     gl::Buffer sums = gl::createBuffer(scope_, int64_t(n) * n * n * kChannels * 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -121,6 +145,8 @@ void Voxelizer::voxelize(const GpuScene& scene) {
     glProgramUniform1i(p, UV_RESOLUTION, n);
     glProgramUniform1i(p, UV_CONSERVATIVE, mode_ == ConservativeMode::Off ? 0 : mode_ == ConservativeMode::Geometry ? 1 : 2);
     glProgramUniform1f(p, UV_EMISSION_SCALE, 1.0f / emissionMax);
+    glProgramUniform3iv(p, UV_KEEP_LO, 1, &keepLo[0]);
+    glProgramUniform3iv(p, UV_KEEP_HI, 1, &keepHi[0]);
 
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
     glViewport(0, 0, n, n);
@@ -144,6 +170,8 @@ void Voxelizer::voxelize(const GpuScene& scene) {
     glUseProgram(r);
     glProgramUniform1i(r, UV_RESOLUTION, n);
     glProgramUniform1f(r, UV_EMISSION_SCALE, 1.0f / emissionMax);
+    glProgramUniform3iv(r, UV_KEEP_LO, 1, &keepLo[0]);
+    glProgramUniform3iv(r, UV_KEEP_HI, 1, &keepHi[0]);
     glBindImageTexture(0, grid_.albedo.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
     glBindImageTexture(1, grid_.normal.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
     glBindImageTexture(2, grid_.emission.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);

@@ -47,12 +47,19 @@ public:
     void moveTo(const VolumeFit& fit);
     // Clears the grid and voxelizes every draw of the scene.
     void voxelize(const GpuScene& scene);
+    // Places the grid over `fit`, the current cube moved by `shift` of its cells (a cascade that
+    // scrolls with the camera): the cells both cubes hold are moved on the GPU, and only the cells
+    // that entered are voxelized, which gives the same voxels as moveTo() + voxelize(). A shift of
+    // a whole edge or more voxelizes everything. Returns the cells voxelized.
+    int64_t scroll(const VolumeFit& fit, const glm::ivec3& shift, const GpuScene& scene);
     const VoxelGrid& grid() const { return grid_; }
     ConservativeMode mode() const { return mode_; }
     static std::vector<ProgramDesc> programs();
     static bool hardwareConservativeAvailable();
 
 private:
+    // Voxelizes the scene but leaves the cells in [keepLo, keepHi) as they are.
+    void voxelizeAround(const GpuScene& scene, const glm::ivec3& keepLo, const glm::ivec3& keepHi);
     VoxelGrid grid_;
     gl::MemoryScope scope_;
     ConservativeMode mode_;

@@ -1,19 +1,26 @@
 // One probe update, step 1: every probe of the batch (u_batch, most urgent first) shoots u_rays
 // rays (a spherical-Fibonacci set under this update's random rotation), sphere-traced through the
-// distance field's cascades (sdf/sdf_march.glsl), starting in the finest that holds the probe. A
-// hit is shaded from the voxel radiance of the cascade it was found in (direct light and emission
-// as the volume injected them) plus, for multi-bounce, the probes' own irradiance there times the
-// voxel albedo; a miss sees the sky. One workgroup per probe; rays go to the ray buffer for the
+// distance field's cascades (sdf/sdf_march.glsl), or with PROBE_TRACER_OCCUPANCY walked through
+// the occupancy hierarchy by HDDA (volume/hdda.glsl), starting in the finest cascade that holds the
+// probe. A hit is shaded from the voxel radiance of the cascade it was found in (direct light and
+// emission as the volume injected them) plus, for multi-bounce, the probes' own irradiance there
+// times the voxel albedo; a miss sees the sky. One workgroup per probe; rays go to the ray buffer for the
 // blend steps, and their count to the change buffer (what a ray budget is checked against).
 #include "probes/probe_common.glsl"
+#ifdef PROBE_TRACER_OCCUPANCY
+#include "volume/hdda.glsl"
+#else
 #include "sdf/sdf_march.glsl"
+#endif
 
 layout(local_size_x = 64) in;
 layout(std430, binding = 3) writeonly buffer Rays { vec4 rayResults[]; };
 layout(std430, binding = 4) buffer Change { uint u_change; uint u_rayCount; };
 layout(std430, binding = 5) readonly buffer Batch { int u_batch[]; };
+#ifndef PROBE_TRACER_OCCUPANCY
 layout(binding = 0) uniform sampler3D s_distance;
 layout(binding = 1) uniform sampler3D s_coarse;
+#endif
 layout(binding = 2) uniform sampler3D s_voxelRadiance;  // premultiplied by occupancy (a); a layer per cascade
 // Albedo (a = occupancy) of each cascade, its own texture each.
 layout(binding = 3) uniform sampler3D s_voxelAlbedo0;
@@ -46,35 +53,58 @@ vec3 voxelAlbedo(int cascade, vec3 uvw) {
     }
 }
 
-vec3 shadeHit(SdfHit h, SdfCascades cs) {
+// The multi-bounce term: the probes' own irradiance at the hit times its albedo.
+vec3 bounceLight(vec3 P, vec3 N, vec3 albedo) {
+    if (u_blendParams.y < 0.5) return vec3(0.0);
+    float bias = u_shadeParams.x * gridMinStep(gridAt(P));
+    return albedo * sampleProbes(P + N * bias, N, u_blendParams.w > 0.5);
+}
+
+#ifdef PROBE_TRACER_OCCUPANCY
+// The hit voxel's own light and albedo (one voxel, no filtering: its neighbours may be empty).
+vec3 voxelAlbedoAt(int cascade, ivec3 v) {
+    switch (cascade) {
+    case 0: return unpremultiply(texelFetch(s_voxelAlbedo0, v, 0));
+    case 1: return unpremultiply(texelFetch(s_voxelAlbedo1, v, 0));
+    case 2: return unpremultiply(texelFetch(s_voxelAlbedo2, v, 0));
+    default: return unpremultiply(texelFetch(s_voxelAlbedo3, v, 0));
+    }
+}
+
+vec4 traceRay(vec3 origin, vec3 dir) {
+    HddaCascades cs = HddaCascades(u_cascades, u_cascadeCount, u_sdfResolution);
+    HddaHit h = hddaTraceCascades(cs, origin, dir, 0.0, u_blendParams.z, 4096);
+    if (!h.hit) return vec4(u_environment, u_blendParams.z);
+    vec3 radiance = unpremultiply(texelFetch(s_voxelRadiance, h.voxel + ivec3(0, 0, h.cascade * u_sdfResolution), 0));
+    radiance += bounceLight(h.position, h.normal, voxelAlbedoAt(h.cascade, h.voxel));
+    return vec4(finiteOrZero(radiance), max(h.t, 0.0));
+}
+#else
+vec4 traceRay(vec3 origin, vec3 dir) {
+    SdfCascades cs = SdfCascades(u_cascades, u_cascadeCount, u_sdfResolution);
+    SdfMarchParams params = sdfDefaultParams(u_blendParams.z);
+    params.maxSteps = 128;
+    SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, dir, params);
+    if (!h.hit) return vec4(u_environment, u_blendParams.z);
     SdfVolume vol = sdfCascadeVolume(cs, h.cascade);
     vec3 radiance = unpremultiply(textureLod(s_voxelRadiance, sdfLayerCoord(vol, h.cascade, cs.count, h.position), 0.0));
-    if (u_blendParams.y > 0.5) {
-        vec3 albedo = voxelAlbedo(h.cascade, (h.position - vol.origin) / vol.size);
-        vec3 P = h.position;
-        float bias = u_shadeParams.x * gridMinStep(gridAt(P));
-        radiance += albedo * sampleProbes(P + h.normal * bias, h.normal, u_blendParams.w > 0.5);
-    }
-    return finiteOrZero(radiance);
+    radiance += bounceLight(h.position, h.normal, voxelAlbedo(h.cascade, (h.position - vol.origin) / vol.size));
+    return vec4(finiteOrZero(radiance), max(h.t, 0.0));
 }
+#endif
 
 void main() {
     int slot = u_slotOffset + int(gl_WorkGroupID.x);
     int probe = u_batch[slot];
     bool off = probeOff(probe);
     vec3 origin = probePosition(probe);
-    SdfCascades cs = SdfCascades(u_cascades, u_cascadeCount, u_sdfResolution);
-    SdfMarchParams params = sdfDefaultParams(u_blendParams.z);
-    params.maxSteps = 128;
     if (gl_LocalInvocationID.x == 0u) s_traced = 0u;
     barrier();
     uint traced = 0u;
     for (int r = int(gl_LocalInvocationID.x); r < u_rays; r += int(gl_WorkGroupSize.x)) {
         vec4 result = vec4(0.0, 0.0, 0.0, u_blendParams.z);
         if (!off) {
-            vec3 dir = normalize(u_rotation * fibonacciDirection(r, u_rays));
-            SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, dir, params);
-            result = h.hit ? vec4(shadeHit(h, cs), max(h.t, 0.0)) : vec4(u_environment, u_blendParams.z);
+            result = traceRay(origin, normalize(u_rotation * fibonacciDirection(r, u_rays)));
             ++traced;
         }
         rayResults[slot * u_rays + r] = result;

@@ -8,12 +8,15 @@ layout(rgba16f, binding = 2) uniform writeonly image3D i_emission; // rgb emitte
 
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_EMISSION_SCALE) uniform float u_emissionScale;  // the scale voxelize.frag applied
+layout(location = UV_KEEP_LO) uniform ivec3 u_keepLo;   // a scrolled grid's moved cells: left alone
+layout(location = UV_KEEP_HI) uniform ivec3 u_keepHi;
 
 float sumOf(ivec3 v, int channel) { return float(u_voxelSums[voxelSumIndex(v, u_resolution, channel)]); }
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(v, ivec3(u_resolution)))) return;
+    if (all(greaterThanEqual(v, u_keepLo)) && all(lessThan(v, u_keepHi))) return;
     float count = sumOf(v, 0);
     if (count == 0.0) {
         imageStore(i_albedo, v, vec4(0.0));

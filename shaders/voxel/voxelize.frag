@@ -19,6 +19,8 @@ flat in vec2 g_depthRange;
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_CONSERVATIVE) uniform int u_conservative;
 layout(location = UV_EMISSION_SCALE) uniform float u_emissionScale;
+layout(location = UV_KEEP_LO) uniform ivec3 u_keepLo;   // a scrolled grid's moved cells: left alone
+layout(location = UV_KEEP_HI) uniform ivec3 u_keepHi;
 
 ivec3 unswizzleFromAxis(ivec3 s, int axis) { return axis == 0 ? s.zxy : axis == 1 ? s.yzx : s; }
 
@@ -47,6 +49,7 @@ void main() {
     for (int k = k0; k <= k1; ++k) {
         ivec3 voxel = unswizzleFromAxis(ivec3(ivec2(c), k), g_axis);
         if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(u_resolution)))) continue;
+        if (all(greaterThanEqual(voxel, u_keepLo)) && all(lessThan(voxel, u_keepHi))) continue;
         for (int ch = 0; ch < VOXEL_CHANNELS; ++ch)
             atomicAdd(u_voxelSums[voxelSumIndex(voxel, u_resolution, ch)], values[ch]);
     }

@@ -22,15 +22,10 @@ ParamValue choiceValue(const char* name) {
 }
 }  // namespace
 
-const ProgramDesc kShadeProgram{"probe_shade", {"gi/probes/probe_shade.comp"}, {}};
-const ProgramDesc kUpsampleProgram{"probe_upsample", {"gi/probes/probe_upsample.comp"}, {}};
-
 std::vector<ProgramDesc> ProbesPass::programs() {
     std::vector<ProgramDesc> all = Voxelizer::programs();
-    for (const auto& list : {VoxelRadiance::programs(), DistanceField::programs(), fieldPrograms()})
+    for (const auto& list : {VoxelRadiance::programs(), DistanceField::programs(), fieldPrograms(), ScreenGather::programs()})
         all.insert(all.end(), list.begin(), list.end());
-    all.push_back(kShadeProgram);
-    all.push_back(kUpsampleProgram);
     return all;
 }
 
@@ -54,13 +49,7 @@ ProbesPass::ProbesPass(SceneServices& services, const RenderSettings& settings)
     volume_ = &services.volume(volumeRequest(built_));
     field_ = std::make_unique<ProbeField>(scope, *volume_, std::vector<ProbeGrid>{fitProbeGrid(services.bounds(), built_.spacing)},
                                           built_.field());
-    diffuse_ = gl::createTexture2D(scope, GL_RGBA16F, settings.width, settings.height);
-    shadeProgram_ = buildProgram(kShadeProgram);
-    const int k = built_.gatherPixels();
-    if (k > 1) {
-        gathered_ = gl::createTexture2D(scope, GL_RGBA16F, (settings.width + k - 1) / k, (settings.height + k - 1) / k);
-        upsampleProgram_ = buildProgram(kUpsampleProgram);
-    }
+    gather_ = std::make_unique<ScreenGather>(scope, settings.width, settings.height, built_.gatherPixels());
 }
 
 // The scene volume rebuilds what the change touched (a light edit relights it alone); the probes
@@ -68,32 +57,6 @@ ProbesPass::ProbesPass(SceneServices& services, const RenderSettings& settings)
 void ProbesPass::invalidate(Changes c) {
     field_->invalidate(c);
     changed_ = true;
-}
-
-// The gather (probe_gather.glsl) into indirect.diffuse, or at 1/probes.gather-scale and upsampled.
-void ProbesPass::shade(const Frame& frame, const ProbeSettings& s) {
-    const int k = built_.gatherPixels();
-    const GLuint gbuffer[2] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal)};
-    auto run = [&](GLuint p, const gl::Texture& out) {
-        glUseProgram(p);
-        field_->bindForGather(p);
-        glProgramUniformMatrix4fv(p, UP_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
-        glProgramUniform3fv(p, UP_CAMERA_POS, 1, &frame.camera.position[0]);
-        glProgramUniform4f(p, UP_SHADE_PARAMS, s.normalBias, s.intensity, s.visibility ? 1.0f : 0.0f, 0.0f);
-        glProgramUniform1i(p, UP_GATHER_SCALE, k);
-        glBindTextures(4, 2, gbuffer);
-        glBindSamplers(4, 3, nullptr);
-        glBindImageTexture(0, out.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        gl::dispatchCompute(gl::groupsFor(out.width, 8), gl::groupsFor(out.height, 8), 1, "probes");
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    };
-    if (k == 1) {
-        run(shadeProgram_.id(), diffuse_);
-        return;
-    }
-    run(shadeProgram_.id(), gathered_);
-    glBindTextureUnit(6, gathered_.id());
-    run(upsampleProgram_.id(), diffuse_);
 }
 
 Pass::Progress ProbesPass::progress() const { return field_->progress(); }
@@ -104,9 +67,9 @@ void ProbesPass::execute(Frame& frame) {
     field_->update(frame, live.field());
     {
         auto t = frame.step("shade");
-        shade(frame, live);
+        gather_->run(frame, *field_, {live.normalBias, live.intensity, live.visibility});
     }
-    frame.put(resource::kIndirectDiffuse, diffuse_);
+    frame.put(resource::kIndirectDiffuse, gather_->result());
     changed_ = false;
 }
 
@@ -140,12 +103,11 @@ GiMethod probesMethod() {
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) {
         const ProbeSettings p = probeParams().read("probes", s.params);
         const int probes = fitProbeGrid(scene.bounds, p.spacing).count();
-        const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
         return std::vector<std::pair<std::string, uint64_t>>{
             {"probe voxels and distance field", uint64_t(sceneVolumeBytes(volumeRequest(p), 1))},
             {"probes (irradiance, distance moments, state)", uint64_t(fieldStorageBytes(p.field(), probes))},
             {"probe rays", uint64_t(fieldRayBytes(p.field(), probes))},
-            {"probe screen target", pixels * 8}};
+            {"probe screen target", uint64_t(ScreenGather::bytes(s.width, s.height, p.gatherPixels()))}};
     };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<ProbesPass>(b.services, b.settings)); };
     // Updates stop when converged or after max-updates; the bench renders this many frames first.

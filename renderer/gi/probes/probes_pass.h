@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "probes/probe_math.h"
+#include "probes/screen_gather.h"
 #include "gi/probes/probe_settings.h"
 #include "renderer.h"
 #include "volume/scene_volume.h"
@@ -55,12 +56,10 @@ public:
     const SceneVolume& volume() const { return *volume_; }
 
 private:
-    void shade(const Frame& frame, const ProbeSettings& live);
     ProbeSettings built_;
     SceneVolume* volume_ = nullptr;   // the renderer's, shared (SceneServices)
     std::unique_ptr<probes::ProbeField> field_;
-    gl::Texture diffuse_, gathered_;   // gathered_: at 1/probes.gather-scale, when above 1
-    gl::Object shadeProgram_, upsampleProgram_;
+    std::unique_ptr<probes::ScreenGather> gather_;
     bool changed_ = true;             // something arrived through invalidate() since the last execute
 };
 

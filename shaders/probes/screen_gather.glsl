@@ -1,8 +1,9 @@
-// Probe GI's gather at one full-resolution pixel: the lighting contract's indirect.diffuse (E / pi)
-// from the 8 probes around the shading point, moved off the surface along the normal and towards
+// The screen gather of a probe field (renderer/probes/screen_gather.h) at one full-resolution
+// pixel: the lighting contract's indirect.diffuse (E / pi) from the 8 probes around the shading
+// point (in the finest grid that holds it), moved off the surface along the normal and towards
 // the eye (DDGI's bias, in units of the smallest probe step) so that a probe's distance moments do
 // not shadow the very surface they were measured on. Shared by the gather at the traced
-// resolution (probe_shade.comp) and the upsampling's fall-back (probe_upsample.comp).
+// resolution (screen_gather.comp) and the upsampling's fall-back (screen_upsample.comp).
 #include "gbuffer_layout.glsl"
 #include "probes/probe_common.glsl"
 

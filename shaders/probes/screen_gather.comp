@@ -1,6 +1,6 @@
-// Probe GI's gather per traced pixel (probe_gather.glsl): with probes.gather-scale 1 every pixel,
-// else the top-left pixel of each scale x scale block, which probe_upsample.comp then spreads.
-#include "gi/probes/probe_gather.glsl"
+// The screen gather per traced pixel (screen_gather.glsl): at gather scale 1 every pixel, else the
+// top-left pixel of each scale x scale block, which screen_upsample.comp then spreads.
+#include "probes/screen_gather.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba16f, binding = 0) uniform writeonly image2D i_diffuse;

@@ -1,10 +1,10 @@
-// Probe GI's joint bilateral upsampling (probes.gather-scale 2 or 4): each full-resolution pixel
+// The screen gather's joint bilateral upsampling (gather scale 2 or 4): each full-resolution pixel
 // blends the 4 gathered pixels around it by bilinear weight x how well their surface agrees with
 // its own (distance from its tangent plane, relative to its distance from the eye, and normal
 // agreement), so light does not cross a depth or normal edge. A pixel that no gathered neighbour
 // agrees with (a silhouette, a thin object) gathers its own probes: edges cost a full gather and
 // never leak. The probes' light is smooth, so away from edges the blend is what a full gather gives.
-#include "gi/probes/probe_gather.glsl"
+#include "probes/screen_gather.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 6) uniform sampler2D s_gathered;

@@ -1,0 +1,58 @@
+#include "probes/screen_gather.h"
+
+#include "gl/dispatch.h"
+#include "probes/probe_field.h"
+#include "probes/probe_uniforms.h"
+
+namespace gis::probes {
+
+namespace {
+const ProgramDesc kGatherProgram{"probe_screen_gather", {"probes/screen_gather.comp"}, {}};
+const ProgramDesc kUpsampleProgram{"probe_screen_upsample", {"probes/screen_upsample.comp"}, {}};
+
+int reduced(int pixels, int scale) { return (pixels + scale - 1) / scale; }
+}  // namespace
+
+std::vector<ProgramDesc> ScreenGather::programs() { return {kGatherProgram, kUpsampleProgram}; }
+
+int64_t ScreenGather::bytes(int width, int height, int scale) {
+    const int64_t full = int64_t(width) * height * 8;
+    return full + (scale > 1 ? int64_t(reduced(width, scale)) * reduced(height, scale) * 8 : 0);
+}
+
+ScreenGather::ScreenGather(const gl::MemoryScope& scope, int width, int height, int scale) : scale_(scale) {
+    diffuse_ = gl::createTexture2D(scope, GL_RGBA16F, width, height);
+    gatherProgram_ = buildProgram(kGatherProgram);
+    if (scale > 1) {
+        gathered_ = gl::createTexture2D(scope, GL_RGBA16F, reduced(width, scale), reduced(height, scale));
+        upsampleProgram_ = buildProgram(kUpsampleProgram);
+    }
+}
+
+void ScreenGather::dispatch(const Frame& frame, const ProbeField& field, const GatherSettings& s, GLuint p,
+                            const gl::Texture& out) const {
+    const GLuint gbuffer[2] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal)};
+    glUseProgram(p);
+    field.bindForGather(p);
+    glProgramUniformMatrix4fv(p, UP_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
+    glProgramUniform3fv(p, UP_CAMERA_POS, 1, &frame.camera.position[0]);
+    glProgramUniform4f(p, UP_SHADE_PARAMS, s.normalBias, s.intensity, s.visibility ? 1.0f : 0.0f, 0.0f);
+    glProgramUniform1i(p, UP_GATHER_SCALE, scale_);
+    glBindTextures(4, 2, gbuffer);
+    glBindSamplers(4, 3, nullptr);
+    glBindImageTexture(0, out.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    gl::dispatchCompute(gl::groupsFor(out.width, 8), gl::groupsFor(out.height, 8), 1, "probe gather");
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void ScreenGather::run(const Frame& frame, const ProbeField& field, const GatherSettings& s) {
+    if (scale_ == 1) {
+        dispatch(frame, field, s, gatherProgram_.id(), diffuse_);
+        return;
+    }
+    dispatch(frame, field, s, gatherProgram_.id(), gathered_);
+    glBindTextureUnit(6, gathered_.id());
+    dispatch(frame, field, s, upsampleProgram_.id(), diffuse_);
+}
+
+}  // namespace gis::probes
