@@ -6,6 +6,7 @@
 
 #include "emitters/emitter_uniforms.h"
 #include "probes/probe_uniforms.h"
+#include "gi/hddagi/hddagi_uniforms.h"
 #include "gi/sdf/sdf_gi_uniforms.h"
 #include "gl/gl.h"
 #include "gl/shader.h"
@@ -38,6 +39,7 @@ const std::vector<gl::UniformSlot>& uniformSlots() {
         addTable(v, sdf::kSdfUniforms);
         addTable(v, sdfgi::kSdfGiUniforms);
         addTable(v, probes::kProbeUniforms);
+        addTable(v, hddagi::kHddagiUniforms);
         return v;
     }();
     return all;

@@ -10,7 +10,8 @@
     X(pathtraceMethod)         \
     X(vctMethod)               \
     X(sdfMethod)               \
-    X(probesMethod)
+    X(probesMethod)            \
+    X(hddagiMethod)
 
 namespace gis {
 

@@ -51,6 +51,25 @@ std::vector<ProgramDesc> fieldPrograms() {
             kBlendProgram,    kDebugProgram, kRaysProgram};
 }
 
+ProbeGrid cascadeProbeGrid(const SceneVolume& volume, const Aabb& sceneBounds, float spacing, int cascade) {
+    if (cascade == volume.cascadeCount() - 1) return fitProbeGrid(sceneBounds, spacing);
+    const SdfVolume v = volume.cascadeVolume(cascade);
+    return fitProbeGrid(Aabb{v.origin, v.origin + glm::vec3(v.size)}, spacing);
+}
+
+std::vector<ProbeGrid> cascadeProbeGrids(const SceneVolume& volume, const Aabb& sceneBounds, float spacing) {
+    std::vector<ProbeGrid> grids;
+    for (int i = 0; i < volume.cascadeCount(); ++i) grids.push_back(cascadeProbeGrid(volume, sceneBounds, spacing, i));
+    return grids;
+}
+
+int cascadeProbeCount(const Aabb& sceneBounds, const CascadeLayout& layout, float spacing) {
+    int count = fitProbeGrid(sceneBounds, spacing).count();
+    const float e = layout.extent(0);
+    if (layout.count > 1) count += (layout.count - 1) * fitProbeGrid(Aabb{glm::vec3(0.0f), glm::vec3(e)}, spacing).count();
+    return count;
+}
+
 int batchCapacity(const FieldSettings& s, int probes) {
     return s.rayBudget > 0 ? std::clamp(s.rayBudget / std::max(s.rays, 1), 1, std::max(probes, 1)) : std::max(probes, 1);
 }

@@ -24,6 +24,7 @@
 namespace gis {
 
 class SceneVolume;
+struct CascadeLayout;
 struct DebugViewDesc;
 
 namespace probes {
@@ -54,6 +55,13 @@ int64_t fieldStorageBytes(const FieldSettings& s, int probes);
 int64_t fieldRayBytes(const FieldSettings& s, int probes);
 // The probes one frame updates at most.
 int batchCapacity(const FieldSettings& s, int probes);
+// One grid per cascade of the volume (SDFGI's layout): cells of `spacing` x the cascade's extent.
+// The coarsest cascade (which never moves) is fitted to the scene's bounds, so no probe sits on its
+// outer walls; a finer one to its cube, so its probes move with it and their counts stay the same.
+ProbeGrid cascadeProbeGrid(const SceneVolume& volume, const Aabb& sceneBounds, float spacing, int cascade);
+std::vector<ProbeGrid> cascadeProbeGrids(const SceneVolume& volume, const Aabb& sceneBounds, float spacing);
+int cascadeProbeCount(const Aabb& sceneBounds, const CascadeLayout& layout, float spacing);
+
 // Throws gis::Error naming `budgetKey` for a budget that pays for no probe.
 void checkFieldSettings(const FieldSettings& s, const std::string& budgetKey, const std::string& raysKey);
 

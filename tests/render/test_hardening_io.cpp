@@ -174,7 +174,7 @@ TEST(Hardening, EveryMethodRendersWithoutAGlError) {
     for (const gis::GiMethod& m : gis::giMethods()) {
         // Few samples and updates: the calls are what is checked, not convergence.
         const std::string extra = m.name == "pathtrace" || m.name == "ao-reference" ? " --set " + m.name + ".spp=2"
-                                  : m.name == "probes"                              ? " --set probes.max-updates=2"
+                                  : m.name == "probes" || m.name == "hddagi"        ? " --set " + m.name + ".max-updates=2"
                                                                                     : "";
         const gis::test::CliResult r = runCli("render --gl-debug --scene builtin:cornell --size 32x32 --gi " + m.name +
                                               extra + " --out " + quoted(dir + "/" + m.name + ".exr"));

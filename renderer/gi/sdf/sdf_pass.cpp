@@ -65,23 +65,6 @@ VolumeRequest volumeRequest(const SdfGiSettings& s) {
     r.cascadeExtent = s.cascadeExtent;
     return r;
 }
-
-// Cascade i's probe grid: cells of sdf.probe-spacing x the cascade's extent. The coarsest cascade
-// (which never moves) is fitted to the scene's bounds, so no probe sits on its outer walls; a finer
-// one to its cube, so its probes move with it and their counts stay the same.
-probes::ProbeGrid probeGridFor(const SceneVolume& volume, const Aabb& sceneBounds, float spacing, int cascade) {
-    if (cascade == volume.cascadeCount() - 1) return probes::fitProbeGrid(sceneBounds, spacing);
-    const SdfVolume& v = volume.field().volume(cascade);
-    return probes::fitProbeGrid(Aabb{v.origin, v.origin + glm::vec3(v.size)}, spacing);
-}
-
-int probeCount(const Aabb& bounds, const CascadeLayout& layout, float spacing) {
-    int count = probes::fitProbeGrid(bounds, spacing).count();
-    const float e = layout.extent(0);
-    if (layout.count > 1)
-        count += (layout.count - 1) * probes::fitProbeGrid(Aabb{glm::vec3(0.0f), glm::vec3(e)}, spacing).count();
-    return count;
-}
 }  // namespace
 
 std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Scene& scene, const RenderSettings& settings) {
@@ -100,7 +83,7 @@ std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Sc
     // full resolution: diffuse, specular (RGBA16F), ao (R16F)
     rows.push_back({"SDF trace", traced * (5 * 8 + 2 + 2 * 4) + full * (2 * 8 + 2)});
     if (s.probeGather()) {
-        const int probes = probeCount(scene.bounds, layout, s.probeSpacing);
+        const int probes = probes::cascadeProbeCount(scene.bounds, layout, s.probeSpacing);
         rows.push_back({"SDFGI probes (" + std::to_string(probes) + ": irradiance, distance moments, state)",
                         uint64_t(probes::fieldStorageBytes(s.probeField(), probes))});
         rows.push_back({"SDFGI probe rays", uint64_t(probes::fieldRayBytes(s.probeField(), probes))});
@@ -114,10 +97,8 @@ SdfGiPass::SdfGiPass(SceneServices& services, const RenderSettings& settings)
     sceneBounds_ = services.bounds();
     if (built_.probeGather()) {
         probes::checkFieldSettings(built_.probeField(), "sdf.ray-budget", "sdf.probe-rays");
-        std::vector<probes::ProbeGrid> grids;
-        for (int i = 0; i < volume_->cascadeCount(); ++i)
-            grids.push_back(probeGridFor(*volume_, sceneBounds_, built_.probeSpacing, i));
-        field_ = std::make_unique<probes::ProbeField>(scope_, *volume_, std::move(grids), built_.probeField());
+        field_ = std::make_unique<probes::ProbeField>(
+            scope_, *volume_, probes::cascadeProbeGrids(*volume_, sceneBounds_, built_.probeSpacing), built_.probeField());
     }
     scale_ = built_.halfResolution ? 2 : 1;
     const int tw = tracedSize(settings.width, scale_), th = tracedSize(settings.height, scale_);
@@ -154,7 +135,7 @@ void SdfGiPass::invalidate(Changes c) {
 // The probes follow their cascades: a grid whose cascade moved is classified again and restarts.
 void SdfGiPass::placeProbes() {
     for (int i = 0; i < volume_->cascadeCount(); ++i)
-        field_->place(i, probeGridFor(*volume_, sceneBounds_, built_.probeSpacing, i));
+        field_->place(i, probes::cascadeProbeGrid(*volume_, sceneBounds_, built_.probeSpacing, i));
 }
 
 // Probes: converged. Rays: the history has had its frames to converge (framesToConverge).

@@ -1,0 +1,191 @@
+#include "gi/hddagi/hddagi_pass.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "gi/hddagi/hddagi_uniforms.h"
+#include "gi/method.h"
+#include "gl/dispatch.h"
+#include "services/scene_services.h"
+#include "voxel/voxelizer.h"
+
+namespace gis {
+
+using namespace hddagi;
+
+namespace {
+const ProgramDesc kDebugProgram{"hddagi_debug", {"gi/hddagi/hddagi_debug.comp"}, {}};
+
+ParamValue choiceValue(const char* name) {
+    ParamValue v;
+    v.text = name;
+    return v;
+}
+
+// What HDDAGI asks of the scene volume: cascades of voxels and their light, the occupancy
+// hierarchy instead of a distance field, and cascades that scroll.
+VolumeRequest volumeRequest(const HddagiSettings& s) {
+    VolumeRequest r;
+    r.method = "hddagi";
+    r.resolution = s.resolution;
+    r.resolutionKey = "hddagi.resolution";
+    r.occupancy = true;
+    r.scroll = true;
+    r.cascades = s.cascades;
+    r.cascadeExtent = s.cascadeExtent;
+    return r;
+}
+}  // namespace
+
+std::vector<ProgramDesc> HddagiPass::programs() {
+    std::vector<ProgramDesc> all = Voxelizer::programs();
+    for (const auto& list : {VoxelRadiance::programs(), OccupancyHierarchy::programs(), probes::fieldPrograms(),
+                             probes::ScreenGather::programs()})
+        all.insert(all.end(), list.begin(), list.end());
+    all.push_back(kDebugProgram);
+    return all;
+}
+
+std::vector<std::pair<std::string, uint64_t>> HddagiPass::estimateMemory(const Scene& scene, const RenderSettings& settings) {
+    const HddagiSettings s = hddagiParams().read("hddagi", settings.params);
+    const VolumeRequest request = volumeRequest(s);
+    const CascadeLayout layout = layoutCascades(scene.bounds, s.resolution, s.cascadeExtent, s.cascades);
+    const int probes = probes::cascadeProbeCount(scene.bounds, layout, s.probeSpacing);
+    return {{"HDDAGI scene volume (" + std::to_string(layout.count) + " cascades: voxels, light, occupancy)",
+             uint64_t(sceneVolumeBytes(request, layout.count))},
+            {"HDDAGI probes (" + std::to_string(probes) + ": irradiance, distance moments, state)",
+             uint64_t(probes::fieldStorageBytes(s.field(), probes))},
+            {"HDDAGI probe rays", uint64_t(probes::fieldRayBytes(s.field(), probes))},
+            {"HDDAGI screen gather", uint64_t(probes::ScreenGather::bytes(settings.width, settings.height, s.gatherScale()))}};
+}
+
+HddagiPass::HddagiPass(SceneServices& services, const RenderSettings& settings)
+    : built_(hddagiParams().read("hddagi", settings.params)) {
+    checkHddagiSettings(built_);
+    const gl::MemoryScope scope{&services.ledger, name()};
+    volume_ = &services.volume(volumeRequest(built_));
+    sceneBounds_ = services.bounds();
+    field_ = std::make_unique<probes::ProbeField>(
+        scope, *volume_, probes::cascadeProbeGrids(*volume_, sceneBounds_, built_.probeSpacing), built_.field());
+    gather_ = std::make_unique<probes::ScreenGather>(scope, settings.width, settings.height, built_.gatherScale());
+    debugProgram_ = buildProgram(kDebugProgram);
+}
+
+// The volume rebuilds what the change touched (a light edit relights it alone); the probes restart.
+void HddagiPass::invalidate(Changes c) {
+    field_->invalidate(c);
+    changed_ = true;
+}
+
+// The probes follow their cascades: a grid whose cascade moved is classified again and restarts.
+void HddagiPass::placeProbes() {
+    for (int i = 0; i < volume_->cascadeCount(); ++i)
+        field_->place(i, probes::cascadeProbeGrid(*volume_, sceneBounds_, built_.probeSpacing, i));
+}
+
+void HddagiPass::execute(Frame& frame) {
+    const HddagiSettings live = hddagiParams().read("hddagi", frame.settings.params);
+    volume_->update(frame);
+    placeProbes();
+    field_->update(frame, live.field());
+    {
+        auto t = frame.step("gather");
+        gather_->run(frame, *field_, live.gather());
+    }
+    frame.put(resource::kIndirectDiffuse, gather_->result());
+    changed_ = false;
+}
+
+std::vector<std::string> HddagiPass::stats() const {
+    std::vector<std::string> out{field_->describe()};
+    const SceneVolume::Builds all = volume_->builds();
+    char line[240];
+    std::snprintf(line, sizeof line, "occupancy %d cascades of %d^3 voxels (%.1f KiB of masks); %d voxelizations, %d scrolls, "
+                  "%lld cells voxelized in all",
+                  volume_->cascadeCount(), volume_->layout().resolution(),
+                  double(occupancyBytes(volume_->layout().resolution(), volume_->cascadeCount())) / 1024.0,
+                  all.voxelizations, all.scrolls, static_cast<long long>(all.voxelizedCells));
+    out.push_back(line);
+    for (int i = 0; i < volume_->cascadeCount(); ++i) {
+        const SdfVolume v = volume_->cascadeVolume(i);
+        std::snprintf(line, sizeof line, "cascade %d: edge %g, cell %g, last frame %s", i, double(v.size),
+                      double(v.cellSize()), SceneVolume::updateName(volume_->lastUpdate(i)));
+        out.push_back(line);
+    }
+    return out;
+}
+
+std::vector<DebugViewDesc> HddagiPass::debugViews() const {
+    std::vector<DebugViewDesc> views{
+        {"hddagi.occupancy", "one slice of the occupancy hierarchy (hddagi.slice-axis, -position, -cascade, -level): "
+                             "white where the level's voxel, block or region is occupied, a grid line per block"},
+        {"hddagi.steps", "HDDA traversal steps of each pixel's camera ray through the cascades, as a heat map "
+                         "(black 0, blue, green, red to white at hddagi.steps-max)"}};
+    for (const DebugViewDesc& d : field_->debugViews("hddagi.probes", "the middle probe of the finest grid"))
+        views.push_back(d);
+    return views;
+}
+
+void HddagiPass::drawDebugView(const std::string& view, const Frame& frame, GLuint target) {
+    const HddagiSettings live = hddagiParams().read("hddagi", frame.settings.params);
+    const std::string probeViews = "hddagi.probes.";
+    if (view.compare(0, probeViews.size(), probeViews) == 0) {
+        field_->drawDebugView(view.substr(probeViews.size()), frame, target, live.field());
+        return;
+    }
+    const GLuint p = debugProgram_.id();
+    glUseProgram(p);
+    glm::vec4 cascades[kMaxCascades]{};
+    for (int i = 0; i < volume_->cascadeCount(); ++i) {
+        const SdfVolume v = volume_->cascadeVolume(i);
+        cascades[i] = glm::vec4(v.origin, v.size);
+    }
+    glProgramUniformMatrix4fv(p, UH_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
+    glProgramUniform3fv(p, UH_CAMERA_POS, 1, &frame.camera.position[0]);
+    glProgramUniform4fv(p, UH_CASCADES, kMaxCascades, &cascades[0][0]);
+    glProgramUniform1i(p, UH_CASCADE_COUNT, volume_->cascadeCount());
+    glProgramUniform1i(p, UH_RESOLUTION, volume_->layout().resolution());
+    glProgramUniform1i(p, UH_VIEW, view == "hddagi.steps" ? 1 : 0);
+    const int cascade = std::min(live.sliceCascade, volume_->cascadeCount() - 1);
+    glProgramUniform4f(p, UH_SLICE, float(live.sliceAxis), live.slicePosition, float(cascade), float(live.sliceLevel));
+    glProgramUniform1i(p, UH_STEPS_MAX, live.stepsMax);
+    volume_->occupancy().bind();
+    glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    const int w = frame.settings.width, h = frame.settings.height;
+    gl::dispatchCompute(gl::groupsFor(w, 8), gl::groupsFor(h, 8), 1, "hddagi debug");
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+GiMethod hddagiMethod() {
+    GiMethod m;
+    m.name = "hddagi";
+    m.summary = "HDDAGI: probes traced by hierarchical DDA through voxel occupancy (no distance field), cascades "
+                "that scroll, gathered at half resolution";
+    m.params = hddagiParams().rows;
+    m.presets = {
+        {"low", "32^3, probes every 1/3 with 64 rays, SH L1",
+         {{"hddagi.resolution", {32.0}},
+          {"hddagi.probe-spacing", {0.34}},
+          {"hddagi.rays", {64.0}},
+          {"hddagi.storage", choiceValue("sh1")}}},
+        {"medium", "64^3, probes every 1/4 with 128 rays, SH L2, gathered at half resolution", {}},
+        {"high", "128^3, probes every 1/6 with 256 rays, octahedral maps, gathered at full resolution",
+         {{"hddagi.resolution", {128.0}},
+          {"hddagi.probe-spacing", {0.167}},
+          {"hddagi.rays", {256.0}},
+          {"hddagi.storage", choiceValue("octahedral")},
+          {"hddagi.half-res", {0.0}}}},
+        {"realtime", "medium's probes within a budget of 8192 rays per frame (64 probes)",
+         {{"hddagi.ray-budget", {8192.0}}}},
+    };
+    m.programs = &HddagiPass::programs;
+    m.estimateMemory = [](const Scene& scene, const RenderSettings& s) { return HddagiPass::estimateMemory(scene, s); };
+    m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<HddagiPass>(b.services, b.settings)); };
+    // Until no probe is due (render stops there: progress()), at most max-updates each.
+    m.framesToConverge = [](const RenderSettings& s) {
+        return std::min(hddagiParams().read("hddagi", s.params).maxUpdates, 200);
+    };
+    return m;
+}
+
+}  // namespace gis

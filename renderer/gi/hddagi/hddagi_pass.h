@@ -1,0 +1,61 @@
+// HDDAGI (`--gi hddagi`): SDF GI's successor as Godot's open pull request describes it, on the
+// shared modules. The scene volume (renderer/volume/) keeps nested cascades of voxels around the
+// camera, with no distance field: an occupancy hierarchy instead (64-bit masks per 4^3 block, a bit
+// per 8^3 region), and cascades that scroll, voxelizing only the cells they gained. The shared
+// probe pipeline (renderer/probes/) keeps one probe grid per cascade, walks its rays through the
+// occupancy by hierarchical DDA (shaders/volume/hdda.glsl), shades hits from the voxels' light
+// plus the probes' own irradiance (every bounce), and the screen gather reads them per pixel (at
+// half resolution by default) into "indirect.diffuse", with SDFGI's Chebyshev occlusion.
+// A static view with converged probes costs nothing (settled()); a light edit relights the voxels
+// and restarts the probes; a camera move scrolls what left the snap distance.
+#pragma once
+
+#include <memory>
+
+#include "gi/hddagi/hddagi_settings.h"
+#include "probes/probe_field.h"
+#include "probes/screen_gather.h"
+#include "renderer.h"
+#include "volume/scene_volume.h"
+
+namespace gis {
+
+struct SceneServices;
+
+class HddagiPass final : public Pass {
+public:
+    HddagiPass(SceneServices& services, const RenderSettings& settings);
+    const char* name() const override { return "hddagi"; }
+    std::vector<std::string> inputs() const override {
+        return withVolumeInputs({resource::kGbufferDepth, resource::kGbufferNormal});
+    }
+    std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse}; }
+    void execute(Frame& frame) override;
+    bool settled() const override { return field_->converged() && !changed_; }
+    Progress progress() const override { return field_->progress(); }
+    void invalidate(Changes c) override;
+    bool writesImagesOrBuffers() const override { return true; }
+    std::vector<std::string> stats() const override;
+    std::optional<RayCounts> raysTraced() const override { return field_->raysTraced(); }
+    std::vector<DebugViewDesc> debugViews() const override;
+    void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
+    static std::vector<ProgramDesc> programs();
+    static std::vector<std::pair<std::string, uint64_t>> estimateMemory(const Scene& scene, const RenderSettings& s);
+
+    // What tests and the bench look at.
+    const SceneVolume& volume() const { return *volume_; }
+    const probes::ProbeField& field() const { return *field_; }
+    const HddagiSettings& rebuildSettings() const { return built_; }
+
+private:
+    void placeProbes();
+    HddagiSettings built_;
+    Aabb sceneBounds_;
+    SceneVolume* volume_ = nullptr;   // the renderer's, shared (SceneServices)
+    std::unique_ptr<probes::ProbeField> field_;
+    std::unique_ptr<probes::ScreenGather> gather_;
+    gl::Object debugProgram_;
+    bool changed_ = true;             // something arrived through invalidate() since the last execute
+};
+
+}  // namespace gis

@@ -1,0 +1,82 @@
+#include "gi/hddagi/hddagi_settings.h"
+
+#include <string>
+
+#include "volume/volume_cascades.h"
+
+namespace gis {
+
+const ParamTable<HddagiSettings>& hddagiParams() {
+    using S = HddagiSettings;
+    using U = ParamUpdate;
+    static const ParamTable<S> table = ParamTable<S>()
+        .integer(&S::resolution, "resolution", "Resolution", "voxels per edge of every cascade (a power of two)", 16,
+                 256, U::Rebuild)
+        .integer(&S::cascades, "cascades", "Cascades",
+                 "nested volumes around the camera, each twice the last; 0 = from the scene's extent and "
+                 "hddagi.cascade-extent",
+                 0, kMaxCascades, U::Rebuild)
+        .real(&S::cascadeExtent, "cascade-extent", "Finest cascade extent",
+              "world units: a scene cube up to this edge gets one volume; each doubling beyond it one more cascade",
+              1e-6, 1e9, U::Rebuild)
+        .real(&S::probeSpacing, "probe-spacing", "Probe spacing", "probe cell as a fraction of each cascade's extent",
+              0.02, 1.0, U::Rebuild)
+        .integer(&S::rays, "rays", "Rays per probe", "rays each probe traces per update (HDDA through the occupancy)",
+                 8, 512, U::Rebuild)
+        .integer(&S::rayBudget, "ray-budget", "Ray budget",
+                 "probe rays per frame, spent on the due probes most urgent first; 0 = every due probe each frame", 0,
+                 1 << 26, U::Rebuild)
+        .choice(&S::storage, "storage", "Storage", "probe irradiance as SH L1, SH L2 or a 6x6 octahedral map",
+                {"sh1", "sh2", "octahedral"}, U::Rebuild)
+        .boolean(&S::halfResolution, "half-res", "Half resolution",
+                 "gather the probes at every 2x2 block's first pixel and upsample (pixels on an edge gather their own)",
+                 U::Rebuild)
+        .boolean(&S::visibility, "visibility", "Visibility", "Chebyshev visibility from the distance moments", U::Live)
+        .boolean(&S::bounces, "multibounce", "Multi-bounce", "probe rays' hits add the probes' own irradiance",
+                 U::Live)
+        .real(&S::hysteresis, "hysteresis", "Hysteresis", "weight of the old value once a probe has warmed up", 0.0,
+              0.99, U::Live)
+        .real(&S::threshold, "threshold", "Convergence threshold",
+              "largest relative change of an update below which the probes stop updating", 0.0, 1.0, U::Live)
+        .integer(&S::maxUpdates, "max-updates", "Max updates", "updates per probe after which they stop anyway", 1,
+                 100000, U::Live)
+        .real(&S::normalBias, "normal-bias", "Normal/view bias", "offset of the shading point, x the probe step",
+              0.0, 1.0, U::Live)
+        .real(&S::intensity, "intensity", "Intensity", "scales indirect.diffuse", 0.0, 16.0, U::Live)
+        .choice(&S::sliceAxis, "slice-axis", "Slice axis", "axis hddagi.occupancy cuts across", {"x", "y", "z"},
+                U::Live)
+        .real(&S::slicePosition, "slice-position", "Slice position", "where along the axis, 0..1", 0.0, 1.0, U::Live)
+        .integer(&S::sliceCascade, "slice-cascade", "Slice cascade",
+                 "which cascade hddagi.occupancy shows (0 = the finest)", 0, kMaxCascades - 1, U::Live)
+        .choice(&S::sliceLevel, "slice-level", "Slice level",
+                "what hddagi.occupancy shows: voxel bits, blocks with any bit, or region bits",
+                {"voxels", "blocks", "regions"}, U::Live)
+        .integer(&S::stepsMax, "steps-max", "Steps shown white", "traversal steps hddagi.steps shows as white", 1,
+                 4096, U::Live);
+    return table;
+}
+
+probes::FieldSettings HddagiSettings::field() const {
+    probes::FieldSettings f;
+    f.tracer = probes::Tracer::Occupancy;
+    f.storage = probes::Storage(storage);
+    f.rays = rays;
+    f.rayBudget = rayBudget;
+    f.visibility = visibility;
+    f.bounces = bounces;
+    f.hysteresis = hysteresis;
+    f.threshold = threshold;
+    f.maxUpdates = maxUpdates;
+    f.normalBias = normalBias;
+    return f;
+}
+
+probes::GatherSettings HddagiSettings::gather() const { return {normalBias, intensity, visibility}; }
+
+void checkHddagiSettings(const HddagiSettings& s) {
+    probes::checkFieldSettings(s.field(), "hddagi.ray-budget", "hddagi.rays");
+    const int r = s.resolution;
+    if ((r & (r - 1)) != 0) throw Error("hddagi.resolution: " + std::to_string(r) + " must be a power of two in [16, 256]");
+}
+
+}  // namespace gis

@@ -1,0 +1,46 @@
+// HDDAGI's parameters: one row each in hddagiParams() (names that scripts and other checks use:
+// hddagi.resolution, hddagi.cascades, hddagi.probe-spacing, hddagi.rays, hddagi.half-res), defaults
+// in the initialisers below. Where SDF GI has the same setting, the default is the same, so the
+// two compare at equal probes.
+#pragma once
+
+#include "gi/params.h"
+#include "probes/probe_field.h"
+#include "probes/screen_gather.h"
+
+namespace gis {
+
+struct HddagiSettings {
+    int resolution = 64;         // hddagi.resolution: voxels per cascade edge, a power of two (rebuild)
+    int cascades = 0;            // hddagi.cascades: 0 = from the scene's extent, else 1..4 (rebuild)
+    float cascadeExtent = 8.0f;  // hddagi.cascade-extent: the finest cascade's largest edge, world units (rebuild)
+    float probeSpacing = 0.25f;  // hddagi.probe-spacing: probe cell as a fraction of each cascade's extent (rebuild)
+    int rays = 128;              // hddagi.rays: rays per probe per update (rebuild)
+    int rayBudget = 0;           // hddagi.ray-budget: probe rays per frame, 0 = every due probe (rebuild)
+    int storage = 1;             // hddagi.storage: sh1 | sh2 | octahedral (rebuild)
+    bool halfResolution = true;  // hddagi.half-res: gather every 2x2 block's first pixel, upsample (rebuild)
+    bool visibility = true;      // hddagi.visibility: Chebyshev visibility (live)
+    bool bounces = true;         // hddagi.multibounce: probe rays' hits add the probes' irradiance (live)
+    float hysteresis = 0.98f;    // hddagi.hysteresis (live)
+    float threshold = 0.01f;     // hddagi.threshold (live)
+    int maxUpdates = 100;        // hddagi.max-updates (live)
+    float normalBias = 0.1f;     // hddagi.normal-bias (live)
+    float intensity = 1.0f;      // hddagi.intensity: scales indirect.diffuse (live)
+    // What the debug views show (live).
+    int sliceAxis = 2;           // hddagi.slice-axis: x | y | z
+    float slicePosition = 0.5f;  // hddagi.slice-position: 0..1 across the cascade
+    int sliceCascade = 0;        // hddagi.slice-cascade (clamped to the count)
+    int sliceLevel = 0;          // hddagi.slice-level: voxels | blocks | regions
+    int stepsMax = 64;           // hddagi.steps-max: steps shown white in hddagi.steps
+
+    probes::FieldSettings field() const;     // what the shared probe pipeline reads
+    probes::GatherSettings gather() const;
+    int gatherScale() const { return halfResolution ? 2 : 1; }
+};
+
+const ParamTable<HddagiSettings>& hddagiParams();
+// What the ranges cannot say (a power-of-two resolution, a budget that pays for a probe); throws
+// gis::Error naming the key.
+void checkHddagiSettings(const HddagiSettings& s);
+
+}  // namespace gis

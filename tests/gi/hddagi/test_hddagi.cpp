@@ -1,0 +1,329 @@
+// HDDAGI (`--gi hddagi`) through the renderer: the Cornell box's indirect energy per wall against
+// the path tracer, colour bleeding, the emitter-lit box, the leak number, cascades that scroll
+// (bit for bit a fresh build, voxelizing only what entered), a static frame that voxelizes
+// nothing, extremes, debug views and the memory estimate ("HDDAGI-TABLE" lines).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "gi/hddagi/hddagi_pass.h"
+#include "gi/method.h"
+#include "gi_reference.h"
+#include "metrics.h"
+#include "render_test_util.h"
+#include "voxel_test_util.h"
+
+namespace gis::test {
+namespace {
+
+constexpr int kSize = 96;
+constexpr ReferenceSpec kSpec{kSize, 64, true};
+
+RenderSettings base() { return referenceSettings("hddagi", kSpec); }
+void setHddagi(RenderSettings& s, const std::string& key, const std::string& text) { setParam(s, "hddagi." + key, text); }
+
+const HddagiPass& hddagiPass(const Renderer& r) {
+    for (const auto& p : r.passes())
+        if (auto* h = dynamic_cast<const HddagiPass*>(p.get())) return *h;
+    throw Error("internal: no HDDAGI pass");
+}
+
+struct Images {
+    ImageF frame, diffuse;
+};
+
+// Renders until the probes have converged (at most the method's frames to converge) or `frames`.
+Images render(const Scene& scene, RenderSettings s, int frames = 0) {
+    context();
+    s.gi = "hddagi";
+    const int limit = frames > 0 ? frames : giMethod("hddagi").framesToConverge(s);
+    Renderer r(scene, s);
+    for (int f = 0; f < limit; ++f) {
+        r.renderFrame();
+        if (frames <= 0 && hddagiPass(r).field().converged()) break;
+    }
+    return {r.readHdr(), readTextureFloat(r.frameTexture("indirect.diffuse"), s.width, s.height)};
+}
+
+const GiReference& reference(const std::string& name) { return giReference(name, kSpec); }
+
+const Images& cornellMedium() {
+    static const Images images = render(makeBuiltinScene("cornell"), base());
+    return images;
+}
+
+// The emitter-lit box's check needs only its walls' means: a smaller frame is enough.
+constexpr ReferenceSpec kAreaSpec{64, 64, true};
+
+TEST(Hddagi, CornellIndirectEnergyPerWallAndColourBleeding) {
+    const GiReference& ref = reference("cornell");
+    const ImageF pt = subtract(ref.ptFull(), ref.ptDirect());
+    const ImageF indirect = subtract(cornellMedium().frame, ref.direct());
+    ASSERT_TRUE(allFinite(indirect));
+    for (const auto& [name, region] : kCornellFaces) {
+        const double ratio = ref.regionMean(indirect, region) / ref.regionMean(pt, region);
+        std::printf("HDDAGI-TABLE energy cornell %-10s %.0f%% of the path tracer (16 bounces)\n", name.c_str(),
+                    100.0 * ratio);
+        if (name == "ceiling") continue;
+        EXPECT_GE(ratio, 0.8) << name;
+        EXPECT_LE(ratio, 1.2) << name;
+    }
+    std::printf("HDDAGI-TABLE psnr cornell medium: %.2f dB sRGB vs the 16-bounce path tracer\n",
+                compareImages(cornellMedium().frame, ref.ptFull()).psnrSrgb);
+    // Colour bleeding: the floor is redder near the red wall than near the green one.
+
+    const ImageF& d = cornellMedium().diffuse;
+    double red[2] = {0, 0}, green[2] = {0, 0};
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const int i = y * kSize + x;
+            if (!ref.interior()[i] || ref.hits()[i].region != kCornellFaces.at("floor")) continue;
+            const int side = x < kSize / 4 ? 0 : x >= 3 * kSize / 4 ? 1 : -1;
+            if (side < 0) continue;
+            red[side] += d.at(x, y)[0];
+            green[side] += d.at(x, y)[1];
+        }
+    std::printf("HDDAGI-TABLE bleeding floor red/green: near red wall %.3f, near green wall %.3f\n",
+                red[0] / green[0], red[1] / green[1]);
+    EXPECT_GT(red[0] / green[0], 1.1 * (red[1] / green[1]));
+}
+
+// The emitter-lit box (builtin:cornell-area, its quad lamp only): with the default
+// --emitters lights the voxels hold the light the emitter casts, so the probes carry it as bounce
+// light onto every wall.
+TEST(Hddagi, TheEmitterOfCornellAreaLightsTheRoom) {
+    const GiReference& ref = giReference("cornell-area", kAreaSpec);
+    const Images img = render(makeBuiltinScene("cornell-area"), referenceSettings("hddagi", kAreaSpec));
+    const ImageF indirect = subtract(img.frame, ref.direct());
+    const ImageF pt = subtract(ref.ptFull(), ref.ptDirect());
+    ASSERT_TRUE(allFinite(indirect));
+    for (const auto& [name, region] : kCornellFaces) {
+        if (name == "ceiling") continue;
+        const double ratio = ref.regionMean(indirect, region) / ref.regionMean(pt, region);
+        std::printf("HDDAGI-TABLE energy cornell-area %-10s %.0f%% of the path tracer\n", name.c_str(), 100.0 * ratio);
+        EXPECT_GT(ratio, 0.6) << name;
+        EXPECT_LT(ratio, 1.4) << name;
+    }
+    std::printf("HDDAGI-TABLE psnr cornell-area medium: %.2f dB sRGB\n", compareImages(img.frame, ref.ptFull()).psnrSrgb);
+}
+
+// The leak number every method reports on builtin:leak: the dark (right) half's radiance over the
+// lit (left) half's; the path tracer's is 0.
+TEST(Hddagi, LeakNumberOnTheLeakScene) {
+    for (const char* scene : {"leak", "leak?thickness=0.005"}) {
+        const Images v = render(makeBuiltinScene(scene), base());
+        ASSERT_TRUE(allFinite(v.frame));
+        const double leak = darkOverLitRoom(v.frame);
+        std::printf("HDDAGI-TABLE leak number %s: %.4f\n", scene, leak);
+        EXPECT_LT(leak, 0.15) << scene;
+    }
+}
+
+CameraMatrices cameraAt(const CameraMatrices& base, const glm::vec3& position) {
+    CameraMatrices c = base;
+    c.view = glm::lookAt(position, position + glm::vec3(0.0f, -0.2f, -1.0f), glm::vec3(0, 1, 0));
+    c.viewProj = c.proj * c.view;
+    c.invViewProj = glm::inverse(c.viewProj);
+    c.position = position;
+    return c;
+}
+
+struct CascadeVoxels {
+    std::vector<uint8_t> albedo, normal;
+    std::vector<float> emission;
+    std::vector<uint64_t> blocks;
+    std::vector<bool> regions;
+};
+
+CascadeVoxels readCascade(const SceneVolume& v, int i) {
+    return {readVoxelsRgba8(v.grid(i).albedo), readVoxelsRgba8(v.grid(i).normal), readVoxelsRgba16f(v.grid(i).emission),
+            v.occupancy().readBlocks(i), v.occupancy().readRegions(i)};
+}
+
+// The atrium's finest cascade, moved by the camera: scrolled, it voxelizes only the cells it
+// gained and then holds the very voxels and occupancy a fresh build at its new place holds, bit
+// for bit; the next, static frame voxelizes nothing.
+TEST(Hddagi, AScrolledCascadeEqualsAFreshBuildAndAStaticFrameVoxelizesNothing) {
+    context();
+    const Scene scene = makeBuiltinScene("atrium");
+    RenderSettings s = base();
+    s.width = s.height = 32;
+    setHddagi(s, "resolution", "32");
+    setHddagi(s, "rays", "16");
+    const glm::vec3 start = scene.bounds.center() + glm::vec3(0.0f, -0.3f * scene.bounds.extent().y, 0.0f);
+    Renderer moving(scene, s);
+    const HddagiPass& pass = hddagiPass(moving);
+    const SceneVolume& volume = pass.volume();
+    ASSERT_GT(volume.cascadeCount(), 1);
+    const CascadeLayout& layout = volume.layout();
+    const CameraMatrices initial = moving.camera();
+    moving.setCamera(cameraAt(initial, start));
+    moving.renderFrame();
+    const int n = layout.resolution();
+    const glm::vec3 far = start + glm::vec3(2.5f * float(layout.snapCells()) * layout.cellSize(0), 0.0f, 0.0f);
+    const glm::ivec3 before = volume.offset(0);
+    moving.setCamera(cameraAt(initial, far));
+    moving.renderFrame();
+    const glm::ivec3 shift = volume.offset(0) - before;
+    ASSERT_NE(shift, glm::ivec3(0));
+    const SceneVolume::Builds b0 = volume.builds(0);
+    EXPECT_EQ(b0.voxelizations, 1);
+    EXPECT_EQ(b0.scrolls, 1);
+    EXPECT_EQ(volume.lastUpdate(0), SceneVolume::Update::Scrolled);
+    const int64_t gained = b0.voxelizedCells - int64_t(n) * n * n;
+    const glm::ivec3 a = glm::abs(shift);
+    const int64_t expected = int64_t(n) * n * n - int64_t(n - a.x) * (n - a.y) * (n - a.z);
+    EXPECT_EQ(gained, expected);
+    std::printf("HDDAGI-TABLE scroll: cascade 0 moved by (%d, %d, %d) cells, voxelized %lld of %d cells\n", shift.x,
+                shift.y, shift.z, static_cast<long long>(gained), n * n * n);
+    const CascadeVoxels scrolled = readCascade(volume, 0);
+
+    Renderer fresh(scene, s);
+    fresh.setCamera(cameraAt(initial, far));
+    fresh.renderFrame();
+    const SceneVolume& freshVolume = hddagiPass(fresh).volume();
+    ASSERT_EQ(freshVolume.offset(0), volume.offset(0));
+    const CascadeVoxels built = readCascade(freshVolume, 0);
+    EXPECT_TRUE(scrolled.albedo == built.albedo);
+    EXPECT_TRUE(scrolled.normal == built.normal);
+    EXPECT_TRUE(scrolled.emission == built.emission);
+    EXPECT_TRUE(scrolled.blocks == built.blocks);
+    EXPECT_TRUE(scrolled.regions == built.regions);
+    size_t differing = 0;
+    for (size_t i = 0; i < built.albedo.size(); ++i) differing += scrolled.albedo[i] != built.albedo[i];
+    std::printf("HDDAGI-TABLE scroll: %zu of %zu albedo bytes differ from a fresh build\n", differing,
+                built.albedo.size());
+
+    const SceneVolume::Builds all = volume.builds();
+    moving.renderFrame();
+    const SceneVolume::Builds after = volume.builds();
+    EXPECT_EQ(after.voxelizedCells, all.voxelizedCells);
+    EXPECT_EQ(after.voxelizations + after.scrolls, all.voxelizations + all.scrolls);
+    for (int i = 0; i < volume.cascadeCount(); ++i) EXPECT_EQ(volume.lastUpdate(i), SceneVolume::Update::Cached) << i;
+}
+
+Scene oneTriangle() {
+    Scene one;
+    one.materials.push_back(lambert(glm::vec3(0.8f)));
+    addQuad(one, glm::vec3(0.0f), glm::vec3(0, 0, 1), 1.0f, 0);
+    one.primitives[0].indices.resize(3);
+    one.cameras.push_back(lookAtCamera({0, 0, 2}, {0, 0, 0}));
+    Light l;
+    l.type = LightType::Point;
+    l.position = {0.2f, 0.2f, 1.0f};
+    one.lights.push_back(l);
+    finalizeScene(one);
+    return one;
+}
+
+// Extremes: an empty scene, one triangle, the camera outside every cascade, and the Cornell box at
+// x1e-3 and x1e3 (with hddagi.cascade-extent scaled alike): finite, and the scaled boxes give the
+// image at x1 within 2% of the floor's mean (RMSE of the indirect light).
+TEST(Hddagi, Extremes) {
+    RenderSettings s = base();
+    setHddagi(s, "resolution", "32");
+    {
+        Scene empty;
+        finalizeScene(empty);
+        EXPECT_TRUE(allFinite(render(empty, s, 2).frame));
+    }
+    EXPECT_TRUE(allFinite(render(oneTriangle(), s, 2).diffuse));
+    {
+        // Far outside the box, looking at it: every camera ray enters the coarsest cascade from outside.
+        Scene outside = makeBuiltinScene("cornell");
+        Camera& c = outside.cameras[0];
+        const glm::vec3 centre = outside.bounds.center();
+        const float extent = glm::length(outside.bounds.extent());
+        c = lookAtCamera(centre + glm::vec3(0.0f, 0.0f, 20.0f * extent), centre, 3.0f);
+        const Images img = render(outside, s);
+        ASSERT_TRUE(allFinite(img.frame));
+        double sum = 0.0;
+        for (size_t i = 0; i < img.frame.rgba.size(); i += 4) sum += img.frame.rgba[i + 1];
+        EXPECT_GT(sum, 0.0);
+    }
+    const GiReference& ref = reference("cornell");
+    const Images unit = render(makeBuiltinScene("cornell"), s);
+    for (float scale : {1e-3f, 1e3f}) {
+        RenderSettings scaled = s;
+        setHddagi(scaled, "cascade-extent", std::to_string(8.0f * scale));
+        const Images v = render(scaledScene(makeBuiltinScene("cornell"), scale), scaled);
+        ASSERT_TRUE(allFinite(v.diffuse));
+        const double rel = interiorRmse(v.diffuse, unit.diffuse, ref.interior()) / ref.regionMean(unit.diffuse, 0);
+        std::printf("HDDAGI-TABLE scale %g: indirect.diffuse RMSE vs x1 = %.4f of the floor's mean\n", scale, rel);
+        EXPECT_LT(rel, 0.02) << "scale " << scale;
+    }
+}
+
+TEST(Hddagi, DebugViews) {
+    RenderSettings s = base();
+    setHddagi(s, "resolution", "32");
+    const Scene scene = makeBuiltinScene("cornell");
+    s.view = "hddagi.occupancy";
+    for (const char* level : {"voxels", "blocks", "regions"}) {
+        setHddagi(s, "slice-level", level);
+        const Images slice = render(scene, s, 1);
+        int white = 0, dark = 0;
+        for (size_t i = 0; i < slice.frame.rgba.size(); i += 4) {
+            white += slice.frame.rgba[i] > 0.9f;
+            dark += slice.frame.rgba[i] < 0.2f;
+        }
+        EXPECT_GT(white, 0) << level;
+        EXPECT_GT(dark, 0) << level;
+    }
+    s.view = "hddagi.steps";
+    const Images steps = render(scene, s, 1);
+    ASSERT_TRUE(allFinite(steps.frame));
+    double total = 0.0;
+    for (size_t i = 0; i < steps.frame.rgba.size(); i += 4) total += steps.frame.rgba[i] + steps.frame.rgba[i + 2];
+    EXPECT_GT(total, 0.0);
+    s.view = "hddagi.probes.spheres";
+    const Images spheres = render(scene, s, 1);
+    double lit = 0.0;
+    for (size_t i = 0; i < spheres.frame.rgba.size(); i += 4) lit += spheres.frame.rgba[i + 1];
+    EXPECT_GT(lit, 0.0);
+}
+
+// The estimate asked before anything is allocated covers what the pass holds once built, and is
+// at most the voxelizer's transient sums above it.
+TEST(Hddagi, MemoryEstimateCoversTheLedger) {
+    context();
+    const Scene scene = makeBuiltinScene("cornell");
+    for (const char* res : {"16", "32"}) {
+        RenderSettings s = base();
+        setHddagi(s, "resolution", res);
+        uint64_t estimate = 0;
+        for (const auto& [part, bytes] : giMethod("hddagi").estimateMemory(scene, s)) estimate += bytes;
+        Renderer r(scene, s);
+        r.renderFrame();
+        const auto& owners = r.memory().bytesByOwner;
+        const double held = owners.count("hddagi") ? double(owners.at("hddagi")) : 0.0;
+        const int n = std::stoi(res);
+        std::printf("HDDAGI-TABLE memory %s^3 at %dx%d: estimate %.0f bytes, held %.0f\n", res, kSize, kSize,
+                    double(estimate), held);
+        EXPECT_GE(double(estimate), held);
+        EXPECT_LE(double(estimate), held + double(voxelGridBytes(n)));
+    }
+}
+
+TEST(Hddagi, BadParametersAreOneClearError) {
+    RenderSettings s = base();
+    EXPECT_THROW(setHddagi(s, "rays", "0"), Error);
+    EXPECT_THROW(setHddagi(s, "storage", "best"), Error);
+    for (const auto& [key, value] : {std::pair<const char*, const char*>{"resolution", "48"}, {"ray-budget", "64"}}) {
+        RenderSettings bad = base();
+        setHddagi(bad, key, value);
+        try {
+            context();
+            Renderer r(makeBuiltinScene("cornell"), bad);
+            FAIL() << key << " accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(std::string("hddagi.") + key), std::string::npos) << e.what();
+        }
+    }
+}
+
+}  // namespace
+}  // namespace gis::test
