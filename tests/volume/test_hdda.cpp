@@ -66,12 +66,13 @@ struct WalkResult {
     std::optional<glm::ivec3> voxel;
     int cascade = -1;
     double closestTie = 1e30;   // smallest gap between two axes' crossings on the way (voxel units)
+    int voxels = 0;             // voxels visited
 };
 
 // Amanatides & Woo through one cascade from t0 to t1 (voxel units), the same start voxel and the
 // same tie-break (x, then y, then z) as the GPU walk.
 std::optional<glm::ivec3> walkCascade(const Occupancy& occ, glm::dvec3 o, glm::dvec3 d, double t0, double t1,
-                                      double& closestTie) {
+                                      double& closestTie, int& visited) {
     const int n = occ.n;
     glm::ivec3 v;
     for (int a = 0; a < 3; ++a) v[a] = std::clamp(int(std::floor(o[a] + d[a] * t0)), 0, n - 1);
@@ -84,6 +85,7 @@ std::optional<glm::ivec3> walkCascade(const Occupancy& occ, glm::dvec3 o, glm::d
     }
     double t = t0;
     while (t <= t1) {
+        ++visited;
         if (occ.at(v)) return v;
         const int axis = tMax.x <= tMax.y && tMax.x <= tMax.z ? 0 : (tMax.y <= tMax.z ? 1 : 2);
         for (int a = 0; a < 3; ++a)
@@ -130,7 +132,7 @@ WalkResult bruteForce(const std::vector<Cascade>& cs, glm::dvec3 origin, glm::dv
         if (t1 <= t0) continue;
         const double cell = cs[c].size / cs[c].occupancy.n;
         r.closestTie = std::min({r.closestTie, std::abs(span.x - t) / cell, std::abs(span.y - maxT) / cell});
-        const auto v = walkCascade(cs[c].occupancy, (origin - cs[c].origin) / cell, dir, t0 / cell, t1 / cell, r.closestTie);
+        const auto v = walkCascade(cs[c].occupancy, (origin - cs[c].origin) / cell, dir, t0 / cell, t1 / cell, r.closestTie, r.voxels);
         if (v) {
             r.voxel = v;
             r.cascade = c;
@@ -225,6 +227,7 @@ Comparison compare(const std::vector<Cascade>& cs, const std::vector<GpuRay>& ra
         ++c.rays;
         c.hits += ref.voxel.has_value();
         c.meanSteps += gpu[i].steps;
+        c.meanVoxels += ref.voxels;
         const bool same = ref.voxel.has_value() == gpu[i].voxel.has_value() &&
                           (!ref.voxel || (*ref.voxel == *gpu[i].voxel && ref.cascade == gpu[i].cascade));
         if (!same) {
@@ -243,6 +246,7 @@ Comparison compare(const std::vector<Cascade>& cs, const std::vector<GpuRay>& ra
         }
     }
     c.meanSteps /= std::max(c.rays, 1);
+    c.meanVoxels /= std::max(c.rays, 1);
     return c;
 }
 
@@ -300,8 +304,8 @@ TEST(Hdda, FindsTheSameFirstVoxelAsABruteForceWalkInOneCascade) {
     const std::vector<GpuRay> rays = randomRays(cs, 4096, 5);
     const Comparison c = compare(cs, rays, traceGpu(h, cs, rays));
     std::printf("one cascade: %d rays, %d hits, %d mismatches (+%d at a tie within 1e-4 voxel; %d rays pass one), "
-                "%.1f cells crossed per ray\n",
-                c.rays, c.hits, c.mismatches, c.tieMismatches, c.nearTies, c.meanSteps);
+                "%.1f cells crossed per ray (the voxel walk visits %.1f)\n",
+                c.rays, c.hits, c.mismatches, c.tieMismatches, c.nearTies, c.meanSteps, c.meanVoxels);
     EXPECT_EQ(c.mismatches, 0);
     EXPECT_LE(c.tieMismatches, c.nearTies);
     EXPECT_GT(c.hits, c.rays / 4);
@@ -326,8 +330,9 @@ TEST(Hdda, FindsTheSameFirstVoxelAsABruteForceWalkAcrossCascades) {
     const std::vector<GpuRay> rays = randomRays(cs, 4096, 9);
     const std::vector<GpuHit> gpu = traceGpu(h, cs, rays);
     const Comparison c = compare(cs, rays, gpu);
-    std::printf("three cascades: %d rays, %d hits, %d mismatches (+%d at a tie), %.1f cells crossed per ray\n", c.rays,
-                c.hits, c.mismatches, c.tieMismatches, c.meanSteps);
+    std::printf("three cascades: %d rays, %d hits, %d mismatches (+%d at a tie), %.1f cells crossed per ray (the voxel "
+                "walk visits %.1f)\n",
+                c.rays, c.hits, c.mismatches, c.tieMismatches, c.meanSteps, c.meanVoxels);
     EXPECT_EQ(c.mismatches, 0);
     int perCascade[3] = {0, 0, 0};
     for (const GpuHit& g : gpu)

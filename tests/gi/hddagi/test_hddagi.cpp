@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -317,11 +318,93 @@ TEST(Hddagi, BadParametersAreOneClearError) {
         setHddagi(bad, key, value);
         try {
             context();
-            Renderer r(makeBuiltinScene("cornell"), bad);
+            const Scene cornell = makeBuiltinScene("cornell");
+            Renderer r(cornell, bad);
             FAIL() << key << " accepted";
         } catch (const Error& e) {
             EXPECT_NE(std::string(e.what()).find(std::string("hddagi.") + key), std::string::npos) << e.what();
         }
+    }
+}
+
+}  // namespace
+}  // namespace gis::test
+
+namespace gis::test {
+namespace {
+
+// The GI pass's GPU milliseconds over every frame so far (its steps included).
+double giPassMs(const Renderer& r) {
+    for (const PassTiming& t : r.timings(0))
+        if (!t.step && t.pass == r.settings().gi) return t.totalMs;
+    return 0.0;
+}
+
+struct SideBySide {
+    double psnr[3] = {0, 0, 0};   // cornell, cornell-area, atrium
+    double leak = 0.0;
+    double convergeMs = 0.0, convergeFrames = 0.0, staticMs = 0.0, editFirstMs = 0.0, editMs = 0.0, editFrames = 0.0;
+    double heldMiB = 0.0;
+};
+
+// Renders `r` until its GI has converged (at most `limit` frames): returns the frames it took.
+int converge(Renderer& r, int limit) {
+    int f = 0;
+    for (; f < limit; ++f) {
+        r.renderFrame();
+        if (r.settled()) break;
+    }
+    return f + 1;
+}
+
+// README table of renderer/gi/hddagi/README.md (scripts/hddagi-table.sh): sdf, probes and hddagi at
+// one preset on the same scenes and the same frame. "HDDAGI-SIDE" lines, parsed by the script.
+TEST(Hddagi, MeasureSideBySide) {
+    if (!measuring("hddagi")) GTEST_SKIP() << "set GIS_MEASURE=hddagi to measure";
+    const char* preset = std::getenv("HDDAGI_PRESET") ? std::getenv("HDDAGI_PRESET") : "medium";
+    const char* scenes[3] = {"cornell", "cornell-area", "atrium"};
+    for (const char* method : {"sdf", "probes", "hddagi"}) {
+        SideBySide m;
+        RenderSettings s = referenceSettings(method, kSpec);
+        applyPreset(s, method, preset);
+        const int limit = giMethod(method).framesToConverge(s) + 2;
+        for (int k = 0; k < 3; ++k) {
+            const Scene scene = makeBuiltinScene(scenes[k]);   // a renderer keeps a reference to its scene
+            Renderer r(scene, s);
+            converge(r, limit);
+            m.psnr[k] = compareImages(r.readHdr(), reference(scenes[k]).ptFull()).psnrSrgb;
+        }
+        {
+            const Scene leak = makeBuiltinScene("leak");
+            Renderer r(leak, s);
+            converge(r, limit);
+            m.leak = darkOverLitRoom(r.readHdr());
+        }
+        // Cost on the Cornell box: converging, a static frame re-rendered (as an engine does) once
+        // converged, and a light edit (the point light at half its intensity) until converged again.
+        Scene scene = makeBuiltinScene("cornell");
+        Renderer r(scene, s);
+        m.convergeFrames = converge(r, limit);
+        m.convergeMs = giPassMs(r);
+        r.setSkipSettled(false);
+        const double before = giPassMs(r);
+        for (int f = 0; f < 5; ++f) r.renderFrame();
+        m.staticMs = (giPassMs(r) - before) / 5.0;
+        r.setSkipSettled(true);
+        scene.lights[0].intensity *= 0.5f;
+        r.lightsChanged();
+        const double edit = giPassMs(r);
+        r.renderFrame();
+        m.editFirstMs = giPassMs(r) - edit;
+        m.editFrames = 1 + converge(r, limit);
+        m.editMs = giPassMs(r) - edit;
+        const auto& owners = r.memory().bytesByOwner;
+        m.heldMiB = owners.count(method) ? double(owners.at(method)) / (1024.0 * 1024.0) : 0.0;
+        std::printf("HDDAGI-SIDE %s/%s | %.2f | %.2f | %.2f | %.4f | %.0f ms in %.0f frames | %.1f | %.0f ms, %.0f in %.0f "
+                    "frames | %.1f\n",
+                    method, preset, m.psnr[0], m.psnr[1], m.psnr[2], m.leak, m.convergeMs, m.convergeFrames, m.staticMs,
+                    m.editFirstMs, m.editMs, m.editFrames, m.heldMiB);
+        std::fflush(stdout);
     }
 }
 
