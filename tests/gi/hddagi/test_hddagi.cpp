@@ -361,6 +361,7 @@ int converge(Renderer& r, int limit) {
 // one preset on the same scenes and the same frame. "HDDAGI-SIDE" lines, parsed by the script.
 TEST(Hddagi, MeasureSideBySide) {
     if (!measuring("hddagi")) GTEST_SKIP() << "set GIS_MEASURE=hddagi to measure";
+    context();
     const char* preset = std::getenv("HDDAGI_PRESET") ? std::getenv("HDDAGI_PRESET") : "medium";
     const char* scenes[3] = {"cornell", "cornell-area", "atrium"};
     for (const char* method : {"sdf", "probes", "hddagi"}) {
