@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "passes/lighting_pass.h"
 #include "scene/scene_lighting.h"
 
 namespace gis {
@@ -120,11 +121,32 @@ bool isGroupParam(const std::string& fullKey) {
 }
 
 void checkParams(const ParamValues& values) {
+    std::vector<const GiMethod*> named;
     for (const auto& [key, value] : values) {
         std::string method;
         const ParamDesc& d = findParam(key, &method);
         checkParamValue(method, d, value);
+        const GiMethod* m = findGiMethod(method);
+        if (m && m->checkSettings && std::find(named.begin(), named.end(), m) == named.end()) named.push_back(m);
     }
+    for (const GiMethod* m : named) m->checkSettings(values);
+}
+
+void checkViewOfMethod(const std::string& gi, const std::string& view) {
+    const GiMethod& method = giMethod(gi);
+    const std::vector<std::string> terms = LightingPass::termViewNames();
+    if (view != "ao" && std::find(terms.begin(), terms.end(), view) != terms.end() &&
+        method.pipeline != MethodPipeline::Deferred) {
+        std::string deferred;
+        for (const GiMethod& m : giMethods())
+            if (m.pipeline == MethodPipeline::Deferred) deferred += (deferred.empty() ? "" : ", ") + m.name;
+        throw Error("view '" + view + "' is a term of the deferred lighting pass, which --gi " + gi +
+                    " does not run: it writes its radiance whole (the term views exist for " + deferred + ")");
+    }
+    const size_t dot = view.find('.');
+    const GiMethod* owner = dot == std::string::npos ? nullptr : findGiMethod(view.substr(0, dot));
+    if (owner && owner != &method)
+        throw Error("view '" + view + "' is a view of --gi " + owner->name + ", not produced by --gi " + gi);
 }
 
 }  // namespace gis

@@ -72,6 +72,10 @@ struct GiMethod {
     // Frames a static view needs before the image is final (the bench scores after that many);
     // progressive passes report their own progress and are rendered until converged().
     std::function<int(const RenderSettings&)> framesToConverge;
+    // What its rows' ranges cannot say (a power-of-two resolution, a debug level its channel lacks),
+    // checked with the ranges by checkParams: before anything is built and whenever a value is set.
+    // Throws gis::Error naming the key. Optional.
+    std::function<void(const ParamValues&)> checkSettings;
 
     const ParamDesc* param(const std::string& key) const;
     const GiPreset& preset(const std::string& name) const;  // throws for an unknown name
@@ -108,7 +112,14 @@ bool isGroupParam(const std::string& fullKey);
 
 // Resolves "method.key", "group.key" or an alias flag; throws naming the key and the method's keys.
 const ParamDesc& findParam(const std::string& fullKey, std::string* methodOut = nullptr);
-// Validates every value in s.params against its row (one message format).
+// Validates every value in s.params against its row (one message format), then each method's
+// checkSettings for the methods the values name.
 void checkParams(const ParamValues& values);
+
+// Throws when `view` (a --view / pane display name) is one that --gi `gi` cannot produce, told
+// by the view's name alone (no GL): a method's own view ("sdf.slice") of another method, or a
+// lighting term ("direct") of a method without the deferred lighting pass. Names neither kind
+// (gbuffer.*, ao, final, an unknown name) are left to the renderer's list of its passes' views.
+void checkViewOfMethod(const std::string& gi, const std::string& view);
 
 }  // namespace gis

@@ -267,6 +267,7 @@ GiMethod vctMethod() {
     };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<VctPass>(b.services, b.settings)); };
     m.framesToConverge = [](const RenderSettings& s) { return vctParams().read("vct", s.params).framesToConverge(); };
+    m.checkSettings = [](const ParamValues& values) { checkVctSettings(vctParams().read("vct", values)); };
     return m;
 }
 
