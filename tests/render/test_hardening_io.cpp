@@ -351,3 +351,33 @@ TEST(Hardening, MergeVerifiesEachLineAgainstItsIdAndRefusesDuplicates) {
 }
 
 }  // namespace
+
+namespace {
+
+// A scene without triangles: the path tracer and the AO reference see the background, as the
+// rasterized methods do, instead of refusing with "cannot build a BVH".
+TEST(Hardening, RayTracersRenderAnEmptySceneAsTheBackground) {
+    const std::string dir = tempDir("hardening_empty_scene");
+    spit(dir + "/empty.gltf", R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": []}], "scene": 0})");
+    auto meanOf = [&](const std::string& gi) {
+        const std::string out = dir + "/" + gi + ".exr";
+        const auto r = runCli("render --scene " + dir + "/empty.gltf --gi " + gi +
+                              " --background 0.2,0.4,0.8 --spp 4 --size 16x16 --out " + out);
+        EXPECT_EQ(r.status, 0) << gi << ": " << r.err;
+        std::vector<double> mean(3, 0.0);
+        if (r.status != 0) return mean;
+        const gis::ImageF img = gis::readExr(out);
+        for (size_t i = 0; i < img.rgba.size(); i += 4)
+            for (int c = 0; c < 3; ++c) mean[c] += img.rgba[i + c] / double(img.width * img.height);
+        return mean;
+    };
+    const std::vector<double> none = meanOf("none"), traced = meanOf("pathtrace");
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_GT(none[c], 0.1) << "the background is seen";
+        EXPECT_NEAR(traced[c], none[c], 1e-3 * none[c]) << "channel " << c;
+    }
+    const std::vector<double> ao = meanOf("ao-reference");
+    EXPECT_EQ(ao[0], 0.0) << "no surface: what the AO reference writes where a pixel sees the sky";
+}
+
+}  // namespace
