@@ -329,6 +329,27 @@ TEST(Script, LinesThatFailOnlyInContextAreRefusedBeforeTheWindowOpens) {
     EXPECT_EQ(contextError("settings other.json\nmethod 2 vct\n", state), "");
 }
 
+// vct.debug-level is a live parameter: chosen in the panel it reached the voxel view without the
+// check the pass makes when it is built, and the albedo grid (no mips) at level 2 showed black.
+// The action is refused when set, naming the channel to use, and the state is left as it was.
+TEST(PanelActions, ALiveVoxelDebugLevelTheChannelLacksIsRefused) {
+    ViewState s;
+    applyPanelAction(s, PanelAction::method(0, "vct"));
+    applyPanelAction(s, PanelAction::display(0, "vct.voxels"));
+    const ViewState before = s;
+    try {
+        applyPanelAction(s, PanelAction::param(0, "vct.debug-level", "2"));
+        ADD_FAILURE() << "level 2 of the albedo grid accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("use vct.debug-channel=radiance or occupancy"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(s.panes[0].params, before.panes[0].params);
+    applyPanelAction(s, PanelAction::param(0, "vct.debug-channel", "occupancy"));
+    applyPanelAction(s, PanelAction::param(0, "vct.debug-level", "2"));
+    EXPECT_THROW(applyPanelAction(s, PanelAction::param(0, "vct.debug-channel", "albedo")), Error)
+        << "back to albedo at level 2";
+}
+
 // A host that records what the runner asks for.
 struct FakeHost : ScriptHost {
     ViewState state;
