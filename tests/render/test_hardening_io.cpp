@@ -13,6 +13,8 @@
 
 #include "cli_util.h"
 #include "gi/method.h"
+#include "gi/vct/vct_settings.h"
+#include "volume/scene_volume.h"
 #include "image.h"
 #include "scene/atomic_file.h"
 #include "scene/scene.h"
@@ -378,6 +380,40 @@ TEST(Hardening, RayTracersRenderAnEmptySceneAsTheBackground) {
     }
     const std::vector<double> ao = meanOf("ao-reference");
     EXPECT_EQ(ao[0], 0.0) << "no surface: what the AO reference writes where a pixel sees the sky";
+}
+
+}  // namespace
+
+namespace {
+
+// vct.resolution's listed range ends where the voxel budget does: 512 was listed and always refused
+// (its volume needs more than the 8 GiB cap in every form). The largest listed one fits with the
+// default settings, twice it fits in none.
+TEST(Hardening, VctResolutionListsOnlyWhatTheVoxelBudgetHolds) {
+    const gis::ParamDesc* row = nullptr;
+    for (const gis::ParamDesc& d : gis::vctParams().rows)
+        if (d.key == "resolution") row = &d;
+    ASSERT_NE(row, nullptr);
+    const int largest = int(row->max);
+    EXPECT_EQ(largest, gis::maxVctResolution());
+    gis::VctSettings defaults;
+    defaults.resolution = largest;
+    gis::VolumeRequest r = gis::vctVolumeRequest(defaults);
+    EXPECT_LE(gis::sceneVolumeBytes(r, r.cascades), gis::kVoxelBudgetBytes) << largest << "^3 with the defaults";
+    gis::VctSettings smallest;
+    smallest.resolution = 2 * largest;
+    smallest.anisotropic = false;
+    smallest.bounces = 1;
+    r = gis::vctVolumeRequest(smallest);
+    EXPECT_GT(gis::sceneVolumeBytes(r, r.cascades), gis::kVoxelBudgetBytes) << 2 * largest << "^3 in its smallest form";
+
+    const auto list = runCli("methods vct");
+    EXPECT_NE(list.out.find("[8, " + std::to_string(largest) + "]"), std::string::npos) << list.out;
+    const std::string dir = tempDir("hardening_vct_range");
+    const auto r2 = runCli("render --scene builtin:cornell --gi vct --set vct.resolution=" + std::to_string(2 * largest) +
+                           " --size 8x8 --out " + dir + "/x.png");
+    EXPECT_NE(r2.status, 0);
+    EXPECT_NE(r2.err.find("out of range [8, " + std::to_string(largest) + "]"), std::string::npos) << r2.err;
 }
 
 }  // namespace
