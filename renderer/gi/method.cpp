@@ -135,13 +135,16 @@ void checkParams(const ParamValues& values) {
 void checkViewOfMethod(const std::string& gi, const std::string& view) {
     const GiMethod& method = giMethod(gi);
     const std::vector<std::string> terms = LightingPass::termViewNames();
-    if (view != "ao" && std::find(terms.begin(), terms.end(), view) != terms.end() &&
-        method.pipeline != MethodPipeline::Deferred) {
-        std::string deferred;
+    auto writes = [&view](const GiMethod& m) {
+        return m.pipeline == MethodPipeline::Deferred ||
+               std::find(m.termViews.begin(), m.termViews.end(), view) != m.termViews.end();
+    };
+    if (view != "ao" && std::find(terms.begin(), terms.end(), view) != terms.end() && !writes(method)) {
+        std::string with;
         for (const GiMethod& m : giMethods())
-            if (m.pipeline == MethodPipeline::Deferred) deferred += (deferred.empty() ? "" : ", ") + m.name;
+            if (writes(m)) with += (with.empty() ? "" : ", ") + m.name;
         throw Error("view '" + view + "' is a term of the deferred lighting pass, which --gi " + gi +
-                    " does not run: it writes its radiance whole (the term views exist for " + deferred + ")");
+                    " does not run, and " + gi + " does not write it itself (it exists for " + with + ")");
     }
     const size_t dot = view.find('.');
     const GiMethod* owner = dot == std::string::npos ? nullptr : findGiMethod(view.substr(0, dot));

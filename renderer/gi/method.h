@@ -64,6 +64,8 @@ struct GiMethod {
     bool benchmarked = true;                // a row in `bench` (not the reference itself)
     std::vector<ParamDesc> params;
     std::vector<GiPreset> presets;          // low, medium, high
+    // Standalone methods: the lighting pass's term views ("direct", "emission") it writes itself.
+    std::vector<std::string> termViews;
     std::function<void(MethodBuild&)> addPasses;
     std::function<std::vector<ProgramDesc>()> programs;  // every program its passes may build
     // GPU bytes its passes will hold, by part, estimated from the settings before anything is
@@ -118,7 +120,7 @@ void checkParams(const ParamValues& values);
 
 // Throws when `view` (a --view / pane display name) is one that --gi `gi` cannot produce, told
 // by the view's name alone (no GL): a method's own view ("sdf.slice") of another method, or a
-// lighting term ("direct") of a method without the deferred lighting pass. Names neither kind
+// lighting term ("direct") that a method without the deferred lighting pass does not write itself. Names neither kind
 // (gbuffer.*, ao, final, an unknown name) are left to the renderer's list of its passes' views.
 void checkViewOfMethod(const std::string& gi, const std::string& view);
 

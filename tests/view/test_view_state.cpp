@@ -279,7 +279,7 @@ std::string cliError(const std::string& args) {
 TEST(Script, LinesThatFailOnlyInContextAreRefusedBeforeTheWindowOpens) {
     const Scene scene = loadScene("builtin:cornell");
     const ViewState state = stateFor(scene);
-    for (const char* line : {"display 0 sdf.slice", "set 0 sdf.rays 8", "method 2 vct", "display 0 direct"})
+    for (const char* line : {"display 0 sdf.slice", "set 0 sdf.rays 8", "method 2 vct", "display 0 indirect.diffuse"})
         EXPECT_NO_THROW(parseScript(std::string(line) + "\n", "one.txt")) << line << ": valid alone";
 
     // A view of another method: the CLI's message for --gi vct --view sdf.slice.
@@ -287,11 +287,14 @@ TEST(Script, LinesThatFailOnlyInContextAreRefusedBeforeTheWindowOpens) {
     EXPECT_EQ(contextError("method 0 vct\ndisplay 0 sdf.slice\n", state, &line), cliError("--gi vct --view sdf.slice"));
     EXPECT_EQ(line, 2);
     EXPECT_EQ(contextError("method 0 sdf\ndisplay 0 sdf.slice\n", state), "");
-    // A lighting term of a method without the lighting pass (issue 26's per-term views).
-    const std::string term = contextError("method 0 pathtrace\ndisplay 0 direct\n", state);
-    EXPECT_EQ(term, cliError("--gi pathtrace --view direct"));
+    // A lighting term a method without the lighting pass does not write itself (issue 26's
+    // per-term views: the path tracer writes direct and emission, not the indirect split).
+    const std::string term = contextError("method 0 pathtrace\ndisplay 0 indirect.diffuse\n", state);
+    EXPECT_EQ(term, cliError("--gi pathtrace --view indirect.diffuse"));
     EXPECT_NE(term.find("none, ssao, vct"), std::string::npos) << term;
-    EXPECT_EQ(contextError("method 0 ssao\ndisplay 0 direct\nmethod 0 pathtrace\n", state), "")
+    EXPECT_EQ(contextError("method 0 pathtrace\ndisplay 0 direct\ndisplay 0 pathtrace.indirect\n", state), "");
+    EXPECT_NE(contextError("method 0 ao-reference\ndisplay 0 direct\n", state).find("pathtrace"), std::string::npos);
+    EXPECT_EQ(contextError("method 0 ssao\ndisplay 0 indirect.diffuse\nmethod 0 pathtrace\n", state), "")
         << "a new method resets the display";
 
     // A value the parameter's range allows but the method refuses: render's message.
