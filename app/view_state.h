@@ -164,7 +164,7 @@ ParamValue parsePaneParam(const PanelAction& action);
 void applyPanelAction(ViewState& state, const PanelAction& action);
 
 // Throws when pane `pane`'s display is a view its method cannot produce, told without GL
-// (checkViewOfMethod: "sdf.slice" on a vct pane, "direct" on a pathtrace pane).
+// (checkViewOfMethod: "sdf.slice" on a vct pane, "indirect.diffuse" on a pathtrace pane).
 void checkPaneDisplay(const ViewState& state, int pane);
 
 // A script line / command in words, e.g. "method 1 pathtrace", "camera orbit 10 0" (degrees),
