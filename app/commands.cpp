@@ -261,6 +261,9 @@ int runRender(const RenderOptions& o) {
         const glm::ivec2 size = view::paneRenderSize(*viewSettings, viewSettings->viewWidth, viewSettings->viewHeight);
         s = view::paneSettings(*viewSettings, o.pane, size);
         if (!use("--scene")) sceneSpec = viewSettings->scene;
+        if (viewSettings->panes[o.pane].display == view::PaneDisplay::Heatmap && !use("--view"))
+            throw Error("--pane " + std::to_string(o.pane) + " displays the error heatmap, which render does not draw: "
+                        "add --view final and compare with `gisandbox diff`");
     } else if (o.given && o.given("--pane")) {
         throw Error("--pane needs --settings");
     }

@@ -228,9 +228,15 @@ void viewStateFromJson(const json& j, ViewState& state) {
                 if (!v.is_array() || v.size() > size_t(kMaxPanes)) throw Error("'panes' must be an array of up to 4");
                 for (size_t i = 0; i < v.size(); ++i) {
                     const int p = int(i);
+                    // The method first: a new method resets the pane's preset and debug view, which
+                    // the keys after it (alphabetical, "display" before "gi") set for it.
+                    if (v[i].is_object() && v[i].contains("gi")) {
+                        key = "panes[" + std::to_string(i) + "].gi";
+                        apply(PanelAction::method(p, text(v[i]["gi"], key)));
+                    }
                     for (const auto& [pk, pv] : v[i].items()) {
                         key = "panes[" + std::to_string(i) + "]." + pk;
-                        if (pk == "gi") apply(PanelAction::method(p, text(pv, key)));
+                        if (pk == "gi") continue;
                         else if (pk == "preset") apply(PanelAction::preset(p, text(pv, key)));
                         else if (pk == "diffuse") apply(PanelAction::diffuse(p, text(pv, key)));
                         else if (pk == "specular") apply(PanelAction::specular(p, text(pv, key)));
@@ -358,6 +364,10 @@ void viewStateFromJson(const json& j, ViewState& state) {
             } else {
                 throw Error("unknown key");
             }
+        }
+        for (int p = 0; p < kMaxPanes; ++p) {  // once the pane's method is known
+            key = "panes[" + std::to_string(p) + "].display";
+            checkPaneDisplay(s, p);
         }
     } catch (const Error& e) {
         throw Error("settings key '" + key + "': " + e.what());

@@ -251,7 +251,30 @@ void ViewApp::captureWindow(const std::string& path, int width, int height) {
 int ViewApp::run() {
     int width = 0, height = 0;
     parseRenderSize(options_.size, width, height);
-    if (!options_.script.empty()) script_ = ScriptRunner(loadScript(options_.script), options_.script);
+    // The scene (CPU only) before the window, so the script is checked against the view it will drive.
+    session_ = std::make_unique<ViewSession>();
+    session_->setMotionBudget(kMotionBudgetMs);
+    state_.viewWidth = std::max(1, width - int(kPanelWidth));
+    state_.viewHeight = height;
+    state_.lighting = lightingModeName(parseLightingMode(options_.setup.lighting));
+    if (!options_.settings.empty()) {
+        if (!session_->loadSettings(state_, options_.settings)) throw Error(session_->lastError());
+        if (options_.given && options_.given("--scene") && !session_->openScene(state_, options_.scene))
+            throw Error(session_->lastError());
+    } else if (!session_->openScene(state_, options_.scene, cameraRequest(options_.setup))) {
+        throw Error(session_->lastError());
+    }
+    scenePath_ = state_.scene;
+    if (!options_.setup.emitters.empty()) {  // --emitters: emitters.mode of every pane
+        RenderSettings parsed;
+        setParam(parsed, "emitters.mode", options_.setup.emitters);
+        for (PaneState& pane : state_.panes) pane.params["emitters.mode"] = parsed.params["emitters.mode"];
+    }
+    if (!options_.script.empty()) {
+        std::vector<ScriptStep> steps = loadScript(options_.script);
+        checkScriptInContext(steps, state_, options_.script);
+        script_ = ScriptRunner(std::move(steps), options_.script);
+    }
 
     ContextOptions co;
     co.backend = Backend::Glfw;
@@ -283,24 +306,6 @@ int ViewApp::run() {
         if (count > 0) static_cast<ViewApp*>(glfwGetWindowUserPointer(w))->droppedPath_ = paths[0];
     });
 
-    session_ = std::make_unique<ViewSession>();
-    session_->setMotionBudget(kMotionBudgetMs);
-    state_.viewWidth = std::max(1, width - int(kPanelWidth));
-    state_.viewHeight = height;
-    state_.lighting = lightingModeName(parseLightingMode(options_.setup.lighting));
-    if (!options_.settings.empty()) {
-        if (!session_->loadSettings(state_, options_.settings)) throw Error(session_->lastError());
-        if (options_.given && options_.given("--scene") && !session_->openScene(state_, options_.scene))
-            throw Error(session_->lastError());
-    } else if (!session_->openScene(state_, options_.scene, cameraRequest(options_.setup))) {
-        throw Error(session_->lastError());
-    }
-    scenePath_ = state_.scene;
-    if (!options_.setup.emitters.empty()) {  // --emitters: emitters.mode of every pane
-        RenderSettings parsed;
-        setParam(parsed, "emitters.mode", options_.setup.emitters);
-        for (PaneState& pane : state_.panes) pane.params["emitters.mode"] = parsed.params["emitters.mode"];
-    }
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "gi/method.h"
+
 namespace gis::view {
 
 namespace {
@@ -91,13 +93,16 @@ std::vector<ScriptStep> parseScript(const std::string& text, const std::string& 
                 s.kind = ScriptStep::Action;
                 s.action = parsePanelAction(w);
                 // Names and ranges are checked now, so a typo fails before any window opens;
-                // light edits depend on the scene's lights and are checked when they run.
+                // light edits depend on the scene's lights and are checked in context.
                 const PanelAction::Kind k = s.action.kind;
                 const bool dependsOnScene = k == PanelAction::SetLightEnabled || k == PanelAction::SetLightIntensity ||
                                             k == PanelAction::SetLightColor || k == PanelAction::SetLightPosition ||
                                             k == PanelAction::SetLightDirection || k == PanelAction::RemoveLight;
+                // A parameter's value alone: whether the method takes it with the pane's other
+                // values is for checkScriptInContext (vct.debug-level 2 after vct.debug-channel occupancy).
+                if (k == PanelAction::SetParam) parsePaneParam(s.action);
                 ViewState scratch;
-                if (!dependsOnScene) applyPanelAction(scratch, s.action);
+                if (!dependsOnScene && k != PanelAction::SetParam) applyPanelAction(scratch, s.action);
             }
         } catch (const Error& e) {
             throw Error(name + ":" + std::to_string(lineNo) + ": " + e.what());
@@ -113,6 +118,60 @@ std::vector<ScriptStep> loadScript(const std::string& path) {
     std::stringstream buf;
     buf << f.rdbuf();
     return parseScript(buf.str(), path);
+}
+
+namespace {
+bool editsPane(PanelAction::Kind k) {
+    return k == PanelAction::SetMethod || k == PanelAction::SetPreset || k == PanelAction::SetDiffuse ||
+           k == PanelAction::SetSpecular || k == PanelAction::SetDisplay || k == PanelAction::SetDirectOnly ||
+           k == PanelAction::SetParam || k == PanelAction::ResetParams;
+}
+
+// What an action needs of the state it is applied to, beyond applyPanelAction's own checks.
+void checkActionInContext(const ViewState& s, const PanelAction& a) {
+    if (!editsPane(a.kind)) return;
+    const int shown = paneCount(s.mode);
+    if (a.index >= shown && a.index < kMaxPanes)
+        throw Error("pane " + std::to_string(a.index) + " is not shown in " + viewModeName(s.mode) + " mode (panes 0.." +
+                    std::to_string(shown - 1) + "): switch the mode first (mode " +
+                    (a.index < paneCount(ViewMode::Split) ? "split" : "grid") + ")");
+    if (a.kind != PanelAction::SetParam) return;
+    std::string method;
+    findParam(a.text, &method);  // applyPanelAction names an unknown key
+    const std::string& gi = s.panes[a.index].gi;
+    if (method != gi && !isGroupParam(a.text))
+        throw Error(a.text + " is a parameter of another method than pane " + std::to_string(a.index) + "'s " + gi +
+                    ": it would do nothing (method " + std::to_string(a.index) + " " + method + " first)");
+}
+
+// The keys that change what the panes are (docs/viewer.md): the rest move the camera or take a
+// screenshot, which no later line depends on.
+void applyKeyInContext(ViewState& s, const std::string& key) {
+    if (key == "1") applyPanelAction(s, PanelAction::viewMode(ViewMode::Single));
+    else if (key == "2") applyPanelAction(s, PanelAction::viewMode(ViewMode::Split));
+    else if (key == "3") applyPanelAction(s, PanelAction::viewMode(ViewMode::Grid));
+    else if (key == "B") {
+        PanelAction swap;
+        swap.kind = PanelAction::SwapSides;
+        applyPanelAction(s, swap);
+    }
+}
+}  // namespace
+
+void checkScriptInContext(const std::vector<ScriptStep>& steps, ViewState state, const std::string& name) {
+    for (const ScriptStep& step : steps) {
+        if (step.kind == ScriptStep::OpenScene || step.kind == ScriptStep::LoadSettings) return;  // parseScript checked the rest
+        try {
+            if (step.kind == ScriptStep::Key) applyKeyInContext(state, step.path);
+            if (step.kind != ScriptStep::Action) continue;
+            checkActionInContext(state, step.action);
+            applyPanelAction(state, step.action);
+            if (step.action.kind == PanelAction::SetDisplay || step.action.kind == PanelAction::SetMethod)
+                checkPaneDisplay(state, step.action.index);
+        } catch (const Error& e) {
+            throw Error(name + ":" + std::to_string(step.line) + ": " + e.what());
+        }
+    }
 }
 
 void ScriptRunner::frame(ScriptHost& host) {

@@ -34,6 +34,15 @@ struct ScriptStep {
 std::vector<ScriptStep> parseScript(const std::string& text, const std::string& name);
 std::vector<ScriptStep> loadScript(const std::string& path);
 
+// Runs the script's actions on a copy of `state` (the view as it opens: its scene's lights, the
+// settings file's panes), with no GL and no window, so a line that is wrong only in context fails
+// before any window opens: an edit of a pane the view mode does not show, a display the pane's
+// method cannot produce, a parameter of another method than the pane's, a light past what the
+// shadow maps hold. Keys 1 2 3 and B are followed (they change the mode and swap the sides).
+// After a `scene` or `settings` line the state is the file's, unknown here: the lines after it
+// are checked one at a time, as parseScript does. Throws gis::Error "NAME:LINE: message".
+void checkScriptInContext(const std::vector<ScriptStep>& steps, ViewState state, const std::string& name);
+
 // What a script needs from the app that runs it.
 class ScriptHost {
 public:

@@ -89,7 +89,7 @@ std::string structuralKey(const RenderSettings& settings) {
     return j.dump();
 }
 
-ViewSession::ViewSession() { readFbo_ = gl::createFramebuffer(); }
+ViewSession::ViewSession() = default;
 
 ViewSession::~ViewSession() { releaseRenderers(); }
 
@@ -435,6 +435,7 @@ void ViewSession::drawToFramebuffer(const ViewState& state, int x, int y, int w,
     if (visible_ == 0 || w <= 0 || h <= 0) return;
     const int sw = paneSize_.x, sh = paneSize_.y;
     // Source rectangles in pane pixels; a motion frame's texture is smaller by its scale.
+    if (!readFbo_) readFbo_ = gl::createFramebuffer();  // not in the constructor: a session opens its scene before GL
     auto blit = [&](const PaneView& p, int sx0, int sy0, int sx1, int sy1, int dx0, int dy0, int dx1, int dy1) {
         if (!p.shown || sx1 <= sx0 || dx1 <= dx0) return;
         const glm::dvec2 k = glm::dvec2(p.shownSize) / glm::dvec2(sw, sh);

@@ -76,7 +76,7 @@ struct PaneView {
 
 class ViewSession {
 public:
-    ViewSession();   // needs a current GL 4.5 context
+    ViewSession();   // no GL until a frame is rendered or drawn: a scene can be opened before the window
     ~ViewSession();
     ViewSession(const ViewSession&) = delete;
     ViewSession& operator=(const ViewSession&) = delete;
@@ -158,7 +158,7 @@ private:
     std::string lightsKey_;              // the lights scene_ holds now
     PaneView panes_[kMaxPanes];
     std::map<std::string, Reference> references_;
-    gl::Object readFbo_;
+    mutable gl::Object readFbo_;  // made by the first drawToFramebuffer
     glm::ivec2 paneSize_{1, 1};
     int visible_ = 0;
     int rebuilds_ = 0;

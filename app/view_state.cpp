@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "brdf_cpu.h"
+#include "lights.h"
 #include "gi/method.h"
 #include "passes/lighting_pass.h"
 
@@ -304,6 +305,16 @@ std::array<PaneState, kMaxPanes> defaultPanes() {
 
 // --- Applying actions.
 
+ParamValue parsePaneParam(const PanelAction& a) {
+    checkPane(a.index);
+    std::string method;
+    const ParamDesc& d = findParam(a.text, &method);
+    if (a.text != method + "." + d.key) throw Error("set takes METHOD.KEY, not the flag '" + a.text + "'");
+    ParamValue v = parseParamValue(method, d, a.valueText);
+    checkParamValue(method, d, v);
+    return v;
+}
+
 void applyPanelAction(ViewState& state, const PanelAction& a) {
     ViewState s = state;  // all or nothing: a throw leaves `state` as it was
     ViewCamera& cam = s.camera;
@@ -316,14 +327,10 @@ void applyPanelAction(ViewState& state, const PanelAction& a) {
             s.panes[a.index].gi = a.text;
             if (s.panes[a.index].display == PaneDisplay::Method) s.panes[a.index].display = PaneDisplay::Lit;
             break;
-        case PanelAction::SetParam: {
-            checkPane(a.index);
-            std::string method;
-            const ParamDesc& d = findParam(a.text, &method);
-            if (a.text != method + "." + d.key) throw Error("set takes METHOD.KEY, not the flag '" + a.text + "'");
-            s.panes[a.index].params[a.text] = parseParamValue(method, d, a.valueText);
+        case PanelAction::SetParam:
+            s.panes[a.index].params[a.text] = parsePaneParam(a);
+            checkParams(paneSettings(s, a.index, {1, 1}).params);  // what the ranges cannot say, as render does
             break;
-        }
         case PanelAction::ResetParams:
             checkPane(a.index);
             s.panes[a.index].params.clear();
@@ -529,7 +536,16 @@ void applyPanelAction(ViewState& state, const PanelAction& a) {
             break;
         case PanelAction::SetPlotLog: s.plotLog = a.flag; break;
     }
+    const bool moreShadows = a.kind == PanelAction::AddLight || (a.kind == PanelAction::SetLightEnabled && a.flag) ||
+                             (a.kind == PanelAction::SetShadows && a.flag);
+    if (moreShadows && s.shadows) checkShadowLayers(effectiveLights(s, s.sceneLights), kMinArrayTextureLayers, "`shadows off` first");
     state = std::move(s);
+}
+
+void checkPaneDisplay(const ViewState& state, int pane) {
+    checkPane(pane);
+    const PaneState& p = state.panes[pane];
+    if (p.display == PaneDisplay::Method) checkViewOfMethod(p.gi, p.methodView);
 }
 
 // --- Words to actions.

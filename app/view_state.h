@@ -156,9 +156,16 @@ struct PanelAction {
     static PanelAction look(float dyaw, float dpitch);        // fly: turn in place
 };
 
+// A SetParam's pane, key and value on their own (the row's range), without the pane's other values.
+ParamValue parsePaneParam(const PanelAction& action);
+
 // Validates and applies. Throws gis::Error (one line) for unknown names or out-of-range values and
 // leaves `state` unchanged then.
 void applyPanelAction(ViewState& state, const PanelAction& action);
+
+// Throws when pane `pane`'s display is a view its method cannot produce, told without GL
+// (checkViewOfMethod: "sdf.slice" on a vct pane, "indirect.diffuse" on a pathtrace pane).
+void checkPaneDisplay(const ViewState& state, int pane);
 
 // A script line / command in words, e.g. "method 1 pathtrace", "camera orbit 10 0" (degrees),
 // "light 0 intensity 2". Throws gis::Error naming the problem. See docs/viewer.md.

@@ -77,10 +77,21 @@ std::vector<TraceTriangle> worldTriangles(const Scene& scene) {
     return tris;
 }
 
+namespace {
+// No triangles: a root no ray reaches, so every ray misses and sees the background. It sits far
+// beyond the longest ray the tracers cast (1e30), and traversal stops at the root's bounds test
+// before it would read the children an interior node points to.
+Bvh emptyBvh() {
+    Bvh bvh;
+    bvh.nodes.push_back({glm::vec3(1e38f), 0u, glm::vec3(1e38f), 0u});
+    return bvh;
+}
+}  // namespace
+
 Bvh buildBvh(const Scene& scene) {
     const auto start = std::chrono::steady_clock::now();
     std::vector<TraceTriangle> tris = worldTriangles(scene);
-    if (tris.empty()) throw Error("cannot build a BVH: the scene has no triangles");
+    if (tris.empty()) return emptyBvh();
 
     std::vector<RTCBuildPrimitive> prims(tris.size());
     for (size_t i = 0; i < tris.size(); ++i) {

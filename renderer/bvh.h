@@ -41,7 +41,8 @@ struct Bvh {
 // triangles of renderer/services use the same list, so both agree triangle for triangle).
 std::vector<TraceTriangle> worldTriangles(const Scene& scene);
 
-// Throws gis::Error when the scene has no triangles or Embree fails.
+// Throws gis::Error when Embree fails. A scene without triangles gets a tree every ray misses
+// (one root node, no triangles).
 Bvh buildBvh(const Scene& scene);
 
 }  // namespace gis

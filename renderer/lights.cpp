@@ -4,6 +4,19 @@
 
 namespace gis {
 
+void checkShadowLayers(const std::vector<Light>& lights, int maxLayers, const std::string& remedy) {
+    size_t points = 0, flat = 0;
+    for (const Light& l : lights) (l.type == LightType::Point ? points : flat) += 1;
+    const size_t maxPoints = size_t(maxLayers) / 6;
+    if (points > maxPoints)
+        throw Error("the scene has " + std::to_string(points) + " point lights; shadow cube maps hold at most " +
+                    std::to_string(maxPoints) + " (GL_MAX_ARRAY_TEXTURE_LAYERS " + std::to_string(maxLayers) +
+                    " / 6): " + remedy);
+    if (flat > size_t(maxLayers))
+        throw Error("the scene has " + std::to_string(flat) + " spot/directional lights; shadow maps hold at most " +
+                    std::to_string(maxLayers) + " (GL_MAX_ARRAY_TEXTURE_LAYERS): " + remedy);
+}
+
 std::vector<GpuLight> makeGpuLights(const Scene& scene) {
     std::vector<GpuLight> out;
     for (const Light& l : scene.lights) {

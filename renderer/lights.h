@@ -2,6 +2,7 @@
 // lighting (with shadow-map fields filled in by the shadow pass) and the ray tracers (none).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -26,6 +27,15 @@ struct GpuLight {  // std430 and std140 alike (vec4s and a mat4), mirrors shader
 // least this many entries so the block is always backed; scenes with more use the storage buffer.
 constexpr int kUniformBlockLights = 100;
 static_assert(kUniformBlockLights * sizeof(GpuLight) <= 16384, "GL_MAX_UNIFORM_BLOCK_SIZE is at least 16 KiB");
+
+// GL_MAX_ARRAY_TEXTURE_LAYERS's GL 4.5 minimum (2048 on most drivers): what a check without a
+// context (the viewer's panel and scripts) can count on.
+constexpr int kMinArrayTextureLayers = 2048;
+
+// The shadow maps are layers of one array texture: 6 per point light (a cube), 1 per spot or
+// directional light. Throws when `lights` need more than `maxLayers` (past it allocation fails
+// with an incomplete framebuffer that names no cause); the message ends in `remedy`.
+void checkShadowLayers(const std::vector<Light>& lights, int maxLayers, const std::string& remedy);
 
 // One GpuLight per scene light, with no shadow map.
 std::vector<GpuLight> makeGpuLights(const Scene& scene);

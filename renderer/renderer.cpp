@@ -59,6 +59,7 @@ void checkSettings(const RenderSettings& s) {
         throw Error("the " + method.name + " method takes the physically based models only: --diffuse lambert|burley, "
                     "--specular ggx|none");
     checkParams(s.params);
+    checkViewOfMethod(s.gi, s.view);
     if (int(s.diffuse) < 0 || int(s.diffuse) >= kDiffuseModelCount) throw Error("diffuse BRDF model out of range");
     if (int(s.specular) < 0 || int(s.specular) >= kSpecularModelCount) throw Error("specular BRDF model out of range");
 }

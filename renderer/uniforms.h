@@ -36,6 +36,7 @@ constexpr int kSsaoMaxKernel = 256;
     X(U_EMITTER_COUNT, 43, 1) \
     X(U_RR_START, 44, 1) \
     X(U_CAUSTICS, 45, 1) /* 0: no light through glossy bounces after a diffuse one */ \
+    X(U_PT_TERM, 46, 1) /* the term a path accumulates: 0 all, 1 direct, 2 emission, 3 indirect */ \
     /* ambient occlusion (SSAO, its blur and temporal passes, the ray-traced reference) */ \
     X(U_AO_RADIUS, 50, 1) \
     X(U_AO_PARAMS, 51, 1) /* bias (fraction of radius), power, steps per direction, noise offset */ \

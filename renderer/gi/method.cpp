@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "passes/lighting_pass.h"
 #include "scene/scene_lighting.h"
 
 namespace gis {
@@ -120,11 +121,35 @@ bool isGroupParam(const std::string& fullKey) {
 }
 
 void checkParams(const ParamValues& values) {
+    std::vector<const GiMethod*> named;
     for (const auto& [key, value] : values) {
         std::string method;
         const ParamDesc& d = findParam(key, &method);
         checkParamValue(method, d, value);
+        const GiMethod* m = findGiMethod(method);
+        if (m && m->checkSettings && std::find(named.begin(), named.end(), m) == named.end()) named.push_back(m);
     }
+    for (const GiMethod* m : named) m->checkSettings(values);
+}
+
+void checkViewOfMethod(const std::string& gi, const std::string& view) {
+    const GiMethod& method = giMethod(gi);
+    const std::vector<std::string> terms = LightingPass::termViewNames();
+    auto writes = [&view](const GiMethod& m) {
+        return m.pipeline == MethodPipeline::Deferred ||
+               std::find(m.termViews.begin(), m.termViews.end(), view) != m.termViews.end();
+    };
+    if (view != "ao" && std::find(terms.begin(), terms.end(), view) != terms.end() && !writes(method)) {
+        std::string with;
+        for (const GiMethod& m : giMethods())
+            if (writes(m)) with += (with.empty() ? "" : ", ") + m.name;
+        throw Error("view '" + view + "' is a term of the deferred lighting pass, which --gi " + gi +
+                    " does not run, and " + gi + " does not write it itself (it exists for " + with + ")");
+    }
+    const size_t dot = view.find('.');
+    const GiMethod* owner = dot == std::string::npos ? nullptr : findGiMethod(view.substr(0, dot));
+    if (owner && owner != &method)
+        throw Error("view '" + view + "' is a view of --gi " + owner->name + ", not produced by --gi " + gi);
 }
 
 }  // namespace gis

@@ -64,6 +64,8 @@ struct GiMethod {
     bool benchmarked = true;                // a row in `bench` (not the reference itself)
     std::vector<ParamDesc> params;
     std::vector<GiPreset> presets;          // low, medium, high
+    // Standalone methods: the lighting pass's term views ("direct", "emission") it writes itself.
+    std::vector<std::string> termViews;
     std::function<void(MethodBuild&)> addPasses;
     std::function<std::vector<ProgramDesc>()> programs;  // every program its passes may build
     // GPU bytes its passes will hold, by part, estimated from the settings before anything is
@@ -72,6 +74,10 @@ struct GiMethod {
     // Frames a static view needs before the image is final (the bench scores after that many);
     // progressive passes report their own progress and are rendered until converged().
     std::function<int(const RenderSettings&)> framesToConverge;
+    // What its rows' ranges cannot say (a power-of-two resolution, a debug level its channel lacks),
+    // checked with the ranges by checkParams: before anything is built and whenever a value is set.
+    // Throws gis::Error naming the key. Optional.
+    std::function<void(const ParamValues&)> checkSettings;
 
     const ParamDesc* param(const std::string& key) const;
     const GiPreset& preset(const std::string& name) const;  // throws for an unknown name
@@ -108,7 +114,14 @@ bool isGroupParam(const std::string& fullKey);
 
 // Resolves "method.key", "group.key" or an alias flag; throws naming the key and the method's keys.
 const ParamDesc& findParam(const std::string& fullKey, std::string* methodOut = nullptr);
-// Validates every value in s.params against its row (one message format).
+// Validates every value in s.params against its row (one message format), then each method's
+// checkSettings for the methods the values name.
 void checkParams(const ParamValues& values);
+
+// Throws when `view` (a --view / pane display name) is one that --gi `gi` cannot produce, told
+// by the view's name alone (no GL): a method's own view ("sdf.slice") of another method, or a
+// lighting term ("direct") that a method without the deferred lighting pass does not write itself. Names neither kind
+// (gbuffer.*, ao, final, an unknown name) are left to the renderer's list of its passes' views.
+void checkViewOfMethod(const std::string& gi, const std::string& view);
 
 }  // namespace gis

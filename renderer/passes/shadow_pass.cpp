@@ -28,24 +28,12 @@ glm::vec3 anyPerpendicularUp(const glm::vec3& dir) {
 // plane beyond a scene modelled at 1e-6 units, and its shadows vanished.
 float shadowNear(float sceneRadius) { return std::max(sceneRadius * 1e-3f, 1e-30f); }
 
-// Every shadow-casting light needs layers of one array texture: 6 per point light (a cube),
-// 1 per spot or directional light. Past GL_MAX_ARRAY_TEXTURE_LAYERS (2048 on most drivers, the
-// GL 4.5 minimum) allocation fails with an incomplete-framebuffer error that names no cause,
-// so the scene is refused first with the limit and the way around it.
+// Past the driver's layer count allocation fails with an error that names no cause, so the
+// scene is refused first with the limit and the way around it.
 void checkLayerLimits(const Scene& scene) {
-    size_t points = 0, flat = 0;
-    for (const Light& l : scene.lights) (l.type == LightType::Point ? points : flat) += 1;
     GLint maxLayers = 0;
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-    if (maxLayers <= 0) maxLayers = 2048;
-    const size_t maxPoints = size_t(maxLayers) / 6;
-    if (points > maxPoints)
-        throw Error("the scene has " + std::to_string(points) + " point lights; shadow cube maps hold at most " +
-                    std::to_string(maxPoints) + " (GL_MAX_ARRAY_TEXTURE_LAYERS " + std::to_string(maxLayers) +
-                    " / 6): render with --no-shadows");
-    if (flat > size_t(maxLayers))
-        throw Error("the scene has " + std::to_string(flat) + " spot/directional lights; shadow maps hold at most " +
-                    std::to_string(maxLayers) + " (GL_MAX_ARRAY_TEXTURE_LAYERS): render with --no-shadows");
+    checkShadowLayers(scene.lights, maxLayers > 0 ? maxLayers : kMinArrayTextureLayers, "render with --no-shadows");
 }
 
 }  // namespace

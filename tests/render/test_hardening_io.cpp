@@ -13,6 +13,8 @@
 
 #include "cli_util.h"
 #include "gi/method.h"
+#include "gi/vct/vct_settings.h"
+#include "volume/scene_volume.h"
 #include "image.h"
 #include "scene/atomic_file.h"
 #include "scene/scene.h"
@@ -348,6 +350,70 @@ TEST(Hardening, MergeVerifiesEachLineAgainstItsIdAndRefusesDuplicates) {
     const gis::test::CliResult twice = runCli("bench --plan --scenes builtin:cornell --methods none,none --presets low");
     EXPECT_EQ(twice.status, 1);
     EXPECT_NE(twice.err.find("--methods names 'none' twice"), std::string::npos) << twice.err;
+}
+
+}  // namespace
+
+namespace {
+
+// A scene without triangles: the path tracer and the AO reference see the background, as the
+// rasterized methods do, instead of refusing with "cannot build a BVH".
+TEST(Hardening, RayTracersRenderAnEmptySceneAsTheBackground) {
+    const std::string dir = tempDir("hardening_empty_scene");
+    spit(dir + "/empty.gltf", R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": []}], "scene": 0})");
+    auto meanOf = [&](const std::string& gi) {
+        const std::string out = dir + "/" + gi + ".exr";
+        const auto r = runCli("render --scene " + dir + "/empty.gltf --gi " + gi +
+                              " --background 0.2,0.4,0.8 --spp 4 --size 16x16 --out " + out);
+        EXPECT_EQ(r.status, 0) << gi << ": " << r.err;
+        std::vector<double> mean(3, 0.0);
+        if (r.status != 0) return mean;
+        const gis::ImageF img = gis::readExr(out);
+        for (size_t i = 0; i < img.rgba.size(); i += 4)
+            for (int c = 0; c < 3; ++c) mean[c] += img.rgba[i + c] / double(img.width * img.height);
+        return mean;
+    };
+    const std::vector<double> none = meanOf("none"), traced = meanOf("pathtrace");
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_GT(none[c], 0.1) << "the background is seen";
+        EXPECT_NEAR(traced[c], none[c], 1e-3 * none[c]) << "channel " << c;
+    }
+    const std::vector<double> ao = meanOf("ao-reference");
+    EXPECT_EQ(ao[0], 0.0) << "no surface: what the AO reference writes where a pixel sees the sky";
+}
+
+}  // namespace
+
+namespace {
+
+// vct.resolution's listed range ends where the voxel budget does: 512 was listed and always refused
+// (its volume needs more than the 8 GiB cap in every form). The largest listed one fits with the
+// default settings, twice it fits in none.
+TEST(Hardening, VctResolutionListsOnlyWhatTheVoxelBudgetHolds) {
+    const gis::ParamDesc* row = nullptr;
+    for (const gis::ParamDesc& d : gis::vctParams().rows)
+        if (d.key == "resolution") row = &d;
+    ASSERT_NE(row, nullptr);
+    const int largest = int(row->max);
+    EXPECT_EQ(largest, gis::maxVctResolution());
+    gis::VctSettings defaults;
+    defaults.resolution = largest;
+    gis::VolumeRequest r = gis::vctVolumeRequest(defaults);
+    EXPECT_LE(gis::sceneVolumeBytes(r, r.cascades), gis::kVoxelBudgetBytes) << largest << "^3 with the defaults";
+    gis::VctSettings smallest;
+    smallest.resolution = 2 * largest;
+    smallest.anisotropic = false;
+    smallest.bounces = 1;
+    r = gis::vctVolumeRequest(smallest);
+    EXPECT_GT(gis::sceneVolumeBytes(r, r.cascades), gis::kVoxelBudgetBytes) << 2 * largest << "^3 in its smallest form";
+
+    const auto list = runCli("methods vct");
+    EXPECT_NE(list.out.find("[8, " + std::to_string(largest) + "]"), std::string::npos) << list.out;
+    const std::string dir = tempDir("hardening_vct_range");
+    const auto r2 = runCli("render --scene builtin:cornell --gi vct --set vct.resolution=" + std::to_string(2 * largest) +
+                           " --size 8x8 --out " + dir + "/x.png");
+    EXPECT_NE(r2.status, 0);
+    EXPECT_NE(r2.err.find("out of range [8, " + std::to_string(largest) + "]"), std::string::npos) << r2.err;
 }
 
 }  // namespace

@@ -106,6 +106,39 @@ TEST(RenderSettings, BadInputFailsCleanly) {
     EXPECT_NE(r.err.find("bad.txt:2:"), std::string::npos) << r.err;
 }
 
+// A pane's display reaches `render --pane`: a method's view is rendered (it came out as the lit
+// image: the loader set the display before the method, which reset it), the heatmap, which render
+// cannot draw, is refused, and a view of another method is refused when the file is read.
+TEST(RenderSettings, ThePanesDisplayIsRenderedOrRefused) {
+    const std::string dir = tempDir("view_pane_display");
+    ViewState s;
+    for (const char* line : {"method 0 vct", "display 0 vct.voxels"}) applyPanelAction(s, parsePanelAction(splitWords(line)));
+    saveViewSettings(dir + "/voxels.json", s);
+    const ImageU8 pane = renderCli("--settings " + dir + "/voxels.json --size 32x32 --out " + dir + "/pane.png");
+    const ImageU8 voxels =
+        renderCli("--scene builtin:cornell --gi vct --view vct.voxels --size 32x32 --out " + dir + "/voxels.png");
+    const ImageU8 lit = renderCli("--scene builtin:cornell --gi vct --size 32x32 --out " + dir + "/lit.png");
+    EXPECT_EQ(meanAbsDiff(pane, voxels), 0.0);
+    EXPECT_GT(meanAbsDiff(pane, lit), 1.0);
+
+    applyPanelAction(s, parsePanelAction(splitWords("display 0 heatmap")));
+    saveViewSettings(dir + "/heatmap.json", s);
+    CliResult r = runCli("render --settings " + dir + "/heatmap.json --size 32x32 --out " + dir + "/h.png");
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("--pane 0 displays the error heatmap"), std::string::npos) << r.err;
+    EXPECT_EQ(renderCli("--settings " + dir + "/heatmap.json --view final --size 32x32 --out " + dir + "/f.png").width, 32);
+
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(dir + "/voxels.json"));
+    j["panes"][0]["display"] = "sdf.slice";
+    { std::ofstream(dir + "/other.json") << j.dump(); }
+    r = runCli("render --settings " + dir + "/other.json --size 32x32 --out " + dir + "/o.png");
+    EXPECT_NE(r.status, 0);
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("panes[0].display': view 'sdf.slice' is a view of --gi sdf, not produced by --gi vct"),
+              std::string::npos)
+        << r.err;
+}
+
 // The real window under a virtual X server, driven by a script: a few frames, a split view of the
 // rasterizer against the path tracer, a screenshot and a capture of the whole window.
 TEST(Window, ScriptedSplitViewScreenshotUnderXvfb) {
@@ -189,7 +222,7 @@ TEST(Window, ScriptedSplitViewScreenshotUnderXvfb) {
 // release both come before the next frame (a press shorter than a frame) still switches the view.
 TEST(Window, AKeyTapShorterThanAFrameTakesEffectUnderXvfb) {
     const std::string dir = tempDir("view_key_tap");
-    { std::ofstream(dir + "/script.txt") << "wait 1\nmethod 1 ssao\nkey 2\nkey B\nwait 1\nsave-settings " << dir
+    { std::ofstream(dir + "/script.txt") << "wait 1\nkey 2\nmethod 1 ssao\nkey B\nwait 1\nsave-settings " << dir
                                          << "/saved.json\nquit\n"; }
     CliResult r = runCli("view --size 560x200 --script " + dir + "/script.txt", "xvfb-run -a");
     ASSERT_EQ(r.status, 0) << r.err << r.out;

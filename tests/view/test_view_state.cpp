@@ -250,6 +250,109 @@ TEST(Script, ParsesTimedActionsAndNamesBadLines) {
     }
 }
 
+// The script's error for `lines` in context (checkScriptInContext on `state`), without "NAME:LINE: ".
+std::string contextError(const std::string& lines, const ViewState& state, int* line = nullptr) {
+    try {
+        checkScriptInContext(parseScript(lines, "c.txt"), state, "c.txt");
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        const size_t colon = what.find(':', 6);
+        if (line) *line = std::stoi(what.substr(6, colon - 6));
+        return what.substr(colon + 2);
+    }
+    return "";
+}
+
+// What `render` says about the same settings (its one error line, without "gisandbox: error: ").
+std::string cliError(const std::string& args) {
+    const std::string dir = tempDir("view_context_cli");
+    const CliResult r = runCli("render --scene builtin:cornell --size 8x8 --out " + dir + "/x.png " + args);
+    EXPECT_NE(r.status, 0) << args;
+    const std::string prefix = "gisandbox: error: ";
+    const size_t at = r.err.find(prefix);
+    return at == std::string::npos ? r.err : r.err.substr(at + prefix.size(), r.err.find('\n', at) - at - prefix.size());
+}
+
+// Each command below is valid on a fresh state, so checking one line at a time let it through
+// (exit 0, a black or unchanged pane); in the script's context it is refused before the window opens,
+// with the message render gives for the same settings.
+TEST(Script, LinesThatFailOnlyInContextAreRefusedBeforeTheWindowOpens) {
+    const Scene scene = loadScene("builtin:cornell");
+    const ViewState state = stateFor(scene);
+    for (const char* line : {"display 0 sdf.slice", "set 0 sdf.rays 8", "method 2 vct", "display 0 indirect.diffuse"})
+        EXPECT_NO_THROW(parseScript(std::string(line) + "\n", "one.txt")) << line << ": valid alone";
+
+    // A view of another method: the CLI's message for --gi vct --view sdf.slice.
+    int line = 0;
+    EXPECT_EQ(contextError("method 0 vct\ndisplay 0 sdf.slice\n", state, &line), cliError("--gi vct --view sdf.slice"));
+    EXPECT_EQ(line, 2);
+    EXPECT_EQ(contextError("method 0 sdf\ndisplay 0 sdf.slice\n", state), "");
+    // A lighting term a method without the lighting pass does not write itself (issue 26's
+    // per-term views: the path tracer writes direct and emission, not the indirect split).
+    const std::string term = contextError("method 0 pathtrace\ndisplay 0 indirect.diffuse\n", state);
+    EXPECT_EQ(term, cliError("--gi pathtrace --view indirect.diffuse"));
+    EXPECT_NE(term.find("none, ssao, vct"), std::string::npos) << term;
+    EXPECT_EQ(contextError("method 0 pathtrace\ndisplay 0 direct\ndisplay 0 pathtrace.indirect\n", state), "");
+    EXPECT_NE(contextError("method 0 ao-reference\ndisplay 0 direct\n", state).find("pathtrace"), std::string::npos);
+    EXPECT_EQ(contextError("method 0 ssao\ndisplay 0 indirect.diffuse\nmethod 0 pathtrace\n", state), "")
+        << "a new method resets the display";
+
+    // A value the parameter's range allows but the method refuses: render's message.
+    EXPECT_EQ(contextError("method 0 vct\nset 0 vct.resolution 33\n", state), cliError("--gi vct --set vct.resolution=33"));
+    EXPECT_EQ(contextError("method 0 vct\nset 0 vct.debug-level 2\n", state),
+              cliError("--gi vct --set vct.debug-level=2"));
+    EXPECT_EQ(contextError("method 0 vct\nset 0 vct.debug-channel occupancy\nset 0 vct.debug-level 2\n", state), "");
+
+    // Another method's parameter does nothing on this pane.
+    const std::string other = contextError("method 0 vct\nset 0 sdf.rays 8\n", state);
+    EXPECT_NE(other.find("sdf.rays is a parameter of another method than pane 0's vct"), std::string::npos) << other;
+    EXPECT_EQ(contextError("method 0 sdf\nset 0 sdf.rays 8\nset 0 emitters.mode lights\n", state), "");
+
+    // A pane the mode does not show; keys 1 2 3 change the mode as the buttons do.
+    const std::string hidden = contextError("mode split\nmethod 2 vct\n", state, &line);
+    EXPECT_NE(hidden.find("pane 2 is not shown in split mode"), std::string::npos) << hidden;
+    EXPECT_EQ(line, 2);
+    EXPECT_NE(contextError("method 1 ssao\n", state).find("pane 1 is not shown in single mode"), std::string::npos);
+    EXPECT_EQ(contextError("mode grid\nmethod 2 vct\nkey 2\nmethod 1 ssao\nkey B\nset 0 ssao.radius 0.5\n", state), "")
+        << "after B, pane 0 is the ssao pane";
+
+    // Lights past what the shadow maps hold: the renderer's own message, at the first light too many.
+    std::string many;
+    for (int i = 0; i < 500; ++i) many += "light add point\n";
+    const std::string lights = contextError(many, state, &line);
+    EXPECT_NE(lights.find("shadow cube maps hold at most 341"), std::string::npos) << lights;
+    EXPECT_EQ(line, 341) << "cornell's own point light plus 340 added fit";
+    EXPECT_EQ(contextError("shadows off\n" + many, state), "");
+    EXPECT_NE(contextError("shadows off\n" + many + "shadows on\n", state).find("hold at most 341"), std::string::npos);
+    EXPECT_NE(contextError("light 0 color 3e38 3e38 3e38\n", state).find("magnitude <= 1e18"), std::string::npos);
+    EXPECT_NE(contextError("light 1 intensity 2\n", state).find("light 1 does not exist"), std::string::npos)
+        << "light edits are checked against the scene's lights";
+
+    // After a settings file or a scene the state is the file's: only the one-line checks remain.
+    EXPECT_EQ(contextError("settings other.json\nmethod 2 vct\n", state), "");
+}
+
+// vct.debug-level is a live parameter: chosen in the panel it reached the voxel view without the
+// check the pass makes when it is built, and the albedo grid (no mips) at level 2 showed black.
+// The action is refused when set, naming the channel to use, and the state is left as it was.
+TEST(PanelActions, ALiveVoxelDebugLevelTheChannelLacksIsRefused) {
+    ViewState s;
+    applyPanelAction(s, PanelAction::method(0, "vct"));
+    applyPanelAction(s, PanelAction::display(0, "vct.voxels"));
+    const ViewState before = s;
+    try {
+        applyPanelAction(s, PanelAction::param(0, "vct.debug-level", "2"));
+        ADD_FAILURE() << "level 2 of the albedo grid accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("use vct.debug-channel=radiance or occupancy"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(s.panes[0].params, before.panes[0].params);
+    applyPanelAction(s, PanelAction::param(0, "vct.debug-channel", "occupancy"));
+    applyPanelAction(s, PanelAction::param(0, "vct.debug-level", "2"));
+    EXPECT_THROW(applyPanelAction(s, PanelAction::param(0, "vct.debug-channel", "albedo")), Error)
+        << "back to albedo at level 2";
+}
+
 // A host that records what the runner asks for.
 struct FakeHost : ScriptHost {
     ViewState state;

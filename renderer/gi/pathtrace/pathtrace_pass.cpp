@@ -9,6 +9,34 @@ namespace gis {
 
 namespace {
 constexpr GLuint RAY_COUNTS_BINDING = 6;  // pathtrace.comp's RayCounts
+
+// The term views in pathtrace.comp's u_term order (1, 2, 3): they add up to the final image.
+const std::vector<DebugViewDesc>& termViews() {
+    static const std::vector<DebugViewDesc> views{
+        {"direct", "radiance the first surface receives straight from the lights and emitters (as the lighting "
+                   "pass's direct term); direct + emission + pathtrace.indirect = final before tone mapping"},
+        {"emission", "emitted radiance seen directly: surfaces' emission, the background elsewhere"},
+        {"pathtrace.indirect", "everything after the first bounce: final - direct - emission (indirect diffuse and "
+                               "specular together, the environment's light on the first surface included)"}};
+    return views;
+}
+
+int termOf(const std::string& view) {
+    for (size_t i = 0; i < termViews().size(); ++i)
+        if (termViews()[i].name == view) return int(i) + 1;
+    return 0;
+}
+}  // namespace
+
+std::vector<DebugViewDesc> PathTracePass::debugViews() const { return termViews(); }
+
+// The paths kept only the viewed term: their mean is the view, written as it is.
+void PathTracePass::drawDebugView(const std::string&, const Frame& frame, GLuint target) {
+    if (!readFbo_) readFbo_ = gl::createFramebuffer(), drawFbo_ = gl::createFramebuffer();
+    glNamedFramebufferTexture(readFbo_.id(), GL_COLOR_ATTACHMENT0, samples_.mean.id(), 0);
+    glNamedFramebufferTexture(drawFbo_.id(), GL_COLOR_ATTACHMENT0, target, 0);
+    const int w = frame.settings.width, h = frame.settings.height;
+    glBlitNamedFramebuffer(readFbo_.id(), drawFbo_.id(), 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
 const ParamTable<PathTraceSettings>& pathTraceParams() {
@@ -31,7 +59,7 @@ std::vector<ProgramDesc> PathTracePass::programs() { return {{"pathtrace", {"gi/
 PathTracePass::PathTracePass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger)
     : rays_(services.rays()),
       samples_({&ledger, name()}, settings.width, settings.height, 1, settings.samplesPerFrame),
-      params_(pathTraceParams().read("pathtrace", settings.params)) {
+      params_(pathTraceParams().read("pathtrace", settings.params)), term_(termOf(settings.view)) {
     samples_.target = params_.spp;
     program_ = buildProgram(programs()[0]);
     const uint32_t zeros[6] = {};
@@ -76,6 +104,7 @@ void PathTracePass::execute(Frame& frame) {
     glProgramUniform1i(p, U_EMITTER_COUNT, int(rays_.emitterCount));
     glProgramUniform1i(p, U_RR_START, params_.russianRouletteStart);
     glProgramUniform1i(p, U_CAUSTICS, params_.caustics ? 1 : 0);
+    glProgramUniform1i(p, U_PT_TERM, term_);
     samples_.runBatch(p);
 }
 
@@ -86,6 +115,7 @@ GiMethod pathtraceMethod() {
     m.pipeline = MethodPipeline::Standalone;
     m.role = MethodRole::Reference;
     m.physicalBrdfsOnly = true;
+    m.termViews = {"direct", "emission"};
     m.params = pathTraceParams().rows;
     // At low sample counts: the reference's own speed/noise trade.
     for (auto [name, spp] : {std::pair{"low", 4}, {"medium", 16}, {"high", 64}})

@@ -36,6 +36,10 @@ public:
         if (c & ChangeLiveParams) liveChanged_ = true;
     }
     const Bvh& bvh() const { return rays_.bvh; }
+    // The radiance split as the lighting pass's term views split it (direct, emission) and the
+    // rest, pathtrace.indirect: with --view one of them the paths keep only that term.
+    std::vector<DebugViewDesc> debugViews() const override;
+    void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     std::optional<RayCounts> raysTraced() const override;
 
 private:
@@ -45,6 +49,8 @@ private:
     gl::Object program_;
     bool liveChanged_ = false;
     bool reused_ = false;
+    int term_ = 0;          // pathtrace.comp's u_term: 0 = the whole radiance
+    gl::Object readFbo_, drawFbo_;  // the term view's copy into the debug target
     gl::Buffer rayCounts_;  // 3 x (low, high) uint: primary, bounce, shadow rays (pathtrace.comp)
 };
 

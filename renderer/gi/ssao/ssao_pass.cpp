@@ -76,9 +76,11 @@ const ParamTable<SsaoSettings>& ssaoParams() {
     return table;
 }
 
+// The floor only keeps a flat or point-sized scene's radius above 0: an absolute 1e-6 made the
+// radius 3.4x the default on the Cornell box modelled at 1e-6 units (-2.0% mean AO'd radiance).
 float resolveAoRadius(float radius, const Scene& scene) {
     if (radius > 0.0f) return radius;
-    return scene.bounds.empty() ? 1.0f : std::max(0.15f * glm::length(scene.bounds.extent()), 1e-6f);
+    return scene.bounds.empty() ? 1.0f : std::max(0.15f * glm::length(scene.bounds.extent()), 1e-30f);
 }
 
 // In this order: the hemisphere kernel, the blur, temporal accumulation, the GTAO kernel.

@@ -60,35 +60,13 @@ std::vector<ProgramDesc> VctPass::programs() {
     return all;
 }
 
-namespace {
-// What VCT asks of the scene volume. With back faces culled the margin is half a voxel: the
-// margin's empty voxels make coarse texels at the bounds partly transparent, and cones escape
-// through them (the emissive furnace loses 26% at 32^3, 13% at 64^3 with the full margin and back
-// faces culled; 7% and 3% with half a voxel). The opaque mode keeps the full margin, which its
-// measured tuning (renderer/gi/vct/README.md) was made with: there its cones' own surfaces stand in
-// for the loss.
-VolumeRequest volumeRequest(const VctSettings& s) {
-    VolumeRequest r;
-    r.method = "vct";
-    r.resolution = s.resolution;
-    r.resolutionKey = "vct.resolution";
-    r.conservative = s.conservativeMode();
-    r.conservativeKey = "vct.conservative";
-    r.cullBackfaces = s.backfaces == 1;
-    r.marginVoxels = r.cullBackfaces ? 0.5f : kVolumeMarginVoxels;
-    r.anisotropic = s.anisotropic;
-    r.mips = true;
-    r.bounces = s.bounces;
-    return r;
-}
-}  // namespace
 
 VctPass::VctPass(SceneServices& services, const RenderSettings& settings)
     : built_(vctParams().read("vct", settings.params)), live_(built_) {
     checkVctSettings(built_);
     // Everything is charged to the pass, so --timings, info and the panel show the method's whole
     // footprint on its row (its README page lists it per texture).
-    volume_ = &services.volume(volumeRequest(built_));
+    volume_ = &services.volume(vctVolumeRequest(built_));
     const gl::MemoryScope trace{&services.ledger, name()};
     const int scale = built_.tracePixels();
     const int tw = tracedSize(settings.width, scale), th = tracedSize(settings.height, scale);
@@ -267,6 +245,7 @@ GiMethod vctMethod() {
     };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<VctPass>(b.services, b.settings)); };
     m.framesToConverge = [](const RenderSettings& s) { return vctParams().read("vct", s.params).framesToConverge(); };
+    m.checkSettings = [](const ParamValues& values) { checkVctSettings(vctParams().read("vct", values)); };
     return m;
 }
 

@@ -37,6 +37,13 @@ struct VctSettings {
     int framesToConverge() const { return tracePixels() * tracePixels(); }
 };
 
+struct VolumeRequest;
+// What VCT asks of the scene volume (renderer/volume/) for these settings.
+VolumeRequest vctVolumeRequest(const VctSettings& s);
+// The largest vct.resolution whose volume, in its smallest form (no directional mips, one bounce),
+// fits kVoxelBudgetBytes: the row's maximum, so what is listed can be allocated.
+int maxVctResolution();
+
 const ParamTable<VctSettings>& vctParams();
 // What the table's ranges cannot say (a power-of-two resolution); throws gis::Error naming the key.
 void checkVctSettings(const VctSettings& s);

@@ -27,6 +27,12 @@ layout(location = U_RR_START) uniform int u_rrStart;
 // if the specular model were `none`), so no light reaches the camera along diffuse -> glossy ->
 // light paths. Real-time methods produce no caustics; references are often rendered without.
 layout(location = U_CAUSTICS) uniform int u_caustics;
+// Which of the path's contributions are kept, for the term views (pathtrace_pass.cpp): the same
+// paths (the random numbers do not depend on it), so the terms add up to the full radiance.
+layout(location = U_PT_TERM) uniform int u_term;
+const int TERM_ALL = 0, TERM_DIRECT = 1, TERM_EMISSION = 2, TERM_INDIRECT = 3;
+// 1 where a contribution of `term` is kept.
+float kept(int term) { return u_term == TERM_ALL || u_term == term ? 1.0 : 0.0; }
 
 // Throughput figures (`--timings`' rays/s): rays traced, as 64-bit counts kept in pairs of uints
 // (low, high) since core GL has no 64-bit atomics. Each invocation counts in registers and adds
@@ -239,8 +245,12 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
         // Camera rays pass through single-sided back faces, which the rasterizer culls: every
         // method sees the same surfaces. Shadow and bounce rays meet both sides, as shadow maps
         // (and Cycles) do.
+        // The terms as the lighting pass splits them: the first surface's emission or the
+        // background seen directly; the light reaching the first surface straight from a light
+        // or an emitter (sampled there, or hit by its BSDF sample, the other half of the MIS);
+        // everything after is indirect, the environment lighting the first surface included.
         if (!traceRay(origin, dir, 1e30, false, depth == 0, hit)) {
-            radiance += throughput * u_background;
+            radiance += throughput * u_background * kept(depth == 0 ? TERM_EMISSION : TERM_INDIRECT);
             break;
         }
         SurfacePoint s = shade(hit, dir);
@@ -251,7 +261,8 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
                 float lightPdf = s.emitterPdfPerArea * hit.t * hit.t / max(cosLight, 1e-8);
                 weight = powerHeuristic(lastBsdfPdf, lightPdf);
             }
-            radiance += throughput * s.emission * weight;
+            int term = depth == 0 ? TERM_EMISSION : depth == 1 ? TERM_DIRECT : TERM_INDIRECT;
+            radiance += throughput * s.emission * weight * kept(term);
         }
         if (depth > u_maxBounces) break;  // that hit was only looked at for emission
 
@@ -261,7 +272,8 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
         if (noGlossy) s.hasSpecular = false;
         int specularModel = noGlossy ? SPECULAR_NONE : u_brdfModels.y;
         float pSpecular = specularChoice(s, NoV);
-        radiance += throughput * directLight(s, V, pSpecular, specularModel, rng);
+        radiance += throughput * directLight(s, V, pSpecular, specularModel, rng) *
+                    kept(depth == 0 ? TERM_DIRECT : TERM_INDIRECT);
 
         vec3 L;
         bool specularLobe;
