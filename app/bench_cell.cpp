@@ -123,6 +123,7 @@ void runFlythroughCell(const BenchJob& job, const SweepDirs& dirs, const GlOpene
     row.scene = job.sceneName;
     row.method = job.method;
     row.preset = job.preset;
+    row.emitters = job.setup.emitters;
     row.description = giMethod(job.method).preset(job.preset).description;
     Renderer renderer(prepared.scene, settings);
     measureFlythrough(renderer, prepared.scene.bounds, job.frames, row);
@@ -147,6 +148,7 @@ void runCell(const BenchJob& job, const SweepDirs& dirs, const GlOpener& openGl)
     row.scene = job.sceneName;
     row.method = job.method;
     row.preset = job.preset;
+    row.emitters = job.setup.emitters;
     row.description = method.preset(job.preset).description;
     Renderer renderer(prepared.scene, settings);
     measure(renderer, method, job.frames, job.warmup, row);

@@ -38,6 +38,8 @@ struct MergedCell {
 };
 
 // Every cell's verified result; problems (by id) are collected, not thrown, so all are reported.
+std::string describe(const BenchJob& job);
+
 std::vector<MergedCell> gatherCells(const std::vector<BenchJob>& jobs, const SweepDirs& dirs, ojson& machine,
                                     std::vector<std::string>& problems) {
     std::vector<MergedCell> cells;
@@ -45,7 +47,7 @@ std::vector<MergedCell> gatherCells(const std::vector<BenchJob>& jobs, const Swe
         if (job.kind != JobKind::Cell) continue;
         const std::string path = recordPath(dirs, job);
         const RecordCheck check = readRecord(path, job.id);
-        const std::string what = job.sceneName + " " + job.method + "/" + job.preset;
+        const std::string what = describe(job);
         if (!check.ok) {
             const std::string failure = readFailure(path);
             problems.push_back(job.id + " (" + what + "): " +
@@ -68,6 +70,7 @@ std::vector<MergedCell> gatherCells(const std::vector<BenchJob>& jobs, const Swe
         cell.row.scene = job.sceneName;
         cell.row.method = job.method;
         cell.row.preset = job.preset;
+        cell.row.emitters = job.setup.emitters;
         const ojson cellMachine = check.body.value("machine", ojson());
         if (machine.is_null()) machine = cellMachine;
         if (cellMachine != machine)
@@ -80,7 +83,9 @@ std::vector<MergedCell> gatherCells(const std::vector<BenchJob>& jobs, const Swe
 }
 
 std::string describe(const BenchJob& job) {
-    return job.sceneName + " " + (job.kind == JobKind::Cell ? job.method + "/" + job.preset : job.method + " reference");
+    if (job.kind != JobKind::Cell) return job.sceneName + " " + job.method + " reference";
+    return job.sceneName + " " + job.method + "/" + job.preset +
+           (job.setup.emitters.empty() ? "" : " emitters=" + job.setup.emitters);
 }
 
 // What decides a job's scene and base settings (not its method, preset or counts): the key under
@@ -156,7 +161,8 @@ void addSceneImages(OutputSet& out, const std::string& sceneName, const BenchJob
         if (std::find(methods.begin(), methods.end(), c.row.method) == methods.end()) methods.push_back(c.row.method);
         const int methodIndex = int(std::find(methods.begin(), methods.end(), c.row.method) - methods.begin());
         const double y = chartError(c.row, metric);
-        const std::string label = c.row.method + "/" + c.row.preset;
+        const std::string label =
+            c.row.method + "/" + c.row.preset + (c.row.emitters.empty() ? "" : " emitters=" + c.row.emitters);
         points.push_back({label, c.row.ms, y, methodIndex});
         char caption[200];
         std::snprintf(caption, sizeof caption, "%s  %.1f ms, %s %.4f", label.c_str(), c.row.ms, metricName.c_str(), y);

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <ostream>
+#include <sstream>
 #include <unistd.h>
 
 #include "content_hash.h"
@@ -43,6 +44,21 @@ std::vector<std::string> uniqueSceneNames(const std::vector<std::string>& specs)
         names.push_back(name);
     }
     return names;
+}
+
+// --emitters as a list (bench only): the modes each cell is measured in, "" for none given.
+std::vector<std::string> emitterModes(const std::string& flag) {
+    std::vector<std::string> modes;
+    std::stringstream in(flag);
+    for (std::string mode; std::getline(in, mode, ',');) {
+        if (mode.empty() || std::find(modes.begin(), modes.end(), mode) != modes.end())
+            throw Error("--emitters '" + flag + "': each mode once, comma-separated (lights, gi, off)");
+        modes.push_back(mode);
+    }
+    if (!flag.empty() && flag.back() == ',')
+        throw Error("--emitters '" + flag + "': each mode once, comma-separated (lights, gi, off)");
+    if (modes.empty()) modes.push_back("");
+    return modes;
 }
 
 // The methods measured: --methods, else every benchmarked one; each must score against radiance.
@@ -144,6 +160,8 @@ PreparedScene prepareBenchScene(const BenchJob& job) {
 RenderSettings jobSettings(const BenchJob& job, const RenderSettings& sceneBase) {
     RenderSettings s = sceneBase;
     if (job.kind == JobKind::Cell) {
+        // A scene's base is prepared once for all its cells; --emitters A,B gives cells their own mode.
+        if (!job.setup.emitters.empty()) setParam(s, "emitters.mode", job.setup.emitters);
         applyPreset(s, job.method, job.preset);
     } else if (job.method == methodInRole(MethodRole::Reference).name) {
         s.gi = job.method;
@@ -171,6 +189,9 @@ std::string contentId(const BenchJob& job, const RenderSettings& settings) {
               {"fov", job.setup.fov},
               {"settings", view::renderSettingsToJson(settings)}};
     if (job.flythrough) key["flythrough"] = true;  // only then: the ids of still-camera jobs stay as they were
+    // The settings' JSON holds the method's parameters, not the shared emitters.* table: without
+    // this a cell's --emitters gi and lights results would share one id (and one cache entry).
+    if (!job.setup.emitters.empty()) key["emitters"] = job.setup.emitters;
     if (job.kind == JobKind::Cell) {
         key["frames"] = job.frames;
         key["warmup"] = job.warmup;
@@ -186,6 +207,7 @@ std::vector<BenchJob> planBench(const BenchOptions& o) {
     const bool wantsAo = std::any_of(methods.begin(), methods.end(),
                                      [](const std::string& m) { return giMethod(m).scoredAgainstAo; });
     const std::vector<std::string> names = uniqueSceneNames(o.scenes);
+    const std::vector<std::string> modes = emitterModes(o.setup.emitters);
     std::vector<BenchJob> references, cells;
     for (size_t si = 0; si < o.scenes.size(); ++si) {
         BenchJob common;
@@ -193,6 +215,7 @@ std::vector<BenchJob> planBench(const BenchOptions& o) {
         common.sceneName = names[si];
         common.size = o.size;
         common.setup = o.setup;
+        common.setup.emitters = modes.front();  // the references' (the path tracer reads no mode)
         common.ambient = o.ambient;
         common.background = o.background;
         common.referenceSpp = o.referenceSpp;
@@ -217,9 +240,13 @@ std::vector<BenchJob> planBench(const BenchOptions& o) {
         common.warmup = fly ? 0 : o.warmup;
         common.flythrough = fly;
         common.reference = reference;
-        for (const std::string& method : methods) {
-            common.aoReference = giMethod(method).scoredAgainstAo ? aoReference : "";
-            for (const std::string& preset : o.presets) add(cells, JobKind::Cell, method, preset);
+        // --emitters lights,gi: every cell once per mode, scored against the same reference.
+        for (const std::string& emitters : modes) {
+            common.setup.emitters = emitters;
+            for (const std::string& method : methods) {
+                common.aoReference = giMethod(method).scoredAgainstAo ? aoReference : "";
+                for (const std::string& preset : o.presets) add(cells, JobKind::Cell, method, preset);
+            }
         }
     }
     references.insert(references.end(), cells.begin(), cells.end());

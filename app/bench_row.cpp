@@ -41,6 +41,7 @@ const std::vector<CsvColumn>& csvColumns() {
         {"scene", false, [](std::ostream& f, const BenchRow& r) { f << r.scene; }},
         {"method", false, [](std::ostream& f, const BenchRow& r) { f << r.method; }},
         {"preset", false, [](std::ostream& f, const BenchRow& r) { f << r.preset; }},
+        {"emitters", false, [](std::ostream& f, const BenchRow& r) { f << r.emitters; }},
         {"gpu_ms", true, [](std::ostream& f, const BenchRow& r) { f << r.ms; }},
         {"wall_ms", true, [](std::ostream& f, const BenchRow& r) { f << r.wallMs; }},
         {"gpu_bytes", false, [](std::ostream& f, const BenchRow& r) { f << r.bytes; }},
@@ -114,6 +115,7 @@ FlythroughStats flythroughFromJson(const nlohmann::ordered_json& j) {
 nlohmann::ordered_json rowToJson(const BenchRow& r) {
     nlohmann::ordered_json e{{"scene", r.scene}, {"method", r.method}, {"preset", r.preset},
                              {"description", r.description}, {"gpu_ms", r.ms}, {"wall_ms", r.wallMs}, {"gpu_bytes", r.bytes}};
+    if (!r.emitters.empty()) e["emitters"] = r.emitters;
     if (r.flythrough) {
         e["flythrough"] = flythroughToJson(*r.flythrough);
     } else {
@@ -134,6 +136,7 @@ BenchRow rowFromJson(const nlohmann::ordered_json& j) {
     r.method = j.at("method").get<std::string>();
     r.preset = j.at("preset").get<std::string>();
     r.description = j.at("description").get<std::string>();
+    r.emitters = j.value("emitters", std::string());  // absent: the default mode
     r.ms = j.at("gpu_ms").get<double>();
     r.wallMs = j.at("wall_ms").get<double>();
     r.bytes = j.at("gpu_bytes").get<int64_t>();

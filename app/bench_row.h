@@ -19,6 +19,7 @@ namespace gis {
 
 struct BenchRow {
     std::string scene, method, preset, description;
+    std::string emitters;                     // --emitters the cell ran with; "" = the default
     double ms = 0.0;                          // per frame; for progressive methods, to converge
     bool msToConverge = false;                // ms is that total (the path tracer, probes), not per frame
     double wallMs = 0.0;                      // wall clock with glFinish, the same way

@@ -39,16 +39,19 @@ const char* paneTitle(ViewMode mode, int i) {
 
 double mib(int64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 
-// One widget per row of the pane's method's parameter table, with the row's range; a change is
-// a SetParam action (live rows never rebuild the pane's renderer).
-void paramControls(PanelContext& ctx, int pane) {
+// One widget per row of a parameter table the pane reads (its method's, the shared emitters.*),
+// with the row's range; a change is a SetParam action (live rows never rebuild the pane's renderer).
+void paramTableControls(PanelContext& ctx, int pane, const ParamTableView& table) {
     const PaneState& p = ctx.state.panes[pane];
-    const GiMethod& m = giMethod(p.gi);
-    if (m.params.empty()) return;
-    if (!ImGui::TreeNode("params", "Parameters (%zu)%s", m.params.size(), p.params.empty() ? "" : " *")) return;
-    for (const ParamDesc& d : m.params) {
-        const std::string key = m.name + "." + d.key;
-        const ParamValue v = paneParam(ctx.state, pane, m.name, d);
+    const std::string prefix = table.name + ".";
+    const bool edited = std::any_of(p.params.begin(), p.params.end(),
+                                    [&](const auto& kv) { return kv.first.rfind(prefix, 0) == 0; });
+    if (!ImGui::TreeNode(table.name.c_str(), "Parameters: %s (%zu)%s", table.name.c_str(), table.params->size(),
+                         edited ? " *" : ""))
+        return;
+    for (const ParamDesc& d : *table.params) {
+        const std::string key = prefix + d.key;
+        const ParamValue v = paneParam(ctx.state, pane, table.name, d);
         auto set = [&](const ParamValue& nv) { act(ctx, PanelAction::param(pane, key, formatParamValue(d, nv))); };
         const std::string label = d.label + (d.update == ParamUpdate::Rebuild ? " *" : "");
         ParamValue nv = v;
@@ -100,13 +103,17 @@ void paramControls(PanelContext& ctx, int pane) {
                               d.help.c_str(), describeParamRange(d).c_str(), formatParamValue(d, d.defaultValue).c_str(),
                               d.update == ParamUpdate::Rebuild ? "\n* rebuilds the pane's renderer" : "");
     }
-    if (!p.params.empty() && ImGui::Button("Reset to preset")) {
+    ImGui::TreePop();
+}
+
+void paramControls(PanelContext& ctx, int pane) {
+    for (const ParamTableView& table : paneParamTables(ctx.state.panes[pane])) paramTableControls(ctx, pane, table);
+    if (!ctx.state.panes[pane].params.empty() && ImGui::Button("Reset to preset")) {
         PanelAction a;
         a.kind = PanelAction::ResetParams;
         a.index = pane;
         act(ctx, a);
     }
-    ImGui::TreePop();
 }
 
 void paneControls(PanelContext& ctx, int i) {

@@ -896,6 +896,15 @@ ParamValue paneParam(const ViewState& state, int pane, const std::string& method
     return it == s.params.end() ? desc.defaultValue : it->second;
 }
 
+std::vector<ParamTableView> paneParamTables(const PaneState& pane) {
+    const GiMethod& m = giMethod(pane.gi);
+    std::vector<ParamTableView> tables;
+    if (!m.params.empty()) tables.push_back({m.name, &m.params});
+    if (m.pipeline == MethodPipeline::Deferred)
+        for (const ParamGroup& g : paramGroups()) tables.push_back({g.name, &g.params});
+    return tables;
+}
+
 std::string paneLabel(const ViewState& state, int pane) {
     const PaneState& p = state.panes[pane];
     std::string label = p.gi + "/" + p.preset + (p.params.empty() ? "" : "*") + " " + diffuseModelName(p.diffuse) +

@@ -214,5 +214,12 @@ std::vector<std::string> methodChoices();
 std::vector<std::string> displayChoices(const std::vector<DebugViewDesc>& views);
 // The value a pane's method parameter has: the pane's edit, else its preset's, else the default.
 ParamValue paneParam(const ViewState& state, int pane, const std::string& method, const ParamDesc& desc);
+// The parameter tables the panel draws for a pane, each a tree of widgets keyed "NAME.KEY": its
+// method's, then the shared ones (ParamGroup, e.g. emitters.*) that a deferred method's frame reads.
+struct ParamTableView {
+    std::string name;                       // the key prefix: "vct", "emitters"
+    const std::vector<ParamDesc>* params;
+};
+std::vector<ParamTableView> paneParamTables(const PaneState& pane);
 
 }  // namespace gis::view

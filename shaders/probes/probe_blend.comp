@@ -1,8 +1,10 @@
 // One probe update, steps 2 and 3: the batch's rays blended into each probe's irradiance
 // (u_mode 0: SH projection or the cosine-weighted mean per octahedral texel) or distance moments
 // (u_mode 1: mean and mean^2 of the hit distance under a sharp cosine power per texel). A probe's
-// first updates are a growing-weight running mean (weight 2/(n+2)), later ones an exponential moving average of
-// weight 1 - hysteresis: noise falls fast at first and a light change is still followed. The
+// first u_blendParams.y updates replace its irradiance (each one more bounce of the multi-bounce
+// recursion: renderer/probes/probe_field.cpp, bounceUpdates), the next ones are a growing-weight
+// running mean (weight 2/(n+2)), later ones an exponential moving average of weight
+// 1 - hysteresis: noise falls fast at first and a light change is still followed. The
 // largest relative change of the irradiance level goes to the probe's state (its own convergence)
 // and to u_change (atomicMax on the float's bits, which order like the floats for non-negative
 // values: the batch's largest).
@@ -28,7 +30,12 @@ float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 // 2 / (n + 2): a mean whose weights grow linearly with the update's number, so the first updates,
 // whose multi-bounce term still comes from probes that had not converged (or from before a light
 // edit), fade as 1/n^2 instead of 1/n; the hysteresis floor then keeps a moving average.
-float newWeight(float updates) { return updates < 0.5 ? 1.0 : max(2.0 / (updates + 2.0), 1.0 - u_blendParams.x); }
+float newWeight(float updates) {
+    float bounceUpdates = u_blendParams.y;
+    if (updates < bounceUpdates) return 1.0;
+    float averaged = updates - bounceUpdates;
+    return averaged < 0.5 ? 1.0 : max(2.0 / (averaged + 2.0), 1.0 - u_blendParams.x);
+}
 
 vec4 blendIrradiance(int slot, int c) {
     vec3 n = octTexelDirection(c, OCT_IRRADIANCE_SIZE);

@@ -57,6 +57,27 @@ TEST(Bench, RunsEndToEndAndCachesTheReference) {
     EXPECT_NE(r.err.find("reference from cache"), std::string::npos) << r.err;
 }
 
+// --emitters lights,gi: each cell once per mode, against one reference, the mode in its row.
+TEST(Bench, EmitterModesGiveARowEach) {
+    const std::string dir = tempDir("bench_emitters");
+    CliResult r = runCli("bench --scenes builtin:cornell-area --size 16x16 --frames 2 --warmup 1 --reference-spp 4 "
+                         "--presets low --methods none --emitters lights,gi --out-dir " + dir);
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::ifstream jf(dir + "/bench.json");
+    const nlohmann::json j = nlohmann::json::parse(jf);
+    ASSERT_EQ(j["results"].size(), 2u);
+    EXPECT_EQ(j["results"][0]["emitters"], "lights");
+    EXPECT_EQ(j["results"][1]["emitters"], "gi");
+    // ReSTIR lights the room only with lights: the two images differ.
+    EXPECT_NE(j["results"][0]["rmse"].get<double>(), j["results"][1]["rmse"].get<double>());
+    for (const char* bad : {"lights,lights", "lights,", "candle"}) {
+        r = runCli(std::string("bench --scenes builtin:cornell-area --size 16x16 --reference-spp 4 --presets low "
+                               "--methods none --emitters ") + bad + " --out-dir " + dir + "/bad");
+        EXPECT_NE(r.status, 0) << bad;
+        EXPECT_EQ(countLines(r.err), 1) << bad << ": " << r.err;
+    }
+}
+
 TEST(Bench, BadFlagsFailCleanly) {
     const std::string dir = tempDir("bench_bad");
     for (const std::string& args : {std::string("bench --presets ultra --out-dir ") + dir,

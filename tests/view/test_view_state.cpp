@@ -9,6 +9,7 @@
 
 #include "brdf_cpu.h"
 #include "cli_util.h"
+#include "gi/method.h"
 #include "settings_io.h"
 #include "view_script.h"
 #include "view_state.h"
@@ -67,6 +68,30 @@ TEST(PanelActions, BadValuesThrowAndLeaveTheStateAlone) {
     for (const char* line : bad) {
         EXPECT_THROW(applyPanelAction(s, parsePanelAction(splitWords(line))), Error) << line;
         EXPECT_EQ(viewStateToJson(s).dump(), before) << line;
+    }
+}
+
+// The panel draws a pane's method's table and then the shared emitters.* table (a deferred
+// method's frame reads it; the path tracer's does not), and an edit there reaches the pane's
+// renderer settings like a method's.
+TEST(PanelTables, DeferredPanesShowTheEmitterTableAfterTheMethods) {
+    const Scene scene = makeBuiltinScene("cornell-area");
+    ViewState s = stateFor(scene);
+    applyPanelAction(s, PanelAction::method(0, "vct"));
+    const std::vector<ParamTableView> vct = paneParamTables(s.panes[0]);
+    ASSERT_EQ(vct.size(), 2u);
+    EXPECT_EQ(vct[0].name, "vct");
+    EXPECT_EQ(vct[0].params, &giMethod("vct").params);
+    EXPECT_EQ(vct[1].name, "emitters");
+    EXPECT_EQ(vct[1].params, &paramGroups()[0].params);
+    applyPanelAction(s, PanelAction::method(1, "pathtrace"));
+    for (const ParamTableView& t : paneParamTables(s.panes[1])) EXPECT_NE(t.name, "emitters");
+    for (const ParamDesc& d : *vct[1].params) {
+        if (d.type != ParamType::Int) continue;
+        const std::string key = "emitters." + d.key;
+        applyPanelAction(s, PanelAction::param(0, key, formatParamValue(d, ParamValue{d.max})));
+        EXPECT_EQ(paneParam(s, 0, "emitters", d).number, d.max) << key;
+        EXPECT_EQ(paneSettings(s, 0, {64, 64}).params.at(key).number, d.max) << key;
     }
 }
 
