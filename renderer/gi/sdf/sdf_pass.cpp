@@ -86,7 +86,7 @@ int probeCount(const Aabb& bounds, const CascadeLayout& layout, float spacing) {
 
 std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Scene& scene, const RenderSettings& settings) {
     const SdfGiSettings s = sdfParams().read("sdf", settings.params);
-    const int n = s.resolution, scale = s.halfResolution ? 2 : 1;
+    const int n = s.resolution, scale = s.tracePixels();
     const VolumeRequest request = volumeRequest(s);
     const CascadeLayout layout = layoutCascades(scene.bounds, n, s.cascadeExtent, s.cascades);
     const int count = layout.count;
@@ -119,7 +119,7 @@ SdfGiPass::SdfGiPass(SceneServices& services, const RenderSettings& settings)
             grids.push_back(probeGridFor(*volume_, sceneBounds_, built_.probeSpacing, i));
         field_ = std::make_unique<probes::ProbeField>(scope_, *volume_, std::move(grids), built_.probeField());
     }
-    scale_ = built_.halfResolution ? 2 : 1;
+    scale_ = built_.tracePixels();
     const int tw = tracedSize(settings.width, scale_), th = tracedSize(settings.height, scale_);
     raw_ = gl::createTexture2D(scope_, GL_RGBA16F, tw, th);
     reflection_ = gl::createTexture2D(scope_, GL_RGBA16F, tw, th);
@@ -161,7 +161,7 @@ void SdfGiPass::placeProbes() {
 bool SdfGiPass::settled() const {
     if (changed_) return false;
     if (field_) return field_->converged();
-    return built_.temporal > 0.0f && historyFrames_ >= sdfFramesToConverge(built_.temporal);
+    return temporal_ > 0.0f && historyFrames_ >= sdfFramesToConverge(temporal_);
 }
 
 Pass::Progress SdfGiPass::progress() const {
@@ -239,6 +239,9 @@ void SdfGiPass::filter(const Frame& frame, const SdfGiSettings& s) {
     setCommonUniforms(p, frame);
     glProgramUniform1i(p, UG_FILTER, s.filterRadius);
     glProgramUniform1f(p, UG_INTENSITY, s.intensity);
+    // The upsampling gathers the probes itself at a pixel that no traced pixel around agrees with.
+    glProgramUniform2f(p, UG_GATHER, field_ ? 1.0f : 0.0f, built_.probeField().normalBias);
+    if (field_) field_->bindForGather(p);
     // SDFGI's gathered diffuse needs no history: it is not noisy.
     const GLuint inputs[3] = {field_ ? raw_.id() : history_[current_].id(), reflection_.id(), occlusion_.id()};
     glBindTextures(2, 3, inputs);
@@ -270,6 +273,7 @@ void SdfGiPass::execute(Frame& frame) {
     }
     prevViewProj_ = frame.camera.viewProj;
     prevCameraPos_ = frame.camera.position;
+    temporal_ = live.temporal;
     historyFrames_ = hasHistory_ ? historyFrames_ + 1 : 1;
     hasHistory_ = true;
     changed_ = false;
@@ -356,15 +360,17 @@ GiMethod sdfMethod() {
           {"sdf.probe-spacing", {0.34}},
           {"sdf.probe-rays", {64.0}},
           {"sdf.max-steps", {32.0}}}},
-        {"medium", "64^3, JFA+2, probes every 1/4 with 128 rays, mirror rays at half resolution, 64 steps", {}},
+        {"medium", "64^3, JFA+2, probes every 1/4 with 128 rays, gathered and mirror rays at half resolution, 64 steps", {}},
         {"high", "128^3, JFA+2, probes every 1/6 with 256 rays, mirror rays at full resolution, 128 steps",
          {{"sdf.resolution", {128.0}},
           {"sdf.probe-spacing", {0.167}},
           {"sdf.probe-rays", {256.0}},
-          {"sdf.half-res", {0.0}},
+          {"sdf.trace-scale", choiceValue("1")},
           {"sdf.max-steps", {128.0}}}},
-        {"realtime", "medium's probes within a budget of 8192 rays per frame (64 probes), filter radius 1",
-         {{"sdf.ray-budget", {8192.0}}, {"sdf.filter-radius", {1.0}}}},
+        {"realtime",
+         "medium's probes within a budget of 8192 rays per frame (64 probes), gathered, mirror rays and occlusion every "
+         "4x4 pixels and upsampled",
+         {{"sdf.ray-budget", {8192.0}}, {"sdf.trace-scale", choiceValue("4")}, {"sdf.filter-radius", {0.0}}}},
     };
     m.programs = &SdfGiPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) { return SdfGiPass::estimateMemory(scene, s); };
