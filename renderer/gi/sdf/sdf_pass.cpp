@@ -21,7 +21,10 @@ constexpr int kGroup = 8;  // local size of the 2D shaders/gi/sdf/*.comp
 
 void dispatch2D(int w, int h) { gl::dispatchCompute(gl::groupsFor(w, kGroup), gl::groupsFor(h, kGroup), 1, "sdf"); }
 
-int tracedSize(int fullSize, int scale) { return (fullSize + scale - 1) / scale; }
+// Traced pixel q stands for full-resolution pixel q * scale (sdf_gbuffer.glsl); at a reduced scale
+// one more traced pixel per row and column stands for the last full-resolution one, so the
+// upsampling interpolates up to the frame's edge instead of holding the last value.
+int tracedSize(int fullSize, int scale) { return scale == 1 ? fullSize : (fullSize - 1) / scale + 2; }
 
 // A static view's history is a running mean (up to 256 frames): after 4 / (1 - temporal) frames
 // (40 at the default) the frame-to-frame change is below 1% (the convergence test).

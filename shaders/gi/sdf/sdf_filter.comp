@@ -77,13 +77,13 @@ Taps gaussianTaps(ivec2 pixel, Surface s, float planeScale, ivec2 tracedSize) {
     return t;
 }
 
-// The upsampling footprint: the 2x2 traced pixels around the pixel, traced pixel q standing for
-// full-resolution pixel q * u_scale.
+// The upsampling footprint: the 2x2 traced pixels around the pixel, bilinear weights by the
+// full-resolution pixels they stand for (tracedFullPixel).
 Taps bilinearTaps(ivec2 pixel, Surface s, float planeScale, ivec2 tracedSize) {
     Taps t = Taps(vec3(0.0), vec3(0.0), 0.0, 0.0, 0.0, 0.0, 0.0);
-    vec2 p = vec2(pixel) / float(u_scale);
-    ivec2 q0 = ivec2(floor(p));
-    vec2 f = p - vec2(q0);
+    ivec2 q0 = min(pixel / u_scale, tracedSize - 2);
+    vec2 lo = vec2(tracedFullPixel(q0)), hi = vec2(tracedFullPixel(q0 + 1));
+    vec2 f = clamp((vec2(pixel) - lo) / max(hi - lo, vec2(1.0)), 0.0, 1.0);
     for (int k = 0; k < 4; ++k) {
         ivec2 corner = ivec2(k & 1, k >> 1);
         ivec2 q = min(q0 + corner, tracedSize - 1);
