@@ -339,6 +339,7 @@ void SdfGiPass::drawDebugView(const std::string& view, const Frame& frame, GLuin
     glProgramUniform4f(p, UG_VOLUME, v.origin.x, v.origin.y, v.origin.z, v.size);
     glProgramUniform1i(p, UG_RESOLUTION, v.resolution);
     glProgramUniform1i(p, UG_SLICE_CASCADE, cascade);
+    glProgramUniform1i(p, UG_SCALE, scale_);
     const float kind = view == "sdf.slice" ? 0.0f : view == "sdf.steps" ? 1.0f : 2.0f;
     glProgramUniform4f(p, UG_DEBUG, kind, float(live.sliceAxis), live.slicePosition, float(live.maxSteps));
     glBindSamplers(0, 7, nullptr);
