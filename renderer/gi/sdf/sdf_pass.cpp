@@ -242,9 +242,6 @@ void SdfGiPass::filter(const Frame& frame, const SdfGiSettings& s) {
     setCommonUniforms(p, frame);
     glProgramUniform1i(p, UG_FILTER, s.filterRadius);
     glProgramUniform1f(p, UG_INTENSITY, s.intensity);
-    // The upsampling gathers the probes itself at a pixel that no traced pixel around agrees with.
-    glProgramUniform2f(p, UG_GATHER, field_ ? 1.0f : 0.0f, built_.probeField().normalBias);
-    if (field_) field_->bindForGather(p);
     // SDFGI's gathered diffuse needs no history: it is not noisy.
     const GLuint inputs[3] = {field_ ? raw_.id() : history_[current_].id(), reflection_.id(), occlusion_.id()};
     glBindTextures(2, 3, inputs);

@@ -5,13 +5,14 @@
 //     (at a reduced trace scale also the upsampling), which smooths the per-pixel rays' noise;
 //   - sdf.filter-radius 0: no blur, a joint bilateral upsample of the 2x2 traced pixels around the
 //     pixel (bilinear weights by where they stand); with SDFGI's probes, whose light is smooth, that
-//     is all the gathered diffuse needs. A pixel no traced neighbour agrees with (a silhouette, a
-//     feature thinner than a traced pixel) gathers its own probes, so light never crosses an edge.
+//     is all the gathered diffuse needs. Light crosses an edge only at a pixel no traced neighbour
+//     agrees with (a sliver thinner than a traced pixel), and then from at most one traced pixel
+//     away. (Gathering such a pixel's own probes here was tried: the gather's code made every
+//     pixel's filter about a third slower on llvmpipe, though few pixels ran it.)
 // Writes the lighting contract's terms: indirect.diffuse, indirect.specular (the mirror ray
 // blended towards the diffuse as roughness rises) and ao.
 #include "common.glsl"
 #include "gi/sdf/sdf_gbuffer.glsl"
-#include "probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 2) uniform sampler2D s_diffuse;      // traced resolution: probes' gather, or the rays' history
@@ -24,16 +25,11 @@ layout(r16f, binding = 2) uniform writeonly image2D i_ao;
 layout(location = UG_FILTER) uniform int u_radius;
 layout(location = UG_CAMERA_POS) uniform vec3 u_cameraPos;
 layout(location = UG_INTENSITY) uniform float u_intensity;
-layout(location = UG_GATHER) uniform vec2 u_gather;   // from SDFGI's probes (0/1), bias x the probe step
-
-// An upsampled pixel whose best traced neighbour agrees less than this is on another surface than
-// all of them.
-const float AGREEMENT_NEEDED = 0.5;
 
 // The weighted sums over the taps.
 struct Taps {
     vec3 diffuse, reflection;
-    float ao, total, reflectionWeight, reflectionTotal, best;
+    float ao, total, reflectionWeight, reflectionTotal;
 };
 
 // How alike traced surface t is to this pixel's s (1: the same plane and normal). Plane distances
@@ -45,8 +41,7 @@ float agreement(Surface s, Surface t, float planeScale) {
     return exp(-plane) * pow(saturate(dot(t.normal, s.normal)), 16.0);
 }
 
-void addTap(inout Taps t, ivec2 q, float w, float alike, bool reflection) {
-    t.best = max(t.best, alike);
+void addTap(inout Taps t, ivec2 q, float w, bool reflection) {
     if (w < 1e-6) return;
     t.diffuse += w * texelFetch(s_diffuse, q, 0).rgb;
     t.ao += w * texelFetch(s_occlusion, q, 0).r;
@@ -62,7 +57,7 @@ void addTap(inout Taps t, ivec2 q, float w, float alike, bool reflection) {
 // The Gaussian footprint: (2r+1)^2 traced pixels around the pixel's own; the mirror ray is sharp,
 // so only the nearest ring smooths it.
 Taps gaussianTaps(ivec2 pixel, Surface s, float planeScale, ivec2 tracedSize) {
-    Taps t = Taps(vec3(0.0), vec3(0.0), 0.0, 0.0, 0.0, 0.0, 0.0);
+    Taps t = Taps(vec3(0.0), vec3(0.0), 0.0, 0.0, 0.0, 0.0);
     ivec2 centre = min(pixel / u_scale, tracedSize - 1);
     float sigma = max(float(u_radius), 0.5) * 0.6;
     int r = max(u_radius, u_scale > 1 ? 1 : 0);
@@ -70,9 +65,8 @@ Taps gaussianTaps(ivec2 pixel, Surface s, float planeScale, ivec2 tracedSize) {
         for (int x = -r; x <= r; ++x) {
             ivec2 q = centre + ivec2(x, y);
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, tracedSize))) continue;
-            float alike = agreement(s, tracedSurface(q), planeScale);
-            float w = exp(-float(x * x + y * y) / (2.0 * sigma * sigma)) * alike;
-            addTap(t, q, w, alike, abs(x) <= 1 && abs(y) <= 1);
+            float w = exp(-float(x * x + y * y) / (2.0 * sigma * sigma)) * agreement(s, tracedSurface(q), planeScale);
+            addTap(t, q, w, abs(x) <= 1 && abs(y) <= 1);
         }
     return t;
 }
@@ -80,7 +74,7 @@ Taps gaussianTaps(ivec2 pixel, Surface s, float planeScale, ivec2 tracedSize) {
 // The upsampling footprint: the 2x2 traced pixels around the pixel, bilinear weights by the
 // full-resolution pixels they stand for (tracedFullPixel).
 Taps bilinearTaps(ivec2 pixel, Surface s, float planeScale, ivec2 tracedSize) {
-    Taps t = Taps(vec3(0.0), vec3(0.0), 0.0, 0.0, 0.0, 0.0, 0.0);
+    Taps t = Taps(vec3(0.0), vec3(0.0), 0.0, 0.0, 0.0, 0.0);
     ivec2 q0 = min(pixel / u_scale, tracedSize - 2);
     vec2 lo = vec2(tracedFullPixel(q0)), hi = vec2(tracedFullPixel(q0 + 1));
     vec2 f = clamp((vec2(pixel) - lo) / max(hi - lo, vec2(1.0)), 0.0, 1.0);
@@ -88,8 +82,7 @@ Taps bilinearTaps(ivec2 pixel, Surface s, float planeScale, ivec2 tracedSize) {
         ivec2 corner = ivec2(k & 1, k >> 1);
         ivec2 q = min(q0 + corner, tracedSize - 1);
         vec2 b = mix(1.0 - f, f, vec2(corner));
-        float alike = agreement(s, tracedSurface(q), planeScale);
-        addTap(t, q, (b.x * b.y + 1e-3) * alike, alike, true);
+        addTap(t, q, (b.x * b.y + 1e-3) * agreement(s, tracedSurface(q), planeScale), true);
     }
     return t;
 }
@@ -106,8 +99,7 @@ void main() {
     }
     ivec2 tracedSize = textureSize(s_diffuse, 0);
     float planeScale = 0.01 * max(distance(s.position, u_cameraPos), 1e-30);
-    bool upsample = u_radius == 0 && u_scale > 1;
-    Taps t = upsample ? bilinearTaps(pixel, s, planeScale, tracedSize) : gaussianTaps(pixel, s, planeScale, tracedSize);
+    Taps t = u_radius == 0 && u_scale > 1 ? bilinearTaps(pixel, s, planeScale, tracedSize) : gaussianTaps(pixel, s, planeScale, tracedSize);
     if (t.total <= 0.0) {  // nothing alike nearby (a one-pixel sliver): take the nearest traced pixel
         ivec2 centre = min(pixel / u_scale, tracedSize - 1);
         t.diffuse = texelFetch(s_diffuse, centre, 0).rgb;
@@ -115,8 +107,6 @@ void main() {
         t.total = 1.0;
     }
     vec3 diffuse = t.diffuse / t.total;
-    if (upsample && u_gather.x > 0.5 && t.best < AGREEMENT_NEEDED)
-        diffuse = sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_gather.y, true);
     vec3 specular = diffuse;
     if (t.reflectionWeight > 0.0) {
         float a = saturate(t.reflectionWeight / t.reflectionTotal);
