@@ -48,8 +48,9 @@ fi
 godot() {  # variant -> median ms per frame
   bash "$peer/run.sh" "$1" | sed -n 's/.*FRAME_MS[^0-9]*\([0-9.]*\).*/\1/p' | head -1
 }
-has_preset() {  # method preset: does this build have it?
-  "$bin" methods "$1" | grep -q "^  preset $2 "
+has_preset() {  # method preset: does this build have it? (grep reads it all: -q would exit early
+  # and, under pipefail, the writer's SIGPIPE would read as "no such preset")
+  "$bin" methods "$1" | grep "^  preset $2 " >/dev/null
 }
 # Every pass runs every frame (--rerun-settled), as Godot re-renders a static view: the cost a
 # moving camera pays, not the nothing a settled static view costs.

@@ -21,7 +21,10 @@ constexpr int kGroup = 8;  // local size of the 2D shaders/gi/sdf/*.comp
 
 void dispatch2D(int w, int h) { gl::dispatchCompute(gl::groupsFor(w, kGroup), gl::groupsFor(h, kGroup), 1, "sdf"); }
 
-int tracedSize(int fullSize, int scale) { return (fullSize + scale - 1) / scale; }
+// Traced pixel q stands for full-resolution pixel q * scale (sdf_gbuffer.glsl); at a reduced scale
+// one more traced pixel per row and column stands for the last full-resolution one, so the
+// upsampling interpolates up to the frame's edge instead of holding the last value.
+int tracedSize(int fullSize, int scale) { return scale == 1 ? fullSize : (fullSize - 1) / scale + 2; }
 
 // A static view's history is a running mean (up to 256 frames): after 4 / (1 - temporal) frames
 // (40 at the default) the frame-to-frame change is below 1% (the convergence test).
@@ -69,7 +72,7 @@ VolumeRequest volumeRequest(const SdfGiSettings& s) {
 
 std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Scene& scene, const RenderSettings& settings) {
     const SdfGiSettings s = sdfParams().read("sdf", settings.params);
-    const int n = s.resolution, scale = s.halfResolution ? 2 : 1;
+    const int n = s.resolution, scale = s.tracePixels();
     const VolumeRequest request = volumeRequest(s);
     const CascadeLayout layout = layoutCascades(scene.bounds, n, s.cascadeExtent, s.cascades);
     const int count = layout.count;
@@ -100,7 +103,7 @@ SdfGiPass::SdfGiPass(SceneServices& services, const RenderSettings& settings)
         field_ = std::make_unique<probes::ProbeField>(
             scope_, *volume_, probes::cascadeProbeGrids(*volume_, sceneBounds_, built_.probeSpacing), built_.probeField());
     }
-    scale_ = built_.halfResolution ? 2 : 1;
+    scale_ = built_.tracePixels();
     const int tw = tracedSize(settings.width, scale_), th = tracedSize(settings.height, scale_);
     raw_ = gl::createTexture2D(scope_, GL_RGBA16F, tw, th);
     reflection_ = gl::createTexture2D(scope_, GL_RGBA16F, tw, th);
@@ -142,7 +145,7 @@ void SdfGiPass::placeProbes() {
 bool SdfGiPass::settled() const {
     if (changed_) return false;
     if (field_) return field_->converged();
-    return built_.temporal > 0.0f && historyFrames_ >= sdfFramesToConverge(built_.temporal);
+    return temporal_ > 0.0f && historyFrames_ >= sdfFramesToConverge(temporal_);
 }
 
 Pass::Progress SdfGiPass::progress() const {
@@ -251,6 +254,7 @@ void SdfGiPass::execute(Frame& frame) {
     }
     prevViewProj_ = frame.camera.viewProj;
     prevCameraPos_ = frame.camera.position;
+    temporal_ = live.temporal;
     historyFrames_ = hasHistory_ ? historyFrames_ + 1 : 1;
     hasHistory_ = true;
     changed_ = false;
@@ -313,6 +317,7 @@ void SdfGiPass::drawDebugView(const std::string& view, const Frame& frame, GLuin
     glProgramUniform4f(p, UG_VOLUME, v.origin.x, v.origin.y, v.origin.z, v.size);
     glProgramUniform1i(p, UG_RESOLUTION, v.resolution);
     glProgramUniform1i(p, UG_SLICE_CASCADE, cascade);
+    glProgramUniform1i(p, UG_SCALE, scale_);
     const float kind = view == "sdf.slice" ? 0.0f : view == "sdf.steps" ? 1.0f : 2.0f;
     glProgramUniform4f(p, UG_DEBUG, kind, float(live.sliceAxis), live.slicePosition, float(live.maxSteps));
     glBindSamplers(0, 7, nullptr);
@@ -337,15 +342,17 @@ GiMethod sdfMethod() {
           {"sdf.probe-spacing", {0.34}},
           {"sdf.probe-rays", {64.0}},
           {"sdf.max-steps", {32.0}}}},
-        {"medium", "64^3, JFA+2, probes every 1/4 with 128 rays, mirror rays at half resolution, 64 steps", {}},
+        {"medium", "64^3, JFA+2, probes every 1/4 with 128 rays, gathered and mirror rays at half resolution, 64 steps", {}},
         {"high", "128^3, JFA+2, probes every 1/6 with 256 rays, mirror rays at full resolution, 128 steps",
          {{"sdf.resolution", {128.0}},
           {"sdf.probe-spacing", {0.167}},
           {"sdf.probe-rays", {256.0}},
-          {"sdf.half-res", {0.0}},
+          {"sdf.trace-scale", choiceValue("1")},
           {"sdf.max-steps", {128.0}}}},
-        {"realtime", "medium's probes within a budget of 8192 rays per frame (64 probes), filter radius 1",
-         {{"sdf.ray-budget", {8192.0}}, {"sdf.filter-radius", {1.0}}}},
+        {"realtime",
+         "medium's probes within a budget of 8192 rays per frame (64 probes), gathered, mirror rays and occlusion every "
+         "4x4 pixels and upsampled",
+         {{"sdf.ray-budget", {8192.0}}, {"sdf.trace-scale", choiceValue("4")}, {"sdf.filter-radius", {0.0}}}},
     };
     m.programs = &SdfGiPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) { return SdfGiPass::estimateMemory(scene, s); };

@@ -86,6 +86,7 @@ private:
     glm::vec3 prevCameraPos_{0.0f};
     int current_ = 0;
     int historyFrames_ = 0;      // frames accumulated into the history since it restarted
+    float temporal_ = 0.0f;      // the live sdf.temporal the history was accumulated with
     bool hasHistory_ = false;
     bool changed_ = true;        // something arrived through invalidate() since the last execute
 };

@@ -31,8 +31,10 @@ const ParamTable<SdfGiSettings>& sdfParams() {
         .integer(&S::rayBudget, "ray-budget", "Probe ray budget",
                  "probe rays per frame, spent on the due probes most urgent first; 0 = every due probe each frame", 0,
                  1 << 26, U::Rebuild)
-        .boolean(&S::halfResolution, "half-res", "Half resolution", "trace at half resolution, filter back up",
-                 U::Rebuild)
+        .choice(&S::traceScale, "trace-scale", "Trace scale",
+                "full-resolution pixels per traced pixel per axis: the probe gather, mirror ray and occlusion (with "
+                "sdf.diffuse=rays the diffuse rays) run for one pixel per block and are filtered back up",
+                {"1", "2", "4"}, U::Rebuild)
         .integer(&S::rays, "rays", "Rays per pixel",
                  "cosine-distributed diffuse rays per traced pixel and frame (sdf.diffuse=rays)", 1,
                  64, U::Live)
@@ -45,7 +47,9 @@ const ParamTable<SdfGiSettings>& sdfParams() {
         .real(&S::offset, "offset", "Start offset", "rays start this many cells above the surface", 0.0, 8.0, U::Live)
         .real(&S::temporal, "temporal", "Temporal weight", "largest weight of the reprojected history while the camera moves (0 = none; a static view keeps averaging)", 0.0,
               0.99, U::Live)
-        .integer(&S::filterRadius, "filter-radius", "Filter radius", "edge-aware filter half-width in traced pixels",
+        .integer(&S::filterRadius, "filter-radius", "Filter radius",
+                 "edge-aware filter half-width in traced pixels; 0 = no blur, a joint bilateral upsample of the 2x2 "
+                 "traced pixels around each pixel (SDFGI's probe light is smooth already)",
                  0, 4, U::Live)
         .boolean(&S::specular, "specular", "Reflection ray", "trace a mirror ray where roughness is low", U::Live)
         .real(&S::specularRoughness, "specular-roughness", "Reflection roughness",

@@ -18,7 +18,8 @@ struct SdfGiSettings {
     float probeSpacing = 0.25f; // sdf.probe-spacing: probe cell as a fraction of each cascade's extent (rebuild)
     int probeRays = 128;        // sdf.probe-rays: rays per probe per update (rebuild)
     int rayBudget = 0;          // sdf.ray-budget: probe rays per frame, 0 = every due probe (rebuild)
-    bool halfResolution = true; // sdf.half-res: trace at half the frame's resolution, filter back up (rebuild)
+    int traceScale = 1;         // sdf.trace-scale: 1 | 2 | 4 full-resolution pixels per traced pixel per axis, the
+                                // choice's index (1: half resolution) (rebuild)
     int rays = 4;               // sdf.rays: cosine-distributed diffuse rays per traced pixel per frame (live)
     int maxSteps = 64;          // sdf.max-steps: marcher steps before a ray counts as a miss (live)
     float relaxation = 1.2f;    // sdf.relaxation: over-relaxed step factor (live)
@@ -37,6 +38,7 @@ struct SdfGiSettings {
 
     JfaVariant jfaVariant() const { return JfaVariant(jfa); }
     bool probeGather() const { return diffuse == 0; }
+    int tracePixels() const { return 1 << traceScale; }  // full-resolution pixels per traced pixel per axis
     probes::FieldSettings probeField() const;  // what the shared probe pipeline reads
 };
 

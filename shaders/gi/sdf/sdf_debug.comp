@@ -16,6 +16,7 @@ layout(location = UG_VOLUME) uniform vec4 u_volume;
 layout(location = UG_RESOLUTION) uniform int u_resolution;
 layout(location = UG_DEBUG) uniform vec4 u_debug;   // view, slice axis, slice position, max steps
 layout(location = UG_SLICE_CASCADE) uniform int u_layer;
+layout(location = UG_SCALE) uniform int u_scale;   // full-resolution pixels per traced pixel
 
 vec3 sliceColour(float d) {
     float cell = u_volume.w / float(u_resolution);
@@ -53,7 +54,7 @@ void main() {
         uvw.z = (float(u_layer) + clamp(uvw.z, halfCell, 1.0 - halfCell)) / float(layers);
         colour = sliceColour(textureLod(s_distance, uvw, 0.0).r);
     } else {
-        ivec2 traced = min(pixel * textureSize(s_info, 0) / size, textureSize(s_info, 0) - 1);
+        ivec2 traced = min(pixel / u_scale, textureSize(s_info, 0) - 1);
         vec4 info = texelFetch(s_info, traced, 0);
         colour = view == 1 ? heat(info.r / max(u_debug.w, 1.0)) : info.gba;
     }

@@ -1,5 +1,5 @@
-// What the SDF GI shaders read of the G-buffer at a traced pixel: with half-resolution tracing,
-// traced pixel q stands for full-resolution pixel q * u_scale (its top-left one), so the trace,
+// What the SDF GI shaders read of the G-buffer at a traced pixel: at a reduced trace scale, traced
+// pixel q stands for full-resolution pixel q * u_scale (its block's top-left one), so the trace,
 // the temporal pass and the filter all agree on which surface a traced pixel is.
 #include "gbuffer_layout.glsl"
 
@@ -24,4 +24,7 @@ Surface surfaceAt(ivec2 fullPixel) {
     return s;
 }
 
-Surface tracedSurface(ivec2 tracedPixel) { return surfaceAt(tracedPixel * u_scale); }
+// The full-resolution pixel traced pixel q stands for: q * u_scale, the last traced row and column
+// the frame's last pixel.
+ivec2 tracedFullPixel(ivec2 tracedPixel) { return min(tracedPixel * u_scale, textureSize(s_depth, 0) - 1); }
+Surface tracedSurface(ivec2 tracedPixel) { return surfaceAt(tracedFullPixel(tracedPixel)); }

@@ -39,8 +39,10 @@ void main() {
         vec4 clip = u_prevViewProj * vec4(s.position, 1.0);
         if (clip.w > 0.0) {
             vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-            ivec2 previous = ivec2(floor(uv * vec2(size)));
-            if (all(greaterThanEqual(previous, ivec2(0))) && all(lessThan(previous, size))) {
+            // The traced pixel whose block holds the reprojected point.
+            ivec2 full = ivec2(floor(uv * vec2(textureSize(s_depth, 0))));
+            ivec2 previous = full / u_scale;
+            if (all(greaterThanEqual(full, ivec2(0))) && all(lessThan(previous, size))) {
                 float expected = distance(s.position, u_prevCameraPos);
                 float stored = texelFetch(s_historyDistance, previous, 0).r;
                 if (stored > 0.0 && abs(stored - expected) < 0.02 * expected) {

@@ -64,6 +64,7 @@ vec3 rayRadiance(SdfHit h) {
 // out along the normal against the same field at the surface (so a plane, whatever its offset from
 // the level set, reads as open), Quilez-style, weighted towards the nearest samples.
 float nearFieldOcclusion(SdfVolume vol, int layer, vec3 P, vec3 N, float reach) {
+    if (u_aoStrength <= 0.0) return 1.0;
     float d0 = sdfSample(s_distance, vol, layer, P);
     float occlusion = 0.0, weight = 1.0, total = 0.0;
     for (int k = 1; k <= 3; ++k) {

@@ -48,4 +48,21 @@ VctImages renderVct(const Scene& scene, RenderSettings settings, int frames) {
     return out;
 }
 
+// A lambertian quad 1 m in front of a wall, an emitter on the quad's back: the wall's indirect
+// light is strong where the emitter faces it, the quad's front sees nothing but black sky. Any of
+// the wall's light on the quad's front came across the 1 m depth step.
+Scene depthStepScene() {
+    Scene s;
+    s.materials.push_back(lambert(glm::vec3(0.8f)));
+    Material emitter = lambert(glm::vec3(0.0f));
+    emitter.emissive = glm::vec3(4.0f);
+    s.materials.push_back(emitter);
+    addQuad(s, {0, 0, -1}, {0, 0, 1}, 4.0f, 0);     // the wall
+    addQuad(s, {0, 0, 0}, {0, 0, 1}, 1.0f, 0);      // the quad's front, facing the camera
+    addQuad(s, {0, 0, -0.3f}, {0, 0, -1}, 1.0f, 1); // the emitter, facing the wall, hidden by the quad
+    s.cameras.push_back(lookAtCamera({0, 0, 3}, {0, 0, 0}));
+    finalizeScene(s);
+    return s;
+}
+
 }  // namespace gis::test

@@ -30,6 +30,10 @@ VctImages renderVct(const Scene& scene, RenderSettings settings, int frames = 1)
 // Sets "vct.KEY" to `text` (validated by the registry).
 void setVct(RenderSettings& s, const std::string& key, const std::string& text);
 
+// A lambertian quad 1 m in front of a wall, an emitter on its back lighting the wall: the
+// reduced-resolution methods' (VCT's and SDF GI's) upsampling tests look for light across the step.
+Scene depthStepScene();
+
 
 
 
