@@ -168,7 +168,7 @@ GiMethod hddagiMethod() {
           {"hddagi.probe-spacing", {0.34}},
           {"hddagi.rays", {64.0}},
           {"hddagi.storage", choiceValue("sh1")}}},
-        {"medium", "64^3, probes every 1/4 with 128 rays, SH L2, gathered at half resolution", {}},
+        {"medium", "64^3, probes every 1/5 with 128 rays, SH L2, gathered at half resolution", {}},
         {"high", "128^3, probes every 1/6 with 256 rays, octahedral maps, gathered at full resolution",
          {{"hddagi.resolution", {128.0}},
           {"hddagi.probe-spacing", {0.167}},
