@@ -132,7 +132,7 @@ INSTANTIATE_TEST_SUITE_P(, TermViews,
 // emission + pathtrace.indirect is the final image, up to the half-float debug target's rounding.
 // On cornell-area the area light is both seen (emission) and the first surfaces' direct light
 // (sampled there and hit by BSDF samples, the two halves of the MIS).
-TEST(TermViews, PathTracerTermsAddUpToTheFinalImage) {
+TEST(PathTracerTermViews, AddUpToTheFinalImage) {
     const std::string dir = tempDir("term_views_pathtrace");
     auto render = [&](const std::string& view) {
         const std::string out = dir + "/" + view + ".exr";
