@@ -75,7 +75,7 @@ SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::M
 
 void SceneVolume::invalidate(Changes c) {
     for (Cascade& k : cascades_) {
-        if (c & (ChangeGeometry | ChangeMaterials)) k.scrolled = false;  // every cell is voxelized again
+        if (c & (ChangeGeometry | ChangeMaterials)) k.scrollBy = glm::ivec3(0);  // every cell is voxelized again
         if (c & ChangeGeometry) k.voxelsValid = k.fieldValid = false;
         if (c & ChangeMaterials) k.voxelsValid = false;  // albedo and emission; occupancy, so the field, stays
         if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) k.radianceValid = false;
@@ -88,20 +88,16 @@ std::string SceneVolume::stepPrefix(int cascade) const {
 
 // Cascades follow the camera beyond the snap distance (one cascade is the scene cube and never
 // moves). A moved one keeps its voxelizer and is rebuilt whole at its new cube, or, when the
-// request scrolls and its voxels were valid, scrolled there (refresh()).
+// request scrolls and its voxels were valid, scrolled there (revoxelize() moves the voxelizer).
 void SceneVolume::place(const glm::vec3& camera) {
     for (int i = 0; i < layout_.count; ++i) {
         Cascade& c = cascades_[size_t(i)];
         const glm::ivec3 centred = layout_.centredOffset(i, camera);
         if (c.placed && !layout_.mustMove(c.offset, centred)) continue;
-        const bool scroll = request_.scroll && c.placed && c.voxelsValid;
-        c.scrollBy = scroll ? centred - c.offset : glm::ivec3(0);
-        c.scrolled = scroll;
+        c.scrollBy = request_.scroll && c.placed && c.voxelsValid ? centred - c.offset : glm::ivec3(0);
         c.offset = centred;
         c.placed = true;
-        const SdfVolume v = layout_.volume(i, centred);
-        if (!scroll) c.voxelizer->moveTo(fitOf(v));
-        if (field_) field_->setVolume(i, v);
+        if (field_) field_->setVolume(i, layout_.volume(i, centred));
         c.voxelsValid = c.fieldValid = c.radianceValid = false;
     }
 }
@@ -110,12 +106,13 @@ void SceneVolume::revoxelize(Frame& frame, int i) {
     Cascade& c = cascades_[size_t(i)];
     const std::string prefix = stepPrefix(i);
     const int n = layout_.resolution();
-    if (c.scrolled) {
+    const VolumeFit fit = fitOf(layout_.volume(i, c.offset));
+    if (c.scrolling()) {
         auto t = frame.step(prefix + "voxelize");
-        c.builds.voxelizedCells += c.voxelizer->scroll(fitOf(layout_.volume(i, c.offset)), c.scrollBy, frame.scene);
+        c.builds.voxelizedCells += c.voxelizer->scroll(fit, c.scrollBy, frame.scene);
         ++c.builds.scrolls;
     } else {
-        c.voxelizer->moveTo(fitOf(layout_.volume(i, c.offset)));   // a scroll called off by an edit
+        c.voxelizer->moveTo(fit);
         voxelizeFrame(frame, *c.voxelizer, prefix);
         c.builds.voxelizedCells += int64_t(n) * n * n;
         ++c.builds.voxelizations;
@@ -136,14 +133,13 @@ void SceneVolume::refresh(Frame& frame, int i, const ConeSettings& bounceCones) 
     Cascade& c = cascades_[size_t(i)];
     const std::string prefix = stepPrefix(i);
     const bool fieldStale = field_ && !c.fieldValid;
-    c.lastUpdate = !c.voxelsValid && c.scrolled ? Update::Scrolled
+    c.lastUpdate = !c.voxelsValid && c.scrolling() ? Update::Scrolled
                    : !c.voxelsValid || fieldStale   ? Update::Rebuilt
                    : !c.radianceValid               ? Update::Relit
                                                     : Update::Cached;
     if (!c.voxelsValid) {
         revoxelize(frame, i);
         c.voxelsValid = true;
-        c.scrolled = false;
         c.radianceValid = false;
     }
     if (fieldStale) {

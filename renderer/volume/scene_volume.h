@@ -107,8 +107,9 @@ private:
         std::unique_ptr<Voxelizer> voxelizer;   // moved with the cascade
         std::unique_ptr<VoxelRadiance> radiance;
         glm::ivec3 offset{0};
-        glm::ivec3 scrollBy{0};   // a pending scroll (request.scroll) of valid voxels, in cells
-        bool placed = false, voxelsValid = false, fieldValid = false, radianceValid = false, scrolled = false;
+        glm::ivec3 scrollBy{0};   // a pending scroll (request.scroll) of valid voxels, in cells; 0 = none
+        bool placed = false, voxelsValid = false, fieldValid = false, radianceValid = false;
+        bool scrolling() const { return scrollBy != glm::ivec3(0); }
         Update lastUpdate = Update::Cached;
         Builds builds;
     };
