@@ -154,6 +154,7 @@ void ProbeField::place(int g, const ProbeGrid& grid) {
 }
 
 void ProbeField::invalidate(Changes c) {
+    if (c & (ChangeGeometry | ChangeMaterials)) bounceUpdates_ = 0;   // worked out again from the materials
     if (c & (ChangeGeometry | ChangeMaterials | ChangeLights)) {
         std::fill(needClassify_.begin(), needClassify_.end(), true);
         restart();
@@ -183,13 +184,13 @@ void ProbeField::setGridUniforms(GLuint p) const {
     glProgramUniform1i(p, UP_STORAGE, int(built_.storage));
 }
 
-// Only the programs that read the distance field declare these: setting a location a program
-// does not have is GL_INVALID_OPERATION.
+// Only the programs that trace the volume (classify, trace) declare these: setting a location a
+// program does not have is GL_INVALID_OPERATION. The field's layers lie where the voxels do.
 void ProbeField::setFieldUniforms(GLuint p) const {
     glm::vec4 cascades[kMaxGrids]{};
     const int count = volume_->cascadeCount();
     for (int i = 0; i < count; ++i) {
-        const SdfVolume v = built_.tracer == Tracer::Occupancy ? volume_->cascadeVolume(i) : volume_->field().volume(i);
+        const SdfVolume v = volume_->cascadeVolume(i);
         cascades[i] = glm::vec4(v.origin, v.size);
     }
     glProgramUniform4fv(p, UP_CASCADES, kMaxGrids, &cascades[0][0]);
@@ -351,7 +352,7 @@ void ProbeField::blend(int mode, const FieldSettings& s, int batch) {
 
 void ProbeField::update(Frame& frame, const FieldSettings& live) {
     maxUpdates_ = live.maxUpdates;
-    bounceUpdates_ = bounceUpdates(frame.scene.cpu);
+    if (bounceUpdates_ == 0) bounceUpdates_ = bounceUpdates(frame.scene.cpu);
     bool classified = false;
     for (size_t g = 0; g < grids_.size(); ++g)
         if (needClassify_[g]) {

@@ -139,7 +139,8 @@ private:
     std::vector<bool> probeOff_;
     float roundStart_ = 0.0f, roundChange_ = 0.0f;  // fewest updates when this round began; its largest change
     std::vector<int> lastBatchProbes_;
-    int updates_ = 0, finished_ = 0, lastBatch_ = 0, maxUpdates_ = 100, bounceUpdates_ = 1;
+    int updates_ = 0, finished_ = 0, lastBatch_ = 0, maxUpdates_ = 100;
+    int bounceUpdates_ = 0;   // replacing updates for the scene's albedo (bounceUpdates()); 0 = not yet worked out
     uint64_t lastRays_ = 0;
     RayCounts rays_total_;
     float lastChange_ = 0.0f;
