@@ -3,8 +3,9 @@
 // half a cell outside, when that is within 0.45 of a probe step (u_mode 0, relocate), else (and
 // always with u_mode 1, off) switched off. The field is read in the finest cascade that holds the
 // probe. With PROBE_TRACER_OCCUPANCY (no distance field) a probe in an occupied voxel is moved to
-// the nearest free voxel centre along the six axes within that reach, else switched off. Writes the state of grid u_classifyGrid's probes (offset, 0 active / 1 relocated / 2 off)
-// and clears their update counts.
+// the nearest free voxel centre along the six axes within that reach, else switched off. Writes
+// the state of grid u_classifyGrid's probes (offset, 0 active / 1 relocated / 2 off) and clears
+// their update counts.
 #include "probes/probe_common.glsl"
 #ifdef PROBE_TRACER_OCCUPANCY
 #include "volume/hdda.glsl"
