@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "probes/probe_params.h"
 #include "volume/volume_cascades.h"
 
 namespace gis {
@@ -9,8 +10,9 @@ namespace gis {
 const ParamTable<HddagiSettings>& hddagiParams() {
     using S = HddagiSettings;
     using U = ParamUpdate;
-    static const ParamTable<S> table = ParamTable<S>()
-        .integer(&S::resolution, "resolution", "Resolution", "voxels per edge of every cascade (a power of two)", 16,
+    static const ParamTable<S> table = [] {
+        ParamTable<S> t;
+        t.integer(&S::resolution, "resolution", "Resolution", "voxels per edge of every cascade (a power of two)", 16,
                  256, U::Rebuild)
         .integer(&S::cascades, "cascades", "Cascades",
                  "nested volumes around the camera, each twice the last; 0 = from the scene's extent and "
@@ -30,19 +32,9 @@ const ParamTable<HddagiSettings>& hddagiParams() {
                 {"sh1", "sh2", "octahedral"}, U::Rebuild)
         .boolean(&S::halfResolution, "half-res", "Half resolution",
                  "gather the probes at every 2x2 block's first pixel and upsample (pixels on an edge gather their own)",
-                 U::Rebuild)
-        .boolean(&S::visibility, "visibility", "Visibility", "Chebyshev visibility from the distance moments", U::Live)
-        .boolean(&S::bounces, "multibounce", "Multi-bounce", "probe rays' hits add the probes' own irradiance",
-                 U::Live)
-        .real(&S::hysteresis, "hysteresis", "Hysteresis", "weight of the old value once a probe has warmed up", 0.0,
-              0.99, U::Live)
-        .real(&S::threshold, "threshold", "Convergence threshold",
-              "largest relative change of an update below which the probes stop updating", 0.0, 1.0, U::Live)
-        .integer(&S::maxUpdates, "max-updates", "Max updates", "updates per probe after which they stop anyway", 1,
-                 100000, U::Live)
-        .real(&S::normalBias, "normal-bias", "Normal/view bias", "offset of the shading point, x the probe step",
-              0.0, 1.0, U::Live)
-        .real(&S::intensity, "intensity", "Intensity", "scales indirect.diffuse", 0.0, 16.0, U::Live)
+                 U::Rebuild);
+        probes::addLiveFieldRows(t);
+        t.real(&S::intensity, "intensity", "Intensity", "scales indirect.diffuse", 0.0, 16.0, U::Live)
         .choice(&S::sliceAxis, "slice-axis", "Slice axis", "axis hddagi.occupancy cuts across", {"x", "y", "z"},
                 U::Live)
         .real(&S::slicePosition, "slice-position", "Slice position", "where along the axis, 0..1", 0.0, 1.0, U::Live)
@@ -53,21 +45,14 @@ const ParamTable<HddagiSettings>& hddagiParams() {
                 {"voxels", "blocks", "regions"}, U::Live)
         .integer(&S::stepsMax, "steps-max", "Steps shown white", "traversal steps hddagi.steps shows as white", 1,
                  4096, U::Live);
+        return t;
+    }();
     return table;
 }
 
 probes::FieldSettings HddagiSettings::field() const {
-    probes::FieldSettings f;
+    probes::FieldSettings f = probes::fieldSettingsOf(*this);
     f.tracer = probes::Tracer::Occupancy;
-    f.storage = probes::Storage(storage);
-    f.rays = rays;
-    f.rayBudget = rayBudget;
-    f.visibility = visibility;
-    f.bounces = bounces;
-    f.hysteresis = hysteresis;
-    f.threshold = threshold;
-    f.maxUpdates = maxUpdates;
-    f.normalBias = normalBias;
     return f;
 }
 

@@ -2,20 +2,22 @@
 
 #include <string>
 
+#include "probes/probe_params.h"
+
 namespace gis {
 
 const ParamTable<ProbeSettings>& probeParams() {
     using S = ProbeSettings;
     using U = ParamUpdate;
-    static const ParamTable<S> table = ParamTable<S>()
-        .real(&S::spacing, "spacing", "Probe spacing",
+    static const ParamTable<S> table = [] {
+        ParamTable<S> t;
+        t.real(&S::spacing, "spacing", "Probe spacing",
               "cell width as a fraction of the scene's largest extent (>= 1: one probe)", 0.02, 4.0, U::Rebuild)
         .integer(&S::rays, "rays", "Rays per probe", "rays each probe traces per update", 8, 512, U::Rebuild)
         .choice(&S::storage, "storage", "Storage",
                 "sh1 = SH L1 (64 B), sh2 = SH L2 (144 B), octahedral = 6x6 irradiance map (576 B); plus 1568 B "
                 "of distance moments and 32 B of state per probe",
                 {"sh1", "sh2", "octahedral"}, U::Rebuild)
-        .boolean(&S::visibility, "visibility", "Visibility", "Chebyshev visibility from the distance moments", U::Live)
         .integer(&S::rayBudget, "ray-budget", "Ray budget",
                  "probe rays per frame, spent on the due probes most urgent first (visible, least updated, most "
                  "changed); 0 = every due probe each frame",
@@ -25,18 +27,9 @@ const ParamTable<ProbeSettings>& probeParams() {
         .choice(&S::inside, "inside", "Probes inside geometry",
                 "relocate = pushed out along the distance field's gradient (at most 0.45 of a probe step), else off; off = "
                 "switched off",
-                {"relocate", "off"}, U::Rebuild)
-        .boolean(&S::bounces, "multibounce", "Multi-bounce", "ray hits add the probes' own previous irradiance",
-                 U::Live)
-        .real(&S::hysteresis, "hysteresis", "Hysteresis", "weight of the old value once a probe has warmed up", 0.0,
-              0.99, U::Live)
-        .real(&S::threshold, "threshold", "Convergence threshold",
-              "largest relative change of an update below which the probes stop updating", 0.0, 1.0, U::Live)
-        .integer(&S::maxUpdates, "max-updates", "Max updates", "updates per probe after which they stop anyway", 1,
-                 100000, U::Live)
-        .real(&S::normalBias, "normal-bias", "Normal/view bias", "offset of the shading point, x the probe step",
-              0.0, 1.0, U::Live)
-        .choice(&S::gatherScale, "gather-scale", "Gather scale",
+                {"relocate", "off"}, U::Rebuild);
+        probes::addLiveFieldRows(t);
+        t.choice(&S::gatherScale, "gather-scale", "Gather scale",
                 "1 = gather every pixel; 2, 4 = every 2x2 / 4x4 block's first pixel, spread by joint bilateral "
                 "upsampling (pixels on an edge gather their own)",
                 {"1", "2", "4"}, U::Rebuild)
@@ -44,21 +37,14 @@ const ParamTable<ProbeSettings>& probeParams() {
         .integer(&S::debugProbe, "debug-probe", "Debug probe",
                  "the probe whose last rays probes.rays draws (x fastest, then y, z); -1 = the middle one", -1,
                  (1 << 18) - 1, U::Live);
+        return t;
+    }();
     return table;
 }
 
 probes::FieldSettings ProbeSettings::field() const {
-    probes::FieldSettings f;
-    f.storage = storageKind();
-    f.rays = rays;
-    f.rayBudget = rayBudget;
+    probes::FieldSettings f = probes::fieldSettingsOf(*this);
     f.relocate = inside == 0;
-    f.visibility = visibility;
-    f.bounces = bounces;
-    f.hysteresis = hysteresis;
-    f.threshold = threshold;
-    f.maxUpdates = maxUpdates;
-    f.normalBias = normalBias;
     f.debugProbe = debugProbe;
     return f;
 }
