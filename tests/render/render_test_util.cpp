@@ -63,6 +63,20 @@ Camera lookAtCamera(glm::vec3 eye, glm::vec3 target, float yfovDegrees) {
     return c;
 }
 
+Scene oneTriangleScene() {
+    Scene one;
+    one.materials.push_back(lambert(glm::vec3(0.8f)));
+    addQuad(one, glm::vec3(0.0f), glm::vec3(0, 0, 1), 1.0f, 0);
+    one.primitives[0].indices.resize(3);
+    one.cameras.push_back(lookAtCamera({0, 0, 2}, {0, 0, 0}));
+    Light l;
+    l.type = LightType::Point;
+    l.position = {0.2f, 0.2f, 1.0f};
+    one.lights.push_back(l);
+    finalizeScene(one);
+    return one;
+}
+
 ImageF renderHdr(const Scene& scene, RenderSettings settings) {
     context();
     settings.hdr32 = true;

@@ -27,6 +27,10 @@ void addQuad(Scene& scene, glm::vec3 center, glm::vec3 normal, float size, int m
 // Camera at `eye` looking at `target` (+Y up unless looking straight down).
 Camera lookAtCamera(glm::vec3 eye, glm::vec3 target, float yfovDegrees = 40.0f);
 
+// The smallest lit scene: one grey triangle facing a camera 2 units away, one point light beside the
+// camera (the volume methods' degenerate case: a single, flat, open surface).
+Scene oneTriangleScene();
+
 // Renders with the given settings (progressive methods until converged); returns linear radiance
 // (RGBA32F target).
 ImageF renderHdr(const Scene& scene, RenderSettings settings);

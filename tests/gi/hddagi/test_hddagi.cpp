@@ -206,20 +206,6 @@ TEST(Hddagi, AScrolledCascadeEqualsAFreshBuildAndAStaticFrameVoxelizesNothing) {
     for (int i = 0; i < volume.cascadeCount(); ++i) EXPECT_EQ(volume.lastUpdate(i), SceneVolume::Update::Cached) << i;
 }
 
-Scene oneTriangle() {
-    Scene one;
-    one.materials.push_back(lambert(glm::vec3(0.8f)));
-    addQuad(one, glm::vec3(0.0f), glm::vec3(0, 0, 1), 1.0f, 0);
-    one.primitives[0].indices.resize(3);
-    one.cameras.push_back(lookAtCamera({0, 0, 2}, {0, 0, 0}));
-    Light l;
-    l.type = LightType::Point;
-    l.position = {0.2f, 0.2f, 1.0f};
-    one.lights.push_back(l);
-    finalizeScene(one);
-    return one;
-}
-
 // Extremes: an empty scene, one triangle, the camera outside every cascade, and the Cornell box at
 // x1e-3 and x1e3 (with hddagi.cascade-extent scaled alike): finite, and the scaled boxes give the
 // image at x1 within 2% of the floor's mean (RMSE of the indirect light). Frames are deterministic,
@@ -232,7 +218,7 @@ TEST(Hddagi, Extremes) {
         finalizeScene(empty);
         EXPECT_TRUE(allFinite(render(empty, s, 2).frame));
     }
-    EXPECT_TRUE(allFinite(render(oneTriangle(), s, 2).diffuse));
+    EXPECT_TRUE(allFinite(render(oneTriangleScene(), s, 2).diffuse));
     {
         // Far outside the box, looking at it: every camera ray enters the coarsest cascade from outside.
         Scene outside = makeBuiltinScene("cornell");

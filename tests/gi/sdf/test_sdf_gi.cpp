@@ -632,17 +632,7 @@ TEST(SdfGi, Extremes) {
     RenderSettings s = base("sdf");
     setSdf(s, "resolution", "32");
     {
-        Scene one;
-        one.materials.push_back(lambert(glm::vec3(0.8f)));
-        addQuad(one, glm::vec3(0.0f), glm::vec3(0, 0, 1), 1.0f, 0);
-        one.primitives[0].indices.resize(3);
-        one.cameras.push_back(lookAtCamera({0, 0, 2}, {0, 0, 0}));
-        Light l;
-        l.type = LightType::Point;
-        l.position = {0.2f, 0.2f, 1.0f};
-        one.lights.push_back(l);
-        finalizeScene(one);
-        const SdfImages v = renderSdf(one, s, 2);
+        const SdfImages v = renderSdf(oneTriangleScene(), s, 2);
         EXPECT_TRUE(allFinite(v.frame) && allFinite(v.diffuse) && allFinite(v.specular) && allFinite(v.ao));
     }
     {
