@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "gi/method.h"
+#include "view_session.h"
 
 namespace gis::view {
 
@@ -159,9 +160,17 @@ void applyKeyInContext(ViewState& s, const std::string& key) {
 }  // namespace
 
 void checkScriptInContext(const std::vector<ScriptStep>& steps, ViewState state, const std::string& name) {
+    // A session of its own opens the script's scenes and settings files into the copy, as the run
+    // will (CPU only: a session makes no GL object before its first frame), so the lines after
+    // them are checked against the state they will find.
+    ViewSession scratch;
     for (const ScriptStep& step : steps) {
-        if (step.kind == ScriptStep::OpenScene || step.kind == ScriptStep::LoadSettings) return;  // parseScript checked the rest
         try {
+            // A scene that does not open is the run's warning, the state unchanged; a settings file
+            // that does not load stops the run, so it is refused here.
+            if (step.kind == ScriptStep::OpenScene) scratch.openScene(state, step.path);
+            if (step.kind == ScriptStep::LoadSettings && !scratch.loadSettings(state, step.path))
+                throw Error(scratch.lastError());
             if (step.kind == ScriptStep::Key) applyKeyInContext(state, step.path);
             if (step.kind != ScriptStep::Action) continue;
             checkActionInContext(state, step.action);

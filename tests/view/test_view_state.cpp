@@ -353,8 +353,35 @@ TEST(Script, LinesThatFailOnlyInContextAreRefusedBeforeTheWindowOpens) {
     EXPECT_NE(contextError("light 1 intensity 2\n", state).find("light 1 does not exist"), std::string::npos)
         << "light edits are checked against the scene's lights";
 
-    // After a settings file or a scene the state is the file's: only the one-line checks remain.
-    EXPECT_EQ(contextError("settings other.json\nmethod 2 vct\n", state), "");
+}
+
+// The lines after a `scene` or `settings` line are checked against the state that file gives, as
+// the run will find it (they were once checked one at a time, so a light the new scene lacks or a
+// pane its mode hides went through with exit 0).
+TEST(Script, LinesAfterASceneOrSettingsFileAreCheckedAgainstWhatItLoads) {
+    const Scene scene = loadScene("builtin:cornell");
+    const ViewState state = stateFor(scene);
+    int line = 0;
+    EXPECT_EQ(contextError("light 0 intensity 2\n", state), "") << "cornell has its point light";
+    const std::string gone = contextError("scene builtin:cornell-area\nlight 0 intensity 2\n", state, &line);
+    EXPECT_NE(gone.find("light 0 does not exist"), std::string::npos) << gone << ": the emitter box has no light";
+    EXPECT_EQ(line, 2);
+    EXPECT_EQ(contextError("scene builtin:no-such-scene\nlight 0 intensity 2\n", state), "")
+        << "a scene that does not open leaves the state as it was (the run's warning)";
+
+    const std::string dir = tempDir("view_context_settings");
+    ViewState grid = state, split = state;
+    grid.mode = ViewMode::Grid;
+    split.mode = ViewMode::Split;
+    saveViewSettings(dir + "/grid.json", grid);
+    saveViewSettings(dir + "/split.json", split);
+    EXPECT_EQ(contextError("settings " + dir + "/grid.json\nmethod 2 vct\n", state), "");
+    const std::string hidden = contextError("settings " + dir + "/split.json\nmethod 2 vct\n", state, &line);
+    EXPECT_NE(hidden.find("pane 2 is not shown in split mode"), std::string::npos) << hidden;
+    EXPECT_EQ(line, 2);
+    const std::string missing = contextError("settings " + dir + "/none.json\nmethod 0 vct\n", state, &line);
+    EXPECT_NE(missing.find("none.json"), std::string::npos) << missing;
+    EXPECT_EQ(line, 1) << "a settings file that does not load stops the run: refused at its line";
 }
 
 // vct.debug-level is a live parameter: chosen in the panel it reached the voxel view without the
