@@ -20,5 +20,5 @@ for src in tests/view/fuzz/fuzz_view_inputs.cpp app/settings_io.cpp app/view_scr
 done
 # The libraries' other members only; the instrumented objects above come first and win.
 $cxx $san -fsanitize=fuzzer -o "$out" $objs \
-  "$build/libgis_app.a" "$build/libgis_renderer.a" "$build/libgis_scene.a" "$build/libgis_glad.a" \
+  "$build/libgis_app.a" "$build/libgis_renderer.a" "$build/libgis_image.a" "$build/libgis_scene.a" "$build/libgis_glad.a" \
   -ltinygltf -lembree3 -ltinyexr -lglfw -lEGL -lOSMesa -lcrypto -lstb -ldl -lpthread
