@@ -26,9 +26,12 @@ void main() {
     }
     float norm = 1.0 / (count * VOXEL_FIXED_ONE);
     vec3 albedo = vec3(sumOf(v, 1), sumOf(v, 2), sumOf(v, 3)) * norm;
-    // Emission is averaged over the emissive samples only: a lamp 1 mm under the ceiling shares
-    // its voxels with the ceiling, and seen from below the voxel shows the lamp, not half of it.
-    float emissive = max(sumOf(v, 10), 1.0);
+    // Emission is averaged over the emissive samples only, weighted by the part of the voxel's
+    // cross-section each covers: a lamp 1 mm under the ceiling shares its voxels with the ceiling,
+    // and seen from below the voxel shows the lamp, not half of it. Where the emitters cover less
+    // than one cross-section in all (a 4 cm lamp in 2 cm voxels: its edges), the voxel carries only
+    // the power through the part they cover: the sum, not the mean.
+    float emissive = max(sumOf(v, 10) / VOXEL_FIXED_ONE, 1.0);
     vec3 emission = vec3(sumOf(v, 4), sumOf(v, 5), sumOf(v, 6)) / (emissive * VOXEL_FIXED_ONE) / u_emissionScale;
     vec3 normal = vec3(sumOf(v, 7), sumOf(v, 8), sumOf(v, 9)) * norm * 2.0 - 1.0;
     imageStore(i_albedo, v, vec4(albedo, 1.0));

@@ -2,7 +2,8 @@
 // so every voxel column the triangle crosses becomes (at least) one fragment. In geometry mode the
 // triangle is dilated by half a pixel diagonal per edge (Hasselgren et al., GPU Gems 2 ch. 42): the
 // edges move outward and the new corners are the offset edges' intersections. The fragment shader
-// clips the over-estimate of sharp corners with the triangle's bounding box.
+// clips the over-estimate of sharp corners with the triangle's bounding box. The undilated projected
+// triangle goes to every fragment, which weighs emission by the part of its pixel the triangle covers.
 
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
@@ -24,6 +25,7 @@ flat out int g_axis;        // dominant axis: 0 x, 1 y, 2 z (the projection's de
 flat out vec4 g_bounds;     // the triangle's projected box: min xy, max xy (pixels)
 flat out vec3 g_plane;      // depth = x * g_plane.x + y * g_plane.y + g_plane.z (voxels)
 flat out vec2 g_depthRange; // the triangle's depth extent (voxels)
+flat out vec2 g_triangle[3]; // the undilated projected triangle (pixels)
 
 layout(location = UV_WORLD_TO_VOXEL) uniform mat4 u_worldToVoxel;
 layout(location = UV_RESOLUTION) uniform int u_resolution;
@@ -80,6 +82,7 @@ void main() {
         g_bounds = bounds;
         g_plane = plane;
         g_depthRange = depthRange;
+        g_triangle = q;
         gl_Position = vec4(outQ[i] / float(u_resolution) * 2.0 - 1.0, 0.0, 1.0);
         EmitVertex();
     }

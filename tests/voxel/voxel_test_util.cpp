@@ -5,10 +5,11 @@
 
 namespace gis::test {
 
-Scene triangleScene(const std::vector<Triangle>& triangles, glm::vec3 albedo) {
+Scene triangleScene(const std::vector<Triangle>& triangles, glm::vec3 albedo, glm::vec3 emissive) {
     Scene s;
     Material m;
     m.baseColorFactor = glm::vec4(albedo, 1.0f);
+    m.emissive = emissive;
     m.metallicFactor = 0.0f;
     m.specularFactor = 0.0f;
     s.materials.push_back(m);

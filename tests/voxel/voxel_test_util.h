@@ -17,8 +17,10 @@ struct Triangle {
     glm::vec3 a, b, c;
 };
 
-// A finalized scene holding `triangles` (one primitive, one Lambert material of `albedo`).
-Scene triangleScene(const std::vector<Triangle>& triangles, glm::vec3 albedo = glm::vec3(0.5f));
+// A finalized scene holding `triangles` (one primitive, one Lambert material of `albedo` that emits
+// radiance `emissive`).
+Scene triangleScene(const std::vector<Triangle>& triangles, glm::vec3 albedo = glm::vec3(0.5f),
+                    glm::vec3 emissive = glm::vec3(0.0f));
 
 // Level 0 of an RGBA8 3D texture, x fastest.
 std::vector<uint8_t> readVoxelsRgba8(const gl::Texture& texture);
