@@ -44,6 +44,10 @@ int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces) {
     return bytes;
 }
 
+int64_t voxelFeedbackBytes(int resolution, bool anisotropic) {
+    return voxelRadianceBytes(resolution, anisotropic, 2) + 8 * int64_t(resolution) * resolution * resolution;
+}
+
 const ProgramDesc kInjectProgram{"voxel_inject", {"voxel/inject.comp"}, {}};
 // The same injection that also lights each voxel by the emitters (renderer/emitters), sampled
 // through the ray scene.
@@ -127,7 +131,7 @@ void VoxelRadiance::buildMips(const VoxelGrid& grid) {
     }
 }
 
-void VoxelRadiance::bounce(const VoxelGrid& grid, const ConeSettings& cones, glm::vec3 environment) {
+void VoxelRadiance::setBounceUniforms(const ConeSettings& cones, glm::vec3 environment) {
     const int n = radiance_.width;
     const GLuint p = bounceProgram_.id();
     const float maxDistance = cones.maxDistance > 0.0f ? cones.maxDistance : std::sqrt(3.0f) * float(n);
@@ -136,21 +140,44 @@ void VoxelRadiance::bounce(const VoxelGrid& grid, const ConeSettings& cones, glm
     glProgramUniform4f(p, UV_TRACE_PARAMS, cones.stepFactor, maxDistance, cones.offset, 0.0f);
     glProgramUniform3fv(p, UV_ENVIRONMENT, 1, &environment[0]);
     glProgramUniform1i(p, UV_ANISOTROPIC, mipMode());
-    for (int b = 1; b < bounces_; ++b) {
-        // Cones read the whole chain while the result is written: write to a scratch volume,
-        // then copy it over level 0.
-        glUseProgram(p);
-        const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), direct_.id()};
-        glBindTextures(0, 3, textures);
-        glBindSamplers(0, 10, nullptr);
-        bind(3);
-        gl::Texture next = gl::createTexture3D(scope_, GL_RGBA16F, n, n, n);
-        glBindImageTexture(0, next.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        dispatch3D(n, n, n);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-        glCopyImageSubData(next.id(), GL_TEXTURE_3D, 0, 0, 0, 0, radiance_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
-        buildMips(grid);
-    }
+}
+
+void VoxelRadiance::gatherOnce(const VoxelGrid& grid, const gl::Texture& scratch) {
+    // Cones read the whole chain while the result is written: write to a scratch volume, then
+    // copy it over level 0.
+    const int n = radiance_.width;
+    glUseProgram(bounceProgram_.id());
+    const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), direct_.id()};
+    glBindTextures(0, 3, textures);
+    glBindSamplers(0, 10, nullptr);
+    bind(3);
+    glBindImageTexture(0, scratch.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    dispatch3D(n, n, n);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    glCopyImageSubData(scratch.id(), GL_TEXTURE_3D, 0, 0, 0, 0, radiance_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    buildMips(grid);
+}
+
+void VoxelRadiance::bounce(const VoxelGrid& grid, const ConeSettings& cones, glm::vec3 environment) {
+    const int n = radiance_.width;
+    setBounceUniforms(cones, environment);
+    for (int b = 1; b < bounces_; ++b) gatherOnce(grid, gl::createTexture3D(scope_, GL_RGBA16F, n, n, n));
+}
+
+void VoxelRadiance::restartFeedback(const VoxelGrid& grid, const gl::Texture& injected) {
+    if (!direct_.id()) throw Error("voxel radiance: bounce feedback needs a volume made with bounces > 1");
+    const int n = radiance_.width;
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    for (const gl::Texture* target : {&direct_, &radiance_})
+        glCopyImageSubData(injected.id(), GL_TEXTURE_3D, 0, 0, 0, 0, target->id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    buildMips(grid);
+}
+
+void VoxelRadiance::feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones, glm::vec3 environment) {
+    const int n = radiance_.width;
+    if (!feedbackScratch_.id()) feedbackScratch_ = gl::createTexture3D(scope_, GL_RGBA16F, n, n, n);
+    setBounceUniforms(cones, environment);
+    gatherOnce(grid, feedbackScratch_);
 }
 
 void VoxelRadiance::bind(GLuint unit) const {

@@ -21,6 +21,9 @@ struct ConeSettings {
 
 // Bytes of the radiance chains at this resolution (for the budget check before allocating).
 int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces);
+// Bytes of a feedback volume (VoxelRadiance::feedbackBounce) at this resolution: its chains, its
+// direct light and its scratch level.
+int64_t voxelFeedbackBytes(int resolution, bool anisotropic);
 
 class VoxelRadiance {
 public:
@@ -47,6 +50,15 @@ public:
     void buildMips(const VoxelGrid& grid);
     // bounces - 1 more bounces, each followed by new mips. Needs inject() and buildMips() first.
     void bounce(const VoxelGrid& grid, const ConeSettings& cones, glm::vec3 environment);
+    // Bounce feedback (vct.feedback; needs bounces > 1 for the direct-light volume): level 0 of
+    // `injected` (another volume's direct light and emission) becomes this one's direct light and
+    // its starting radiance, followed by its mips.
+    void restartFeedback(const VoxelGrid& grid, const gl::Texture& injected);
+    // One bounce more than the last call: radiance = direct + albedo * the diffuse cones' gather
+    // from the previous result, then new mips. Repeated, it sums the bounce series (the voxel
+    // counterpart of DDGI's recursive irradiance); it cannot diverge for albedo < 1, as each term
+    // is the previous one scaled by albedo times the gathered fraction (at most 1).
+    void feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones, glm::vec3 environment);
     // Seven consecutive texture units from `unit` (shaders/voxel/cone_trace.glsl's layout).
     void bind(GLuint unit) const;
     const gl::Texture& radiance() const { return radiance_; }
@@ -57,9 +69,13 @@ public:
     static std::vector<ProgramDesc> programs();
 
 private:
+    void setBounceUniforms(const ConeSettings& cones, glm::vec3 environment);
+    // One gather of the current chain into `scratch`, copied over level 0, then new mips.
+    void gatherOnce(const VoxelGrid& grid, const gl::Texture& scratch);
     void downsample(const gl::Texture& source, int sourceLevel, const gl::Texture& target, int targetLevel, int direction,
                     GLuint normals = 0);
     gl::Texture radiance_, direct_;
+    gl::Texture feedbackScratch_;  // feedbackBounce()'s target, kept between updates (made on first need)
     gl::Texture directional_[6];
     gl::Object injectProgram_, mipProgram_, bounceProgram_;
     gl::Object emitterInjectProgram_;  // built on first need

@@ -96,16 +96,48 @@ TEST(EmitterFurnace, ProbesWithoutFeedbackFallShort) {
     EXPECT_LT(ratioToAnalytic(furnaceBox(), off, "probes multibounce=false"), 0.95);
 }
 
-// vct has no feedback of its own (vct.bounces gathers in voxel space a fixed number of times):
+// vct's fixed bounces (vct.bounces gathers in voxel space a fixed number of times, no feedback):
 // printed for the README, not asserted.
 TEST(EmitterFurnace, VctFigureIsPrinted) {
     const Scene scene = furnaceBox();
     for (const char* bounces : {"1", "2"}) {
         RenderSettings r = furnaceSettings("vct");
         setParam(r, "vct.bounces", bounces);
+        setParam(r, "vct.feedback", "false");
         ratioToAnalytic(scene, r, (std::string("vct bounces=") + bounces).c_str());
     }
     ratioToAnalytic(scene, furnaceSettings("none"), "none");
+}
+
+// vct.feedback adds one bounce per update from the previous result until the bounces left are
+// below 1%. The goal (issue #23): within 5% of the infinite-bounce value like the probe methods.
+// Disabled until it holds: the diffuse cones gather less than all of the box's light per bounce,
+// and the series multiplies that loss (the report of the vct-feedback branch has the figures).
+TEST(EmitterFurnace, DISABLED_VctFeedbackConvergesToTheInfiniteBounceRadiance) {
+    RenderSettings r = furnaceSettings("vct");
+    setParam(r, "vct.feedback", "true");
+    EXPECT_NEAR(ratioToAnalytic(furnaceBox(), r, "vct feedback"), 1.0, 0.05);
+}
+
+// What holds now: the feedback stops (the renderer converges) above two fixed bounces.
+TEST(EmitterFurnace, VctFeedbackGathersMoreThanFixedBounces) {
+    const Scene scene = furnaceBox();
+    RenderSettings fixed = furnaceSettings("vct");
+    setParam(fixed, "vct.bounces", "2");
+    RenderSettings feedback = furnaceSettings("vct");
+    setParam(feedback, "vct.feedback", "true");
+    EXPECT_GT(meanRadiance(renderHdr(scene, feedback)), 1.5 * meanRadiance(renderHdr(scene, fixed)));
+}
+
+// Feedback off (the default) is the fixed-bounce volume as before: the same bits as settings that
+// do not name vct.feedback, and one bounce falls far short of the value.
+TEST(EmitterFurnace, VctWithoutFeedbackKeepsItsFixedBounces) {
+    const Scene scene = furnaceBox();
+    RenderSettings off = furnaceSettings("vct");
+    setParam(off, "vct.feedback", "false");
+    const ImageF fixed = renderHdr(scene, off);
+    EXPECT_TRUE(renderHdr(scene, furnaceSettings("vct")).rgba == fixed.rgba);
+    EXPECT_LT(meanRadiance(fixed) / analyticRadiance(), 0.5);
 }
 
 }  // namespace

@@ -23,6 +23,20 @@ ParamValue choiceValue(const char* name) {
     return v;
 }
 
+// Feedback updates until the bounces left are below kFeedbackResidual of the first: each adds a
+// bounce that is at most the brightest albedo times the last (the cones gather at most all of it).
+constexpr float kFeedbackResidual = 0.01f;
+int feedbackUpdatesFor(const Scene& scene) {
+    float albedo = 0.0f;
+    for (const Material& m : scene.materials) {
+        const glm::vec3 diffuse = glm::vec3(m.baseColorFactor) * (1.0f - m.metallicFactor);
+        albedo = std::max({albedo, diffuse.r, diffuse.g, diffuse.b});
+    }
+    if (albedo <= kFeedbackResidual) return 1;
+    const float updates = std::ceil(std::log(kFeedbackResidual) / std::log(std::min(albedo, 0.999f)));
+    return std::min(int(updates), VctSettings::kMaxFeedbackUpdates);
+}
+
 int tracedSize(int fullSize, int scale) { return (fullSize + scale - 1) / scale; }
 
 // The traced diffuse, specular (RGBA16F) and ao (R16F); above scale 1 two full-resolution
@@ -73,6 +87,11 @@ VctPass::VctPass(SceneServices& services, const RenderSettings& settings)
     diffuse_ = gl::createTexture2D(trace, GL_RGBA16F, tw, th);
     specular_ = gl::createTexture2D(trace, GL_RGBA16F, tw, th);
     ao_ = gl::createTexture2D(trace, GL_R16F, tw, th);
+    if (built_.feedback) {
+        const VolumeRequest& r = volume_->request();
+        // Charged to the pass: the scene volume's own light is what it was without feedback.
+        feedback_ = std::make_unique<VoxelRadiance>(r.resolution, r.anisotropic, 2, trace, r.cullBackfaces);
+    }
     traceProgram_ = buildProgram(kTraceProgram);
     debugProgram_ = buildProgram(kDebugProgram);
     if (scale == 1) return;
@@ -102,7 +121,7 @@ void VctPass::trace(const Frame& frame, const VctSettings& s, glm::ivec2 jitter)
     glProgramUniform4f(p, UV_TRACE_PARAMS, s.stepFactor, s.maxDistance * float(fit.resolution), s.offset,
                        s.specular ? 1.0f : 0.0f);
     glProgramUniform3fv(p, UV_ENVIRONMENT, 1, &environment[0]);
-    glProgramUniform1i(p, UV_ANISOTROPIC, volume_->radiance().mipMode());
+    glProgramUniform1i(p, UV_ANISOTROPIC, tracedRadiance().mipMode());
     glProgramUniform1f(p, UV_INTENSITY, s.intensity);
     glProgramUniform3i(p, UV_TRACE_JITTER, built_.tracePixels(), jitter.x, jitter.y);
     glProgramUniform1f(p, UV_SPECULAR_ROUGHNESS, s.specularRoughness);
@@ -110,7 +129,7 @@ void VctPass::trace(const Frame& frame, const VctSettings& s, glm::ivec2 jitter)
                                frame.texture(resource::kGbufferMaterial)};
     glBindTextures(0, 3, gbuffer);
     glBindSamplers(0, 3, nullptr);
-    volume_->radiance().bind(4);
+    tracedRadiance().bind(4);
     glBindImageTexture(0, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(2, ao_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
@@ -166,7 +185,7 @@ void VctPass::drawDebugView(const std::string& view, const Frame& frame, GLuint 
     glProgramUniform4f(p, UV_DEBUG_PARAMS, float(live.debugChannel), float(live.debugLevel),
                        slice ? float(live.sliceAxis) : -1.0f, live.slicePosition);
     const GLuint textures[3] = {volume_->grid().albedo.id(), volume_->grid().emission.id(),
-                                volume_->radiance().radiance().id()};
+                                tracedRadiance().radiance().id()};
     glBindTextures(0, 3, textures);
     glBindSamplers(0, 3, nullptr);
     glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -174,11 +193,33 @@ void VctPass::drawDebugView(const std::string& view, const Frame& frame, GLuint 
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
+Pass::Progress VctPass::progress() const {
+    if (!feedback_) return {};
+    return {std::min(feedbackUpdates_, feedbackTarget_), feedbackTarget_, "feedback updates"};
+}
+
+bool VctPass::updateFeedback(Frame& frame, const ConeSettings& cones) {
+    const VoxelGrid& grid = volume_->grid();
+    if (volume_->lastUpdate(0) != SceneVolume::Update::Cached || feedbackTarget_ == 0) {
+        auto t = frame.step("feedback.restart");
+        feedback_->restartFeedback(grid, volume_->radiance().radiance());
+        feedbackUpdates_ = 0;
+        feedbackTarget_ = feedbackUpdatesFor(frame.scene.cpu);  // the materials may have changed
+    }
+    if (feedbackDone()) return false;
+    auto t = frame.step("feedback");
+    feedback_->feedbackBounce(grid, cones, frame.settings.background.value_or(frame.scene.cpu.background));
+    ++feedbackUpdates_;
+    return true;
+}
+
 void VctPass::execute(Frame& frame) {
     live_ = vctParams().read("vct", frame.settings.params);
     VctSettings cones = live_;  // further bounces gather with the live cones at the built resolution
     cones.resolution = built_.resolution;
     volume_->update(frame, coneSettingsOf(cones));
+    // A new bounce changes every pixel: the reduced-resolution history gathers anew after the last.
+    if (feedback_ && updateFeedback(frame, coneSettingsOf(cones))) framesUnchanged_ = 0;
     const glm::ivec2 jitter = jitterPhase(built_.tracePixels(), framesTraced_++);
     {
         auto t = frame.step("trace");
@@ -238,10 +279,12 @@ GiMethod vctMethod() {
     m.estimateMemory = [](const Scene&, const RenderSettings& s) {
         const VctSettings v = vctParams().read("vct", s.params);
         const uint64_t n = uint64_t(v.resolution);
-        return std::vector<std::pair<std::string, uint64_t>>{
+        std::vector<std::pair<std::string, uint64_t>> rows{
             {"VCT voxel grid and voxelization sums", uint64_t(voxelGridBytes(int(n)))},
-            {"VCT radiance mips", uint64_t(voxelRadianceBytes(int(n), v.anisotropic, v.bounces))},
+            {"VCT radiance mips", uint64_t(voxelRadianceBytes(int(n), v.anisotropic, v.feedback ? 1 : v.bounces))},
             {"VCT screen targets", screenTargetBytes(v, s.width, s.height)}};
+        if (v.feedback) rows.push_back({"VCT bounce feedback", uint64_t(voxelFeedbackBytes(int(n), v.anisotropic))});
+        return rows;
     };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<VctPass>(b.services, b.settings)); };
     m.framesToConverge = [](const RenderSettings& s) { return vctParams().read("vct", s.params).framesToConverge(); };

@@ -34,8 +34,13 @@ public:
     // The trace runs every frame, so the pass as a whole never reuses its result; the volume's
     // voxelize, inject and mips steps do (they show as cached in --timings).
     bool reusedLastFrame() const override { return false; }
-    // Nothing changed for as many frames as a static view takes to converge.
-    bool settled() const override { return framesUnchanged_ >= built_.framesToConverge(); }
+    // Nothing changed for as many frames as a static view takes to converge, and the bounce
+    // feedback (vct.feedback) has added its last bounce.
+    bool settled() const override {
+        return framesUnchanged_ >= built_.tracePixels() * built_.tracePixels() && feedbackDone();
+    }
+    // With vct.feedback: the bounces added since the volume was last lit, of those wanted.
+    Progress progress() const override;
     // Camera moves keep the history (it is reprojected); anything else starts it over.
     void invalidate(Changes changes) override;
     bool voxelsReusedLastFrame() const { return volume_->lastUpdate(0) == SceneVolume::Update::Cached; }
@@ -58,6 +63,12 @@ private:
     struct History {
         gl::Texture diffuse, specular, geometry;
     };
+    bool feedbackDone() const { return !feedback_ || feedbackUpdates_ >= feedbackTarget_; }
+    // The light the cones read: the feedback volume's with vct.feedback, else the scene volume's.
+    const VoxelRadiance& tracedRadiance() const { return feedback_ ? *feedback_ : volume_->radiance(); }
+    // Restarts the feedback from the volume's injected light when that was relit, then adds one
+    // bounce unless converged; true when the traced light changed.
+    bool updateFeedback(Frame& frame, const ConeSettings& cones);
     void trace(const Frame& frame, const VctSettings& live, glm::ivec2 jitter);
     void upsample(const Frame& frame, glm::ivec2 jitter);
     VctSettings built_;    // the rebuild parameters this pass was made with
@@ -71,6 +82,11 @@ private:
     CameraMatrices lastCamera_;
     int framesUnchanged_ = 0;               // frames executed since the last invalidate()
     uint32_t framesTraced_ = 0;             // picks the jitter phase
+    // vct.feedback: the voxels' light with the bounces summed so far (the scene volume's stays the
+    // injected light, as other methods may read it); one update adds one bounce.
+    std::unique_ptr<VoxelRadiance> feedback_;
+    int feedbackUpdates_ = 0;   // bounces added since the volume was last lit
+    int feedbackTarget_ = 0;    // bounces wanted for the scene's albedo (feedbackUpdatesFor)
     gl::Object traceProgram_, upsampleProgram_, debugProgram_;
 };
 

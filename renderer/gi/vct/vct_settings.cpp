@@ -21,7 +21,8 @@ VolumeRequest vctVolumeRequest(const VctSettings& s) {
     r.marginVoxels = r.cullBackfaces ? 0.5f : kVolumeMarginVoxels;
     r.anisotropic = s.anisotropic;
     r.mips = true;
-    r.bounces = s.bounces;
+    // With feedback the volume holds the injected light only: the pass sums the bounces itself.
+    r.bounces = s.feedback ? 1 : s.bounces;
     return r;
 }
 
@@ -62,6 +63,10 @@ const ParamTable<VctSettings>& vctParams() {
                 {"opaque", "cull"}, U::Rebuild)
         .integer(&S::bounces, "bounces", "Bounces", "1 = direct light and emission; more gather in voxel space again", 1,
                  4, U::Rebuild)
+        .boolean(&S::feedback, "feedback", "Bounce feedback",
+                 "every update gathers once more from the last result, adding a bounce, until the bounces left "
+                 "are below 1% (the scene's albedo says how many updates); vct.bounces is then unused",
+                 U::Rebuild)
         .choice(&S::coneSet, "cones", "Diffuse cones",
                 "six 60-degree cones (Godot's set), four 90-degree cones, or many: 32 cones of 14 degrees spread by "
                 "cosine (closer to the path tracer, 8x the trace)",
