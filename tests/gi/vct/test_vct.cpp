@@ -300,17 +300,7 @@ TEST(Vct, EmitterLightsTheRoom) {
 TEST(Vct, Extremes) {
     const RenderSettings s = vctSettings();
     {
-        Scene one;
-        one.materials.push_back(lambert(glm::vec3(0.8f)));
-        addQuad(one, glm::vec3(0.0f), glm::vec3(0, 0, 1), 1.0f, 0);
-        one.primitives[0].indices.resize(3);  // one triangle of the quad
-        one.cameras.push_back(lookAtCamera({0, 0, 2}, {0, 0, 0}));
-        Light l;
-        l.type = LightType::Point;
-        l.position = {0.2f, 0.2f, 1.0f};
-        one.lights.push_back(l);
-        finalizeScene(one);
-        const VctImages v = renderVct(one, s);
+        const VctImages v = renderVct(oneTriangleScene(), s);
         EXPECT_TRUE(allFinite(v.diffuse) && allFinite(v.specular) && allFinite(v.frame));
     }
     {
