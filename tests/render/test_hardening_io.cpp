@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -103,6 +104,31 @@ TEST(Hardening, ExportUnderAFileSizeLimitKeepsTheOldPair) {
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_EQ(countLines(r.err), 1) << r.err;
     EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out.find("wrote"), std::string::npos) << r.out;
+    EXPECT_TRUE(slurp(out) == gltf) << "the .gltf was replaced";
+    EXPECT_TRUE(slurp(dir + "/keep.bin") == bin) << "the .bin was replaced";
+    EXPECT_EQ(entries(dir), (std::vector<std::string>{"keep.bin", "keep.gltf"}));
+}
+
+// `export` over an existing pair on a file system that is full (a 32 KiB tmpfs: the new pair's
+// temporaries do not fit beside the old pair): one error line with the OS's reason, exit 1, the old
+// pair intact and no temporary left. Mounting needs root; skipped where it is refused.
+TEST(Hardening, ExportOnAFullFileSystemKeepsTheOldPair) {
+    const std::string dir = tempDir("hardening_tmpfs");
+    if (geteuid() != 0) GTEST_SKIP() << "mounting a tmpfs needs root (the ulimit test above covers the same path)";
+    if (std::system(("mount -t tmpfs -o size=32k tmpfs " + quoted(dir) + " 2>/dev/null").c_str()) != 0)
+        GTEST_SKIP() << "this machine refuses to mount a tmpfs";
+    struct Unmount {
+        std::string dir;
+        ~Unmount() { (void)std::system(("umount '" + dir + "'").c_str()); }
+    } unmount{dir};
+    const std::string out = dir + "/keep.gltf";
+    ASSERT_EQ(runCli("export --scene builtin:cornell --out " + quoted(out)).status, 0) << "the old pair fits";
+    const std::string gltf = slurp(out), bin = slurp(dir + "/keep.bin");
+    const gis::test::CliResult r = runCli("export --scene builtin:room --out " + quoted(out));
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
     EXPECT_EQ(r.out.find("wrote"), std::string::npos) << r.out;
     EXPECT_TRUE(slurp(out) == gltf) << "the .gltf was replaced";
     EXPECT_TRUE(slurp(dir + "/keep.bin") == bin) << "the .bin was replaced";
