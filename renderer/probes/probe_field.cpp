@@ -12,27 +12,13 @@
 #include "gl/dispatch.h"
 #include "gl/shader.h"
 #include "probes/probe_uniforms.h"
+#include "scene/scene_lighting.h"
 #include "volume/scene_volume.h"
 
 namespace gis::probes {
 
 namespace {
 
-// A probe's first updates replace its value instead of averaging it: each adds one bounce (the
-// rays' hits read the probes' irradiance), so the recursion's remainder falls as albedo^n.
-// Averaging from the first update (weights 2/(n+2)) slows that to n^(-2 (1 - albedo)): an
-// albedo-0.9 furnace converged to 0.55 of its infinite-bounce radiance. Enough replacing updates
-// for the scene's brightest diffuse albedo to leave under 1% of the light out, at most 64.
-int bounceUpdates(const Scene& scene) {
-    float albedo = 0.0f;
-    for (const Material& m : scene.materials) {
-        const glm::vec3 c = glm::vec3(m.baseColorFactor) * (1.0f - m.metallicFactor);
-        albedo = std::max({albedo, c.r, c.g, c.b});
-    }
-    if (albedo <= 0.01f) return 1;
-    if (albedo >= 0.93f) return 64;
-    return int(std::ceil(std::log(0.01f) / std::log(albedo)));
-}
 constexpr int kDistanceTexels = kOctDistanceSize * kOctDistanceSize;
 constexpr int kStateVec4s = 2;  // per probe: offset + state; update count, last change
 
@@ -352,7 +338,7 @@ void ProbeField::blend(int mode, const FieldSettings& s, int batch) {
 
 void ProbeField::update(Frame& frame, const FieldSettings& live) {
     maxUpdates_ = live.maxUpdates;
-    if (bounceUpdates_ == 0) bounceUpdates_ = bounceUpdates(frame.scene.cpu);
+    if (bounceUpdates_ == 0) bounceUpdates_ = feedbackBouncesFor(frame.scene.cpu);
     bool classified = false;
     for (size_t g = 0; g < grids_.size(); ++g)
         if (needClassify_[g]) {

@@ -18,6 +18,13 @@ double meanEmittedRadiance(const Scene& scene);
 constexpr double kEmitterLightingFloor = 0.015;
 bool emissionLightsScene(const Scene& scene);  // meanEmittedRadiance >= kEmitterLightingFloor
 
+// Bounce feedback (a method that adds one bounce per update from its own last result: the probe
+// field's replacing updates, vct.feedback) leaves albedo^n of the light out after n updates: the
+// updates it takes for the scene's brightest diffuse albedo to leave under 1% out, at least 1 and
+// at most kMaxFeedbackBounces (reached from albedo 0.93).
+constexpr int kMaxFeedbackBounces = 64;
+int feedbackBouncesFor(const Scene& scene);
+
 // "did you mean 'X'? " for the candidate a typo of `given` most likely meant, or "" when none is
 // close; messages put it before their list of what is available.
 std::string didYouMean(const std::string& given, const std::vector<std::string>& candidates);

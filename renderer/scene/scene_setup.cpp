@@ -82,6 +82,18 @@ double meanEmittedRadiance(const Scene& scene) {
 
 bool emissionLightsScene(const Scene& scene) { return meanEmittedRadiance(scene) >= kEmitterLightingFloor; }
 
+int feedbackBouncesFor(const Scene& scene) {
+    constexpr float kResidual = 0.01f;
+    float albedo = 0.0f;
+    for (const Material& m : scene.materials) {
+        const glm::vec3 c = glm::vec3(m.baseColorFactor) * (1.0f - m.metallicFactor);
+        albedo = std::max({albedo, c.r, c.g, c.b});
+    }
+    if (albedo <= kResidual) return 1;
+    if (albedo >= 0.93f) return kMaxFeedbackBounces;
+    return std::min(int(std::ceil(std::log(kResidual) / std::log(albedo))), kMaxFeedbackBounces);
+}
+
 bool hasOwnLighting(const Scene& scene) { return !scene.lights.empty() || emissionLightsScene(scene); }
 
 bool applyLighting(Scene& scene, LightingMode mode) {

@@ -5,6 +5,7 @@
 #include "gl/dispatch.h"
 #include "debug_view.h"
 #include "gi/method.h"
+#include "scene/scene_lighting.h"
 #include "services/scene_services.h"
 #include "voxel/voxel_uniforms.h"
 
@@ -21,20 +22,6 @@ ParamValue choiceValue(const char* name) {
     ParamValue v;
     v.text = name;
     return v;
-}
-
-// Feedback updates until the bounces left are below kFeedbackResidual of the first: each adds a
-// bounce that is at most the brightest albedo times the last (the cones gather at most all of it).
-constexpr float kFeedbackResidual = 0.01f;
-int feedbackUpdatesFor(const Scene& scene) {
-    float albedo = 0.0f;
-    for (const Material& m : scene.materials) {
-        const glm::vec3 diffuse = glm::vec3(m.baseColorFactor) * (1.0f - m.metallicFactor);
-        albedo = std::max({albedo, diffuse.r, diffuse.g, diffuse.b});
-    }
-    if (albedo <= kFeedbackResidual) return 1;
-    const float updates = std::ceil(std::log(kFeedbackResidual) / std::log(std::min(albedo, 0.999f)));
-    return std::min(int(updates), VctSettings::kMaxFeedbackUpdates);
 }
 
 int tracedSize(int fullSize, int scale) { return (fullSize + scale - 1) / scale; }
@@ -204,7 +191,7 @@ bool VctPass::updateFeedback(Frame& frame, const ConeSettings& cones) {
         auto t = frame.step("feedback.restart");
         feedback_->restartFeedback(grid, volume_->radiance().radiance());
         feedbackUpdates_ = 0;
-        feedbackTarget_ = feedbackUpdatesFor(frame.scene.cpu);  // the materials may have changed
+        feedbackTarget_ = feedbackBouncesFor(frame.scene.cpu);  // the materials may have changed
     }
     if (feedbackDone()) return false;
     auto t = frame.step("feedback");

@@ -37,7 +37,7 @@ public:
     // Nothing changed for as many frames as a static view takes to converge, and the bounce
     // feedback (vct.feedback) has added its last bounce.
     bool settled() const override {
-        return framesUnchanged_ >= built_.tracePixels() * built_.tracePixels() && feedbackDone();
+        return framesUnchanged_ >= built_.framesToFullResolution() && feedbackDone();
     }
     // With vct.feedback: the bounces added since the volume was last lit, of those wanted.
     Progress progress() const override;
@@ -86,7 +86,7 @@ private:
     // injected light, as other methods may read it); one update adds one bounce.
     std::unique_ptr<VoxelRadiance> feedback_;
     int feedbackUpdates_ = 0;   // bounces added since the volume was last lit
-    int feedbackTarget_ = 0;    // bounces wanted for the scene's albedo (feedbackUpdatesFor)
+    int feedbackTarget_ = 0;    // bounces wanted for the scene's albedo (feedbackBouncesFor)
     gl::Object traceProgram_, upsampleProgram_, debugProgram_;
 };
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gi/params.h"
+#include "scene/scene_lighting.h"  // kMaxFeedbackBounces
 #include "voxel/voxelizer.h"
 
 namespace gis {
@@ -35,12 +36,9 @@ struct VctSettings {
     int tracePixels() const { return 1 << traceScale; }  // full-resolution pixels per traced texel per axis
     // Frames a static view takes to reach the full-resolution result: one per jitter phase of a
     // traced texel (one frame without reduced-resolution tracing).
-    // With feedback, at most kMaxFeedbackUpdates more: the pass stops earlier for darker scenes.
-    int framesToConverge() const {
-        return tracePixels() * tracePixels() + (feedback ? kMaxFeedbackUpdates - 1 : 0);
-    }
-    // Bounce feedback updates at most: the bounces of albedo 0.93 fall below 1% of the first in 64.
-    static constexpr int kMaxFeedbackUpdates = 64;
+    int framesToFullResolution() const { return tracePixels() * tracePixels(); }
+    // With feedback, at most kMaxFeedbackBounces more: the pass stops earlier for darker scenes.
+    int framesToConverge() const { return framesToFullResolution() + (feedback ? kMaxFeedbackBounces - 1 : 0); }
 };
 
 struct VolumeRequest;
