@@ -91,23 +91,31 @@ TEST(AtomicFile, ASetThatFailsChangesNoneOfItsTargets) {
     EXPECT_EQ(entries(dir), std::vector<std::string>{"a.csv"});
 }
 
-// `export` over an existing pair under a file-size limit: one error line with the OS's reason,
-// exit 1 (it used to die of SIGXFSZ, status 153, with a partial .bin), both old files intact.
-TEST(Hardening, ExportUnderAFileSizeLimitKeepsTheOldPair) {
-    const std::string dir = tempDir("hardening_export");
+// `export --scene SCENE` over the pair dir/keep.gltf + keep.bin, run after `shellPrefix`, is
+// refused: one error line naming `reason`, exit 1, no "wrote", the old pair intact and nothing else
+// left in the folder.
+void expectExportRefusedKeepingThePair(const std::string& dir, const std::string& scene,
+                                       const std::string& shellPrefix, const std::string& reason) {
     const std::string out = dir + "/keep.gltf";
-    ASSERT_EQ(runCli("export --scene builtin:room --out " + quoted(out)).status, 0);
     const std::string gltf = slurp(out), bin = slurp(dir + "/keep.bin");
-    ASSERT_GT(bin.size(), 4096u) << "the limit below must be smaller than the buffer";
-    // The old pair is replaced by a different scene's, so a partial write would show.
-    const gis::test::CliResult r = runCli("export --scene builtin:cornell --out " + quoted(out), "ulimit -f 4;");
+    const gis::test::CliResult r = runCli("export --scene " + scene + " --out " + quoted(out), shellPrefix);
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_EQ(countLines(r.err), 1) << r.err;
-    EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(reason), std::string::npos) << r.err;
     EXPECT_EQ(r.out.find("wrote"), std::string::npos) << r.out;
     EXPECT_TRUE(slurp(out) == gltf) << "the .gltf was replaced";
     EXPECT_TRUE(slurp(dir + "/keep.bin") == bin) << "the .bin was replaced";
     EXPECT_EQ(entries(dir), (std::vector<std::string>{"keep.bin", "keep.gltf"}));
+}
+
+// `export` over an existing pair under a file-size limit: one error line with the OS's reason,
+// exit 1 (it used to die of SIGXFSZ, status 153, with a partial .bin), both old files intact.
+TEST(Hardening, ExportUnderAFileSizeLimitKeepsTheOldPair) {
+    const std::string dir = tempDir("hardening_export");
+    ASSERT_EQ(runCli("export --scene builtin:room --out " + quoted(dir + "/keep.gltf")).status, 0);
+    ASSERT_GT(slurp(dir + "/keep.bin").size(), 4096u) << "the limit below must be smaller than the buffer";
+    // The old pair is replaced by a different scene's, so a partial write would show.
+    expectExportRefusedKeepingThePair(dir, "builtin:cornell", "ulimit -f 4;", "File too large");
 }
 
 // `export` over an existing pair on a file system that is full (a 32 KiB tmpfs: the new pair's
@@ -122,17 +130,9 @@ TEST(Hardening, ExportOnAFullFileSystemKeepsTheOldPair) {
         std::string dir;
         ~Unmount() { (void)std::system(("umount '" + dir + "'").c_str()); }
     } unmount{dir};
-    const std::string out = dir + "/keep.gltf";
-    ASSERT_EQ(runCli("export --scene builtin:cornell --out " + quoted(out)).status, 0) << "the old pair fits";
-    const std::string gltf = slurp(out), bin = slurp(dir + "/keep.bin");
-    const gis::test::CliResult r = runCli("export --scene builtin:room --out " + quoted(out));
-    EXPECT_EQ(r.status, 1) << r.err;
-    EXPECT_EQ(countLines(r.err), 1) << r.err;
-    EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
-    EXPECT_EQ(r.out.find("wrote"), std::string::npos) << r.out;
-    EXPECT_TRUE(slurp(out) == gltf) << "the .gltf was replaced";
-    EXPECT_TRUE(slurp(dir + "/keep.bin") == bin) << "the .bin was replaced";
-    EXPECT_EQ(entries(dir), (std::vector<std::string>{"keep.bin", "keep.gltf"}));
+    ASSERT_EQ(runCli("export --scene builtin:cornell --out " + quoted(dir + "/keep.gltf")).status, 0)
+        << "the old pair fits";
+    expectExportRefusedKeepingThePair(dir, "builtin:room", "", "No space left on device");
 }
 
 // A built-in scene's content id is its glTF serialization hashed in memory: no export to a
