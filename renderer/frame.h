@@ -78,6 +78,8 @@ struct Frame {
     GLuint texture(const std::string& name) const;
     GLuint buffer(const std::string& name) const;
     StepTimers::Scope step(const std::string& name) { return steps->scope(name); }
+    // The radiance of rays that leave the scene: --background when given, else the scene's own.
+    glm::vec3 background() const { return settings.background.value_or(scene.cpu.background); }
 
 private:
     void checkDeclared(const std::string& name, bool write) const;

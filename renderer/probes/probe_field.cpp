@@ -295,7 +295,7 @@ std::vector<int> ProbeField::schedule(const Frame& frame, const FieldSettings& l
 
 void ProbeField::trace(const Frame& frame, const FieldSettings& s, int batch) {
     const GLuint p = traceProgram_.id();
-    const glm::vec3 environment = frame.settings.background.value_or(frame.scene.cpu.background);
+    const glm::vec3 environment = frame.background();
     glUseProgram(p);
     setGridUniforms(p);
     setFieldUniforms(p);

@@ -94,7 +94,7 @@ void PathTracePass::execute(Frame& frame) {
     glUseProgram(p);
     rays_.bind();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RAY_COUNTS_BINDING, rayCounts_.id());
-    const glm::vec3 background = s.background.value_or(frame.scene.cpu.background);
+    const glm::vec3 background = frame.background();
     glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));
     glProgramUniform3fv(p, U_BACKGROUND, 1, &background[0]);

@@ -171,7 +171,7 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     const GLuint p = traceProgram_.id();
     glUseProgram(p);
     setCommonUniforms(p, frame);
-    const glm::vec3 environment = frame.settings.background.value_or(frame.scene.cpu.background);
+    const glm::vec3 environment = frame.background();
     glProgramUniform4f(p, UG_MARCH, s.hitThreshold, s.relaxation, float(s.maxSteps), s.offset);
     glProgramUniform1i(p, UG_RAYS, field_ ? 0 : s.rays);  // with probes, no diffuse rays per pixel
     glProgramUniform1ui(p, UG_FRAME, GLuint(frame.index * 7919u + frame.settings.seed));

@@ -98,7 +98,7 @@ void VctPass::trace(const Frame& frame, const VctSettings& s, glm::ivec2 jitter)
     const GLuint p = traceProgram_.id();
     const VolumeFit& fit = volume_->grid().fit;
     const glm::mat4 worldToVoxel = fit.worldToVoxelMatrix();
-    const glm::vec3 environment = frame.settings.background.value_or(frame.scene.cpu.background);
+    const glm::vec3 environment = frame.background();
     glUseProgram(p);
     glProgramUniformMatrix4fv(p, UV_WORLD_TO_VOXEL, 1, GL_FALSE, &worldToVoxel[0][0]);
     glProgramUniform1i(p, UV_RESOLUTION, fit.resolution);
@@ -195,7 +195,7 @@ bool VctPass::updateFeedback(Frame& frame, const ConeSettings& cones) {
     }
     if (feedbackDone()) return false;
     auto t = frame.step("feedback");
-    feedback_->feedbackBounce(grid, cones, frame.settings.background.value_or(frame.scene.cpu.background));
+    feedback_->feedbackBounce(grid, cones, frame.background());
     ++feedbackUpdates_;
     return true;
 }
