@@ -97,8 +97,13 @@ vec4 traceCone(ConeTracer t, vec3 origin, vec3 dir, float tanHalf, float start, 
         }
         float stepLength = max(diameter * t.stepFactor, 0.05);
         vec4 s = sampleVoxels(t, p, dir, log2(diameter));
-        // A mip's opacity is for a path one diameter long; this step covers stepLength.
-        float alpha = 1.0 - pow(1.0 - clamp(s.a, 0.0, 0.9999), stepLength / diameter);
+        // A mip's opacity is for a path one diameter long; this step covers stepLength. The sample
+        // at the boundary stands for the rest of the cone inside the volume, at least a diameter:
+        // scaled down to a short step, a wall in the outermost texels let part of every cone that
+        // reached it out to the environment (a closed box lost light at every gather,
+        // Vct.ClosedEmissiveBoxIsAFurnace).
+        float path = leaving ? max(stepLength, diameter) : stepLength;
+        float alpha = 1.0 - pow(1.0 - clamp(s.a, 0.0, 0.9999), path / diameter);
         vec3 radiance = s.a > 1e-6 ? s.rgb / s.a : vec3(0.0);
         acc.rgb += (1.0 - acc.a) * alpha * radiance;
         acc.a += (1.0 - acc.a) * alpha;

@@ -243,11 +243,15 @@ GiMethod vctMethod() {
           {"vct.cones", choiceValue("four")}}},
         {"medium", "64^3, directional mips, six cones", {}},
         // Traced at half resolution: once converged (framesToConverge) its image is the full-
-        // resolution trace's, at a quarter of the cones per frame.
-        {"high", "128^3, directional mips, two bounces, step 0.33, trace scale 2",
+        // resolution trace's, at a quarter of the cones per frame. The offset is medium's distance
+        // in the scene (twice the voxels at twice the resolution): at medium's voxel count, the
+        // cones' first samples filtered in more of their own surface, a lit floor lighting itself
+        // (both Cornell boxes measured, renderer/gi/vct/README.md).
+        {"high", "128^3, directional mips, two bounces, step 0.33, offset 3, trace scale 2",
          {{"vct.resolution", {128.0}},
           {"vct.bounces", {2.0}},
           {"vct.step", {0.33}},
+          {"vct.offset", {3.0}},
           {"vct.trace-scale", choiceValue("2")}}},
         // The cheapest settings found that keep cornell_point at 24.5 dB PSNR or more against
         // Cycles (the table in renderer/gi/vct/README.md): the trace is the per-frame cost, so it
