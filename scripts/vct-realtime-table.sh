@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # VCT's presets on cornell_point at 256x256: what each adds over `--gi none` in wall-clock ms per
 # frame (glFinish), measured in pairs A B A B in one sitting, and its PSNR (sRGB) against Cycles.
-# Prints the Markdown table of renderer/gi/vct/README.md.
+# Every pass runs every frame (--rerun-settled): a settled static view would cost nothing, and the
+# figure is what a moving camera pays. Prints the Markdown table of renderer/gi/vct/README.md.
 #   bash scripts/vct-realtime-table.sh [build/gisandbox]
 # FRAMES / WARMUP (default 40 / 10) set the frames per timing run; PRESETS the presets measured.
 # The image scored is the last timing run's, after FRAMES frames: at least framesToConverge.
@@ -18,7 +19,7 @@ trap 'rm -rf "$tmp"' EXIT
 
 wall() {  # out.exr, flags... -> median wall ms per frame after warm-up
   local out=$1; shift
-  "$bin" render --scene "$scene" --size 256x256 --timings --frames "$frames" --warmup "$warmup" --out "$out" "$@" \
+  "$bin" render --scene "$scene" --size 256x256 --timings --rerun-settled --frames "$frames" --warmup "$warmup" --out "$out" "$@" \
     2>/dev/null | awk '$1 == "wall" {print $2}'
 }
 psnr() { "$bin" diff "$1" "$reference" | awk '/^PSNR sRGB/ {print $3}'; }

@@ -247,10 +247,9 @@ GiMethod vctMethod() {
         // in the scene (twice the voxels at twice the resolution): at medium's voxel count, the
         // cones' first samples filtered in more of their own surface, a lit floor lighting itself
         // (both Cornell boxes measured, renderer/gi/vct/README.md).
-        {"high", "128^3, directional mips, two bounces, step 0.33, offset 3, trace scale 2",
+        {"high", "128^3, directional mips, two bounces, offset 3, trace scale 2",
          {{"vct.resolution", {128.0}},
           {"vct.bounces", {2.0}},
-          {"vct.step", {0.33}},
           {"vct.offset", {3.0}},
           {"vct.trace-scale", choiceValue("2")}}},
         // The cheapest settings found that keep cornell_point at 24.5 dB PSNR or more against
