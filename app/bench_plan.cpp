@@ -12,6 +12,7 @@
 #include "gi/method.h"
 #include "metrics.h"
 #include "settings_io.h"
+#include "user_json.h"
 
 namespace gis {
 
@@ -328,7 +329,7 @@ std::vector<BenchJob> readManifest(const std::string& path) {
     for (int number = 1; std::getline(in, line); ++number) {
         if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
         try {
-            const nlohmann::json j = nlohmann::json::parse(line);
+            const nlohmann::json j = parseUserJson(line);
             jobs.push_back(jobFromJson(j));
         } catch (const std::exception& e) {
             throw Error(path + ":" + std::to_string(number) + ": " + e.what());

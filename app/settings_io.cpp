@@ -8,6 +8,7 @@
 #include "gi/method.h"
 #include "image.h"
 #include "scene/atomic_file.h"
+#include "user_json.h"
 
 namespace gis::view {
 
@@ -387,9 +388,11 @@ ViewState loadViewSettings(const std::string& path) {
     buf << f.rdbuf();
     json j;
     try {
-        j = json::parse(buf.str());
+        j = parseUserJson(buf.str());
     } catch (const json::exception& e) {
         throw Error(path + ": not valid JSON (" + std::string(e.what()) + ")");
+    } catch (const Error& e) {
+        throw Error(path + ": " + e.what());
     }
     // A screenshot's sidecar holds the settings under "settings", beside timings and the like.
     if (j.is_object() && !j.contains("gisandbox_view_settings") && j.contains("settings")) j = j["settings"];

@@ -233,6 +233,8 @@ TEST(SettingsFile, BadFilesNameTheProblem) {
         {"{\"colour\": 1}", "colour"},
         {"[1, 2]", "object"},
         {"{\"mode\": ", "not valid JSON"},
+        {"{\"exposure\": 1e-400}", "1e-400"},  // underflows: read as 0 before
+        {"{\"exposure\": -2.5e-999}", "-2.5e-999"},
     };
     for (const Case& c : cases) {
         {
@@ -246,6 +248,10 @@ TEST(SettingsFile, BadFilesNameTheProblem) {
             EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos) << e.what();
         }
     }
+    {
+        std::ofstream(dir + "/zero.json") << "{\"exposure\": 0.0e-400}";  // zero, however it is written
+    }
+    EXPECT_NO_THROW(loadViewSettings(dir + "/zero.json"));
     EXPECT_THROW(loadViewSettings(dir + "/missing.json"), Error);
 }
 

@@ -1,0 +1,38 @@
+#include "user_json.h"
+
+#include "scene/scene.h"
+
+namespace gis {
+namespace {
+
+// A literal with a non-zero digit before its exponent is not zero, whatever strtod made of it.
+bool hasNonZeroMantissa(const std::string& literal) {
+    for (char c : literal) {
+        if (c == 'e' || c == 'E') return false;
+        if (c >= '1' && c <= '9') return true;
+    }
+    return false;
+}
+
+// nlohmann's own DOM builder, checking each float against the text it was read from (sax_parse
+// calls the handler's members by its static type, so this one replaces the base's).
+struct StrictDomParser : nlohmann::detail::json_sax_dom_parser<nlohmann::json> {
+    using Base = nlohmann::detail::json_sax_dom_parser<nlohmann::json>;
+    using Base::Base;
+    bool number_float(double value, const std::string& literal) {
+        if (value == 0.0 && hasNonZeroMantissa(literal))
+            throw Error("the number " + literal + " is too small for a double (it would be read as 0)");
+        return Base::number_float(value, literal);
+    }
+};
+
+}  // namespace
+
+nlohmann::json parseUserJson(const std::string& text) {
+    nlohmann::json result;
+    StrictDomParser sax(result);
+    nlohmann::json::sax_parse(text, &sax);
+    return result;
+}
+
+}  // namespace gis
