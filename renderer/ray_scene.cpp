@@ -153,16 +153,16 @@ RayScene::RayScene(const GpuScene& gpuScene, gl::MemoryLedger& ledger, const std
     emitterCount = emitterData.size();
 
     updateLights(scene);
-    nodes = gl::createBuffer(scope, int64_t(bvh.nodes.size() * sizeof(BvhNode)), bvh.nodes.data());
-    triangles = gl::createBuffer(scope, int64_t(tris.size() * sizeof(GpuTraceTriangle)), tris.data());
-    attributes = gl::createBuffer(scope, int64_t(attrs.size() * sizeof(GpuTriangleAttributes)), attrs.data());
-    materials = gl::createBuffer(scope, int64_t(materialData.size() * sizeof(GpuRayMaterial)), materialData.data());
-    emitters = gl::createBuffer(scope, int64_t(emitterData.size() * sizeof(GpuEmitter)), emitterData.data());
+    nodes = gl::createStorageBuffer(scope, int64_t(bvh.nodes.size() * sizeof(BvhNode)), bvh.nodes.data());
+    triangles = gl::createStorageBuffer(scope, int64_t(tris.size() * sizeof(GpuTraceTriangle)), tris.data());
+    attributes = gl::createStorageBuffer(scope, int64_t(attrs.size() * sizeof(GpuTriangleAttributes)), attrs.data());
+    materials = gl::createStorageBuffer(scope, int64_t(materialData.size() * sizeof(GpuRayMaterial)), materialData.data());
+    emitters = gl::createStorageBuffer(scope, int64_t(emitterData.size() * sizeof(GpuEmitter)), emitterData.data());
 }
 
 void RayScene::updateLights(const Scene& scene) {
     const std::vector<GpuLight> lightData = makeGpuLights(scene);
-    lights = gl::createBuffer(scope_, int64_t(lightData.size() * sizeof(GpuLight)), lightData.data());
+    lights = gl::createStorageBuffer(scope_, int64_t(lightData.size() * sizeof(GpuLight)), lightData.data());
 }
 
 void RayScene::bind(GLuint textureUnit) const {

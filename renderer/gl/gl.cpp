@@ -166,6 +166,20 @@ Buffer createBuffer(const MemoryScope& scope, int64_t size, const void* data, GL
     return b;
 }
 
+int64_t maxStorageBlockBytes() {
+    GLint64 v = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &v);
+    return v > 0 ? int64_t(v) : int64_t(1) << 27;  // the spec's minimum when the query fails
+}
+
+Buffer createStorageBuffer(const MemoryScope& scope, int64_t size, const void* data, GLbitfield flags) {
+    const int64_t limit = maxStorageBlockBytes();
+    if (size > limit)
+        throw Error(scope.owner + ": a shader storage buffer of " + std::to_string(size) + " bytes exceeds this GPU's " +
+                    std::to_string(limit) + " (GL_MAX_SHADER_STORAGE_BLOCK_SIZE); use smaller settings");
+    return createBuffer(scope, size, data, flags);
+}
+
 Object createFramebuffer() {
     GLuint id = 0;
     glCreateFramebuffers(1, &id);

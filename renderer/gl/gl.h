@@ -78,6 +78,12 @@ struct Buffer {
     GLuint id() const { return object.id(); }
 };
 Buffer createBuffer(const MemoryScope& scope, int64_t size, const void* data, GLbitfield flags = 0);
+// A buffer the shaders read as a shader storage block. One past GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+// would bind as GL_INVALID_VALUE and the pass would read nothing: it is refused here (gis::Error
+// naming the owner, the size and the limit) before anything renders.
+Buffer createStorageBuffer(const MemoryScope& scope, int64_t size, const void* data, GLbitfield flags = 0);
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE of the current context (at least 2^27 bytes by the GL 4.5 spec).
+int64_t maxStorageBlockBytes();
 
 Object createFramebuffer();
 // Throws gis::Error naming `what` when the framebuffer is not complete.

@@ -111,7 +111,7 @@ void ShadowPass::layoutLights() {
     const gl::MemoryScope scope{&ledger_, name()};
     std::vector<GpuLight> padded = lights_;  // backs the lighting pass's uniform block (lights.h)
     padded.resize(std::max(padded.size(), size_t(kUniformBlockLights)));
-    lightBuffer_ = gl::createBuffer(scope, int64_t(padded.size() * sizeof(GpuLight)), padded.data());
+    lightBuffer_ = gl::createStorageBuffer(scope, int64_t(padded.size() * sizeof(GpuLight)), padded.data());
     // Only what the scene needs; a 1-texel placeholder keeps the lighting pass's samplers valid.
     maps_ = layers ? gl::createTexture2DArray(scope, GL_DEPTH_COMPONENT32F, mapSize_, mapSize_, layers)
                    : gl::createTexture2DArray(scope, GL_DEPTH_COMPONENT32F, 1, 1, 1);

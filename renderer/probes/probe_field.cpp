@@ -97,18 +97,18 @@ ProbeField::ProbeField(const gl::MemoryScope& scope, SceneVolume& volume, std::v
         throw Error("probes: " + std::to_string(count_) + " probes exceed the limit of " + std::to_string(kMaxProbes));
     needClassify_.assign(grids_.size(), true);
     capacity_ = batchCapacity(built_, count_);
-    irradiance_ = gl::createBuffer(scope, int64_t(count_) * irradianceBytesPerProbe(built_.storage), nullptr);
+    irradiance_ = gl::createStorageBuffer(scope, int64_t(count_) * irradianceBytesPerProbe(built_.storage), nullptr);
     glClearNamedBufferData(irradiance_.id(), GL_R32F, GL_RED, GL_FLOAT, nullptr);
     // Distance moments start at "nothing within reach" so that, before the first update, every
     // probe counts as visible.
     const float miss = missDistance(volume);
     std::vector<glm::vec2> far(size_t(count_) * kDistanceTexels, glm::vec2(miss, miss * miss));
-    distance_ = gl::createBuffer(scope, int64_t(far.size() * sizeof(glm::vec2)), far.data());
-    state_ = gl::createBuffer(scope, int64_t(count_) * kStateBytesPerProbe, nullptr);
+    distance_ = gl::createStorageBuffer(scope, int64_t(far.size() * sizeof(glm::vec2)), far.data());
+    state_ = gl::createStorageBuffer(scope, int64_t(count_) * kStateBytesPerProbe, nullptr);
     glClearNamedBufferData(state_.id(), GL_R32F, GL_RED, GL_FLOAT, nullptr);
-    rays_ = gl::createBuffer(scope, int64_t(capacity_) * built_.rays * 16, nullptr);
-    batch_ = gl::createBuffer(scope, int64_t(capacity_) * 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
-    change_ = gl::createBuffer(scope, 16, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    rays_ = gl::createStorageBuffer(scope, int64_t(capacity_) * built_.rays * 16, nullptr);
+    batch_ = gl::createStorageBuffer(scope, int64_t(capacity_) * 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    change_ = gl::createStorageBuffer(scope, 16, nullptr, GL_DYNAMIC_STORAGE_BIT);
     probeUpdates_.assign(size_t(count_), 0.0f);
     probeChange_.assign(size_t(count_), 0.0f);
     probeOff_.assign(size_t(count_), false);

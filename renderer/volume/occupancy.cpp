@@ -32,8 +32,8 @@ OccupancyHierarchy::OccupancyHierarchy(const gl::MemoryScope& scope, int resolut
     if (resolution % kOccupancyRegion != 0 || resolution <= 0)
         throw Error("occupancy: " + std::to_string(resolution) + " voxels per edge is not a multiple of " +
                     std::to_string(kOccupancyRegion));
-    blocks_ = gl::createBuffer(scope, cascades * blocksPerCascade(resolution) * 8, nullptr);
-    regions_ = gl::createBuffer(scope, int64_t(cascades) * regionWords() * 4, nullptr);
+    blocks_ = gl::createStorageBuffer(scope, cascades * blocksPerCascade(resolution) * 8, nullptr);
+    regions_ = gl::createStorageBuffer(scope, int64_t(cascades) * regionWords() * 4, nullptr);
     glClearNamedBufferData(blocks_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     glClearNamedBufferData(regions_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     buildProgram_ = buildProgram(kBuildProgram);

@@ -130,7 +130,7 @@ int64_t Voxelizer::scroll(const VolumeFit& fit, const glm::ivec3& shift, const G
 void Voxelizer::voxelizeAround(const GpuScene& scene, const glm::ivec3& keepLo, const glm::ivec3& keepHi) {
     const int n = grid_.fit.resolution;
     // The sums live only while voxelizing: at 256^3 they are 640 MiB that nothing else needs.
-    gl::Buffer sums = gl::createBuffer(scope_, int64_t(n) * n * n * kChannels * 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gl::Buffer sums = gl::createStorageBuffer(scope_, int64_t(n) * n * n * kChannels * 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
     const GLuint zero = 0;
     glClearNamedBufferData(sums.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, sums.id());

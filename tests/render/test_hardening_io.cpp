@@ -13,6 +13,8 @@
 #include <sstream>
 
 #include "cli_util.h"
+#include "gl/gl.h"
+#include "render_test_util.h"
 #include "gi/method.h"
 #include "gi/vct/vct_settings.h"
 #include "volume/scene_volume.h"
@@ -228,6 +230,25 @@ TEST(Hardening, ProbesPastTheWorkGroupLimitStillLightTheScene) {
     for (size_t i = 0; i < a.rgba.size(); i += 4) sumA += a.rgba[i] + a.rgba[i + 1] + a.rgba[i + 2];
     for (size_t i = 0; i < b.rgba.size(); i += 4) sumB += b.rgba[i] + b.rgba[i + 1] + b.rgba[i + 2];
     EXPECT_GT(sumA, sumB * 1.05) << "indirect light missing: " << sumA << " vs " << sumB;
+}
+
+// A probe grid whose distance moments (1568 bytes a probe) exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE:
+// its binding would be GL_INVALID_VALUE and every probe would read nothing (on llvmpipe it traced
+// for minutes, then wrote an image). Now refused before anything renders, naming the limit, with
+// no output. On a GPU whose limit holds the grid there is nothing to check.
+TEST(Hardening, AProbeGridPastTheStorageBlockLimitIsOneClearError) {
+    gis::test::context();
+    const int64_t distanceBytes = 196000000;  // 50^3 probes at spacing 0.02 on the Cornell box
+    if (gis::gl::maxStorageBlockBytes() >= distanceBytes) GTEST_SKIP() << "this GPU's storage blocks hold the grid";
+    const std::string dir = tempDir("hardening_storage_limit");
+    const gis::test::CliResult r = runCli("render --scene builtin:cornell --gi probes --size 16x16 "
+                                          "--set probes.spacing=0.02 --set probes.rays=8 --out " +
+                                          quoted(dir + "/out.exr"));
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(std::to_string(distanceBytes)), std::string::npos) << r.err;
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/out.exr"));
 }
 
 // A settings file's camera gets the glTF loader's checks: a znear the depth buffer cannot resolve

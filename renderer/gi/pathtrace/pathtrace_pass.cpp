@@ -63,7 +63,7 @@ PathTracePass::PathTracePass(SceneServices& services, const RenderSettings& sett
     samples_.target = params_.spp;
     program_ = buildProgram(programs()[0]);
     const uint32_t zeros[6] = {};
-    rayCounts_ = gl::createBuffer({&ledger, name()}, sizeof(zeros), zeros);
+    rayCounts_ = gl::createStorageBuffer({&ledger, name()}, sizeof(zeros), zeros);
 }
 
 std::optional<RayCounts> PathTracePass::raysTraced() const {
