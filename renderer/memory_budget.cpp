@@ -1,7 +1,5 @@
 #include "memory_budget.h"
 
-#include "gi/method.h"
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "emitters/emitter_lights.h"
 #include "gi/method.h"
 #include "gl/gl.h"
 #include "renderer.h"
@@ -62,6 +61,8 @@ MemoryEstimate estimateGpuMemory(const Scene& scene, const RenderSettings& s) {
     if (s.view != "final") e.parts.push_back({"debug view (RGBA16F)", pixels * 8});
     if (deferred) {
         e.parts.push_back({s.hdr32 ? "lighting (RGBA32F)" : "lighting (RGBA16F)", pixels * (s.hdr32 ? 16 : 8)});
+        if (EmitterMode(emitterLightSettings(s).mode) == EmitterMode::Lights && sceneHasEmitters(scene))
+            e.parts.push_back({"emitter lights (ReSTIR reservoirs)", EmitterLightPass::targetBytes(s.width, s.height)});
         if (s.shadows && !scene.draws.empty()) {
             uint64_t points = 0, flat = 0;
             for (const Light& l : scene.lights) (l.type == LightType::Point ? points : flat) += 1;

@@ -63,16 +63,31 @@ std::vector<ProgramDesc> EmitterLightPass::programs() {
             {"emitters-spatial", {"emitters/restir.comp"}, {{"RESTIR_STAGE", "1"}}}};
 }
 
+namespace {
+// The formats of a reservoir set's sample, surface and normal (restir.comp's image layouts), and
+// of the still view's accumulation: what the pass allocates and the memory estimate counts.
+constexpr GLenum kReservoirFormats[3] = {GL_RGBA32F, GL_RGBA32F, GL_RGBA16F};
+constexpr GLenum kAccumulationFormat = GL_RGBA32F;
+constexpr int kReservoirSets = 2;  // this frame's and the history
+}  // namespace
+
+uint64_t EmitterLightPass::targetBytes(int width, int height) {
+    uint64_t perPixel = uint64_t(gl::bytesPerTexel(kAccumulationFormat));
+    for (GLenum f : kReservoirFormats) perPixel += uint64_t(kReservoirSets) * uint64_t(gl::bytesPerTexel(f));
+    return perPixel * uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0));
+}
+
 EmitterLightPass::EmitterLightPass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger)
     : rays_(services.rays()) {
     const gl::MemoryScope scope{&ledger, name()};
     const int w = settings.width, h = settings.height;
+    static_assert(kReservoirSets == 2, "temporal_ and history_");
     for (Reservoirs* r : {&temporal_, &history_}) {
-        r->sample = gl::createTexture2D(scope, GL_RGBA32F, w, h);
-        r->surface = gl::createTexture2D(scope, GL_RGBA32F, w, h);
-        r->normal = gl::createTexture2D(scope, GL_RGBA16F, w, h);
+        r->sample = gl::createTexture2D(scope, kReservoirFormats[0], w, h);
+        r->surface = gl::createTexture2D(scope, kReservoirFormats[1], w, h);
+        r->normal = gl::createTexture2D(scope, kReservoirFormats[2], w, h);
     }
-    accumulation_ = gl::createTexture2D(scope, GL_RGBA32F, w, h);
+    accumulation_ = gl::createTexture2D(scope, kAccumulationFormat, w, h);
     const auto p = programs();
     candidates_ = buildProgram(p[0]);
     spatial_ = buildProgram(p[1]);

@@ -57,6 +57,8 @@ public:
     Progress progress() const override { return {accumulated_, target_, "frames"}; }
     std::vector<std::string> stats() const override;
     static std::vector<ProgramDesc> programs();
+    // GPU bytes of the targets the pass allocates at width x height (the memory budget's estimate).
+    static uint64_t targetBytes(int width, int height);
 
 private:
     struct Reservoirs {

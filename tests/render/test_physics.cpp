@@ -278,5 +278,23 @@ TEST(MemoryBudget, EstimateMatchesTheLedger) {
     }
 }
 
+// With emitters as lights the direct pass adds its ReSTIR reservoirs (two sets and the still
+// view's accumulation, about 100 bytes a pixel); with emitters.mode=gi it has none.
+TEST(MemoryBudget, EstimateCountsTheEmitterLights) {
+    context();
+    const Scene scene = makeBuiltinScene("cornell-area");
+    for (const char* mode : {"lights", "gi"}) {
+        RenderSettings s;
+        s.width = s.height = 256;
+        s.gi = "none";
+        setParam(s, "emitters.mode", mode);
+        const uint64_t estimate = estimateGpuMemory(scene, s).total();
+        Renderer renderer(scene, s);
+        const double ledger = double(renderer.memory().total());
+        // The ray scene the reservoirs' visibility rays trace is left out (a few hundred triangles).
+        EXPECT_NEAR(double(estimate), ledger, 0.01 * ledger + 16 * 1024) << mode;
+    }
+}
+
 }  // namespace
 }  // namespace gis::test
