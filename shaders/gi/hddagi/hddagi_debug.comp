@@ -3,6 +3,7 @@
 // grid lines at block edges. hddagi.steps: each pixel's camera ray walked through the cascades by
 // HDDA (volume/hdda.glsl), its steps as a heat map.
 #include "volume/hdda.glsl"
+#include "debug_slice.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba16f, binding = 0) uniform writeonly image2D i_target;
@@ -25,20 +26,16 @@ vec3 heat(float x) {
 }
 
 vec3 occupancySlice(ivec2 pixel, ivec2 size) {
-    // The slice fills the frame's shorter side, centred (square cells whatever the aspect).
-    int side = min(size.x, size.y);
-    ivec2 corner = (size - ivec2(side)) / 2;
-    vec2 uv = (vec2(pixel - corner) + 0.5) / float(side);
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) return vec3(0.0);
     int n = u_resolution, axis = int(u_slice.x), cascade = int(u_slice.z), level = int(u_slice.w);
-    int k = clamp(int(u_slice.y * float(n)), 0, n - 1);
-    ivec2 c = ivec2(uv * float(n));
-    ivec3 v = axis == 0 ? ivec3(k, c.x, c.y) : (axis == 1 ? ivec3(c.x, k, c.y) : ivec3(c.x, c.y, k));
+    vec2 uv;
+    vec3 frame;
+    if (!slicePixel(pixel, size, axis, u_slice.y, uv, frame)) return frame;
+    ivec3 v = clamp(ivec3(slicePoint(axis, u_slice.y, uv) * float(n)), ivec3(0), ivec3(n - 1));
     bool occupied = level == 2 ? occRegionPresent(cascade, v, n)
                   : level == 1 ? occRegionPresent(cascade, v, n) && occBlockMask(cascade, v, n) != uvec2(0u)
                                : occVoxel(cascade, v, n);
     vec2 inCell = fract(uv * float(n) / float(OCC_BLOCK));
-    bool edge = any(lessThan(inCell, vec2(0.5 * float(OCC_BLOCK) / float(side))));
+    bool edge = any(lessThan(inCell, vec2(0.5 * float(OCC_BLOCK) / float(min(size.x, size.y)))));
     return occupied ? vec3(1.0) : (edge ? vec3(0.15) : vec3(0.0));
 }
 

@@ -1,11 +1,12 @@
 // SDF GI's debug views, written into the frame-sized target:
 //   0 sdf.slice:   one slice of the distance field (cascade sdf.slice-cascade, a layer of the
-//                  field) across the whole image (axis, position 0..1),
+//                  field) in the debug slices' frame (debug_slice.glsl; axis, position 0..1),
 //                  colour-mapped: blue-white outside, red-orange inside (negative), a band every
 //                  cell, black on the zero level set;
 //   1 sdf.steps:   the marcher's steps per diffuse ray as a heatmap (black 0 ... white max steps);
 //   2 sdf.normals: the normal at the first diffuse ray's hit (* 0.5 + 0.5; black where it missed).
 #include "common.glsl"
+#include "debug_slice.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 3) uniform sampler3D s_distance;
@@ -42,17 +43,19 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(i_target);
     if (any(greaterThanEqual(pixel, size))) return;
-    vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
     int view = int(u_debug.x);
     vec3 colour;
     if (view == 0) {
         int axis = int(u_debug.y);
-        vec3 uvw = axis == 0 ? vec3(u_debug.z, uv.x, uv.y) : axis == 1 ? vec3(uv.x, u_debug.z, uv.y) : vec3(uv, u_debug.z);
-        // The cascade's layer of the field (layers stack along z), clamped half a cell inside it.
-        int layers = max(textureSize(s_distance, 0).z / u_resolution, 1);
-        float halfCell = 0.5 / float(u_resolution);
-        uvw.z = (float(u_layer) + clamp(uvw.z, halfCell, 1.0 - halfCell)) / float(layers);
-        colour = sliceColour(textureLod(s_distance, uvw, 0.0).r);
+        vec2 st;
+        if (slicePixel(pixel, size, axis, u_debug.z, st, colour)) {
+            vec3 uvw = slicePoint(axis, u_debug.z, st);
+            // The cascade's layer of the field (layers stack along z), clamped half a cell inside it.
+            int layers = max(textureSize(s_distance, 0).z / u_resolution, 1);
+            float halfCell = 0.5 / float(u_resolution);
+            uvw.z = (float(u_layer) + clamp(uvw.z, halfCell, 1.0 - halfCell)) / float(layers);
+            colour = sliceColour(textureLod(s_distance, uvw, 0.0).r);
+        }
     } else {
         ivec2 traced = min(pixel / u_scale, textureSize(s_info, 0) - 1);
         vec4 info = texelFetch(s_info, traced, 0);

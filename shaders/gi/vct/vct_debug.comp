@@ -1,8 +1,9 @@
 // VCT debug views. "vct.voxels": the grid ray-marched from the camera, showing the first voxel with
-// occupancy >= 0.5 / 2^level at the chosen mip level. "vct.slice": one slice of the grid, stretched over the
-// image. Channels: 0 albedo, 1 emission, 2 radiance, 3 occupancy. Albedo and emission exist at
+// occupancy >= 0.5 / 2^level at the chosen mip level. "vct.slice": one slice of the grid in the
+// debug slices' frame (debug_slice.glsl). Channels: 0 albedo, 1 emission, 2 radiance, 3 occupancy. Albedo and emission exist at
 // level 0 only; radiance and occupancy at every level of the radiance chain.
 #include "common.glsl"
+#include "debug_slice.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler3D s_albedo;
@@ -32,11 +33,12 @@ void main() {
     vec4 result = vec4(0.0, 0.0, 0.0, 1.0);
     if (u_debug.z >= 0.0) {
         int axis = int(u_debug.z);
-        vec3 c = vec3(0.0);
-        c[axis] = clamp(u_debug.w, 0.0, 1.0);
-        c[(axis + 1) % 3] = uv.x;
-        c[(axis + 2) % 3] = uv.y;
-        result.rgb = texelAt(ivec3(min(c * float(n), vec3(n - 1))), channel, level).rgb;
+        float position = clamp(u_debug.w, 0.0, 1.0);
+        vec2 st;
+        if (slicePixel(pixel, size, axis, position, st, result.rgb)) {
+            vec3 c = slicePoint(axis, position, st);
+            result.rgb = texelAt(ivec3(min(c * float(n), vec3(n - 1))), channel, level).rgb;
+        }
     } else {
         vec4 a = u_invViewProj * vec4(uv * 2.0 - 1.0, -1.0, 1.0), b = u_invViewProj * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
         vec3 o = (u_worldToVoxel * vec4(a.xyz / a.w, 1.0)).xyz / float(1 << level);
