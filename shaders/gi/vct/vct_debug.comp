@@ -1,5 +1,5 @@
 // VCT debug views. "vct.voxels": the grid ray-marched from the camera, showing the first voxel with
-// occupancy >= 0.5 / 2^level at the chosen mip level. "vct.slice": one slice of the grid in the
+// occupancy >= 0.5 / 2^level at the chosen mip level (albedo and occupancy shaded by face). "vct.slice": one slice of the grid in the
 // debug slices' frame (debug_slice.glsl). Channels: 0 albedo, 1 emission, 2 radiance, 3 occupancy. Albedo and emission exist at
 // level 0 only; radiance and occupancy at every level of the radiance chain.
 #include "common.glsl"
@@ -21,6 +21,22 @@ vec4 texelAt(ivec3 v, int channel, int level) {
     if (channel == 1) return level == 0 ? vec4(texelFetch(s_emission, v, 0).rgb, texelFetch(s_albedo, v, 0).a) : vec4(0.0);
     vec4 r = texelFetch(s_radiance, v, level);
     return channel == 2 ? vec4(r.a > 1e-6 ? r.rgb / r.a : vec3(0.0), r.a) : vec4(vec3(r.a), r.a);
+}
+
+// Albedo and occupancy are drawn lit by a light at the eye, so the voxels' shape reads: the face
+// the ray entered voxel v through (of the axes along which it left the previous voxel, the one it
+// crossed last; the ray's dominant axis where it started inside) at full value facing the eye,
+// darker as it turns away. Emission and radiance are data and are drawn as they are.
+float faceShade(ivec3 v, ivec3 previous, vec3 o, vec3 d) {
+    vec3 a = abs(d);
+    int axis = a.x > a.y && a.x > a.z ? 0 : (a.y > a.z ? 1 : 2);
+    float last = -1e30;
+    for (int i = 0; i < 3; ++i) {
+        if (v[i] == previous[i] || a[i] < 1e-8) continue;
+        float t = (float(d[i] > 0.0 ? v[i] : v[i] + 1) - o[i]) / d[i];
+        if (t > last) last = t, axis = i;
+    }
+    return 0.4 + 0.6 * a[axis];
 }
 
 void main() {
@@ -52,14 +68,16 @@ void main() {
         // A wall one finest voxel thick fills 1/2^level of a voxel at `level`: a fixed 0.5 showed
         // nothing of thin walls (a Cornell box) from level 1 on.
         float solid = 0.5 / float(1 << level);
+        ivec3 previous = ivec3(floor(o + d * tIn));
         for (float t = tIn; t < tOut && t - tIn < 4.0 * float(n); t += 0.25) {
             ivec3 v = ivec3(floor(o + d * t));
             if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(n)))) continue;
             vec4 s = texelAt(v, channel, level);
             if (texelFetch(s_radiance, v, level).a >= solid || (level == 0 && texelFetch(s_albedo, v, 0).a > 0.0)) {
-                result.rgb = s.rgb;
+                result.rgb = channel == 0 || channel == 3 ? s.rgb * faceShade(v, previous, o, d) : s.rgb;
                 break;
             }
+            previous = v;
         }
     }
     imageStore(i_view, pixel, vec4(finiteOrZero(result.rgb), 1.0));

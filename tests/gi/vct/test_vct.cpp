@@ -468,8 +468,8 @@ TEST(Vct, GlossyFloorReflectsAnEmitter) {
     EXPECT_GT(red, 5.0 * green);
 }
 
-// The debug views show the grid: ray-marched albedo sees the white back wall in the middle and
-// the red wall on the left; a slice across the room has red at its left end, green at its right
+// The debug views show the grid: ray-marched albedo sees the white back wall in the middle, the
+// red wall on the left and the floor shaded by its angle to the eye; a slice across the room has red at its left end, green at its right
 // (inside the frame whose left band marks its vertical axis in green).
 TEST(Vct, DebugViewsShowTheGrid) {
     RenderSettings s = vctSettings();
@@ -481,6 +481,13 @@ TEST(Vct, DebugViewsShowTheGrid) {
     EXPECT_NEAR(centre[1], 0.73f, 0.02f);
     const float* left = voxels.frame.at(kSize / 16, kSize / 2);
     EXPECT_GT(left[0], 4.0f * left[1]) << "the red wall";
+    // Shaded by face: the floor, of the back wall's albedo, seen at a grazing angle is darker (it
+    // was drawn at its albedo, flat); the mean over a row is the floor's, not one voxel's.
+    double floor = 0.0;
+    for (int x = kSize / 4; x < kSize * 3 / 4; ++x) floor += voxels.frame.at(x, kSize * 15 / 16)[1];
+    floor /= double(kSize / 2);
+    EXPECT_LT(floor, 0.73 * 0.85) << "the floor is as bright as the wall facing the eye";
+    EXPECT_GT(floor, 0.73 * 0.4);
     s.view = "vct.slice";
     setVct(s, "slice-axis", "z");
     setVct(s, "slice-position", "0.5");
