@@ -5,6 +5,7 @@
 // colour along the top, filled to it.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "cli_util.h"
