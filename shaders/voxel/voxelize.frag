@@ -96,6 +96,16 @@ void main() {
         ivec3 voxel = unswizzleFromAxis(ivec3(ivec2(c), k), g_axis);
         if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(u_resolution)))) continue;
         if (all(greaterThanEqual(voxel, u_keepLo)) && all(lessThan(voxel, u_keepHi))) continue;
+        if (emissive) {
+            // The pixel's coverage is its column's: a tilted emitter crosses up to three voxels of
+            // it, each taking the share of the plane's depth range [lo, hi] that lies within it
+            // (counted whole in each, the column carried the emitter's power once per voxel crossed).
+            float share = hi - lo > 1e-6 ? clamp((min(hi, float(k + 1)) - max(lo, float(k))) / (hi - lo), 0.0, 1.0) : 1.0;
+            values[4] = fixedPoint(emission.r * coverage * share);
+            values[5] = fixedPoint(emission.g * coverage * share);
+            values[6] = fixedPoint(emission.b * coverage * share);
+            values[10] = fixedPoint(coverage * share);
+        }
         for (int ch = 0; ch < VOXEL_CHANNELS; ++ch)
             atomicAdd(u_voxelSums[voxelSumIndex(voxel, u_resolution, ch)], values[ch]);
     }

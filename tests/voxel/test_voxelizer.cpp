@@ -216,10 +216,15 @@ TEST(Voxelizer, MovedGridMatchesAFreshOne) {
 }
 
 // A square emitter of edge `edge` voxels in the plane z = 10.37, rotated 30 degrees about z (so its
-// edges and its diagonal, where its two triangles meet, cross voxels at odd angles), centred at `centre`.
-std::vector<Triangle> emitterSquare(float edge, glm::vec2 centre) {
+// edges and its diagonal, where its two triangles meet, cross voxels at odd angles), centred at
+// `centre`, then tilted by `tilt` degrees about the x axis through its centre.
+std::vector<Triangle> emitterSquare(float edge, glm::vec2 centre, float tilt = 0.0f) {
     const float c = std::cos(glm::radians(30.0f)) * 0.5f * edge, s = std::sin(glm::radians(30.0f)) * 0.5f * edge;
-    auto corner = [&](float u, float v) { return glm::vec3(centre + glm::vec2(u * c - v * s, u * s + v * c), 10.37f); };
+    const float ct = std::cos(glm::radians(tilt)), st = std::sin(glm::radians(tilt));
+    auto corner = [&](float u, float v) {
+        const glm::vec2 p(u * c - v * s, u * s + v * c);
+        return glm::vec3(centre.x + p.x, centre.y + p.y * ct, 10.37f + p.y * st);
+    };
     const glm::vec3 a = corner(-1, -1), b = corner(1, -1), d = corner(1, 1), e = corner(-1, 1);
     return {{a, b, d}, {a, d, e}};
 }
@@ -227,9 +232,9 @@ std::vector<Triangle> emitterSquare(float edge, glm::vec2 centre) {
 // The emission a grid of unit voxels carries (the sum over voxels of emitted radiance x face area)
 // for an emitter of `edge` voxels whose radiance keeps its power at that of a 1-voxel emitter of
 // radiance 1 (power / pi = radiance x area = 1).
-double carriedEmission(float edge, glm::vec2 centre, ConservativeMode mode) {
+double carriedEmission(float edge, glm::vec2 centre, ConservativeMode mode, float tilt = 0.0f) {
     const float radiance = 1.0f / (edge * edge);
-    const Scene scene = triangleScene(emitterSquare(edge, centre), glm::vec3(0.5f), glm::vec3(radiance));
+    const Scene scene = triangleScene(emitterSquare(edge, centre, tilt), glm::vec3(0.5f), glm::vec3(radiance));
     context();
     gl::MemoryLedger ledger;
     GpuScene gpu(scene, ledger);
@@ -256,6 +261,20 @@ TEST(Voxelizer, EmissionCarriesTheEmittersPowerWhateverTheirSize) {
         std::printf("0.4-voxel emitter at (%.2f, %.2f): %.4f of its power, %.3f x the 6-voxel one's\n", centre.x,
                     centre.y, small, small / large);
         EXPECT_NEAR(small / large, 1.0, 0.10);
+    }
+}
+
+// A tilted emitter crosses up to three voxels of each column along its dominant axis. Each column
+// carries the part of its cross-section the emitter covers once, split over those voxels by the
+// share of the plane's depth within each: the volume then carries the emitter's area projected on
+// the dominant axis, cos(tilt) of the flat one's (counted once per voxel crossed, it carried up to
+// three times that).
+TEST(Voxelizer, ATiltedEmitterIsCountedOncePerColumn) {
+    for (float tilt : {20.0f, 40.0f}) {
+        const double carried = carriedEmission(6.0f, glm::vec2(15.3f, 16.6f), ConservativeMode::Geometry, tilt);
+        const double expected = std::cos(glm::radians(tilt));
+        std::printf("6-voxel emitter tilted %.0f degrees: %.4f of its power, expected %.4f\n", tilt, carried, expected);
+        EXPECT_NEAR(carried / expected, 1.0, 0.05) << tilt;
     }
 }
 
