@@ -199,18 +199,23 @@ TEST(Hardening, DiffRefusesAHeatmapPathThatIsOneOfItsInputs) {
 // Every registered method renders under the GL debug output without one GL error message: a
 // failed call (a dispatch past the work-group limit, a uniform the program lacks) is a silently
 // wrong image, not a crash. Probes used to log GL_INVALID_OPERATION for two uniforms every frame.
+// On the point-lit Cornell box and on the emitter-lit one (the emitters' ReSTIR pass, their light
+// injected into the volumes, and the volumes' emission with emitters.mode=gi).
 TEST(Hardening, EveryMethodRendersWithoutAGlError) {
     const std::string dir = tempDir("hardening_gl_debug");
-    for (const gis::GiMethod& m : gis::giMethods()) {
-        // Few samples and updates: the calls are what is checked, not convergence.
-        const std::string extra = m.name == "pathtrace" || m.name == "ao-reference" ? " --set " + m.name + ".spp=2"
-                                  : m.name == "probes" || m.name == "hddagi"        ? " --set " + m.name + ".max-updates=2"
-                                                                                    : "";
-        const gis::test::CliResult r = runCli("render --gl-debug --scene builtin:cornell --size 32x32 --gi " + m.name +
-                                              extra + " --out " + quoted(dir + "/" + m.name + ".exr"));
-        EXPECT_EQ(r.status, 0) << m.name << ": " << r.err;
-        EXPECT_EQ(r.err.find("GL debug [error"), std::string::npos) << m.name << ":\n" << r.err;
-    }
+    const char* scenes[] = {"builtin:cornell", "builtin:cornell-area", "builtin:cornell-area --emitters gi"};
+    for (const char* scene : scenes)
+        for (const gis::GiMethod& m : gis::giMethods()) {
+            // Few samples and updates: the calls are what is checked, not convergence.
+            const std::string extra = m.name == "pathtrace" || m.name == "ao-reference" ? " --set " + m.name + ".spp=2"
+                                      : m.name == "probes" || m.name == "hddagi" ? " --set " + m.name + ".max-updates=2"
+                                                                                 : "";
+            const gis::test::CliResult r = runCli(std::string("render --gl-debug --scene ") + scene +
+                                                  " --size 32x32 --set emitters.accumulate=2 --gi " + m.name + extra +
+                                                  " --out " + quoted(dir + "/" + m.name + ".exr"));
+            EXPECT_EQ(r.status, 0) << scene << " " << m.name << ": " << r.err;
+            EXPECT_EQ(r.err.find("GL debug [error"), std::string::npos) << scene << " " << m.name << ":\n" << r.err;
+        }
 }
 
 // 41^3 probes: one work group per probe is past the 65,535-group limit of one dispatch. The trace
