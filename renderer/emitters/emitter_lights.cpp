@@ -58,6 +58,10 @@ bool sceneHasEmitters(const Scene& scene) {
     return false;
 }
 
+bool emittersAreLights(const Scene& scene, const RenderSettings& settings) {
+    return EmitterMode(emitterLightSettings(settings).mode) == EmitterMode::Lights && sceneHasEmitters(scene);
+}
+
 std::vector<ProgramDesc> EmitterLightPass::programs() {
     return {{"emitters-candidates", {"emitters/restir.comp"}, {{"RESTIR_STAGE", "0"}}},
             {"emitters-spatial", {"emitters/restir.comp"}, {{"RESTIR_STAGE", "1"}}}};

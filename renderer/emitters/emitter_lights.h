@@ -41,6 +41,9 @@ EmitterLightSettings emitterLightSettings(const RenderSettings& settings);
 
 // True when some draw's material emits (before building any GPU resource).
 bool sceneHasEmitters(const Scene& scene);
+// Emissive triangles are lights here: emitters.mode is `lights` and some draw emits (the direct
+// pass then runs ReSTIR and the voxel methods light their volume with the emitters).
+bool emittersAreLights(const Scene& scene, const RenderSettings& settings);
 
 class EmitterLightPass final : public Pass {
 public:

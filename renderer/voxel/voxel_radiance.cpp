@@ -202,7 +202,7 @@ void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radia
     lights.shadows = frame.settings.shadows;
     const EmitterLightSettings emitters = emitterLightSettings(frame.settings);
     lights.emission = EmitterMode(emitters.mode) == EmitterMode::Gi ? 1.0f : 0.0f;
-    if (EmitterMode(emitters.mode) == EmitterMode::Lights && sceneHasEmitters(frame.scene.cpu)) {
+    if (emittersAreLights(frame.scene.cpu, frame.settings)) {
         lights.emitters = &frame.services.rays();
         lights.emitterSamples = emitters.volumeSamples;
     }

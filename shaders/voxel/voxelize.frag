@@ -88,10 +88,11 @@ void main() {
     float coverage = emissive && u_conservative != 0 ? pixelCoverage(floor(c)) : 1.0;
     float len2 = dot(v_in.normal, v_in.normal);
     vec3 n = len2 > 1e-20 ? v_in.normal * inversesqrt(len2) : vec3(0.0);
+    // Emission and its coverage (channels 4-6 and 10) are set per voxel below: none for a surface
+    // that does not emit.
     uint values[VOXEL_CHANNELS] = uint[VOXEL_CHANNELS](
-        1u, fixedPoint(base.r), fixedPoint(base.g), fixedPoint(base.b), fixedPoint(emission.r * coverage),
-        fixedPoint(emission.g * coverage), fixedPoint(emission.b * coverage), fixedPoint(n.x * 0.5 + 0.5),
-        fixedPoint(n.y * 0.5 + 0.5), fixedPoint(n.z * 0.5 + 0.5), emissive ? fixedPoint(coverage) : 0u);
+        1u, fixedPoint(base.r), fixedPoint(base.g), fixedPoint(base.b), 0u, 0u, 0u, fixedPoint(n.x * 0.5 + 0.5),
+        fixedPoint(n.y * 0.5 + 0.5), fixedPoint(n.z * 0.5 + 0.5), 0u);
     for (int k = k0; k <= k1; ++k) {
         ivec3 voxel = unswizzleFromAxis(ivec3(ivec2(c), k), g_axis);
         if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(u_resolution)))) continue;
