@@ -255,6 +255,64 @@ TEST(SettingsFile, BadFilesNameTheProblem) {
     EXPECT_THROW(loadViewSettings(dir + "/missing.json"), Error);
 }
 
+// A whole-number key written as a double (64.0, as a tool that writes every number as a double
+// does) loads as the integer; a fraction is still refused naming the key (issue 27: 64.0 was
+// refused as "must be a whole number").
+TEST(SettingsFile, AWholeNumberWrittenAsADoubleLoads) {
+    const std::string dir = tempDir("view_settings_whole");
+    {
+        std::ofstream(dir + "/whole.json") << R"({"panes": [{"gi": "vct", "params": {"vct.resolution": 64.0}}]})";
+        std::ofstream(dir + "/half.json") << R"({"panes": [{"gi": "vct", "params": {"vct.resolution": 64.5}}]})";
+    }
+    ViewState s;
+    ASSERT_NO_THROW(s = loadViewSettings(dir + "/whole.json"));
+    ASSERT_EQ(s.panes[0].params.count("vct.resolution"), 1u);
+    EXPECT_EQ(s.panes[0].params.at("vct.resolution").number, 64.0);
+    try {
+        loadViewSettings(dir + "/half.json");
+        ADD_FAILURE() << "64.5 loaded as a whole number";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("vct.resolution' must be a whole number"), std::string::npos) << e.what();
+    }
+}
+
+// A method parameter's value in a script's or the panel's `set`, and in `render --set` and its
+// aliases, is a number as a settings file writes it: 0x10, +5, .5 and inf are refused naming the
+// word, and 1e-400 (strtod reads it as 0; ssao.radius 0 means "15% of the scene") is refused as
+// too small, where they were all taken silently. 0.0e-400 is zero however it is written.
+TEST(Script, ParameterValuesAreStrictNumbers) {
+    for (const char* bad : {"0x10", "+5", ".5", "inf", "1e-400", "5e-999"}) {
+        for (const std::string& line : {std::string("set 0 ssao.radius ") + bad, std::string("set 0 ssao.slices ") + bad}) {
+            try {
+                parseScript("method 0 ssao\n" + line + "\n", "s.txt");
+                ADD_FAILURE() << line << " was accepted";
+            } catch (const Error& e) {
+                const std::string what = e.what();
+                EXPECT_EQ(what.rfind("s.txt:2: ", 0), 0u) << what;
+                EXPECT_NE(what.find(bad), std::string::npos) << what;
+                EXPECT_TRUE(what.find("is not a number") != std::string::npos || what.find("too small") != std::string::npos)
+                    << what;
+            }
+        }
+        ViewState s;
+        applyPanelAction(s, PanelAction::method(0, "ssao"));
+        const ViewState before = s;
+        EXPECT_THROW(applyPanelAction(s, PanelAction::param(0, "ssao.radius", bad)), Error) << bad;
+        EXPECT_EQ(s.panes[0].params, before.panes[0].params) << bad;
+        const std::string dir = tempDir("view_set_numbers");
+        for (const std::string& flag : {std::string("--set ssao.radius="), std::string("--ao-radius=")}) {
+            const CliResult r = runCli("render --scene builtin:cornell --gi ssao --size 8x8 " + flag + bad + " --out " + dir +
+                                       "/x.png");
+            EXPECT_EQ(r.status, 1) << flag << bad;
+            EXPECT_NE(r.err.find(bad), std::string::npos) << r.err;
+            EXPECT_FALSE(std::filesystem::exists(dir + "/x.png")) << flag << bad;
+        }
+    }
+    for (const char* good : {"0.5", "5e-1", "2", "1E+1", "0.0e-400", "0"})
+        EXPECT_NO_THROW(parseScript(std::string("method 0 ssao\nset 0 ssao.radius ") + good + "\n", "s.txt")) << good;
+    EXPECT_NO_THROW(parseScript("method 0 ssao\nset 0 ssao.slices 8\n", "s.txt"));
+}
+
 TEST(Script, ParsesTimedActionsAndNamesBadLines) {
     const auto steps = parseScript(
         "# a comment\nwait 3\nmode split\n\nmethod 1 pathtrace  # trailing comment\nconverge\nsleep 0.5\n"
