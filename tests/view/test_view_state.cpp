@@ -12,6 +12,7 @@
 #include "gi/method.h"
 #include "settings_io.h"
 #include "view_script.h"
+#include "view_session.h"
 #include "view_state.h"
 
 namespace gis::test {
@@ -446,6 +447,50 @@ TEST(Script, LinesAfterASceneOrSettingsFileAreCheckedAgainstWhatItLoads) {
     const std::string missing = contextError("settings " + dir + "/none.json\nmethod 0 vct\n", state, &line);
     EXPECT_NE(missing.find("none.json"), std::string::npos) << missing;
     EXPECT_EQ(line, 1) << "a settings file that does not load stops the run: refused at its line";
+}
+
+// What save-settings writes always loads (issue 27): a camera moved 20000 units from the Cornell
+// box, or zoomed out as far, has its znear 0.01 at 5e-7 of the scene's depth, which the settings
+// loader refuses (render --settings and the viewer alike); the file was written all the same and
+// the script ended with exit 0. The save is refused now, naming the file, before the window opens
+// for a script line and by the session for the panel's button; the file is not written.
+TEST(Script, ASaveTheLoaderWouldRefuseIsRefused) {
+    const Scene scene = loadScene("builtin:cornell");
+    const ViewState state = stateFor(scene);
+    const std::string dir = tempDir("view_save_far");
+    for (const std::string& move : {std::string("camera move 20000 0 0"), std::string("camera zoom 1e6")}) {
+        try {
+            checkScriptInContext(parseScript(move + "\nwait 1\nsave-settings " + dir + "/far.json\n", "c.txt"), state,
+                                 "c.txt", &scene.bounds);
+            ADD_FAILURE() << move << ": the save was accepted";
+        } catch (const Error& e) {
+            const std::string what = e.what();
+            EXPECT_EQ(what.rfind("c.txt:3: ", 0), 0u) << what;
+            EXPECT_NE(what.find("far.json: camera: znear"), std::string::npos) << what;
+            EXPECT_NE(what.find("not saved, the file would not load"), std::string::npos) << what;
+        }
+    }
+    EXPECT_NO_THROW(checkScriptInContext(parseScript("camera move 2 0 0\nsave-settings " + dir + "/near.json\n", "c.txt"),
+                                         state, "c.txt", &scene.bounds));
+    // After a scene line, that scene's bounds: the emitter box is the same size, so the same refusal.
+    EXPECT_THROW(checkScriptInContext(parseScript("scene builtin:cornell-area\ncamera move 20000 0 0\nsave-settings " +
+                                                      dir + "/far.json\n",
+                                                  "c.txt"),
+                                      state, "c.txt", &scene.bounds),
+                 Error);
+
+    // The session (the panel's button and a running script's line).
+    ViewSession session;
+    ViewState s = state;
+    ASSERT_TRUE(session.openScene(s, "builtin:cornell")) << session.lastError();
+    applyPanelAction(s, parsePanelAction(splitWords("camera move 20000 0 0")));
+    EXPECT_FALSE(session.saveSettings(s, dir + "/far.json"));
+    EXPECT_NE(session.lastError().find("would not load"), std::string::npos) << session.lastError();
+    EXPECT_FALSE(std::filesystem::exists(dir + "/far.json"));
+    applyPanelAction(s, parsePanelAction(splitWords("camera move -19998 0 0")));
+    ASSERT_TRUE(session.saveSettings(s, dir + "/near.json")) << session.lastError();
+    ViewState loaded = state;
+    EXPECT_TRUE(session.loadSettings(loaded, dir + "/near.json")) << session.lastError();
 }
 
 // vct.debug-level is a live parameter: chosen in the panel it reached the voxel view without the
