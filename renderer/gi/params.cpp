@@ -25,14 +25,36 @@ std::string number(double v) {
     throw Error(method + "." + d.key + ": '" + text + "' " + why);
 }
 
-bool parseDouble(const std::string& text, double& out) {
-    if (text.empty()) return false;
-    char* end = nullptr;
-    out = std::strtod(text.c_str(), &end);
-    return end && *end == '\0' && std::isfinite(out);
+// Why `text` is not a number this parser takes ("" when it is one, in `out`).
+std::string parseDouble(const std::string& text, double& out) {
+    if (!isPlainNumber(text)) return "is not a number";
+    out = std::strtod(text.c_str(), nullptr);
+    if (!std::isfinite(out)) return "is too large for a double";
+    const std::string mantissa = text.substr(0, text.find_first_of("eE"));
+    if (out == 0.0 && mantissa.find_first_of("123456789") != std::string::npos)
+        return "is too small for a double (it would be read as 0)";
+    return "";
 }
 
 }  // namespace
+
+bool isPlainNumber(const std::string& w) {
+    size_t i = 0;
+    auto digits = [&] {
+        const size_t start = i;
+        while (i < w.size() && std::isdigit(static_cast<unsigned char>(w[i]))) ++i;
+        return i > start;
+    };
+    if (i < w.size() && w[i] == '-') ++i;
+    if (!digits()) return false;
+    if (i < w.size() && w[i] == '.' && (++i, !digits())) return false;
+    if (i < w.size() && (w[i] == 'e' || w[i] == 'E')) {
+        ++i;
+        if (i < w.size() && (w[i] == '+' || w[i] == '-')) ++i;
+        if (!digits()) return false;
+    }
+    return i == w.size();
+}
 
 const char* paramTypeName(ParamType t) {
     switch (t) {
@@ -97,8 +119,8 @@ ParamValue parseParamValue(const std::string& method, const ParamDesc& d, const 
     switch (d.type) {
         case ParamType::Int:
         case ParamType::Float:
-            if (!parseDouble(text, v.number))
-                fail(method, d, text, std::string("is not ") + (d.type == ParamType::Int ? "an integer" : "a number"));
+            if (const std::string why = parseDouble(text, v.number); !why.empty())
+                fail(method, d, text, why == "is not a number" && d.type == ParamType::Int ? "is not an integer" : why);
             break;
         case ParamType::Bool:
             if (text == "true" || text == "1" || text == "on") v.number = 1;
@@ -112,7 +134,8 @@ ParamValue parseParamValue(const std::string& method, const ParamDesc& d, const 
             std::string item;
             while (std::getline(ss, item, ',')) {
                 double x = 0;
-                if (!parseDouble(item, x)) fail(method, d, text, "is not a colour (R,G,B or one value)");
+                if (const std::string why = parseDouble(item, x); !why.empty())
+                    fail(method, d, text, why == "is not a number" ? "is not a colour (R,G,B or one value)" : why);
                 parts.push_back(x);
             }
             if (parts.size() == 1) v.colour = glm::vec3(float(parts[0]));

@@ -46,8 +46,14 @@ struct ParamDesc {
     std::string alias;                // an older CLI flag that sets the same row ("--ao-samples"), or ""
 };
 
+// A number as a settings file writes it (JSON's grammar: -?D+(.D+)?([eE][+-]?D+)?). strtod also takes
+// 0x10, +5, .5, inf and nan: every number a user types (parameters, script and panel commands) is
+// held to this grammar instead, so each input reads the same text the same way.
+bool isPlainNumber(const std::string& word);
+
 // Parses `text` for `desc` ("32", "0.5", "true", "geometry", "1,0.5,0" or "0.5"); throws the one
-// validation message: "METHOD.KEY: VALUE is out of range [MIN, MAX]" and the like.
+// validation message: "METHOD.KEY: VALUE is out of range [MIN, MAX]" and the like. Numbers are
+// plain (isPlainNumber) and finite, and one that underflows a double (1e-400, read as 0) is refused.
 ParamValue parseParamValue(const std::string& method, const ParamDesc& desc, const std::string& text);
 // Throws the same message for a value out of range (values built in code, JSON, the panel).
 void checkParamValue(const std::string& method, const ParamDesc& desc, const ParamValue& value);

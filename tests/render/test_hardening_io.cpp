@@ -16,6 +16,7 @@
 #include "gl/gl.h"
 #include "render_test_util.h"
 #include "gi/method.h"
+#include "gi/sdf/sdf_settings.h"
 #include "gi/vct/vct_settings.h"
 #include "volume/scene_volume.h"
 #include "image.h"
@@ -466,6 +467,31 @@ TEST(Hardening, VctResolutionListsOnlyWhatTheVoxelBudgetHolds) {
                            " --size 8x8 --out " + dir + "/x.png");
     EXPECT_NE(r2.status, 0);
     EXPECT_NE(r2.err.find("out of range [8, " + std::to_string(largest) + "]"), std::string::npos) << r2.err;
+}
+
+// sdf.resolution is any whole number: its maximum is the largest whose volume in its smallest form
+// (one cascade, one bounce) fits the budget. It listed [8, 512], and 512 was always refused.
+TEST(Hardening, SdfResolutionListsOnlyWhatTheVoxelBudgetHolds) {
+    const gis::ParamDesc* row = nullptr;
+    for (const gis::ParamDesc& d : gis::sdfParams().rows)
+        if (d.key == "resolution") row = &d;
+    ASSERT_NE(row, nullptr);
+    const int largest = int(row->max);
+    EXPECT_EQ(largest, gis::maxSdfResolution());
+    EXPECT_LT(largest, 512);
+    gis::SdfGiSettings s;
+    s.bounces = 1;
+    s.resolution = largest;
+    EXPECT_LE(gis::sceneVolumeBytes(gis::sdfVolumeRequest(s), 1), gis::kVoxelBudgetBytes) << largest;
+    s.resolution = largest + 1;
+    EXPECT_GT(gis::sceneVolumeBytes(gis::sdfVolumeRequest(s), 1), gis::kVoxelBudgetBytes) << largest + 1;
+
+    const auto list = runCli("methods sdf");
+    EXPECT_NE(list.out.find("[8, " + std::to_string(largest) + "]"), std::string::npos) << list.out;
+    const std::string dir = tempDir("hardening_sdf_range");
+    const auto r = runCli("render --scene builtin:cornell --gi sdf --set sdf.resolution=512 --size 8x8 --out " + dir + "/x.png");
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("out of range [8, " + std::to_string(largest) + "]"), std::string::npos) << r.err;
 }
 
 }  // namespace

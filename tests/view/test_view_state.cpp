@@ -291,7 +291,8 @@ TEST(Script, ParameterValuesAreStrictNumbers) {
                 const std::string what = e.what();
                 EXPECT_EQ(what.rfind("s.txt:2: ", 0), 0u) << what;
                 EXPECT_NE(what.find(bad), std::string::npos) << what;
-                EXPECT_TRUE(what.find("is not a number") != std::string::npos || what.find("too small") != std::string::npos)
+                EXPECT_TRUE(what.find("is not a number") != std::string::npos ||
+                            what.find("is not an integer") != std::string::npos || what.find("too small") != std::string::npos)
                     << what;
             }
         }

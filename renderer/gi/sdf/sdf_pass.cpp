@@ -53,27 +53,11 @@ std::vector<ProgramDesc> SdfGiPass::programs() {
     return all;
 }
 
-namespace {
-// What SDF GI asks of the scene volume: voxels, their light and the distance field, in cascades
-// around the camera for a large scene.
-VolumeRequest volumeRequest(const SdfGiSettings& s) {
-    VolumeRequest r;
-    r.method = "sdf";
-    r.resolution = s.resolution;
-    r.resolutionKey = "sdf.resolution";
-    r.bounces = s.bounces;
-    r.distanceField = true;
-    r.jfa = s.jfaVariant();
-    r.cascades = s.cascades;
-    r.cascadeExtent = s.cascadeExtent;
-    return r;
-}
-}  // namespace
 
 std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Scene& scene, const RenderSettings& settings) {
     const SdfGiSettings s = sdfParams().read("sdf", settings.params);
     const int n = s.resolution, scale = s.tracePixels();
-    const VolumeRequest request = volumeRequest(s);
+    const VolumeRequest request = sdfVolumeRequest(s);
     const CascadeLayout layout = layoutCascades(scene.bounds, n, s.cascadeExtent, s.cascades);
     const int count = layout.count;
     const uint64_t traced = uint64_t(tracedSize(settings.width, scale)) * uint64_t(tracedSize(settings.height, scale));
@@ -96,7 +80,7 @@ std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Sc
 
 SdfGiPass::SdfGiPass(SceneServices& services, const RenderSettings& settings)
     : built_(sdfParams().read("sdf", settings.params)), scope_{&services.ledger, name()}, march_(scope_), debug_(scope_) {
-    volume_ = &services.volume(volumeRequest(built_));
+    volume_ = &services.volume(sdfVolumeRequest(built_));
     sceneBounds_ = services.bounds();
     if (built_.probeGather()) {
         probes::checkFieldSettings(built_.probeField(), "sdf.ray-budget", "sdf.probe-rays");

@@ -1,15 +1,46 @@
 #include "gi/sdf/sdf_settings.h"
 
+#include "volume/scene_volume.h"
 #include "volume/volume_cascades.h"
 
 namespace gis {
+
+VolumeRequest sdfVolumeRequest(const SdfGiSettings& s) {
+    VolumeRequest r;
+    r.method = "sdf";
+    r.resolution = s.resolution;
+    r.resolutionKey = "sdf.resolution";
+    r.bounces = s.bounces;
+    r.distanceField = true;
+    r.jfa = s.jfaVariant();
+    r.cascades = s.cascades;
+    r.cascadeExtent = s.cascadeExtent;
+    return r;
+}
+
+int maxSdfResolution() {
+    static const int largest = [] {
+        SdfGiSettings s;
+        s.bounces = 1;
+        auto fits = [&](int n) {
+            s.resolution = n;
+            return sceneVolumeBytes(sdfVolumeRequest(s), 1) <= kVoxelBudgetBytes;
+        };
+        int lo = 8, hi = 4096;  // fits(lo); the answer is below hi
+        while (hi - lo > 1) (fits((lo + hi) / 2) ? lo : hi) = (lo + hi) / 2;
+        return lo;
+    }();
+    return largest;
+}
 
 const ParamTable<SdfGiSettings>& sdfParams() {
     using S = SdfGiSettings;
     using U = ParamUpdate;
     static const ParamTable<S> table = ParamTable<S>()
-        .integer(&S::resolution, "resolution", "Resolution", "cells per edge of the voxel grid and the distance field",
-                 8, 512, U::Rebuild)
+        .integer(&S::resolution, "resolution", "Resolution",
+                 "cells per edge of the voxel grid and the distance field (one more than the largest would exceed "
+                 "the " + std::to_string(kVoxelBudgetBytes >> 30) + " GiB a voxel method may hold)",
+                 8, maxSdfResolution(), U::Rebuild)
         .choice(&S::jfa, "jfa", "Jump flood", "plain JFA, or with a step-1 pass first (1+jfa) or steps 2 and 1 after (jfa+2)",
                 {"plain", "1+jfa", "jfa+2"}, U::Rebuild)
         .integer(&S::cascades, "cascades", "Cascades",

@@ -44,4 +44,12 @@ struct SdfGiSettings {
 
 const ParamTable<SdfGiSettings>& sdfParams();
 
+struct VolumeRequest;
+// What SDF GI asks of the scene volume: voxels, their light and the distance field, in cascades
+// around the camera for a large scene.
+VolumeRequest sdfVolumeRequest(const SdfGiSettings& s);
+// The largest sdf.resolution whose volume fits the voxel budget (one cascade, one bounce: the
+// least a volume of that size holds), so the listed range holds only what can be allocated.
+int maxSdfResolution();
+
 }  // namespace gis
