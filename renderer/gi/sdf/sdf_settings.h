@@ -29,7 +29,10 @@ struct SdfGiSettings {
     int filterRadius = 2;       // sdf.filter-radius: edge-aware filter half-width, traced pixels (live)
     bool specular = true;       // sdf.specular: trace a reflection ray where roughness is low (live)
     float specularRoughness = 0.2f;  // sdf.specular-roughness: above it, specular uses the diffuse term (live)
-    float aoStrength = 1.0f;    // sdf.ao: strength of the near-field soft occlusion written to "ao" (live)
+    // sdf.ao: strength of the near-field soft occlusion written to "ao" (live). Off by default: the
+    // probes' Chebyshev visibility already occludes their light, and the extra darkening made every
+    // comparison with Cycles and the path tracer worse (README, "sdf.ao", scripts/sdf-ao-table.sh).
+    float aoStrength = 0.0f;
     float intensity = 1.0f;     // sdf.intensity: scales the indirect terms (live)
     // What the debug views show (live).
     int sliceAxis = 2;          // sdf.slice-axis: x | y | z
