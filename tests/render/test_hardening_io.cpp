@@ -391,6 +391,8 @@ TEST(Hardening, MergeVerifiesEachLineAgainstItsIdAndRefusesDuplicates) {
         {"method edited", replaceOnce(manifest, R"("method":"none")", R"("method":"ssao")"), cellId},
         {"line twice", manifest + lines[1] + "\n", "listed twice"},
         {"reference removed", lines[1] + "\n", "its reference " + refId + " is not in the manifest"},
+        {"scene_name edited on the cell", lines[0] + "\n" + replaceOnce(lines[1], R"("scene_name":"cornell")", R"("scene_name":"other")") + "\n",
+         "is not listed for scene other"},
     };
     for (const Case& c : cases) {
         spit(out + "/manifest.jsonl", c.manifest);
@@ -400,6 +402,28 @@ TEST(Hardening, MergeVerifiesEachLineAgainstItsIdAndRefusesDuplicates) {
         EXPECT_EQ(r.err.find("map::at"), std::string::npos) << c.name << ": " << r.err;
         EXPECT_TRUE(slurp(out + "/bench.csv") == csv) << c.name << ": the previous table was replaced";
     }
+    // A merge that fails half way (a file-size limit that the first outputs fit under and a later
+    // one does not) replaces none of the previous outputs and leaves no temporary.
+    spit(out + "/manifest.jsonl", manifest);
+    std::vector<std::string> outputs;
+    for (const auto& e : fs::directory_iterator(out))
+        if (e.is_regular_file() && e.path().filename() != "manifest.jsonl") {
+            outputs.push_back(e.path().string());
+            spit(e.path().string(), "previous " + e.path().filename().string());
+        }
+    ASSERT_GE(outputs.size(), 3u);
+    bool refused = false;
+    for (const char* limit : {"ulimit -f 4;", "ulimit -f 16;", "ulimit -f 64;"}) {
+        const gis::test::CliResult r = runCli("bench --merge " + quoted(out), std::string(limit) + " MESA_SHADER_CACHE_DISABLE=true");
+        if (r.status == 0) continue;
+        refused = true;
+        EXPECT_NE(r.err.find("File too large"), std::string::npos) << limit << r.err;
+        for (const std::string& f : outputs)
+            EXPECT_EQ(slurp(f), "previous " + fs::path(f).filename().string()) << limit << ": " << f << " was replaced";
+        for (const auto& e : fs::recursive_directory_iterator(out))
+            EXPECT_EQ(e.path().string().find(".tmp."), std::string::npos) << "left " << e.path();
+    }
+    EXPECT_TRUE(refused) << "no limit stopped the merge";
     const gis::test::CliResult twice = runCli("bench --plan --scenes builtin:cornell --methods none,none --presets low");
     EXPECT_EQ(twice.status, 1);
     EXPECT_NE(twice.err.find("--methods names 'none' twice"), std::string::npos) << twice.err;

@@ -94,7 +94,7 @@ const GiReference& reference(const std::string& name) { return giReference(name,
 double interiorRmse(const ImageF& a, const ImageF& b, const GiReference& r) { return test::interiorRmse(a, b, r.interior()); }
 
 // The band (80-120% on the walls and floor) is asserted with the near-field occlusion on
-// (sdf.ao=1). At the default, sdf.ao=0, the back wall and floor read just above 120%: the shared
+// (sdf.ao=1), and 80-125% at the default. At the default, sdf.ao=0, the back wall and floor read just above 120%: the shared
 // probe field's own excess at this density (probe GI's medium preset has its back wall at the
 // band's edge, renderer/gi/probes/README.md), which the occlusion had hidden by darkening the
 // room's edges. The default's rows are printed beside it (README, "sdf.ao against the truth").
@@ -117,9 +117,9 @@ TEST(SdfGi, CornellIndirectEnergyPerWallAgainstPathTracer) {
                         ao, name.c_str(), ours, theirs, 100.0 * ratio, ok ? "(in 80-120%)" : "(OUTSIDE 80-120%)");
             if (name == "ceiling") continue;
             inBand += ok;
-            if (!asserted) continue;
-            EXPECT_GE(ratio, 0.8) << name;
-            EXPECT_LE(ratio, 1.2) << name;
+            // The default is held to the band widened by the excess above, so that it cannot drift further.
+            EXPECT_GE(ratio, 0.8) << name << " ao=" << ao;
+            EXPECT_LE(ratio, asserted ? 1.2 : 1.25) << name << " ao=" << ao;
         }
         std::printf("SDF-TABLE energy ao=%s: %d of 4 (walls, floor) within 80-120%%\n", ao, inBand);
         std::printf("SDF-TABLE psnr cornell medium ao=%s: %.2f dB sRGB vs the 16-bounce path tracer\n", ao,
