@@ -295,13 +295,12 @@ std::vector<int> ProbeField::schedule(const Frame& frame, const FieldSettings& l
 
 void ProbeField::trace(const Frame& frame, const FieldSettings& s, int batch) {
     const GLuint p = traceProgram_.id();
-    const glm::vec3 environment = frame.background();
+    frame.bindEnvironment();
     glUseProgram(p);
     setGridUniforms(p);
     setFieldUniforms(p);
     glProgramUniform1i(p, UP_RAYS, built_.rays);
     glProgramUniformMatrix3fv(p, UP_ROTATION, 1, GL_FALSE, &rotation_[0][0]);
-    glProgramUniform3fv(p, UP_ENVIRONMENT, 1, &environment[0]);
     glProgramUniform4f(p, UP_BLEND_PARAMS, s.hysteresis, s.bounces ? 1.0f : 0.0f, missDistance(*volume_),
                        s.visibility ? 1.0f : 0.0f);
     glProgramUniform4f(p, UP_SHADE_PARAMS, s.normalBias, 1.0f, 0.0f, 0.0f);

@@ -20,7 +20,6 @@ namespace gis::voxel {
     X(UV_CAMERA_POS, 111, 1) \
     X(UV_CONE_SET, 112, 1) /* 0 = six cones (60 degrees), 1 = four (90), 2 = many (32 of 14) */ \
     X(UV_TRACE_PARAMS, 113, 1) /* step factor, max distance (voxels), start offset (voxels), specular scale */ \
-    X(UV_ENVIRONMENT, 114, 1) \
     X(UV_ANISOTROPIC, 115, 1) /* 0 isotropic, 1 directional mips, 2 directional without back faces */ \
     X(UV_INTENSITY, 116, 1) \
     X(UV_DEBUG_PARAMS, 117, 1) /* channel, mip level, slice axis, slice position */ \
