@@ -19,6 +19,7 @@ struct EnvironmentBlock {
 };
 
 const ProgramDesc kPrefilterProgram{"environment_prefilter", {"environment_prefilter.comp"}, {}};
+const ProgramDesc kBrdfTableProgram{"environment_brdf_lut", {"environment_brdf_lut.comp"}, {}};
 constexpr GLenum kFormat = GL_RGBA32F;
 // Prefiltered levels are no wider than this: a rough lobe needs no more, and a large map would
 // otherwise cost seconds of GGX samples per texel at build time.
@@ -47,7 +48,7 @@ gl::Texture floatTexture(const gl::MemoryScope& scope, int width, int height, co
 
 }  // namespace
 
-std::vector<ProgramDesc> GpuEnvironment::programs() { return {kPrefilterProgram}; }
+std::vector<ProgramDesc> GpuEnvironment::programs() { return {kPrefilterProgram, kBrdfTableProgram}; }
 
 GpuEnvironment::GpuEnvironment(const std::string& path, gl::MemoryLedger& ledger) : path_(path) {
     const gl::MemoryScope scope{&ledger, "environment"};
@@ -64,7 +65,10 @@ GpuEnvironment::GpuEnvironment(const std::string& path, gl::MemoryLedger& ledger
         for (int k = 0; k < 9; ++k) b.sh[k] = glm::vec4(sh_[size_t(k)], 0.0f);
     }
     glNamedBufferSubData(block_.id(), 0, sizeof(b), &b);
-    if (map_) prefilterSpecular();
+    if (map_) {
+        prefilterSpecular();
+        buildBrdfTable();
+    }
 }
 
 GpuEnvironment::~GpuEnvironment() = default;
@@ -81,6 +85,7 @@ void GpuEnvironment::upload(gl::MemoryScope scope) {
         }
         marginal_ = floatTexture(scope, 1, 1, zero);
         conditional_ = floatTexture(scope, 1, 1, zero);
+        brdf_ = floatTexture(scope, 1, 1, zero);
         return;
     }
     const int w = map_->width, h = map_->height;
@@ -92,6 +97,11 @@ void GpuEnvironment::upload(gl::MemoryScope scope) {
     specular_ = gl::createTexture2D(scope, kFormat, sw, sh,
                                     std::min(kEnvironmentSpecularLevels, gl::mipLevelsFor(sw, sh)));
     setLinearMipmapped(specular_.id());
+    brdf_ = gl::createTexture2D(scope, GL_RG32F, kEnvironmentBrdfTableSize, kEnvironmentBrdfTableSize);
+    glTextureParameteri(brdf_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(brdf_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(brdf_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(brdf_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     const EnvironmentSampler sampler(*map_);
     total_ = sampler.marginalCdf().back();
     marginal_ = floatTexture(scope, h + 1, 1, sampler.marginalCdf().data());
@@ -117,6 +127,16 @@ void GpuEnvironment::prefilterSpecular() {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
+// The split sum's BRDF table, once per map (a constant needs none: the baseline keeps its ambient).
+void GpuEnvironment::buildBrdfTable() {
+    const gl::Object program = buildProgram(kBrdfTableProgram);
+    glUseProgram(program.id());
+    glBindImageTexture(0, brdf_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    const GLuint groups = GLuint((kEnvironmentBrdfTableSize + kPrefilterGroup - 1) / kPrefilterGroup);
+    gl::dispatchCompute(groups, groups, 1, "environment BRDF table");
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
 void GpuEnvironment::bind(glm::vec3 constant) {
     if (!map_ && constant != uploadedConstant_) {
         const glm::vec4 c(constant, 0.0f);
@@ -124,12 +144,13 @@ void GpuEnvironment::bind(glm::vec3 constant) {
         uploadedConstant_ = constant;
     }
     glBindBufferBase(GL_UNIFORM_BUFFER, kEnvironmentBlockBinding, block_.id());
+    glBindTextureUnit(kEnvironmentBrdfUnit, brdf_.id());
     glBindTextureUnit(kEnvironmentRadianceUnit, radiance_.id());
     glBindTextureUnit(kEnvironmentSpecularUnit, specular_.id());
     glBindTextureUnit(kEnvironmentMarginalUnit, marginal_.id());
     glBindTextureUnit(kEnvironmentConditionalUnit, conditional_.id());
     // The textures' own filtering and wrapping, whatever sampler object a unit last held.
-    glBindSamplers(kEnvironmentRadianceUnit, 4, nullptr);
+    glBindSamplers(kEnvironmentBrdfUnit, 5, nullptr);
 }
 
 }  // namespace gis

@@ -8,6 +8,7 @@
 //     and Hanrahan 2001);
 //   - a GGX-prefiltered chain for the split-sum specular (Karis 2013, "Real Shading in Unreal
 //     Engine 4"), one roughness per level;
+//   - the split sum's BRDF table for brdf.glsl's GGX (shaders/environment_brdf.glsl);
 //   - the marginal and conditional CDFs the path tracer importance-samples it with (PBRT 3rd ed.
 //     13.6.7, 14.2.4), as textures.
 // bind() puts all of it at fixed units and one uniform block, the same for every program, so a
@@ -28,15 +29,18 @@ namespace gis {
 // Where the environment lives in every program (GLSL's ENV_* defines, shader_constants.cpp):
 // units and a uniform-block binding no pass uses for anything else.
 constexpr int kEnvironmentBlockBinding = 3;
+constexpr int kEnvironmentBrdfUnit = 11;
 constexpr int kEnvironmentRadianceUnit = 12;
 constexpr int kEnvironmentSpecularUnit = 13;
 constexpr int kEnvironmentMarginalUnit = 14;
 constexpr int kEnvironmentConditionalUnit = 15;
-static_assert(kEnvironmentSpecularUnit == kEnvironmentRadianceUnit + 1 && kEnvironmentMarginalUnit == kEnvironmentRadianceUnit + 2 &&
+static_assert(kEnvironmentRadianceUnit == kEnvironmentBrdfUnit + 1 && kEnvironmentSpecularUnit == kEnvironmentRadianceUnit + 1 && kEnvironmentMarginalUnit == kEnvironmentRadianceUnit + 2 &&
                   kEnvironmentConditionalUnit == kEnvironmentRadianceUnit + 3,
-              "bind() clears the four units' samplers as one range");
+              "bind() clears the five units' samplers as one range");
 // Roughness levels of the prefiltered specular chain: level i holds roughness i / (levels - 1).
 constexpr int kEnvironmentSpecularLevels = 6;
+// The split-sum table's texels along N.V and along roughness.
+constexpr int kEnvironmentBrdfTableSize = 32;
 
 class GpuEnvironment {
 public:
@@ -61,12 +65,13 @@ public:
 private:
     void upload(gl::MemoryScope scope);
     void prefilterSpecular();
+    void buildBrdfTable();
 
     std::string path_;
     std::unique_ptr<EnvironmentMap> map_;
     Sh9 sh_{};
     float total_ = 0.0f;
-    gl::Texture radiance_, specular_, marginal_, conditional_;
+    gl::Texture radiance_, specular_, marginal_, conditional_, brdf_;
     gl::Buffer block_;
     glm::vec3 uploadedConstant_{-1.0f};
 };

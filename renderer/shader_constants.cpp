@@ -57,6 +57,7 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
             {"OCC_BLOCKS_BINDING", std::to_string(kOccupancyBlocksBinding)},
             {"OCC_REGIONS_BINDING", std::to_string(kOccupancyRegionsBinding)},
             {"ENV_BLOCK_BINDING", std::to_string(kEnvironmentBlockBinding)},
+            {"ENV_BRDF_UNIT", std::to_string(kEnvironmentBrdfUnit)},
             {"ENV_RADIANCE_UNIT", std::to_string(kEnvironmentRadianceUnit)},
             {"ENV_SPECULAR_UNIT", std::to_string(kEnvironmentSpecularUnit)},
             {"ENV_MARGINAL_UNIT", std::to_string(kEnvironmentMarginalUnit)},

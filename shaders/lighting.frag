@@ -8,6 +8,7 @@
 #include "gbuffer_layout.glsl"
 #include "lights.glsl"
 #include "environment.glsl"
+#include "environment_brdf.glsl"
 
 layout(binding = 0) uniform sampler2D s_depth;
 layout(binding = 1) uniform sampler2D s_gbufBaseColor;
@@ -105,7 +106,7 @@ void indirectLight(SurfaceBrdf surface, vec3 N, vec3 V, int specularModel, out v
     if (environmentIsMap()) {
         float NoV = max(dot(N, V), MIN_N_DOT_V);
         specular = environmentSpecular(reflect(-V, N), surface.roughness) *
-                   specularAlbedoSplitSum(surface, NoV, specularModel);
+                   environmentSpecularAlbedo(surface, NoV, specularModel);
     } else {
         specular = u_ambient * surface.f0;
     }
