@@ -257,20 +257,25 @@ int ViewApp::run() {
     state_.viewWidth = std::max(1, width - int(kPanelWidth));
     state_.viewHeight = height;
     state_.lighting = lightingModeName(parseLightingMode(options_.setup.lighting));
+    // --environment through the script's own check (one message), before the scene opens (--lighting
+    // auto reads it) and again over a settings file's.
+    auto applyEnvironment = [&] {
+        if (!options_.given || !options_.given("--environment")) return;
+        PanelAction a;
+        a.kind = PanelAction::SetEnvironment;
+        a.text = options_.environment;
+        applyPanelAction(state_, a);
+    };
+    applyEnvironment();
     if (!options_.settings.empty()) {
         if (!session_->loadSettings(state_, options_.settings)) throw Error(session_->lastError());
+        applyEnvironment();
         if (options_.given && options_.given("--scene") && !session_->openScene(state_, options_.scene))
             throw Error(session_->lastError());
     } else if (!session_->openScene(state_, options_.scene, cameraRequest(options_.setup))) {
         throw Error(session_->lastError());
     }
     scenePath_ = state_.scene;
-    if (options_.given && options_.given("--environment")) {  // the script's own check: one message
-        PanelAction a;
-        a.kind = PanelAction::SetEnvironment;
-        a.text = options_.environment;
-        applyPanelAction(state_, a);
-    }
     if (!options_.setup.emitters.empty()) {  // --emitters: emitters.mode of every pane
         RenderSettings parsed;
         setParam(parsed, "emitters.mode", options_.setup.emitters);
