@@ -108,6 +108,16 @@ void validateFlags(const BenchOptions& o) {
         for (size_t i = 0; i < list.size(); ++i)
             if (std::find(list.begin(), list.begin() + long(i), list[i]) != list.begin() + long(i))
                 throw Error(std::string(flag) + " names '" + list[i] + "' twice");
+    // A scene given twice (`builtin:cornell,builtin:cornell`, or one file as `a.gltf,./a.gltf`) planned
+    // every job twice under a second name (cornell-2) and merged into duplicate rows.
+    for (size_t i = 0; i < o.scenes.size(); ++i)
+        for (size_t k = 0; k < i; ++k) {
+            std::error_code ec;
+            const bool sameSpec = o.scenes[i] == o.scenes[k];
+            if (sameSpec || (o.scenes[i].rfind("builtin:", 0) != 0 && fs::equivalent(o.scenes[i], o.scenes[k], ec)))
+                throw Error("--scenes names '" + o.scenes[i] + "' twice" +
+                            (sameSpec ? std::string() : " (it is the file '" + o.scenes[k] + "')"));
+        }
 }
 
 // A .gltf names its buffers and images by URI; their bytes are the scene as much as its own.

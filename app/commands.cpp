@@ -309,13 +309,17 @@ int runRender(const RenderOptions& o) {
     if (o.given && o.given("--shadow-size")) s.shadowMapSize = o.shadowSize;
     if (o.given && o.given("--shadow-cube-size")) s.shadowCubeSize = o.shadowCubeSize;
     for (const auto& [flag, value] : o.aliases)
-        if (o.given && o.given(flag)) setAlias(s, flag, value);
+        if (o.given && o.given(flag)) {
+            setAlias(s, flag, value);
+            view::checkParamNumberText(flag, value);
+        }
     for (const auto& [flag, on] : o.aliasFlags)
         if (o.given && o.given(flag)) setAlias(s, flag, on ? "true" : "false");
     for (const std::string& kv : o.sets) {
         const size_t eq = kv.find('=');
         if (eq == std::string::npos) throw Error("--set '" + kv + "' is not METHOD.KEY=VALUE");
         setParam(s, kv.substr(0, eq), kv.substr(eq + 1));
+        view::checkParamNumberText(kv.substr(0, eq), kv.substr(eq + 1));  // after: an unknown key gets setParam's message
     }
     if (use("--view")) s.view = o.view;
     // Progressive methods add a few samples per frame so progress can be shown between frames.

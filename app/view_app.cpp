@@ -70,7 +70,9 @@ public:
     void loadSettings(const std::string& path) override {
         if (!session_->loadSettings(state_, path)) throw Error(session_->lastError());
     }
-    void saveSettings(const std::string& path) override { saveViewSettings(path, state_); }
+    void saveSettings(const std::string& path) override {
+        if (!session_->saveSettings(state_, path)) throw Error(session_->lastError());
+    }
     void requestScreenshot() override { screenshot_ = true; }
     void requestCapture(const std::string& path) override { capturePath_ = path; }
     void resize(int w, int h) override {
@@ -283,7 +285,7 @@ int ViewApp::run() {
     }
     if (!options_.script.empty()) {
         std::vector<ScriptStep> steps = loadScript(options_.script);
-        checkScriptInContext(steps, state_, options_.script);
+        checkScriptInContext(steps, state_, options_.script, &session_->scene().bounds);
         script_ = ScriptRunner(std::move(steps), options_.script);
     }
 

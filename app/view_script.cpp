@@ -159,7 +159,8 @@ void applyKeyInContext(ViewState& s, const std::string& key) {
 }
 }  // namespace
 
-void checkScriptInContext(const std::vector<ScriptStep>& steps, ViewState state, const std::string& name) {
+void checkScriptInContext(const std::vector<ScriptStep>& steps, ViewState state, const std::string& name,
+                          const Aabb* bounds) {
     // A session of its own opens the script's scenes and settings files into the copy, as the run
     // will (CPU only: a session makes no GL object before its first frame), so the lines after
     // them are checked against the state they will find.
@@ -172,6 +173,8 @@ void checkScriptInContext(const std::vector<ScriptStep>& steps, ViewState state,
             if (step.kind == ScriptStep::LoadSettings && !scratch.loadSettings(state, step.path))
                 throw Error(scratch.lastError());
             if (step.kind == ScriptStep::Key) applyKeyInContext(state, step.path);
+            if (step.kind == ScriptStep::SaveSettings && (scratch.hasScene() || bounds))
+                checkSavedCamera(state, scratch.hasScene() ? scratch.scene().bounds : *bounds, step.path);
             if (step.kind != ScriptStep::Action) continue;
             checkActionInContext(state, step.action);
             applyPanelAction(state, step.action);

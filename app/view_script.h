@@ -41,7 +41,10 @@ std::vector<ScriptStep> loadScript(const std::string& path);
 // shadow maps hold. Keys 1 2 3 and B are followed (they change the mode and swap the sides).
 // After a `scene` or `settings` line the state is the file's, unknown here: the lines after it
 // are checked one at a time, as parseScript does. Throws gis::Error "NAME:LINE: message".
-void checkScriptInContext(const std::vector<ScriptStep>& steps, ViewState state, const std::string& name);
+// With `bounds` (the view's scene; a `scene` or `settings` line's own after it), a save-settings
+// line whose camera the loader would refuse is refused too (checkSavedCamera).
+void checkScriptInContext(const std::vector<ScriptStep>& steps, ViewState state, const std::string& name,
+                          const Aabb* bounds = nullptr);
 
 // What a script needs from the app that runs it.
 class ScriptHost {

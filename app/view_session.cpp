@@ -148,8 +148,18 @@ bool ViewSession::loadSettings(ViewState& state, const std::string& path) {
     }
 }
 
+void checkSavedCamera(const ViewState& state, const Aabb& bounds, const std::string& path) {
+    if (!state.camera.free) return;
+    try {
+        checkCameraDepth(bounds, state.camera.position, state.camera.znear, path + ": camera");
+    } catch (const Error& e) {
+        throw Error(std::string(e.what()) + ": not saved, the file would not load; move the camera back toward the scene");
+    }
+}
+
 bool ViewSession::saveSettings(const ViewState& state, const std::string& path) {
     try {
+        if (scene_) checkSavedCamera(state, scene_->bounds, path);
         saveViewSettings(path, state);
         return true;
     } catch (const std::exception& e) {

@@ -74,6 +74,11 @@ struct PaneView {
     std::string metricName;
 };
 
+// What save-settings writes must load: a free camera moved or zoomed so far from the scene that
+// its znear is below 1e-6 of the scene's depth (the loaders' checkCameraDepth) is refused, naming
+// `path`, instead of writing a file that `render --settings` and the viewer then refuse.
+void checkSavedCamera(const ViewState& state, const Aabb& bounds, const std::string& path);
+
 class ViewSession {
 public:
     ViewSession();   // no GL until a frame is rendered or drawn: a scene can be opened before the window
@@ -89,6 +94,7 @@ public:
     // Loads a settings file: its scene, then everything else over it. On failure keeps the
     // previous scene and state, sets lastError() and returns false.
     bool loadSettings(ViewState& state, const std::string& path);
+    // Refuses (false, lastError) a free camera the loader would refuse: checkSavedCamera.
     bool saveSettings(const ViewState& state, const std::string& path);
     const std::string& lastError() const { return lastError_; }
     void clearError() { lastError_.clear(); }

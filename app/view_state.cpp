@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -306,11 +307,24 @@ std::array<PaneState, kMaxPanes> defaultPanes() {
 
 // --- Applying actions.
 
+void checkParamNumberText(const std::string& fullKey, const std::string& text) {
+    const ParamDesc& d = findParam(fullKey);
+    if (d.type != ParamType::Int && d.type != ParamType::Float && d.type != ParamType::Colour) return;
+    std::stringstream in(text);
+    for (std::string part; std::getline(in, part, d.type == ParamType::Colour ? ',' : '\n');) {
+        if (!isPlainNumber(part)) throw Error(fullKey + ": '" + part + "' is not a number");
+        const size_t exponent = part.find_first_of("eE");
+        if (std::strtod(part.c_str(), nullptr) == 0.0 && part.substr(0, exponent).find_first_of("123456789") != std::string::npos)
+            throw Error(fullKey + ": the number " + part + " is too small for a double (it would be read as 0)");
+    }
+}
+
 ParamValue parsePaneParam(const PanelAction& a) {
     checkPane(a.index);
     std::string method;
     const ParamDesc& d = findParam(a.text, &method);
     if (a.text != method + "." + d.key) throw Error("set takes METHOD.KEY, not the flag '" + a.text + "'");
+    checkParamNumberText(a.text, a.valueText);
     ParamValue v = parseParamValue(method, d, a.valueText);
     checkParamValue(method, d, v);
     return v;

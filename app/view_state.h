@@ -175,6 +175,10 @@ PanelAction parsePanelAction(const std::vector<std::string>& words);
 // panel commands refuse the forms strtod would also take (0x10, +5, inf, nan, .5) rather than
 // reading them silently.
 bool isPlainNumber(const std::string& word);
+// A method parameter's numeric value (an int, a float or each part of a colour) in that grammar,
+// and not a number that underflows to 0 (1e-400): the parameter parser's strtod took them all
+// from a script's or the panel's `set` and from `render --set`. Other types are not checked here.
+void checkParamNumberText(const std::string& fullKey, const std::string& text);
 std::vector<std::string> splitWords(const std::string& line);
 
 // --- From state to renderer settings.

@@ -108,11 +108,14 @@ void GpuScene::setDrawUniforms(GLuint program, const GpuDraw& draw) const {
     glProgramUniformMatrix4fv(program, U_MODEL, 1, GL_FALSE, &draw.world[0][0]);
     glProgramUniformMatrix3fv(program, U_NORMAL_MATRIX, 1, GL_FALSE, &draw.normalMatrix[0][0]);
     glProgramUniform4fv(program, U_BASE_COLOR_FACTOR, 1, &m.baseColorFactor[0]);
-    glProgramUniform4f(program, U_MATERIAL_PARAMS, m.metallicFactor, m.roughnessFactor, m.specularFactor,
-                       m.occlusionStrength);
+    glProgramUniform1f(program, U_METALLIC, m.metallicFactor);
+    glProgramUniform1f(program, U_ROUGHNESS, m.roughnessFactor);
+    glProgramUniform1f(program, U_SPECULAR_FACTOR, m.specularFactor);
+    glProgramUniform1f(program, U_OCCLUSION_STRENGTH, m.occlusionStrength);
     glProgramUniform3fv(program, U_EMISSIVE, 1, &m.emissive[0]);
-    glProgramUniform4f(program, U_ALPHA_PARAMS, m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f,
-                       m.normalScale, 0.0f, m.doubleSided ? 1.0f : 0.0f);
+    glProgramUniform1f(program, U_ALPHA_CUTOFF, m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f);
+    glProgramUniform1f(program, U_NORMAL_SCALE, m.normalScale);
+    glProgramUniform1i(program, U_DOUBLE_SIDED, m.doubleSided ? 1 : 0);
     glProgramUniform2i(program, U_BRDF_OVERRIDE, m.diffuseModel, m.specularModel);
 }
 

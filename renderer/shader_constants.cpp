@@ -1,7 +1,8 @@
 // What C++ and GLSL share, each from the one C++ declaration of it, emitted as #defines before
 // every shader's source (gl/shader.h, preprocessShader): the limits and sizes below and every
-// module's uniform-location table (gl/uniform_table.h). GLSL writes none of these numbers itself,
-// so `gisandbox shaders --dump` and the glslangValidator test compile every program against them.
+// module's uniform-location table (gl/uniform_table.h) and uniform block (gl/uniform_block.h).
+// GLSL writes none of these numbers itself, so `gisandbox shaders --dump` and the glslangValidator
+// test compile every program against them.
 #include <string>
 
 #include "emitters/emitter_uniforms.h"
@@ -46,6 +47,22 @@ const std::vector<gl::UniformSlot>& uniformSlots() {
     return all;
 }
 
+const std::vector<gl::UniformBlockDesc>& uniformBlocks() {
+    static const std::vector<gl::UniformBlockDesc> all = {
+        emitters::RestirBlock::desc(),
+        voxel::ConeTraceBlock::desc(),
+        voxel::VctDebugBlock::desc(),
+        sdf::SdfMarchBlock::desc(),
+        sdfgi::SdfDebugBlock::desc(),
+        probes::ProbeUpdateBlock::desc(),
+        probes::ProbeGatherBlock::desc(),
+        hddagi::HddagiSliceBlock::desc(),
+        SsaoBlock::desc(),
+        SsaoTemporalBlock::desc(),
+    };
+    return all;
+}
+
 const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
     static const std::vector<std::pair<std::string, std::string>> defines = [] {
         std::vector<std::pair<std::string, std::string>> d{
@@ -64,6 +81,7 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
             {"ENV_CONDITIONAL_UNIT", std::to_string(kEnvironmentConditionalUnit)},
         };
         for (const gl::UniformSlot& u : uniformSlots()) d.emplace_back(u.name, std::to_string(u.location));
+        for (const gl::UniformBlockDesc& b : uniformBlocks()) d.emplace_back(b.name, gl::glslBlockDeclaration(b));
         return d;
     }();
     return defines;

@@ -1,7 +1,8 @@
-// Explicit uniform locations of the core passes and the methods without a table of their own
-// (gl/uniform_table.h: emitted into every shader as #defines).
+// Explicit uniform locations and uniform blocks of the core passes and the methods without a table
+// of their own (gl/uniform_table.h, gl/uniform_block.h: emitted into every shader).
 #pragma once
 
+#include "gl/uniform_block.h"
 #include "gl/uniform_table.h"
 
 namespace gis {
@@ -14,10 +15,15 @@ constexpr int kSsaoMaxKernel = 256;
     X(U_NORMAL_MATRIX, 1, 1) \
     X(U_VIEW_PROJ, 2, 1) \
     X(U_BASE_COLOR_FACTOR, 3, 1) \
-    X(U_MATERIAL_PARAMS, 4, 1) /* metallic, roughness, specularFactor, occlusionStrength */ \
+    X(U_METALLIC, 4, 1) \
     X(U_EMISSIVE, 5, 1) \
-    X(U_ALPHA_PARAMS, 6, 1) /* alpha cutoff (<0: opaque), normal scale, has normal map, double sided */ \
+    X(U_ALPHA_CUTOFF, 6, 1) /* alphaMode MASK's cutoff; < 0: opaque */ \
     X(U_BRDF_OVERRIDE, 7, 1) /* the material's diffuse, specular model (-1: the render's setting) */ \
+    X(U_ROUGHNESS, 60, 1) \
+    X(U_SPECULAR_FACTOR, 61, 1) \
+    X(U_OCCLUSION_STRENGTH, 62, 1) \
+    X(U_NORMAL_SCALE, 63, 1) \
+    X(U_DOUBLE_SIDED, 64, 1) \
     /* shadow pass */ \
     X(U_LIGHT_POS_FAR, 10, 1) /* point light position, 1/far */ \
     /* lighting pass */ \
@@ -39,14 +45,12 @@ constexpr int kSsaoMaxKernel = 256;
     X(U_ENV_SAMPLING, 47, 1) /* 1: an environment map is sampled as a light (MIS) */ \
     /* ambient occlusion (SSAO, its blur and temporal passes, the ray-traced reference) */ \
     X(U_AO_RADIUS, 50, 1) \
-    X(U_AO_PARAMS, 51, 1) /* bias (fraction of radius), power, steps per direction, noise offset */ \
     X(U_PROJ, 52, 1) \
     X(U_INV_PROJ, 53, 1) \
     X(U_VIEW, 54, 1) \
     X(U_AO_KERNEL_SIZE, 55, 1) \
     X(U_FRAME_INDEX, 56, 1) \
     X(U_PREV_VIEW_PROJ, 57, 1) \
-    X(U_TEMPORAL_PARAMS, 58, 1) /* max frames, has history, depth tolerance */ \
     X(U_AO_KERNEL, 600, kSsaoMaxKernel) /* a vec4 per direction; past every table, within GL's 1024 */ \
     /* environment prefilter (renderer/environment_gpu.cpp) */ \
     X(U_ENV_ROUGHNESS, 560, 1) /* the GGX roughness of the level being filtered */ \
@@ -56,4 +60,19 @@ constexpr int kSsaoMaxKernel = 256;
 
 enum UniformLocation : int { GIS_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kUniforms[] = {GIS_UNIFORMS(GIS_UNIFORM_SLOT)};
+
+// Screen-space AO's samples (ssao.frag's hemisphere kernel and gtao.frag's slices).
+#define GIS_SSAO_BLOCK(M, A) \
+    M(float, bias)          /* fraction of the radius */ \
+    M(float, power)         /* AO is raised to it */ \
+    M(int, steps)           /* per direction */ \
+    M(int, noiseOffset)     /* 0..15: the noise tile's shift this frame */
+GIS_UNIFORM_BLOCK(SsaoBlock, 9, GIS_SSAO_BLOCK)
+
+// SSAO's temporal accumulation (ssao_temporal.frag).
+#define GIS_SSAO_TEMPORAL_BLOCK(M, A) \
+    M(float, maxFrames)      /* the running mean's longest window */ \
+    M(int, hasHistory) \
+    M(float, depthTolerance) /* relative: history further than this from the surface is rejected */
+GIS_UNIFORM_BLOCK(SsaoTemporalBlock, 10, GIS_SSAO_TEMPORAL_BLOCK)
 }  // namespace gis

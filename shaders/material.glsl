@@ -7,9 +7,14 @@ layout(binding = 3) uniform sampler2D s_emissive;
 layout(binding = 4) uniform sampler2D s_occlusion;           // R = occlusion (glTF)
 
 layout(location = U_BASE_COLOR_FACTOR) uniform vec4 u_baseColorFactor;
-layout(location = U_MATERIAL_PARAMS) uniform vec4 u_materialParams;  // metallic, roughness, specular, occlusion strength
+layout(location = U_METALLIC) uniform float u_metallic;
+layout(location = U_ROUGHNESS) uniform float u_roughness;
+layout(location = U_SPECULAR_FACTOR) uniform float u_specularFactor;
+layout(location = U_OCCLUSION_STRENGTH) uniform float u_occlusionStrength;
 layout(location = U_EMISSIVE) uniform vec3 u_emissive;
-layout(location = U_ALPHA_PARAMS) uniform vec4 u_alphaParams;        // cutoff (<0 opaque), normal scale, unused, double sided
+layout(location = U_ALPHA_CUTOFF) uniform float u_alphaCutoff;       // < 0: opaque
+layout(location = U_NORMAL_SCALE) uniform float u_normalScale;
+layout(location = U_DOUBLE_SIDED) uniform bool u_doubleSided;
 layout(location = U_BRDF_OVERRIDE) uniform ivec2 u_brdfOverride;      // diffuse, specular model; -1 = the render's setting
 
 // The textures the material has, one bit each (GpuMaterial::textures); every one unless the including
@@ -35,5 +40,5 @@ vec4 materialBaseColor(vec2 uv, vec4 vertexColor) {
 
 // alphaMode MASK: cut-outs in the G-buffer and in the shadow maps alike.
 bool materialCutout(float alpha) {
-    return u_alphaParams.x >= 0.0 && alpha < u_alphaParams.x;
+    return u_alphaCutoff >= 0.0 && alpha < u_alphaCutoff;
 }

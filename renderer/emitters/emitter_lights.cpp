@@ -62,10 +62,12 @@ bool emittersAreLights(const Scene& scene, const RenderSettings& settings) {
     return EmitterMode(emitterLightSettings(settings).mode) == EmitterMode::Lights && sceneHasEmitters(scene);
 }
 
-std::vector<ProgramDesc> EmitterLightPass::programs() {
-    return {{"emitters-candidates", {"emitters/restir.comp"}, {{"RESTIR_STAGE", "0"}}},
-            {"emitters-spatial", {"emitters/restir.comp"}, {{"RESTIR_STAGE", "1"}}}};
-}
+namespace {
+const ProgramDesc kCandidatesProgram{"emitters-candidates", {"emitters/restir.comp"}, {{"RESTIR_STAGE", "0"}}};
+const ProgramDesc kSpatialProgram{"emitters-spatial", {"emitters/restir.comp"}, {{"RESTIR_STAGE", "1"}}};
+}  // namespace
+
+std::vector<ProgramDesc> EmitterLightPass::programs() { return {kCandidatesProgram, kSpatialProgram}; }
 
 namespace {
 // The formats of a reservoir set's sample, surface and normal (restir.comp's image layouts), and
@@ -82,7 +84,7 @@ uint64_t EmitterLightPass::targetBytes(int width, int height) {
 }
 
 EmitterLightPass::EmitterLightPass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger)
-    : rays_(services.rays()) {
+    : rays_(services.rays()), reuse_(gl::MemoryScope{&ledger, name()}) {
     const gl::MemoryScope scope{&ledger, name()};
     const int w = settings.width, h = settings.height;
     static_assert(kReservoirSets == 2, "temporal_ and history_");
@@ -92,9 +94,8 @@ EmitterLightPass::EmitterLightPass(SceneServices& services, const RenderSettings
         r->normal = gl::createTexture2D(scope, kReservoirFormats[2], w, h);
     }
     accumulation_ = gl::createTexture2D(scope, kAccumulationFormat, w, h);
-    const auto p = programs();
-    candidates_ = buildProgram(p[0]);
-    spatial_ = buildProgram(p[1]);
+    candidates_ = buildProgram(kCandidatesProgram);
+    spatial_ = buildProgram(kSpatialProgram);
     target_ = emitterLightSettings(settings).accumulate;
 }
 
@@ -125,9 +126,16 @@ void EmitterLightPass::bindCommon(GLuint p, const Frame& frame, const EmitterLig
     glProgramUniform1i(p, UE_EMITTER_COUNT, int(rays_.emitterCount));
     glProgramUniform2i(p, UE_BRDF_MODELS, int(frame.settings.diffuse), int(frame.settings.specular));
     glProgramUniform2ui(p, UE_FRAME, frames_, frame.settings.seed);
-    glProgramUniform4i(p, UE_REUSE, s.candidates, s.temporal ? 1 : 0, s.spatial, s.unbiased ? 1 : 0);
-    glProgramUniform4f(p, UE_HISTORY, historyValid_ ? 1.0f : 0.0f, float(s.maxHistory * s.candidates), s.radius,
-                       float(accumulated_));
+    emitters::RestirBlock reuse;
+    reuse.candidates = s.candidates;
+    reuse.temporal = s.temporal ? 1 : 0;
+    reuse.spatial = s.spatial;
+    reuse.unbiased = s.unbiased ? 1 : 0;
+    reuse.historyValid = historyValid_ ? 1 : 0;
+    reuse.maxM = float(s.maxHistory * s.candidates);
+    reuse.radius = s.radius;
+    reuse.framesAveraged = float(accumulated_);
+    reuse_.set(reuse);
 }
 
 void EmitterLightPass::execute(Frame& frame) {

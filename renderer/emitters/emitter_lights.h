@@ -13,6 +13,7 @@
 // scene that has emitters: otherwise nothing runs and the lighting program is compiled without it.
 #pragma once
 
+#include "emitters/emitter_uniforms.h"
 #include "renderer.h"
 #include "services/scene_services.h"
 
@@ -72,6 +73,7 @@ private:
     Reservoirs temporal_, history_;
     gl::Texture accumulation_;
     gl::Object candidates_, spatial_;
+    gl::UniformBuffer<emitters::RestirBlock> reuse_;
     glm::mat4 previousViewProj_{1.0f};
     bool historyValid_ = false, idle_ = false;
     int accumulated_ = 0, target_ = 0;

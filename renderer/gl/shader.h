@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gl/gl.h"
+#include "gl/uniform_block.h"
 #include "gl/uniform_table.h"
 
 namespace gis {
@@ -40,6 +41,8 @@ PreprocessedShader preprocessShader(const std::string& file,
 const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines();
 // Every module's uniform-location rows together (what sharedShaderDefines emits of them).
 const std::vector<gl::UniformSlot>& uniformSlots();
+// Every module's uniform blocks (what sharedShaderDefines emits of them, each as its declaration).
+const std::vector<gl::UniformBlockDesc>& uniformBlocks();
 // Rewrites "0:LINE(COL): msg" (Mesa) and "0(LINE) : msg" (NVIDIA) into "shaders/file:LINE: msg".
 std::string mapShaderLog(const std::string& log, const PreprocessedShader& shader);
 

@@ -90,7 +90,7 @@ void checkFieldSettings(const FieldSettings& s, const std::string& budgetKey, co
 
 ProbeField::ProbeField(const gl::MemoryScope& scope, SceneVolume& volume, std::vector<ProbeGrid> grids,
                        const FieldSettings& built)
-    : built_(built), volume_(&volume), grids_(std::move(grids)), maxUpdates_(built.maxUpdates) {
+    : built_(built), volume_(&volume), grids_(std::move(grids)), maxUpdates_(built.maxUpdates), update_(scope) {
     if (grids_.empty() || int(grids_.size()) > kMaxGrids) throw Error("probes: between 1 and 4 probe grids");
     for (const ProbeGrid& g : grids_) count_ += g.count();
     if (count_ > kMaxProbes)
@@ -301,9 +301,7 @@ void ProbeField::trace(const Frame& frame, const FieldSettings& s, int batch) {
     setFieldUniforms(p);
     glProgramUniform1i(p, UP_RAYS, built_.rays);
     glProgramUniformMatrix3fv(p, UP_ROTATION, 1, GL_FALSE, &rotation_[0][0]);
-    glProgramUniform4f(p, UP_BLEND_PARAMS, s.hysteresis, s.bounces ? 1.0f : 0.0f, missDistance(*volume_),
-                       s.visibility ? 1.0f : 0.0f);
-    glProgramUniform4f(p, UP_SHADE_PARAMS, s.normalBias, 1.0f, 0.0f, 0.0f);
+    setUpdateBlock(s);
     bindTracer();
     // Units 2.. (probe_trace.comp): the radiance, then each cascade's albedo (its own texture each,
     // for the multi-bounce term; unused units repeat the last cascade's).
@@ -322,13 +320,24 @@ void ProbeField::trace(const Frame& frame, const FieldSettings& s, int batch) {
     glBindSamplers(2, 1 + kMaxGrids, nullptr);
 }
 
+void ProbeField::setUpdateBlock(const FieldSettings& s) const {
+    ProbeUpdateBlock b;
+    b.hysteresis = s.hysteresis;
+    b.replacingUpdates = s.bounces ? float(bounceUpdates_) : 0.0f;
+    b.missDistance = missDistance(*volume_);
+    b.multiBounce = s.bounces ? 1 : 0;
+    b.visibility = s.visibility ? 1 : 0;
+    b.normalBias = s.normalBias;
+    update_.set(b);
+}
+
 void ProbeField::blend(int mode, const FieldSettings& s, int batch) {
     const GLuint p = blendProgram_.id();
     glUseProgram(p);
     setGridUniforms(p);
     glProgramUniform1i(p, UP_RAYS, built_.rays);
     glProgramUniformMatrix3fv(p, UP_ROTATION, 1, GL_FALSE, &rotation_[0][0]);
-    glProgramUniform4f(p, UP_BLEND_PARAMS, s.hysteresis, s.bounces ? float(bounceUpdates_) : 0.0f, 0.0f, 0.0f);
+    setUpdateBlock(s);
     glProgramUniform1i(p, UP_MODE, mode);
     bindBuffers();
     gl::dispatchComputeSplit(batch, [&](GLuint slot) { glProgramUniform1i(p, UP_SLOT_OFFSET, int(slot)); });
@@ -452,7 +461,7 @@ void ProbeField::drawDebugView(const std::string& view, const Frame& frame, GLui
     glProgramUniformMatrix4fv(p, UP_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UP_CAMERA_POS, 1, &frame.camera.position[0]);
     const glm::vec3 step = grids_[0].step;
-    glProgramUniform4f(p, UP_SHADE_PARAMS, 0.0f, 0.0f, 0.0f, 0.15f * std::min(step.x, std::min(step.y, step.z)));
+    glProgramUniform1f(p, UP_SPHERE_RADIUS, 0.15f * std::min(step.x, std::min(step.y, step.z)));
     dispatchDebugDraw(frame, target);
 }
 

@@ -20,6 +20,7 @@
 #include "gl/gl.h"
 #include "gl/shader.h"
 #include "probes/probe_math.h"
+#include "probes/probe_uniforms.h"
 
 namespace gis {
 
@@ -121,6 +122,7 @@ private:
     void blend(int mode, const FieldSettings& live, int batch);
     void setGridUniforms(GLuint program) const;
     void setFieldUniforms(GLuint program) const;
+    void setUpdateBlock(const FieldSettings& live) const;
     void bindTracer() const;   // the field's textures or the occupancy buffers
     void bindBuffers() const;
     void dispatchDebugDraw(const Frame& frame, GLuint target);
@@ -150,6 +152,7 @@ private:
     RayCounts rays_total_;
     float lastChange_ = 0.0f;
     bool converged_ = false, updatedLastFrame_ = false, pending_ = false, warnedAllOff_ = false;
+    gl::UniformBuffer<ProbeUpdateBlock> update_;
 };
 
 std::vector<ProgramDesc> fieldPrograms();   // both tracers' variants

@@ -1,8 +1,10 @@
-// Explicit uniform locations of the shared probe pipeline and its gathers (gl/uniform_table.h:
-// emitted into every shader; the shader-constants test checks no two tables overlap). The grid
-// arrays hold one entry per probe grid (a cascade's probes each: PROBE_MAX_GRIDS = SDF_MAX_CASCADES).
+// Explicit uniform locations and uniform blocks of the shared probe pipeline and its gathers
+// (gl/uniform_table.h, gl/uniform_block.h: emitted into every shader; the shader-constants test
+// checks no two tables overlap and that GL lays each block out as C++ does). The grid arrays hold
+// one entry per probe grid (a cascade's probes each: PROBE_MAX_GRIDS = SDF_MAX_CASCADES).
 #pragma once
 
+#include "gl/uniform_block.h"
 #include "gl/uniform_table.h"
 #include "volume/volume_cascades.h"
 
@@ -19,10 +21,9 @@ constexpr int kMaxGrids = kMaxCascades;
     X(UP_CASCADES, 517, kMaxGrids) /* the distance field's cascades: origin xyz, edge; finest first */ \
     X(UP_CASCADE_COUNT, 521, 1) \
     X(UP_SDF_RESOLUTION, 522, 1) /* cells per cascade edge */ \
-    X(UP_BLEND_PARAMS, 523, 1) /* hysteresis, multi-bounce on, miss distance, visibility on */ \
+    X(UP_SPHERE_RADIUS, 523, 1) /* probe views: the drawn spheres' radius, world units */ \
     X(UP_INV_VIEW_PROJ, 524, 1) \
     X(UP_CAMERA_POS, 525, 1) \
-    X(UP_SHADE_PARAMS, 526, 1) /* bias (x min probe step), intensity, visibility on, probe radius (debug) */ \
     X(UP_MODE, 527, 1) /* blend: 0 irradiance, 1 distance; classify: 0 relocate, 1 off; views: mode / probe */ \
     X(UP_VIEW_PROJ, 528, 1) \
     X(UP_SLOT_OFFSET, 529, 1) /* trace/blend: batch slot of work group 0 (a batch past the group limit is split) */ \
@@ -32,4 +33,21 @@ constexpr int kMaxGrids = kMaxCascades;
 
 enum ProbeUniform : int { GIS_PROBE_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kProbeUniforms[] = {GIS_PROBE_UNIFORMS(GIS_UNIFORM_SLOT)};
+
+// One probe update (probe_trace.comp's rays, probe_blend.comp's blend).
+#define GIS_PROBE_UPDATE_BLOCK(M, A) \
+    M(float, hysteresis)        /* the moving average's floor: weight 1 - hysteresis */ \
+    M(float, replacingUpdates)  /* blend: a probe's first updates replace its value (one bounce each) */ \
+    M(float, missDistance)      /* what a ray that hits nothing records as its distance */ \
+    M(int, multiBounce)         /* trace: 1 lights hits with the probes' irradiance (the next bounce) */ \
+    M(int, visibility)          /* trace: that irradiance weighed by the probes' distance moments */ \
+    M(float, normalBias)        /* trace: that lookup's offset along the normal, x the smallest probe step */
+GIS_UNIFORM_BLOCK(ProbeUpdateBlock, 6, GIS_PROBE_UPDATE_BLOCK)
+
+// The screen gather (screen_gather.glsl).
+#define GIS_PROBE_GATHER_BLOCK(M, A) \
+    M(float, normalBias)        /* along the normal and towards the eye, x the smallest probe step */ \
+    M(float, intensity) \
+    M(int, visibility)          /* 1: probes weighed by their distance moments (Chebyshev) */
+GIS_UNIFORM_BLOCK(ProbeGatherBlock, 7, GIS_PROBE_GATHER_BLOCK)
 }  // namespace gis::probes

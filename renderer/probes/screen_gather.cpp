@@ -20,7 +20,8 @@ int64_t ScreenGather::bytes(int width, int height, int scale) {
     return full + (scale > 1 ? int64_t(reduced(width, scale)) * reduced(height, scale) * 8 : 0);
 }
 
-ScreenGather::ScreenGather(const gl::MemoryScope& scope, int width, int height, int scale) : scale_(scale) {
+ScreenGather::ScreenGather(const gl::MemoryScope& scope, int width, int height, int scale)
+    : scale_(scale), block_(scope) {
     diffuse_ = gl::createTexture2D(scope, GL_RGBA16F, width, height);
     gatherProgram_ = buildProgram(kGatherProgram);
     if (scale > 1) {
@@ -36,7 +37,11 @@ void ScreenGather::dispatch(const Frame& frame, const ProbeField& field, const G
     field.bindForGather(p);
     glProgramUniformMatrix4fv(p, UP_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UP_CAMERA_POS, 1, &frame.camera.position[0]);
-    glProgramUniform4f(p, UP_SHADE_PARAMS, s.normalBias, s.intensity, s.visibility ? 1.0f : 0.0f, 0.0f);
+    ProbeGatherBlock b;
+    b.normalBias = s.normalBias;
+    b.intensity = s.intensity;
+    b.visibility = s.visibility ? 1 : 0;
+    block_.set(b);
     glProgramUniform1i(p, UP_GATHER_SCALE, scale_);
     glBindTextures(4, 2, gbuffer);
     glBindSamplers(4, 3, nullptr);

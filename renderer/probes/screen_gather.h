@@ -8,6 +8,7 @@
 #include "frame.h"
 #include "gl/gl.h"
 #include "gl/shader.h"
+#include "probes/probe_uniforms.h"
 
 namespace gis::probes {
 
@@ -36,6 +37,7 @@ private:
     int scale_;
     gl::Texture diffuse_, gathered_;   // gathered_: at 1/scale, when above 1
     gl::Object gatherProgram_, upsampleProgram_;
+    gl::UniformBuffer<ProbeGatherBlock> block_;
 };
 
 }  // namespace gis::probes

@@ -1,8 +1,10 @@
-// Explicit uniform locations of the distance-field module (gl/uniform_table.h: emitted into every
-// shader; the shader-constants test checks no two tables overlap, since the SDF method's trace
-// shader uses this, the voxel and the core tables together).
+// Explicit uniform locations and the march block of the distance-field module (gl/uniform_table.h,
+// gl/uniform_block.h: emitted into every shader; the shader-constants test checks no two tables
+// overlap, since the SDF method's trace shader uses this, the voxel and the core tables together,
+// and that GL lays the block out as C++ does).
 #pragma once
 
+#include "gl/uniform_block.h"
 #include "gl/uniform_table.h"
 
 namespace gis::sdf {
@@ -18,4 +20,12 @@ namespace gis::sdf {
 
 enum SdfUniform : int { GIS_SDF_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kSdfUniforms[] = {GIS_SDF_UNIFORMS(GIS_UNIFORM_SLOT)};
+
+// How sphere tracing marches the field (shaders/sdf/sdf_march.glsl's SdfMarchParams).
+#define GIS_SDF_MARCH_BLOCK(M, A) \
+    M(float, hitThreshold)  /* cells */ \
+    M(float, relaxation)    /* over-relaxed step factor */ \
+    M(int, maxSteps) \
+    M(float, offset)        /* the rays' start along the normal, cells */
+GIS_UNIFORM_BLOCK(SdfMarchBlock, 4, GIS_SDF_MARCH_BLOCK)
 }  // namespace gis::sdf

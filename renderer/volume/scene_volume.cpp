@@ -1,7 +1,8 @@
 #include "volume/scene_volume.h"
 
 #include <tuple>
-
+#include <type_traits>
+#include <utility>
 
 namespace gis {
 
@@ -11,6 +12,26 @@ auto tied(const VolumeRequest& r) {
                     r.anisotropic, r.cullBackfaces, r.mips, r.bounces, r.distanceField, r.jfa, r.occupancy,
                     r.scroll, r.cascades, r.cascadeExtent);
 }
+
+// The members of an aggregate, counted as the most values it can be brace-initialised from (C++17
+// has no reflection and no defaulted ==): a member added to VolumeRequest and not to tied() would
+// let two different requests share one volume, so that fails to compile instead.
+struct AnyMember {
+    template <class T>
+    operator T() const;
+};
+template <class T, class... A>
+constexpr auto braceInitialisable(int) -> decltype(T{std::declval<A>()...}, true) { return true; }
+template <class T, class... A>
+constexpr bool braceInitialisable(...) { return false; }
+template <class T, class... A>
+constexpr size_t memberCount() {
+    if constexpr (braceInitialisable<T, A..., AnyMember>(0)) return memberCount<T, A..., AnyMember>();
+    else return sizeof...(A);
+}
+static_assert(std::is_aggregate_v<VolumeRequest> &&
+                  memberCount<VolumeRequest>() == std::tuple_size_v<decltype(tied(std::declval<VolumeRequest>()))>,
+              "every member of VolumeRequest belongs in tied()");
 
 // Level 0 of every cascade's light in one RGBA16F texture, when there is more than one.
 int64_t radianceAtlasBytes(int resolution, int cascades) {

@@ -60,7 +60,7 @@ std::vector<ProgramDesc> VoxelRadiance::programs() {
 }
 
 VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::MemoryScope& scope, bool cullBackfaces)
-    : scope_(scope), anisotropic_(anisotropic && n >= 2), cullBackfaces_(cullBackfaces && anisotropic_), bounces_(bounces) {
+    : coneBlock_(scope), scope_(scope), anisotropic_(anisotropic && n >= 2), cullBackfaces_(cullBackfaces && anisotropic_), bounces_(bounces) {
     checkVoxelBudget(n, voxelRadianceBytes(n, anisotropic_, bounces), scope.owner);
     radiance_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n, levelsFor(n));
     setVolumeSampling(radiance_);
@@ -137,7 +137,11 @@ void VoxelRadiance::setBounceUniforms(const ConeSettings& cones) {
     const float maxDistance = cones.maxDistance > 0.0f ? cones.maxDistance : std::sqrt(3.0f) * float(n);
     glProgramUniform1i(p, UV_RESOLUTION, n);
     glProgramUniform1i(p, UV_CONE_SET, cones.coneSet);
-    glProgramUniform4f(p, UV_TRACE_PARAMS, cones.stepFactor, maxDistance, cones.offset, 0.0f);
+    ConeTraceBlock block;
+    block.stepFactor = cones.stepFactor;
+    block.maxDistance = maxDistance;
+    block.offset = cones.offset;
+    coneBlock_.set(block);
     glProgramUniform1i(p, UV_ANISOTROPIC, mipMode());
 }
 

@@ -8,6 +8,7 @@
 
 #include "ray_scene.h"
 #include "renderer.h"
+#include "voxel/voxel_uniforms.h"
 #include "voxel/voxelizer.h"
 
 namespace gis {
@@ -80,6 +81,7 @@ private:
     gl::Texture directional_[6];
     gl::Object injectProgram_, mipProgram_, bounceProgram_;
     gl::Object emitterInjectProgram_;  // built on first need
+    gl::UniformBuffer<voxel::ConeTraceBlock> coneBlock_;  // the bounces' cones
     gl::MemoryScope scope_;
     bool anisotropic_, cullBackfaces_;
     int bounces_;

@@ -1,7 +1,9 @@
-// Explicit uniform locations of the voxel module and VCT (gl/uniform_table.h: emitted into every
-// shader; the shader-constants test checks no two tables overlap).
+// Explicit uniform locations and uniform blocks of the voxel module and VCT (gl/uniform_table.h,
+// gl/uniform_block.h: emitted into every shader; the shader-constants test checks no two tables
+// overlap and that GL lays each block out as C++ does).
 #pragma once
 
+#include "gl/uniform_block.h"
 #include "gl/uniform_table.h"
 
 namespace gis::voxel {
@@ -19,10 +21,8 @@ namespace gis::voxel {
     X(UV_INV_VIEW_PROJ, 110, 1) \
     X(UV_CAMERA_POS, 111, 1) \
     X(UV_CONE_SET, 112, 1) /* 0 = six cones (60 degrees), 1 = four (90), 2 = many (32 of 14) */ \
-    X(UV_TRACE_PARAMS, 113, 1) /* step factor, max distance (voxels), start offset (voxels), specular scale */ \
     X(UV_ANISOTROPIC, 115, 1) /* 0 isotropic, 1 directional mips, 2 directional without back faces */ \
     X(UV_INTENSITY, 116, 1) \
-    X(UV_DEBUG_PARAMS, 117, 1) /* channel, mip level, slice axis, slice position */ \
     X(UV_BOUNCE, 118, 1) \
     X(UV_NORMAL_WEIGHT, 119, 1) /* directional mip from level 0: 1 weigh voxels by |normal . axis|, 2 cull back faces */ \
     X(UV_EMISSION_WEIGHT, 120, 1) /* injection: 1 = emission is a light source of the volume, 0 = not (emitters.mode) */ \
@@ -38,4 +38,20 @@ namespace gis::voxel {
 
 enum VoxelUniform : int { GIS_VOXEL_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kVoxelUniforms[] = {GIS_VOXEL_UNIFORMS(GIS_UNIFORM_SLOT)};
+
+// How cones march the voxel radiance (shaders/voxel/cone_trace.glsl): the bounces' gather and VCT's.
+#define GIS_CONE_TRACE_BLOCK(M, A) \
+    M(float, stepFactor)   /* each step's length over the cone's diameter there */ \
+    M(float, maxDistance)  /* voxels */ \
+    M(float, offset)       /* the cones' start along the normal, voxels */ \
+    M(int, specular)       /* VCT: 1 traces the specular cone */
+GIS_UNIFORM_BLOCK(ConeTraceBlock, 2, GIS_CONE_TRACE_BLOCK)
+
+// What VCT's debug views show (vct.voxels and vct.slice).
+#define GIS_VCT_DEBUG_BLOCK(M, A) \
+    M(int, channel)        /* 0 albedo, 1 emission, 2 radiance, 3 occupancy */ \
+    M(int, level)          /* mip level */ \
+    M(int, sliceAxis)      /* 0..2; -1: march rays from the camera instead of a slice */ \
+    M(float, slicePosition) /* 0..1 along the axis */
+GIS_UNIFORM_BLOCK(VctDebugBlock, 3, GIS_VCT_DEBUG_BLOCK)
 }  // namespace gis::voxel

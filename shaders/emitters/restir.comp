@@ -44,8 +44,7 @@ layout(location = UE_CAMERA_POS) uniform vec3 u_cameraPos;
 layout(location = UE_EMITTER_COUNT) uniform int u_emitterCount;
 layout(location = UE_BRDF_MODELS) uniform ivec2 u_brdfModels;
 layout(location = UE_FRAME) uniform uvec2 u_frame;     // frame number, seed
-layout(location = UE_REUSE) uniform ivec4 u_reuse;     // candidates, temporal, spatial, unbiased
-layout(location = UE_HISTORY) uniform vec4 u_history;  // history valid, M cap, radius, frames averaged
+RestirBlock u_reuse;
 
 // The largest finite float: radiance is clamped here so that it never becomes Inf.
 const float MAX_RADIANCE = 3.4028e38;
@@ -160,7 +159,7 @@ bool canProduce(vec3 P, vec3 N, Reservoir y) {
     EmitterPoint e = emitterPoint(y.triangle, y.b, P);
     vec3 d = e.position - P;
     if (e.cosLight <= 0.0 || dot(N, d) <= 0.0) return false;
-    return u_reuse.w == 0 || visible(P, N, e.position);
+    return u_reuse.unbiased == 0 || visible(P, N, e.position);
 }
 
 // Streaming combination of reservoirs at one pixel.
@@ -204,7 +203,7 @@ Reservoir candidate(inout Rng rng) {
 // p_hat / p with p the per-area density of the power-proportional choice.
 Combined initialCandidates(Surface s, inout Rng rng) {
     Combined c = Combined(emptyReservoir(), 0.0, 0.0);
-    for (int i = 0; i < u_reuse.x; ++i) {
+    for (int i = 0; i < u_reuse.candidates; ++i) {
         Reservoir x = candidate(rng);
         EmitterPoint e = emitterPoint(x.triangle, x.b, s.P);
         vec3 L;
@@ -239,7 +238,7 @@ void main() {
     if (c.r.W > 0.0 && !visible(s.P, s.N, emitterPoint(c.r.triangle, c.r.b, s.P).position)) c.r.W = 0.0;
 
     // Temporal reuse at the reprojected pixel, if the surface there is this one.
-    if (u_reuse.y != 0 && u_history.x > 0.5) {
+    if (u_reuse.temporal != 0 && u_reuse.historyValid != 0) {
         vec4 clip = u_prevViewProj * vec4(s.P, 1.0);
         vec2 prevUv = clip.xy / clip.w * 0.5 + 0.5;
         ivec2 prev = ivec2(floor(prevUv * vec2(size)));
@@ -251,13 +250,13 @@ void main() {
             bool same = h.M > 0.0 && dot(hN, s.N) > MIN_NORMAL_DOT &&
                         length(hP - s.P) < MAX_DEPTH_RATIO * 0.25 * viewDistance;
             if (same) {
-                h.M = min(h.M, u_history.y);
+                h.M = min(h.M, u_reuse.maxM);
                 Reservoir current = c.r;
                 Combined t = Combined(emptyReservoir(), 0.0, 0.0);
                 combine(t, current, c.target, rng);
                 combine(t, h, targetAt(s, h), rng);
                 float Z = t.r.M;
-                if (u_reuse.w != 0 && t.r.triangle != NO_SAMPLE) {
+                if (u_reuse.unbiased != 0 && t.r.triangle != NO_SAMPLE) {
                     Z = (canProduce(s.P, s.N, t.r) ? current.M : 0.0) + (canProduce(hP, hN, t.r) ? h.M : 0.0);
                 }
                 finish(t, Z);
@@ -283,9 +282,9 @@ void main() {
         ivec2 neighbours[8];
         int count = 0;
         float viewDistance = length(u_cameraPos - s.P);
-        for (int i = 0; i < min(u_reuse.z, 8); ++i) {
+        for (int i = 0; i < min(u_reuse.spatial, 8); ++i) {
             vec2 u = nextFloat2(rng);
-            float r = u_history.z * sqrt(u.x), phi = 2.0 * PI * u.y;
+            float r = u_reuse.radius * sqrt(u.x), phi = 2.0 * PI * u.y;
             ivec2 n = pixel + ivec2(round(r * vec2(cos(phi), sin(phi))));
             if (n == pixel || any(lessThan(n, ivec2(0))) || any(greaterThanEqual(n, size))) continue;
             vec4 nSurface = imageLoad(i_surfaceIn, n);
@@ -300,7 +299,7 @@ void main() {
         bool seen = false;
         if (c.r.triangle != NO_SAMPLE) seen = visible(s.P, s.N, emitterPoint(c.r.triangle, c.r.b, s.P).position);
         float Z = c.r.M;
-        if (u_reuse.w != 0 && c.r.triangle != NO_SAMPLE) {
+        if (u_reuse.unbiased != 0 && c.r.triangle != NO_SAMPLE) {
             Z = seen ? own.M : 0.0;
             for (int i = 0; i < count; ++i) {
                 vec4 nSurface = imageLoad(i_surfaceIn, neighbours[i]);
@@ -321,8 +320,8 @@ void main() {
     }
     radiance = finiteOrZero(min(radiance, vec3(MAX_RADIANCE)));
     // The mean of the frames of a still view: mean += (x - mean) / n stays finite.
-    float n = u_history.w + 1.0;
-    vec4 mean = u_history.w > 0.0 ? imageLoad(i_accumulation, pixel) : vec4(0.0);
+    float n = u_reuse.framesAveraged + 1.0;
+    vec4 mean = u_reuse.framesAveraged > 0.0 ? imageLoad(i_accumulation, pixel) : vec4(0.0);
     mean.rgb = min(mean.rgb + (radiance - mean.rgb) / n, vec3(MAX_RADIANCE));
     imageStore(i_accumulation, pixel, vec4(mean.rgb, 1.0));
 }

@@ -1,7 +1,7 @@
 // One probe update, steps 2 and 3: the batch's rays blended into each probe's irradiance
 // (u_mode 0: SH projection or the cosine-weighted mean per octahedral texel) or distance moments
 // (u_mode 1: mean and mean^2 of the hit distance under a sharp cosine power per texel). A probe's
-// first u_blendParams.y updates replace its irradiance (each one more bounce of the multi-bounce
+// first u_update.replacingUpdates updates replace its irradiance (each one more bounce of the multi-bounce
 // recursion: renderer/probes/probe_field.cpp, bounceUpdates), the next ones are a growing-weight
 // running mean (weight 2/(n+2)), later ones an exponential moving average of weight
 // 1 - hysteresis: noise falls fast at first and a light change is still followed. The
@@ -17,7 +17,7 @@ layout(std430, binding = 5) readonly buffer Batch { int u_batch[]; };
 layout(location = UP_RAYS) uniform int u_rays;
 layout(location = UP_SLOT_OFFSET) uniform int u_slotOffset;  // several dispatches past the work-group limit
 layout(location = UP_ROTATION) uniform mat3 u_rotation;
-layout(location = UP_BLEND_PARAMS) uniform vec4 u_blendParams;
+ProbeUpdateBlock u_update;
 layout(location = UP_MODE) uniform int u_mode;
 
 const int MAX_RAYS = 512;
@@ -31,10 +31,10 @@ float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 // whose multi-bounce term still comes from probes that had not converged (or from before a light
 // edit), fade as 1/n^2 instead of 1/n; the hysteresis floor then keeps a moving average.
 float newWeight(float updates) {
-    float bounceUpdates = u_blendParams.y;
+    float bounceUpdates = u_update.replacingUpdates;
     if (updates < bounceUpdates) return 1.0;
     float averaged = updates - bounceUpdates;
-    return averaged < 0.5 ? 1.0 : max(2.0 / (averaged + 2.0), 1.0 - u_blendParams.x);
+    return averaged < 0.5 ? 1.0 : max(2.0 / (averaged + 2.0), 1.0 - u_update.hysteresis);
 }
 
 vec4 blendIrradiance(int slot, int c) {

@@ -9,7 +9,7 @@ layout(binding = 4) uniform sampler2D s_depth;
 layout(rgba16f, binding = 0) uniform writeonly image2D i_target;
 layout(location = UP_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = UP_CAMERA_POS) uniform vec3 u_cameraPos;
-layout(location = UP_SHADE_PARAMS) uniform vec4 u_shadeParams;  // -, -, -, sphere radius
+layout(location = UP_SPHERE_RADIUS) uniform float u_sphereRadius;
 layout(location = UP_MODE) uniform int u_mode;
 
 vec3 stateColour(float state) {
@@ -26,7 +26,7 @@ void main() {
     float depth = texelFetch(s_depth, pixel, 0).r;
     vec4 surface = u_invViewProj * vec4(ndc, depth * 2.0 - 1.0, 1.0);
     float tMax = depth >= 1.0 ? 1e30 : length(surface.xyz / surface.w - u_cameraPos);
-    float r = u_shadeParams.w, best = tMax;
+    float r = u_sphereRadius, best = tMax;
     vec3 colour = vec3(0.0);
     int n = min(probeCount(), 65536);
     for (int i = 0; i < n; ++i) {

@@ -35,8 +35,7 @@ layout(location = UP_ROTATION) uniform mat3 u_rotation;
 layout(location = UP_CASCADES) uniform vec4 u_cascades[SDF_MAX_CASCADES];
 layout(location = UP_CASCADE_COUNT) uniform int u_cascadeCount;
 layout(location = UP_SDF_RESOLUTION) uniform int u_sdfResolution;
-layout(location = UP_BLEND_PARAMS) uniform vec4 u_blendParams;  // hysteresis, multi-bounce, miss distance, visibility
-layout(location = UP_SHADE_PARAMS) uniform vec4 u_shadeParams;  // bias (x min step), ...
+ProbeUpdateBlock u_update;
 
 shared uint s_traced;
 
@@ -55,9 +54,9 @@ vec3 voxelAlbedo(int cascade, vec3 uvw) {
 
 // The multi-bounce term: the probes' own irradiance at the hit times its albedo.
 vec3 bounceLight(vec3 P, vec3 N, vec3 albedo) {
-    if (u_blendParams.y < 0.5) return vec3(0.0);
-    float bias = u_shadeParams.x * gridMinStep(gridAt(P));
-    return albedo * sampleProbes(P + N * bias, N, u_blendParams.w > 0.5);
+    if (u_update.multiBounce == 0) return vec3(0.0);
+    float bias = u_update.normalBias * gridMinStep(gridAt(P));
+    return albedo * sampleProbes(P + N * bias, N, u_update.visibility != 0);
 }
 
 #ifdef PROBE_TRACER_OCCUPANCY
@@ -73,8 +72,8 @@ vec3 voxelAlbedoAt(int cascade, ivec3 v) {
 
 vec4 traceRay(vec3 origin, vec3 dir) {
     HddaCascades cs = HddaCascades(u_cascades, u_cascadeCount, u_sdfResolution);
-    HddaHit h = hddaTraceCascades(cs, origin, dir, 0.0, u_blendParams.z, 4096);
-    if (!h.hit) return vec4(environmentRadiance(dir), u_blendParams.z);
+    HddaHit h = hddaTraceCascades(cs, origin, dir, 0.0, u_update.missDistance, 4096);
+    if (!h.hit) return vec4(environmentRadiance(dir), u_update.missDistance);
     vec3 radiance = unpremultiply(texelFetch(s_voxelRadiance, h.voxel + ivec3(0, 0, h.cascade * u_sdfResolution), 0));
     radiance += bounceLight(h.position, h.normal, voxelAlbedoAt(h.cascade, h.voxel));
     return vec4(finiteOrZero(radiance), max(h.t, 0.0));
@@ -82,10 +81,10 @@ vec4 traceRay(vec3 origin, vec3 dir) {
 #else
 vec4 traceRay(vec3 origin, vec3 dir) {
     SdfCascades cs = SdfCascades(u_cascades, u_cascadeCount, u_sdfResolution);
-    SdfMarchParams params = sdfDefaultParams(u_blendParams.z);
+    SdfMarchParams params = sdfDefaultParams(u_update.missDistance);
     params.maxSteps = 128;
     SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, dir, params);
-    if (!h.hit) return vec4(environmentRadiance(dir), u_blendParams.z);
+    if (!h.hit) return vec4(environmentRadiance(dir), u_update.missDistance);
     SdfVolume vol = sdfCascadeVolume(cs, h.cascade);
     vec3 radiance = unpremultiply(textureLod(s_voxelRadiance, sdfLayerCoord(vol, h.cascade, cs.count, h.position), 0.0));
     radiance += bounceLight(h.position, h.normal, voxelAlbedo(h.cascade, (h.position - vol.origin) / vol.size));
@@ -102,7 +101,7 @@ void main() {
     barrier();
     uint traced = 0u;
     for (int r = int(gl_LocalInvocationID.x); r < u_rays; r += int(gl_WorkGroupSize.x)) {
-        vec4 result = vec4(0.0, 0.0, 0.0, u_blendParams.z);
+        vec4 result = vec4(0.0, 0.0, 0.0, u_update.missDistance);
         if (!off) {
             result = traceRay(origin, normalize(u_rotation * fibonacciDirection(r, u_rays)));
             ++traced;

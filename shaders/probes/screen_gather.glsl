@@ -11,7 +11,7 @@ layout(binding = 4) uniform sampler2D s_depth;
 layout(binding = 5) uniform sampler2D s_gbufNormal;
 layout(location = UP_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = UP_CAMERA_POS) uniform vec3 u_cameraPos;
-layout(location = UP_SHADE_PARAMS) uniform vec4 u_shadeParams;  // bias, intensity, visibility on, -
+ProbeGatherBlock u_gather;
 
 struct GatherSurface {
     bool valid;     // false: background
@@ -28,6 +28,6 @@ GatherSurface gatherSurface(ivec2 pixel) {
 }
 
 vec3 gatherAt(GatherSurface s) {
-    vec3 e = sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_shadeParams.x, u_shadeParams.z > 0.5);
-    return finiteOrZero(e * u_shadeParams.y);
+    vec3 e = sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_gather.normalBias, u_gather.visibility != 0);
+    return finiteOrZero(e * u_gather.intensity);
 }

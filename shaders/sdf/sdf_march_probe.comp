@@ -17,7 +17,7 @@ layout(binding = 1) uniform sampler3D s_coarse;
 layout(location = 0) uniform uint u_count;
 layout(location = 1) uniform vec4 u_volume;   // origin xyz, size
 layout(location = 2) uniform int u_resolution;
-layout(location = 3) uniform vec4 u_march;    // hit threshold (cells), relaxation, max steps, start offset
+SdfMarchBlock u_march;
 layout(location = 4) uniform int u_cascadeCount;   // 0: one volume (u_volume); else the cascades below
 layout(location = 5) uniform vec4 u_cascades[SDF_MAX_CASCADES];   // origin xyz, edge; finest first
 
@@ -26,10 +26,10 @@ void main() {
     if (i >= u_count) return;
     SdfVolume vol = SdfVolume(u_volume.xyz, u_volume.w, u_resolution);
     SdfMarchParams p = sdfDefaultParams(rays[i].origin.w);
-    p.hitThreshold = u_march.x;
-    p.relaxation = u_march.y;
-    p.maxSteps = int(u_march.z);
-    p.startOffset = u_march.w;
+    p.hitThreshold = u_march.hitThreshold;
+    p.relaxation = u_march.relaxation;
+    p.maxSteps = u_march.maxSteps;
+    p.startOffset = u_march.offset;
     SdfHit h = u_cascadeCount > 0
         ? sdfMarchCascades(s_distance, s_coarse, SdfCascades(u_cascades, u_cascadeCount, u_resolution),
                            rays[i].origin.xyz, rays[i].direction.xyz, p)

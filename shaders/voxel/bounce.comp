@@ -13,7 +13,7 @@ layout(rgba16f, binding = 0) uniform writeonly image3D i_radiance;
 
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_CONE_SET) uniform int u_coneSet;
-layout(location = UV_TRACE_PARAMS) uniform vec4 u_traceParams;  // step factor, max distance, offset, -
+ConeTraceBlock u_cones;
 layout(location = UV_ANISOTROPIC) uniform int u_anisotropic;
 
 void main() {
@@ -27,9 +27,9 @@ void main() {
         imageStore(i_radiance, v, direct);
         return;
     }
-    ConeTracer t = makeConeTracer(u_resolution, u_traceParams.x, u_traceParams.y, u_anisotropic);
+    ConeTracer t = makeConeTracer(u_resolution, u_cones.stepFactor, u_cones.maxDistance, u_anisotropic);
     vec3 n = meanNormal / len;
-    vec3 origin = vec3(v) + 0.5 + n * u_traceParams.z;
+    vec3 origin = vec3(v) + 0.5 + n * u_cones.offset;
     vec4 gathered = traceDiffuse(t, origin, n, u_coneSet, 1.0, 0.0);
     vec3 radiance = direct.rgb + albedo.rgb * gathered.rgb;
     imageStore(i_radiance, v, vec4(min(finiteOrZero(radiance), vec3(MAX_HALF_FLOAT)), direct.a));

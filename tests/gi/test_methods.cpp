@@ -390,6 +390,49 @@ TEST(Shaders, UniformTablesShareNoNameAndNoLocation) {
     EXPECT_EQ(defines["U_AO_KERNEL"], std::to_string(U_AO_KERNEL));
 }
 
+// Every uniform block, compiled from the declaration the shaders get, is laid out by GL exactly as
+// its C++ struct: the same binding, each member at its offsetof, no larger than sizeof. Bindings are
+// unique and leave 0 to the lights' block (shaders/lights.glsl).
+TEST(Shaders, UniformBlocksAreLaidOutAsTheirCppStructs) {
+    context();
+    std::string preamble = "#version 450 core\n";
+    for (const auto& [name, value] : sharedShaderDefines()) preamble += "#define " + name + " " + value + "\n";
+    std::set<int> bindings{0};
+    ASSERT_FALSE(uniformBlocks().empty());
+    for (const gl::UniformBlockDesc& b : uniformBlocks()) {
+        EXPECT_TRUE(bindings.insert(b.binding).second) << b.name << ": binding " << b.binding << " is taken";
+        const gl::UniformBlockDesc::Member& first = b.members.front();
+        const std::string touch = std::string("u_block.") + first.name + (first.count > 0 ? "[0]" : "") +
+                                  (std::string(first.type) == "mat4" ? "[0][0]" : std::string(first.type).find("vec") != std::string::npos ? ".x" : "");
+        const std::string source = preamble + "layout(local_size_x = 1) in;\n" + b.name + " u_block;\n" +
+                                   "layout(std430, binding = 0) buffer Out { float o[]; };\n" +
+                                   "void main() { o[0] = float(" + touch + "); }\n";
+        const char* text = source.c_str();
+        gl::Object program(glCreateShaderProgramv(GL_COMPUTE_SHADER, 1, &text), [](GLuint id) { glDeleteProgram(id); });
+        GLint linked = 0;
+        glGetProgramiv(program.id(), GL_LINK_STATUS, &linked);
+        char log[2048] = {};
+        glGetProgramInfoLog(program.id(), sizeof(log), nullptr, log);
+        ASSERT_TRUE(linked) << b.name << ": " << log << "\n" << source;
+        const GLuint block = glGetProgramResourceIndex(program.id(), GL_UNIFORM_BLOCK, b.name);
+        ASSERT_NE(block, GL_INVALID_INDEX) << b.name;
+        const GLenum blockProps[2] = {GL_BUFFER_BINDING, GL_BUFFER_DATA_SIZE};
+        GLint blockValues[2] = {};
+        glGetProgramResourceiv(program.id(), GL_UNIFORM_BLOCK, block, 2, blockProps, 2, nullptr, blockValues);
+        EXPECT_EQ(blockValues[0], b.binding) << b.name;
+        EXPECT_LE(size_t(blockValues[1]), b.size) << b.name << ": GL's block is larger than the C++ struct";
+        for (const gl::UniformBlockDesc::Member& m : b.members) {
+            const std::string member = std::string(b.name) + "." + m.name + (m.count > 0 ? "[0]" : "");
+            const GLuint index = glGetProgramResourceIndex(program.id(), GL_UNIFORM, member.c_str());
+            ASSERT_NE(index, GL_INVALID_INDEX) << member;
+            const GLenum offsetProp = GL_OFFSET;
+            GLint offset = -1;
+            glGetProgramResourceiv(program.id(), GL_UNIFORM, index, 1, &offsetProp, 1, nullptr, &offset);
+            EXPECT_EQ(size_t(offset), m.offset) << member << ": GLSL and C++ disagree on its offset";
+        }
+    }
+}
+
 TEST(Methods, DuplicateOutputsAreRefusedAtConstruction) {
     context();
     if (!findGiMethod("test-duplicate")) {

@@ -9,6 +9,7 @@
 #include <functional>
 
 #include "render_test_util.h"
+#include "sdf/sdf_uniforms.h"
 #include "volume/volume_cascades.h"
 #include "sdf_test_util.h"
 
@@ -45,7 +46,13 @@ std::vector<Hit> march(const DistanceField& field, const std::vector<Ray>& rays,
     glProgramUniform1ui(p, 0, GLuint(rays.size()));
     glProgramUniform4f(p, 1, v.origin.x, v.origin.y, v.origin.z, v.size);
     glProgramUniform1i(p, 2, v.resolution);
-    glProgramUniform4f(p, 3, m.threshold, m.relaxation, float(m.maxSteps), m.startOffset);
+    sdf::SdfMarchBlock block;
+    block.hitThreshold = m.threshold;
+    block.relaxation = m.relaxation;
+    block.maxSteps = m.maxSteps;
+    block.offset = m.startOffset;
+    const gl::UniformBuffer<sdf::SdfMarchBlock> marchBlock(scope);
+    marchBlock.set(block);
     // A layered field is marched as cascades (layer 0 the finest), a single one as one volume.
     std::vector<glm::vec4> cascades;
     for (int i = 0; i < field.layers(); ++i) cascades.emplace_back(field.volume(i).origin, field.volume(i).size);

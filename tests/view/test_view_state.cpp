@@ -12,6 +12,7 @@
 #include "gi/method.h"
 #include "settings_io.h"
 #include "view_script.h"
+#include "view_session.h"
 #include "view_state.h"
 
 namespace gis::test {
@@ -255,6 +256,64 @@ TEST(SettingsFile, BadFilesNameTheProblem) {
     EXPECT_THROW(loadViewSettings(dir + "/missing.json"), Error);
 }
 
+// A whole-number key written as a double (64.0, as a tool that writes every number as a double
+// does) loads as the integer; a fraction is still refused naming the key (issue 27: 64.0 was
+// refused as "must be a whole number").
+TEST(SettingsFile, AWholeNumberWrittenAsADoubleLoads) {
+    const std::string dir = tempDir("view_settings_whole");
+    {
+        std::ofstream(dir + "/whole.json") << R"({"panes": [{"gi": "vct", "params": {"vct.resolution": 64.0}}]})";
+        std::ofstream(dir + "/half.json") << R"({"panes": [{"gi": "vct", "params": {"vct.resolution": 64.5}}]})";
+    }
+    ViewState s;
+    ASSERT_NO_THROW(s = loadViewSettings(dir + "/whole.json"));
+    ASSERT_EQ(s.panes[0].params.count("vct.resolution"), 1u);
+    EXPECT_EQ(s.panes[0].params.at("vct.resolution").number, 64.0);
+    try {
+        loadViewSettings(dir + "/half.json");
+        ADD_FAILURE() << "64.5 loaded as a whole number";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("vct.resolution' must be a whole number"), std::string::npos) << e.what();
+    }
+}
+
+// A method parameter's value in a script's or the panel's `set`, and in `render --set` and its
+// aliases, is a number as a settings file writes it: 0x10, +5, .5 and inf are refused naming the
+// word, and 1e-400 (strtod reads it as 0; ssao.radius 0 means "15% of the scene") is refused as
+// too small, where they were all taken silently. 0.0e-400 is zero however it is written.
+TEST(Script, ParameterValuesAreStrictNumbers) {
+    for (const char* bad : {"0x10", "+5", ".5", "inf", "1e-400", "5e-999"}) {
+        for (const std::string& line : {std::string("set 0 ssao.radius ") + bad, std::string("set 0 ssao.slices ") + bad}) {
+            try {
+                parseScript("method 0 ssao\n" + line + "\n", "s.txt");
+                ADD_FAILURE() << line << " was accepted";
+            } catch (const Error& e) {
+                const std::string what = e.what();
+                EXPECT_EQ(what.rfind("s.txt:2: ", 0), 0u) << what;
+                EXPECT_NE(what.find(bad), std::string::npos) << what;
+                EXPECT_TRUE(what.find("is not a number") != std::string::npos || what.find("too small") != std::string::npos)
+                    << what;
+            }
+        }
+        ViewState s;
+        applyPanelAction(s, PanelAction::method(0, "ssao"));
+        const ViewState before = s;
+        EXPECT_THROW(applyPanelAction(s, PanelAction::param(0, "ssao.radius", bad)), Error) << bad;
+        EXPECT_EQ(s.panes[0].params, before.panes[0].params) << bad;
+        const std::string dir = tempDir("view_set_numbers");
+        for (const std::string& flag : {std::string("--set ssao.radius="), std::string("--ao-radius=")}) {
+            const CliResult r = runCli("render --scene builtin:cornell --gi ssao --size 8x8 " + flag + bad + " --out " + dir +
+                                       "/x.png");
+            EXPECT_EQ(r.status, 1) << flag << bad;
+            EXPECT_NE(r.err.find(bad), std::string::npos) << r.err;
+            EXPECT_FALSE(std::filesystem::exists(dir + "/x.png")) << flag << bad;
+        }
+    }
+    for (const char* good : {"0.5", "5e-1", "2", "1E+1", "0.0e-400", "0"})
+        EXPECT_NO_THROW(parseScript(std::string("method 0 ssao\nset 0 ssao.radius ") + good + "\n", "s.txt")) << good;
+    EXPECT_NO_THROW(parseScript("method 0 ssao\nset 0 ssao.slices 8\n", "s.txt"));
+}
+
 TEST(Script, ParsesTimedActionsAndNamesBadLines) {
     const auto steps = parseScript(
         "# a comment\nwait 3\nmode split\n\nmethod 1 pathtrace  # trailing comment\nconverge\nsleep 0.5\n"
@@ -388,6 +447,50 @@ TEST(Script, LinesAfterASceneOrSettingsFileAreCheckedAgainstWhatItLoads) {
     const std::string missing = contextError("settings " + dir + "/none.json\nmethod 0 vct\n", state, &line);
     EXPECT_NE(missing.find("none.json"), std::string::npos) << missing;
     EXPECT_EQ(line, 1) << "a settings file that does not load stops the run: refused at its line";
+}
+
+// What save-settings writes always loads (issue 27): a camera moved 20000 units from the Cornell
+// box, or zoomed out as far, has its znear 0.01 at 5e-7 of the scene's depth, which the settings
+// loader refuses (render --settings and the viewer alike); the file was written all the same and
+// the script ended with exit 0. The save is refused now, naming the file, before the window opens
+// for a script line and by the session for the panel's button; the file is not written.
+TEST(Script, ASaveTheLoaderWouldRefuseIsRefused) {
+    const Scene scene = loadScene("builtin:cornell");
+    const ViewState state = stateFor(scene);
+    const std::string dir = tempDir("view_save_far");
+    for (const std::string& move : {std::string("camera move 20000 0 0"), std::string("camera zoom 1e6")}) {
+        try {
+            checkScriptInContext(parseScript(move + "\nwait 1\nsave-settings " + dir + "/far.json\n", "c.txt"), state,
+                                 "c.txt", &scene.bounds);
+            ADD_FAILURE() << move << ": the save was accepted";
+        } catch (const Error& e) {
+            const std::string what = e.what();
+            EXPECT_EQ(what.rfind("c.txt:3: ", 0), 0u) << what;
+            EXPECT_NE(what.find("far.json: camera: znear"), std::string::npos) << what;
+            EXPECT_NE(what.find("not saved, the file would not load"), std::string::npos) << what;
+        }
+    }
+    EXPECT_NO_THROW(checkScriptInContext(parseScript("camera move 2 0 0\nsave-settings " + dir + "/near.json\n", "c.txt"),
+                                         state, "c.txt", &scene.bounds));
+    // After a scene line, that scene's bounds: the emitter box is the same size, so the same refusal.
+    EXPECT_THROW(checkScriptInContext(parseScript("scene builtin:cornell-area\ncamera move 20000 0 0\nsave-settings " +
+                                                      dir + "/far.json\n",
+                                                  "c.txt"),
+                                      state, "c.txt", &scene.bounds),
+                 Error);
+
+    // The session (the panel's button and a running script's line).
+    ViewSession session;
+    ViewState s = state;
+    ASSERT_TRUE(session.openScene(s, "builtin:cornell")) << session.lastError();
+    applyPanelAction(s, parsePanelAction(splitWords("camera move 20000 0 0")));
+    EXPECT_FALSE(session.saveSettings(s, dir + "/far.json"));
+    EXPECT_NE(session.lastError().find("would not load"), std::string::npos) << session.lastError();
+    EXPECT_FALSE(std::filesystem::exists(dir + "/far.json"));
+    applyPanelAction(s, parsePanelAction(splitWords("camera move -19998 0 0")));
+    ASSERT_TRUE(session.saveSettings(s, dir + "/near.json")) << session.lastError();
+    ViewState loaded = state;
+    EXPECT_TRUE(session.loadSettings(loaded, dir + "/near.json")) << session.lastError();
 }
 
 // vct.debug-level is a live parameter: chosen in the panel it reached the voxel view without the

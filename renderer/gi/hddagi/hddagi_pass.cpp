@@ -60,7 +60,7 @@ std::vector<std::pair<std::string, uint64_t>> HddagiPass::estimateMemory(const S
 }
 
 HddagiPass::HddagiPass(SceneServices& services, const RenderSettings& settings)
-    : built_(hddagiParams().read("hddagi", settings.params)) {
+    : built_(hddagiParams().read("hddagi", settings.params)), slice_({&services.ledger, name()}) {
     checkHddagiSettings(built_);
     const gl::MemoryScope scope{&services.ledger, name()};
     volume_ = &services.volume(volumeRequest(built_));
@@ -147,7 +147,12 @@ void HddagiPass::drawDebugView(const std::string& view, const Frame& frame, GLui
     glProgramUniform1i(p, UH_RESOLUTION, volume_->layout().resolution());
     glProgramUniform1i(p, UH_VIEW, view == "hddagi.steps" ? 1 : 0);
     const int cascade = std::min(live.sliceCascade, volume_->cascadeCount() - 1);
-    glProgramUniform4f(p, UH_SLICE, float(live.sliceAxis), live.slicePosition, float(cascade), float(live.sliceLevel));
+    HddagiSliceBlock slice;
+    slice.axis = live.sliceAxis;
+    slice.position = live.slicePosition;
+    slice.cascade = cascade;
+    slice.level = live.sliceLevel;
+    slice_.set(slice);
     glProgramUniform1i(p, UH_STEPS_MAX, live.stepsMax);
     volume_->occupancy().bind();
     glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);

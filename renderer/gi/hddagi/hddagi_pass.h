@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "gi/hddagi/hddagi_settings.h"
+#include "gi/hddagi/hddagi_uniforms.h"
 #include "probes/probe_field.h"
 #include "probes/screen_gather.h"
 #include "renderer.h"
@@ -56,6 +57,7 @@ private:
     std::unique_ptr<probes::ScreenGather> gather_;
     gl::Object debugProgram_;
     bool changed_ = true;             // something arrived through invalidate() since the last execute
+    gl::UniformBuffer<hddagi::HddagiSliceBlock> slice_;
 };
 
 }  // namespace gis

@@ -1,7 +1,9 @@
-// Explicit uniform locations of HDDAGI's own shaders (its debug views; gl/uniform_table.h: emitted
-// into every shader, and the shader-constants test checks no two tables overlap).
+// Explicit uniform locations and the slice block of HDDAGI's own shaders (its debug views;
+// gl/uniform_table.h, gl/uniform_block.h: emitted into every shader, and the shader-constants test
+// checks no two tables overlap and that GL lays the block out as C++ does).
 #pragma once
 
+#include "gl/uniform_block.h"
 #include "gl/uniform_table.h"
 #include "volume/volume_cascades.h"
 
@@ -13,9 +15,16 @@ namespace gis::hddagi {
     X(UH_CASCADE_COUNT, 546, 1) \
     X(UH_RESOLUTION, 547, 1) /* voxels per cascade edge */ \
     X(UH_VIEW, 548, 1) /* 0 occupancy slice, 1 steps */ \
-    X(UH_SLICE, 549, 1) /* axis, position 0..1, cascade, level (0 voxels, 1 blocks, 2 regions) */ \
     X(UH_STEPS_MAX, 550, 1) /* steps shown white in hddagi.steps */
 
 enum HddagiUniform : int { GIS_HDDAGI_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kHddagiUniforms[] = {GIS_HDDAGI_UNIFORMS(GIS_UNIFORM_SLOT)};
+
+// The occupancy slice hddagi.occupancy shows.
+#define GIS_HDDAGI_SLICE_BLOCK(M, A) \
+    M(int, axis) \
+    M(float, position)   /* 0..1 along the axis */ \
+    M(int, cascade) \
+    M(int, level)        /* 0 voxels, 1 blocks, 2 regions */
+GIS_UNIFORM_BLOCK(HddagiSliceBlock, 8, GIS_HDDAGI_SLICE_BLOCK)
 }  // namespace gis::hddagi

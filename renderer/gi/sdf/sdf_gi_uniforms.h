@@ -1,7 +1,9 @@
-// Explicit uniform locations of the SDF GI method's shaders (gl/uniform_table.h: emitted into
-// every shader; the shader-constants test checks no two tables overlap).
+// Explicit uniform locations and the debug block of the SDF GI method's shaders
+// (gl/uniform_table.h, gl/uniform_block.h: emitted into every shader; the shader-constants test
+// checks no two tables overlap and that GL lays the block out as C++ does).
 #pragma once
 
+#include "gl/uniform_block.h"
 #include "gl/uniform_table.h"
 #include "volume/volume_cascades.h"
 
@@ -11,7 +13,6 @@ namespace gis::sdfgi {
     X(UG_CAMERA_POS, 421, 1) \
     X(UG_VOLUME, 422, 1) /* origin xyz, edge length */ \
     X(UG_RESOLUTION, 423, 1) /* cells per edge */ \
-    X(UG_MARCH, 424, 1) /* hit threshold (cells), relaxation, max steps, start offset (cells) */ \
     X(UG_RAYS, 425, 1) /* diffuse rays per traced pixel */ \
     X(UG_FRAME, 426, 1) /* frames rendered before this one (decorrelates the rays) */ \
     X(UG_SPECULAR, 428, 1) /* reflection ray on (0/1), roughness cut-off */ \
@@ -22,7 +23,6 @@ namespace gis::sdfgi {
     X(UG_TEMPORAL, 433, 1) /* largest history weight, history valid (0/1), camera moved (0/1) */ \
     X(UG_FILTER, 434, 1) /* filter radius in traced pixels */ \
     X(UG_PREV_CAMERA_POS, 435, 1) \
-    X(UG_DEBUG, 436, 1) /* view (0 slice, 1 steps, 2 normals), slice axis, slice position, max steps */ \
     X(UG_CASCADES, 437, kMaxCascades) /* vec4 per cascade: origin xyz, edge; finest first */ \
     X(UG_CASCADE_COUNT, 441, 1) \
     X(UG_SLICE_CASCADE, 442, 1) /* the cascade (layer) sdf.slice shows */ \
@@ -30,4 +30,12 @@ namespace gis::sdfgi {
 
 enum SdfGiUniform : int { GIS_SDF_GI_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kSdfGiUniforms[] = {GIS_SDF_GI_UNIFORMS(GIS_UNIFORM_SLOT)};
+
+// What the debug views show (sdf.slice, sdf.steps, sdf.normals).
+#define GIS_SDF_DEBUG_BLOCK(M, A) \
+    M(int, view)            /* 0 slice, 1 steps, 2 normals */ \
+    M(int, sliceAxis) \
+    M(float, slicePosition) /* 0..1 along the axis */ \
+    M(int, maxSteps)        /* the steps view's full scale */
+GIS_UNIFORM_BLOCK(SdfDebugBlock, 5, GIS_SDF_DEBUG_BLOCK)
 }  // namespace gis::sdfgi

@@ -95,7 +95,7 @@ std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Sc
 }
 
 SdfGiPass::SdfGiPass(SceneServices& services, const RenderSettings& settings)
-    : built_(sdfParams().read("sdf", settings.params)), scope_{&services.ledger, name()} {
+    : built_(sdfParams().read("sdf", settings.params)), scope_{&services.ledger, name()}, march_(scope_), debug_(scope_) {
     volume_ = &services.volume(volumeRequest(built_));
     sceneBounds_ = services.bounds();
     if (built_.probeGather()) {
@@ -172,7 +172,12 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     glUseProgram(p);
     setCommonUniforms(p, frame);
     frame.bindEnvironment();
-    glProgramUniform4f(p, UG_MARCH, s.hitThreshold, s.relaxation, float(s.maxSteps), s.offset);
+    sdf::SdfMarchBlock march;
+    march.hitThreshold = s.hitThreshold;
+    march.relaxation = s.relaxation;
+    march.maxSteps = s.maxSteps;
+    march.offset = s.offset;
+    march_.set(march);
     glProgramUniform1i(p, UG_RAYS, field_ ? 0 : s.rays);  // with probes, no diffuse rays per pixel
     glProgramUniform1ui(p, UG_FRAME, GLuint(frame.index * 7919u + frame.settings.seed));
     glProgramUniform2f(p, UG_SPECULAR, s.specular ? 1.0f : 0.0f, s.specularRoughness);
@@ -317,8 +322,12 @@ void SdfGiPass::drawDebugView(const std::string& view, const Frame& frame, GLuin
     glProgramUniform1i(p, UG_RESOLUTION, v.resolution);
     glProgramUniform1i(p, UG_SLICE_CASCADE, cascade);
     glProgramUniform1i(p, UG_SCALE, scale_);
-    const float kind = view == "sdf.slice" ? 0.0f : view == "sdf.steps" ? 1.0f : 2.0f;
-    glProgramUniform4f(p, UG_DEBUG, kind, float(live.sliceAxis), live.slicePosition, float(live.maxSteps));
+    SdfDebugBlock debug;
+    debug.view = view == "sdf.slice" ? 0 : view == "sdf.steps" ? 1 : 2;
+    debug.sliceAxis = live.sliceAxis;
+    debug.slicePosition = live.slicePosition;
+    debug.maxSteps = live.maxSteps;
+    debug_.set(debug);
     glBindSamplers(0, 7, nullptr);
     volume_->field().bind(3);
     glBindTextureUnit(6, info_.id());

@@ -19,9 +19,11 @@
 
 #include <memory>
 
+#include "gi/sdf/sdf_gi_uniforms.h"
 #include "gi/sdf/sdf_settings.h"
 #include "probes/probe_field.h"
 #include "renderer.h"
+#include "sdf/sdf_uniforms.h"
 #include "volume/scene_volume.h"
 
 namespace gis {
@@ -82,6 +84,8 @@ private:
     // Full resolution: the lighting contract's terms.
     gl::Texture diffuse_, specular_, ao_;
     gl::Object traceProgram_, temporalProgram_, filterProgram_, debugProgram_;
+    gl::UniformBuffer<sdf::SdfMarchBlock> march_;
+    gl::UniformBuffer<sdfgi::SdfDebugBlock> debug_;
     glm::mat4 prevViewProj_{1.0f};
     glm::vec3 prevCameraPos_{0.0f};
     int current_ = 0;

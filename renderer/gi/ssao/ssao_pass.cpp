@@ -95,7 +95,8 @@ SsaoPass::SsaoPass(const RenderSettings& s, gl::MemoryLedger& ledger)
     : params_(ssaoParams().read("ssao", s.params)),
       width_(params_.halfResolution ? std::max(1, s.width / 2) : s.width),
       height_(params_.halfResolution ? std::max(1, s.height / 2) : s.height),
-      kernel_(gtao() ? std::vector<glm::vec4>{} : kernel(std::min(params_.samples, kSsaoMaxKernel))) {
+      kernel_(gtao() ? std::vector<glm::vec4>{} : kernel(std::min(params_.samples, kSsaoMaxKernel))),
+      samples_({&ledger, name()}), temporal_({&ledger, name()}) {
     const gl::MemoryScope scope{&ledger, name()};
     raw_ = gl::createTexture2D(scope, GL_RG16F, width_, height_);
     rawFbo_ = gl::createColorTarget(raw_, "SSAO");
@@ -156,8 +157,12 @@ void SsaoPass::execute(Frame& frame) {
     glProgramUniform1f(p, U_AO_RADIUS, radius);
     // With temporal accumulation the noise tile shifts every frame, so the running mean sees
     // every rotation; without it the pattern stays put (no flicker on a still camera).
-    const float noiseOffset = params_.temporal ? float(frame.index % 16) : 0.0f;
-    glProgramUniform4f(p, U_AO_PARAMS, live.bias, live.power, float(live.steps), noiseOffset);
+    SsaoBlock samples;
+    samples.bias = live.bias;
+    samples.power = live.power;
+    samples.steps = live.steps;
+    samples.noiseOffset = params_.temporal ? int(frame.index % 16) : 0;
+    samples_.set(samples);
     if (gtao()) {
         glProgramUniform1i(p, U_AO_KERNEL_SIZE, live.slices);
     } else {
@@ -190,7 +195,11 @@ void SsaoPass::execute(Frame& frame) {
         glBindTextures(0, 3, temporalInputs);
         glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
         glProgramUniformMatrix4fv(p, U_PREV_VIEW_PROJ, 1, GL_FALSE, &prevViewProj_[0][0]);
-        glProgramUniform4f(p, U_TEMPORAL_PARAMS, kTemporalFrames, hasHistory_ ? 1.0f : 0.0f, kTemporalDepthTolerance, 0.0f);
+        SsaoTemporalBlock temporal;
+        temporal.maxFrames = kTemporalFrames;
+        temporal.hasHistory = hasHistory_ ? 1 : 0;
+        temporal.depthTolerance = kTemporalDepthTolerance;
+        temporal_.set(temporal);
         glDrawArrays(GL_TRIANGLES, 0, 3);
         current_ = next;
         hasHistory_ = true;

@@ -64,6 +64,8 @@ private:
     int current_ = 0;
     bool hasHistory_ = false;
     int stillFrames_ = 0;  // frames executed since the last change
+    gl::UniformBuffer<SsaoBlock> samples_;
+    gl::UniformBuffer<SsaoTemporalBlock> temporal_;
 };
 
 }  // namespace gis

@@ -63,7 +63,8 @@ std::vector<ProgramDesc> VctPass::programs() {
 
 
 VctPass::VctPass(SceneServices& services, const RenderSettings& settings)
-    : built_(vctParams().read("vct", settings.params)), live_(built_) {
+    : built_(vctParams().read("vct", settings.params)), live_(built_), cones_({&services.ledger, name()}),
+      debug_({&services.ledger, name()}) {
     checkVctSettings(built_);
     // Everything is charged to the pass, so --timings, info and the panel show the method's whole
     // footprint on its row (its README page lists it per texture).
@@ -105,8 +106,12 @@ void VctPass::trace(const Frame& frame, const VctSettings& s, glm::ivec2 jitter)
     glProgramUniformMatrix4fv(p, UV_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UV_CAMERA_POS, 1, &frame.camera.position[0]);
     glProgramUniform1i(p, UV_CONE_SET, s.coneSet);
-    glProgramUniform4f(p, UV_TRACE_PARAMS, s.stepFactor, s.maxDistance * float(fit.resolution), s.offset,
-                       s.specular ? 1.0f : 0.0f);
+    voxel::ConeTraceBlock cones;
+    cones.stepFactor = s.stepFactor;
+    cones.maxDistance = s.maxDistance * float(fit.resolution);
+    cones.offset = s.offset;
+    cones.specular = s.specular ? 1 : 0;
+    cones_.set(cones);
     glProgramUniform1i(p, UV_ANISOTROPIC, tracedRadiance().mipMode());
     glProgramUniform1f(p, UV_INTENSITY, s.intensity);
     glProgramUniform3i(p, UV_TRACE_JITTER, built_.tracePixels(), jitter.x, jitter.y);
@@ -168,8 +173,12 @@ void VctPass::drawDebugView(const std::string& view, const Frame& frame, GLuint 
     glProgramUniform1i(p, UV_RESOLUTION, fit.resolution);
     glProgramUniformMatrix4fv(p, UV_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     const bool slice = view == "vct.slice";
-    glProgramUniform4f(p, UV_DEBUG_PARAMS, float(live.debugChannel), float(live.debugLevel),
-                       slice ? float(live.sliceAxis) : -1.0f, live.slicePosition);
+    voxel::VctDebugBlock debug;
+    debug.channel = live.debugChannel;
+    debug.level = live.debugLevel;
+    debug.sliceAxis = slice ? live.sliceAxis : -1;
+    debug.slicePosition = live.slicePosition;
+    debug_.set(debug);
     const GLuint textures[3] = {volume_->grid().albedo.id(), volume_->grid().emission.id(),
                                 tracedRadiance().radiance().id()};
     glBindTextures(0, 3, textures);

@@ -14,6 +14,7 @@
 #include "gi/vct/vct_settings.h"
 #include "renderer.h"
 #include "volume/scene_volume.h"
+#include "voxel/voxel_uniforms.h"
 
 namespace gis {
 
@@ -88,6 +89,8 @@ private:
     int feedbackUpdates_ = 0;   // bounces added since the volume was last lit
     int feedbackTarget_ = 0;    // bounces wanted for the scene's albedo (feedbackBouncesFor)
     gl::Object traceProgram_, upsampleProgram_, debugProgram_;
+    gl::UniformBuffer<voxel::ConeTraceBlock> cones_;
+    gl::UniformBuffer<voxel::VctDebugBlock> debug_;
 };
 
 }  // namespace gis

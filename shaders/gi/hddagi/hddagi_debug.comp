@@ -13,7 +13,7 @@ layout(location = UH_CASCADES) uniform vec4 u_cascades[SDF_MAX_CASCADES];
 layout(location = UH_CASCADE_COUNT) uniform int u_cascadeCount;
 layout(location = UH_RESOLUTION) uniform int u_resolution;
 layout(location = UH_VIEW) uniform int u_view;
-layout(location = UH_SLICE) uniform vec4 u_slice;   // axis, position, cascade, level
+HddagiSliceBlock u_slice;
 layout(location = UH_STEPS_MAX) uniform int u_stepsMax;
 
 // Black, blue, green, red, white as x goes 0..1.
@@ -26,11 +26,11 @@ vec3 heat(float x) {
 }
 
 vec3 occupancySlice(ivec2 pixel, ivec2 size) {
-    int n = u_resolution, axis = int(u_slice.x), cascade = int(u_slice.z), level = int(u_slice.w);
+    int n = u_resolution, axis = u_slice.axis, cascade = u_slice.cascade, level = u_slice.level;
     vec2 uv;
     vec3 frame;
-    if (!slicePixel(pixel, size, axis, u_slice.y, uv, frame)) return frame;
-    ivec3 v = clamp(ivec3(slicePoint(axis, u_slice.y, uv) * float(n)), ivec3(0), ivec3(n - 1));
+    if (!slicePixel(pixel, size, axis, u_slice.position, uv, frame)) return frame;
+    ivec3 v = clamp(ivec3(slicePoint(axis, u_slice.position, uv) * float(n)), ivec3(0), ivec3(n - 1));
     bool occupied = level == 2 ? occRegionPresent(cascade, v, n)
                   : level == 1 ? occRegionPresent(cascade, v, n) && occBlockMask(cascade, v, n) != uvec2(0u)
                                : occVoxel(cascade, v, n);

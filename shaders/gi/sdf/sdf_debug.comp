@@ -15,7 +15,7 @@ layout(rgba16f, binding = 0) uniform writeonly image2D i_target;
 
 layout(location = UG_VOLUME) uniform vec4 u_volume;
 layout(location = UG_RESOLUTION) uniform int u_resolution;
-layout(location = UG_DEBUG) uniform vec4 u_debug;   // view, slice axis, slice position, max steps
+SdfDebugBlock u_debug;
 layout(location = UG_SLICE_CASCADE) uniform int u_layer;
 layout(location = UG_SCALE) uniform int u_scale;   // full-resolution pixels per traced pixel
 
@@ -43,13 +43,13 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(i_target);
     if (any(greaterThanEqual(pixel, size))) return;
-    int view = int(u_debug.x);
+    int view = u_debug.view;
     vec3 colour;
     if (view == 0) {
-        int axis = int(u_debug.y);
+        int axis = u_debug.sliceAxis;
         vec2 st;
-        if (slicePixel(pixel, size, axis, u_debug.z, st, colour)) {
-            vec3 uvw = slicePoint(axis, u_debug.z, st);
+        if (slicePixel(pixel, size, axis, u_debug.slicePosition, st, colour)) {
+            vec3 uvw = slicePoint(axis, u_debug.slicePosition, st);
             // The cascade's layer of the field (layers stack along z), clamped half a cell inside it.
             int layers = max(textureSize(s_distance, 0).z / u_resolution, 1);
             float halfCell = 0.5 / float(u_resolution);
@@ -59,7 +59,7 @@ void main() {
     } else {
         ivec2 traced = min(pixel / u_scale, textureSize(s_info, 0) - 1);
         vec4 info = texelFetch(s_info, traced, 0);
-        colour = view == 1 ? heat(info.r / max(u_debug.w, 1.0)) : info.gba;
+        colour = view == 1 ? heat(info.r / max(float(u_debug.maxSteps), 1.0)) : info.gba;
     }
     imageStore(i_target, pixel, vec4(colour, 1.0));
 }

@@ -28,7 +28,7 @@ layout(location = UG_CAMERA_POS) uniform vec3 u_cameraPos;
 layout(location = UG_RESOLUTION) uniform int u_resolution;
 layout(location = UG_CASCADES) uniform vec4 u_cascades[SDF_MAX_CASCADES];   // origin xyz, edge; finest first
 layout(location = UG_CASCADE_COUNT) uniform int u_cascadeCount;
-layout(location = UG_MARCH) uniform vec4 u_march;
+SdfMarchBlock u_march;
 layout(location = UG_RAYS) uniform int u_rays;
 layout(location = UG_FRAME) uniform uint u_frame;
 layout(location = UG_SPECULAR) uniform vec2 u_specular;
@@ -41,9 +41,9 @@ SdfCascades cascades() { return SdfCascades(u_cascades, u_cascadeCount, u_resolu
 SdfMarchParams marchParams() {
     // The coarsest cascade is the scene's cube: no ray inside it goes further than its diagonal.
     SdfMarchParams p = sdfDefaultParams(u_cascades[u_cascadeCount - 1].w * 1.7320508);
-    p.hitThreshold = u_march.x;
-    p.relaxation = u_march.y;
-    p.maxSteps = int(u_march.z);
+    p.hitThreshold = u_march.hitThreshold;
+    p.relaxation = u_march.relaxation;
+    p.maxSteps = u_march.maxSteps;
     return p;
 }
 
@@ -94,7 +94,7 @@ void main() {
     int home = sdfCascadeAt(cs, s.position);
     SdfVolume vol = sdfCascadeVolume(cs, home);
     float cell = sdfCellSize(vol);
-    vec3 origin = s.position + s.normal * (u_march.w * cell);
+    vec3 origin = s.position + s.normal * (u_march.offset * cell);
     SdfMarchParams params = marchParams();
     Rng rng = makeRng(uvec2(pixel), u_frame, 0x5df1u);
 
@@ -123,6 +123,6 @@ void main() {
                                     : sum / float(max(u_rays, 1));
     imageStore(i_diffuse, pixel, vec4(finiteOrZero(diffuse), 1.0));
     imageStore(i_reflection, pixel, vec4(finiteOrZero(reflection.rgb), reflection.a));
-    imageStore(i_ao, pixel, vec4(nearFieldOcclusion(vol, home, s.position, s.normal, max(u_march.w, 0.5) * cell)));
+    imageStore(i_ao, pixel, vec4(nearFieldOcclusion(vol, home, s.position, s.normal, max(u_march.offset, 0.5) * cell)));
     imageStore(i_info, pixel, vec4(steps / float(max(u_rays, 1)), firstNormal));
 }

@@ -86,11 +86,11 @@ void main() {
     float radius = max(u_aoRadius, 1e-30);
     // Horizons are measured from one bias above the surface, so depth round-off cannot lift a
     // sample of the same surface above its tangent plane (self-occlusion streaks).
-    vec3 origin = P + N * (u_aoParams.x * radius);
+    vec3 origin = P + N * (u_ao.bias * radius);
     // The radius in pixels at P's depth (clip w is -z in perspective, 1 in orthographic).
     float w = (u_proj * vec4(P, 1.0)).w;
     float radiusPx = radius * u_proj[1][1] * 0.5 * float(size.y) / max(w, 1e-30);
-    int steps = max(int(u_aoParams.z), 1);
+    int steps = max(u_ao.steps, 1);
     int slices = max(u_slices, 1);
     vec2 rotation = noiseRotation();
     float sliceOffset = atan(rotation.y, rotation.x) / (2.0 * PI) + 0.5;   // [0, 1]
@@ -131,5 +131,5 @@ void main() {
     // at grazing angles it strays by 5%. Dividing by it (a ratio estimator) keeps an open
     // plane at exactly 1 with any slice count and converges to the same integral.
     float ao = open > 0.0 ? visibility / open : 1.0;
-    o_ao = vec4(pow(saturate(ao), max(u_aoParams.y, 1e-3)), P.z, 0.0, 1.0);
+    o_ao = vec4(pow(saturate(ao), max(u_ao.power, 1e-3)), P.z, 0.0, 1.0);
 }

@@ -29,8 +29,8 @@ void main() {
     vec3 B = cross(N, T);
 
     float radius = max(u_aoRadius, 1e-30);
-    float bias = u_aoParams.x * radius;
-    int steps = max(int(u_aoParams.z), 1);
+    float bias = u_ao.bias * radius;
+    int steps = max(u_ao.steps, 1);
     int usable = 0, occluded = 0;
     for (int i = 0; i < min(u_kernelSize, MAX_AO_KERNEL); ++i) {
         vec3 dir = T * u_kernel[i].x + B * u_kernel[i].y + N * u_kernel[i].z;
@@ -72,5 +72,5 @@ void main() {
         if (hit) ++occluded;
     }
     float ao = usable > 0 ? 1.0 - float(occluded) / float(usable) : 1.0;
-    o_ao = vec4(pow(saturate(ao), max(u_aoParams.y, 1e-3)), P.z, 0.0, 1.0);
+    o_ao = vec4(pow(saturate(ao), max(u_ao.power, 1e-3)), P.z, 0.0, 1.0);
 }

@@ -11,7 +11,7 @@ layout(location = U_PROJ) uniform mat4 u_proj;
 layout(location = U_INV_PROJ) uniform mat4 u_invProj;
 layout(location = U_VIEW) uniform mat4 u_view;
 layout(location = U_AO_RADIUS) uniform float u_aoRadius;
-layout(location = U_AO_PARAMS) uniform vec4 u_aoParams;   // bias (fraction of radius), power, steps, noise offset
+SsaoBlock u_ao;
 
 vec3 viewPosition(vec2 uv, float depth) {
     vec4 p = u_invProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
@@ -19,9 +19,9 @@ vec3 viewPosition(vec2 uv, float depth) {
 }
 
 // This pixel's cell of the noise tile. With temporal accumulation the tile shifts every frame
-// (u_aoParams.w = 0..15), so the running mean sees every rotation.
+// (u_ao.noiseOffset = 0..15), so the running mean sees every rotation.
 ivec2 noiseCell() {
-    int shift = int(u_aoParams.w);
+    int shift = u_ao.noiseOffset;
     return (ivec2(gl_FragCoord.xy) + ivec2(shift & 3, (shift >> 2) & 3)) & 3;
 }
 

@@ -1,6 +1,6 @@
 // Temporal accumulation of SSAO: each pixel is reprojected into the previous frame; where the
 // previous frame saw the same surface (view depth within tolerance) the history is blended with
-// the new value (a running mean over up to u_temporalParams.x frames), elsewhere (disocclusion,
+// the new value (a running mean over up to u_temporal.maxFrames frames), elsewhere (disocclusion,
 // off-screen) the history is dropped. With the noise rotating every frame, the mean converges to
 // the noise-free AO.
 #include "common.glsl"
@@ -11,7 +11,7 @@ layout(binding = 2) uniform sampler2D s_depth;
 
 layout(location = U_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = U_PREV_VIEW_PROJ) uniform mat4 u_prevViewProj;
-layout(location = U_TEMPORAL_PARAMS) uniform vec4 u_temporalParams;  // max frames, has history, depth tolerance, unused
+SsaoTemporalBlock u_temporal;
 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_history;
@@ -20,7 +20,7 @@ void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec2 current = texelFetch(s_ao, p, 0).rg;
     float depth = texture(s_depth, v_uv).r;
-    if (depth >= 1.0 || u_temporalParams.y < 0.5) { o_history = vec4(current, 1.0, 1.0); return; }
+    if (depth >= 1.0 || u_temporal.hasHistory == 0) { o_history = vec4(current, 1.0, 1.0); return; }
     vec4 world = u_invViewProj * vec4(v_uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
     world /= world.w;
     vec4 prevClip = u_prevViewProj * world;
@@ -30,8 +30,8 @@ void main() {
     if (prevClip.w > 0.0 && all(greaterThanEqual(prevUv, vec2(0.0))) && all(lessThanEqual(prevUv, vec2(1.0)))) {
         vec3 history = texelFetch(s_history, ivec2(prevUv * vec2(textureSize(s_history, 0))), 0).rgb;
         // The same surface: its view depth then equals the reprojected point's (w of the previous clip).
-        if (abs(history.g) > 0.0 && abs(-history.g - prevClip.w) <= u_temporalParams.z * prevClip.w) {
-            frames = min(history.b + 1.0, u_temporalParams.x);
+        if (abs(history.g) > 0.0 && abs(-history.g - prevClip.w) <= u_temporal.depthTolerance * prevClip.w) {
+            frames = min(history.b + 1.0, u_temporal.maxFrames);
             ao = mix(history.r, current.r, 1.0 / frames);
         }
     }

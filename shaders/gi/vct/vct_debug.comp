@@ -14,7 +14,7 @@ layout(rgba16f, binding = 0) uniform writeonly image2D i_view;
 layout(location = UV_WORLD_TO_VOXEL) uniform mat4 u_worldToVoxel;
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
-layout(location = UV_DEBUG_PARAMS) uniform vec4 u_debug;  // channel, level, slice axis (-1: ray march), slice position 0..1
+VctDebugBlock u_debug;
 
 vec4 texelAt(ivec3 v, int channel, int level) {
     if (channel == 0) return level == 0 ? texelFetch(s_albedo, v, 0) : vec4(0.0);
@@ -43,13 +43,13 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(i_view);
     if (any(greaterThanEqual(pixel, size))) return;
-    int channel = int(u_debug.x), level = clamp(int(u_debug.y), 0, textureQueryLevels(s_radiance) - 1);
+    int channel = u_debug.channel, level = clamp(u_debug.level, 0, textureQueryLevels(s_radiance) - 1);
     int n = max(u_resolution >> level, 1);
     vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
     vec4 result = vec4(0.0, 0.0, 0.0, 1.0);
-    if (u_debug.z >= 0.0) {
-        int axis = int(u_debug.z);
-        float position = clamp(u_debug.w, 0.0, 1.0);
+    if (u_debug.sliceAxis >= 0) {
+        int axis = u_debug.sliceAxis;
+        float position = clamp(u_debug.slicePosition, 0.0, 1.0);
         vec2 st;
         if (slicePixel(pixel, size, axis, position, st, result.rgb)) {
             vec3 c = slicePoint(axis, position, st);

@@ -20,7 +20,7 @@ layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = UV_CAMERA_POS) uniform vec3 u_cameraPos;
 layout(location = UV_CONE_SET) uniform int u_coneSet;
-layout(location = UV_TRACE_PARAMS) uniform vec4 u_traceParams;  // step factor, max distance, offset, specular on
+ConeTraceBlock u_cones;
 layout(location = UV_ANISOTROPIC) uniform int u_anisotropic;
 layout(location = UV_INTENSITY) uniform float u_intensity;
 layout(location = UV_TRACE_JITTER) uniform ivec3 u_traceJitter;  // pixels per texel, this frame's pixel in the block
@@ -47,16 +47,16 @@ void main() {
     vec3 P = world.xyz / world.w;
     vec3 N = normalize(texelFetch(s_gbufNormal, pixel, 0).xyz);
     vec4 material = texelFetch(s_gbufMaterial, pixel, 0);
-    ConeTracer t = makeConeTracer(u_resolution, u_traceParams.x, u_traceParams.y, u_anisotropic);
-    vec3 origin = (u_worldToVoxel * vec4(P, 1.0)).xyz + N * u_traceParams.z;
+    ConeTracer t = makeConeTracer(u_resolution, u_cones.stepFactor, u_cones.maxDistance, u_anisotropic);
+    vec3 origin = (u_worldToVoxel * vec4(P, 1.0)).xyz + N * u_cones.offset;
 
     vec4 diffuse = traceDiffuse(t, origin, N, u_coneSet, 1.0, 0.0);
     vec3 specular = vec3(0.0);
-    if (u_traceParams.w > 0.5 && material.y > u_specularRoughness) {
+    if (u_cones.specular != 0 && material.y > u_specularRoughness) {
         // So rough a lobe takes in most of the hemisphere: it sees about what the diffuse cones
         // see (the lighting pass weighs indirect.specular by the split-sum albedo either way).
         specular = diffuse.rgb;
-    } else if (u_traceParams.w > 0.5) {
+    } else if (u_cones.specular != 0) {
         vec3 V = normalize(u_cameraPos - P);
         vec3 R = reflect(-V, N);
         bool escaped;
