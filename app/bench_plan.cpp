@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "content_hash.h"
+#include "environment.h"
 #include "gi/method.h"
 #include "metrics.h"
 #include "settings_io.h"
@@ -89,6 +90,12 @@ void validateFlags(const BenchOptions& o) {
                     ") (the default warm-up is 5 frames: with fewer --frames, lower --warmup too)");
     if (!o.ambient.empty()) colourFlag(o.ambient, "--ambient");
     if (!o.background.empty()) colourFlag(o.background, "--background");
+    if (!o.environment.empty()) {  // the render's own checks, before any job runs
+        checkEnvironmentChoice(!o.background.empty(), o.environment);
+        loadEnvironmentMap(o.environment);
+        if (!o.ambient.empty())
+            throw Error("--ambient has no effect with --environment (the map lights what the ambient would): drop one");
+    }
     cameraRequest(o.setup);  // validates the camera flags before any work
     parseLightingMode(o.setup.lighting);
     if (o.referenceSpp < 1 || o.referenceSpp > (1 << 20)) throw Error("--reference-spp must be in [1, 1048576]");
@@ -161,6 +168,7 @@ PreparedScene prepareBenchScene(const BenchJob& job) {
     if (!job.ambient.empty()) p.base.ambient = colourFlag(job.ambient, "--ambient");
     if (!job.background.empty()) p.base.background = colourFlag(job.background, "--background");
     if (!job.background.empty() && job.ambient.empty()) p.base.ambient = *p.base.background;  // as render does
+    p.base.environment = job.environment;
     p.scene = loadScene(job.scene);
     p.sha256 = sceneDigest(job.scene, p.scene);
     p.base.camera = prepareScene(p.scene, job.setup, float(p.base.width) / float(p.base.height), &p.base,
@@ -203,6 +211,12 @@ std::string contentId(const BenchJob& job, const RenderSettings& settings) {
     // The settings' JSON holds the method's parameters, not the shared emitters.* table: without
     // this a cell's --emitters gi and lights results would share one id (and one cache entry).
     if (!job.setup.emitters.empty()) key["emitters"] = job.setup.emitters;
+    // The map's bytes, not only its name: an edited file is another environment (and reference).
+    if (!job.environment.empty()) {
+        Sha256 h;
+        h.updateFile(job.environment);
+        key["environment_sha256"] = h.hex();
+    }
     if (job.kind == JobKind::Cell) {
         key["frames"] = job.frames;
         key["warmup"] = job.warmup;
@@ -229,6 +243,7 @@ std::vector<BenchJob> planBench(const BenchOptions& o) {
         common.setup.emitters = modes.front();  // the references' (the path tracer reads no mode)
         common.ambient = o.ambient;
         common.background = o.background;
+        common.environment = o.environment;
         common.referenceSpp = o.referenceSpp;
         const PreparedScene prepared = prepareBenchScene(common);  // fails early on a bad scene
         common.sceneSha256 = prepared.sha256;
@@ -280,6 +295,7 @@ ojson jobToJson(const BenchJob& job) {
     if (!job.setup.emitters.empty()) j["emitters"] = job.setup.emitters;
     j["ambient"] = job.ambient;
     j["background"] = job.background;
+    if (!job.environment.empty()) j["environment"] = job.environment;
     j["reference_spp"] = job.referenceSpp;
     if (job.kind == JobKind::Cell) {
         j["frames"] = job.frames;
@@ -311,6 +327,7 @@ BenchJob jobFromJson(const nlohmann::json& j) {
         job.setup.emitters = j.value("emitters", std::string());
         job.ambient = j.at("ambient").get<std::vector<float>>();
         job.background = j.at("background").get<std::vector<float>>();
+        job.environment = j.value("environment", std::string());
         job.referenceSpp = j.at("reference_spp").get<int>();
         if (job.kind == JobKind::Cell) {
             job.preset = j.at("preset").get<std::string>();

@@ -34,6 +34,7 @@ struct BenchJob {
     std::string size;          // WxH
     SceneSetupOptions setup;
     std::vector<float> ambient, background;   // as given (empty: not given)
+    std::string environment;                  // --environment FILE.hdr (empty: none)
     int referenceSpp = 0;
     int frames = 0, warmup = 0;               // cells; with flythrough, frames is the path's, warmup 0
     bool flythrough = false;                  // cells: fly the scripted camera path, scored against nothing

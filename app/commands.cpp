@@ -199,6 +199,7 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--background", o.background, "Environment radiance R,G,B (or one value), overriding the scene's")
         ->delimiter(',')
         ->expected(1, 3);
+    cmd.add_option("--environment", o.environment, kEnvironmentHelp);
     cmd.add_option("--preset", o.preset, "Quality preset of the --gi method: low, medium, high (see `gisandbox methods`); without it "
                    "medium, the viewer's default, where the method has one");
     cmd.add_option("--set", o.sets,
@@ -299,6 +300,10 @@ int runRender(const RenderOptions& o) {
         // so --background without --ambient reaches none's and ssao's ambient term too.
         if (!viewSettings && !(o.given && o.given("--ambient"))) s.ambient = *s.background;
     }
+    if (use("--environment")) s.environment = o.environment;
+    // Under a map the baseline's ambient is the map's own irradiance: an --ambient would be ignored.
+    if (!s.environment.empty() && o.given && o.given("--ambient"))
+        throw Error("--ambient has no effect with --environment (the map lights what the ambient would): drop one");
     if (use("--preset")) applyRenderPreset(s, o.preset);
     // A shadow-map size given on the command line wins over the preset's.
     if (o.given && o.given("--shadow-size")) s.shadowMapSize = o.shadowSize;

@@ -12,6 +12,10 @@ namespace CLI { class App; }
 
 namespace gis {
 
+// --environment's help, the same on render, view and bench.
+inline constexpr const char* kEnvironmentHelp =
+    "Equirectangular Radiance .hdr lighting the scene from afar (every method; not with --background)";
+
 struct RenderOptions {
     std::string scene;
     std::string out;
@@ -34,6 +38,7 @@ struct RenderOptions {
     int warmup = 5;
     int flythrough = 0;                  // --flythrough[=N]: N frames of the scripted camera path; 0: still camera
     std::vector<float> background;
+    std::string environment;                 // --environment FILE.hdr
     std::string preset;                      // --preset low|medium|high: the method's preset
     std::vector<std::string> sets;           // --set METHOD.KEY=VALUE, in order
     std::map<std::string, std::string> aliases;  // older flags of parameter rows: --spp, --ao-samples ...
@@ -89,6 +94,7 @@ struct BenchOptions {
     SceneSetupOptions setup;
     std::vector<float> ambient;
     std::vector<float> background;
+    std::string environment;          // --environment FILE.hdr, for every cell and the reference
     int flythrough = 0;               // --flythrough[=N]: each cell flies N frames of the scripted path, unscored
     bool useCurrentContext = false;   // in-process callers (tests) that hold a current GL context
     // A sweep spread over processes (app/bench_command.cpp): --plan prints the jobs, --cell ID
@@ -124,6 +130,7 @@ struct ViewOptions {
     std::string size = "1280x720";       // window
     std::string script;
     std::string screenshotDir = "screenshots";
+    std::string environment;             // --environment FILE.hdr
     SceneSetupOptions setup;
     bool glDebug = false;
     bool verbose = false;

@@ -475,6 +475,23 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
             a.vec = glm::max(ambient, glm::vec3(0.0f));
             act(ctx, a);
         }
+        // The environment map (render's --environment): the path in the field, applied by Load.
+        ImGui::TextWrapped("Environment: %s", s.environment.empty() ? "constant (background / scene sky)"
+                                                                    : s.environment.c_str());
+        ImGui::InputText("##environment", &ctx.environmentPath);
+        ImGui::SameLine();
+        if (ImGui::Button("Load")) {
+            PanelAction a;
+            a.kind = PanelAction::SetEnvironment;
+            a.text = ctx.environmentPath;
+            act(ctx, a);
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Off")) {
+            PanelAction a;
+            a.kind = PanelAction::SetEnvironment;
+            act(ctx, a);
+        }
         bool shadows = s.shadows;
         if (ImGui::Checkbox("Shadows", &shadows)) {
             PanelAction a;

@@ -23,6 +23,7 @@ struct PanelContext {
     std::string& message;          // the last status or error line, shown at the top
     std::string& scenePath;        // text fields
     std::string& settingsPath;
+    std::string& environmentPath;  // the environment map field (applied by its Load button)
     std::string glRenderer;
     FrameTimes times;
     bool screenshotRequested = false;  // set by the button

@@ -11,7 +11,7 @@ namespace gis {
 void addSceneSetupOptions(CLI::App& cmd, SceneSetupOptions& o) {
     cmd.add_option("--lighting", o.lighting,
                    "auto (the scene's lights, or a default sun and sky when it has no light and no emission strong "
-                   "enough to light it), "
+                   "enough to light it, and no --environment map), "
                    "scene, default (sun and sky instead), none")
         ->capture_default_str();
     cmd.add_option("--camera", o.camera,
@@ -51,7 +51,10 @@ CameraRequest cameraRequest(const SceneSetupOptions& o) {
 
 int prepareScene(Scene& scene, const SceneSetupOptions& o, float aspect, RenderSettings* settings, bool ambientGiven) {
     if (settings && !o.emitters.empty()) setParam(*settings, "emitters.mode", o.emitters);
-    const LightingMode mode = parseLightingMode(o.lighting);
+    LightingMode mode = parseLightingMode(o.lighting);
+    // An environment map is the sky (the shipped one has the default sun in it): auto adds no
+    // second sun and sky over it.
+    if (mode == LightingMode::Auto && settings && !settings->environment.empty()) mode = LightingMode::Scene;
     // Measured before: applyLighting keeps the emission but the reason belongs in the line.
     const double emitted = mode == LightingMode::Auto ? meanEmittedRadiance(scene) : 0.0;
     if (applyLighting(scene, mode)) {

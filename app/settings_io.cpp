@@ -160,6 +160,7 @@ ojson viewStateToJson(const ViewState& s) {
     j["ambient"] = vec(s.ambient);
     j["shadows"] = s.shadows;
     j["background"] = s.background ? vec(*s.background) : ojson(nullptr);
+    if (!s.environment.empty()) j["environment"] = s.environment;
     j["max_bounces"] = s.maxBounces;
     j["render_scale"] = s.renderScale;
     j["heatmap_metric"] = errorMetricName(s.heatmapMetric);
@@ -273,6 +274,11 @@ void viewStateFromJson(const json& j, ViewState& state) {
                 a.kind = PanelAction::SetBackground;
                 a.flag = !v.is_null();
                 if (a.flag) a.vec = vec3(v, k);
+                apply(a);
+            } else if (k == "environment") {
+                PanelAction a;
+                a.kind = PanelAction::SetEnvironment;
+                if (!v.is_null()) a.text = v.is_string() ? v.get<std::string>() : throw Error(k + " must be a file name or null");
                 apply(a);
             } else if (k == "max_bounces" || k == "render_scale" || k == "reference_spp") {
                 PanelAction a;
@@ -413,7 +419,7 @@ ojson renderSettingsToJson(const RenderSettings& s) {
         auto it = s.params.find(m.name + "." + d.key);
         params[m.name + "." + d.key] = it == s.params.end() ? d.defaultValue : it->second;
     }
-    return ojson{{"width", s.width},
+    ojson j{{"width", s.width},
                  {"height", s.height},
                  {"camera", s.camera},
                  {"gi", s.gi},
@@ -431,6 +437,8 @@ ojson renderSettingsToJson(const RenderSettings& s) {
                  {"samples_per_frame", s.samplesPerFrame},
                  {"seed", s.seed},
                  {"view", s.view}};
+    if (!s.environment.empty()) j["environment"] = s.environment;
+    return j;
 }
 
 }  // namespace gis::view

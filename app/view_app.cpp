@@ -112,7 +112,7 @@ private:
     bool imgui_ = false;
     bool quit_ = false, screenshot_ = false;
     std::string capturePath_;
-    std::string message_, scenePath_, settingsPath_ = "gisandbox_view.json";
+    std::string message_, scenePath_, settingsPath_ = "gisandbox_view.json", environmentPath_;
     std::string droppedPath_;
     double scroll_ = 0.0;
     std::vector<InputEvent> events_;  // since the last frame, in order
@@ -259,8 +259,19 @@ int ViewApp::run() {
     state_.viewWidth = std::max(1, width - int(kPanelWidth));
     state_.viewHeight = height;
     state_.lighting = lightingModeName(parseLightingMode(options_.setup.lighting));
+    // --environment through the script's own check (one message), before the scene opens (--lighting
+    // auto reads it) and again over a settings file's.
+    auto applyEnvironment = [&] {
+        if (!options_.given || !options_.given("--environment")) return;
+        PanelAction a;
+        a.kind = PanelAction::SetEnvironment;
+        a.text = options_.environment;
+        applyPanelAction(state_, a);
+    };
+    applyEnvironment();
     if (!options_.settings.empty()) {
         if (!session_->loadSettings(state_, options_.settings)) throw Error(session_->lastError());
+        applyEnvironment();
         if (options_.given && options_.given("--scene") && !session_->openScene(state_, options_.scene))
             throw Error(session_->lastError());
     } else if (!session_->openScene(state_, options_.scene, cameraRequest(options_.setup))) {
@@ -363,7 +374,7 @@ int ViewApp::run() {
         drawViewOverlay(state_, *session_, 0.0f, 0.0f, viewW, viewH);
         if (inspect_ && !ImGui::GetIO().WantCaptureMouse)
             drawPixelInspector(state_, *session_, float(lastX_), float(lastY_), viewW, viewH);
-        view::PanelContext panel{state_, *session_, message_, scenePath_, settingsPath_, ctx_->renderer, times};
+        view::PanelContext panel{state_, *session_, message_, scenePath_, settingsPath_, environmentPath_, ctx_->renderer, times};
         drawPanel(panel, viewW, 0.0f, float(ww) - viewW, viewH);
         if (panel.screenshotRequested) screenshot_ = true;
         ImGui::Render();
@@ -399,6 +410,7 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
         ->capture_default_str();
     addSceneSetupOptions(cmd, o.setup);
     cmd.add_option("--script", o.script, "Run timed actions from FILE (see docs/viewer.md)");
+    cmd.add_option("--environment", o.environment, kEnvironmentHelp);
     cmd.add_option("--screenshot-dir", o.screenshotDir, "Where screenshots (F12) go")->capture_default_str();
     cmd.add_flag("--gl-debug", o.glDebug, "Debug context; print KHR_debug messages");
     cmd.add_flag("-v,--verbose", o.verbose, "Print the backend, GL_RENDERER and GL_VERSION");

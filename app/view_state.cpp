@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "brdf_cpu.h"
+#include "environment.h"
 #include "lights.h"
 #include "gi/method.h"
 #include "passes/lighting_pass.h"
@@ -392,7 +393,15 @@ void applyPanelAction(ViewState& state, const PanelAction& a) {
             }
             checkFinite("background", a.vec);
             if (glm::any(glm::lessThan(a.vec, glm::vec3(0.0f)))) throw Error("background radiance must be non-negative");
+            checkEnvironmentChoice(true, s.environment);
             s.background = a.vec;
+            break;
+        case PanelAction::SetEnvironment:
+            if (!a.text.empty()) {
+                checkEnvironmentChoice(s.background.has_value(), a.text);
+                loadEnvironmentMap(a.text);  // the render's own check, now: a bad file is this line's error
+            }
+            s.environment = a.text;
             break;
         case PanelAction::SetMaxBounces:  // the path tracer's row gives the range
             checkParamValue(methodInRole(MethodRole::Reference).name, findParam(roleParamKey(MethodRole::Reference, "bounces")),
@@ -664,6 +673,12 @@ PanelAction parsePanelAction(const std::vector<std::string>& w) {
         a.vec = glm::vec3(number(w[1]), number(w[2]), number(w[3]));
         return a;
     }
+    if (cmd == "environment") {
+        need(2, "environment FILE.hdr | environment off");
+        a.kind = PanelAction::SetEnvironment;
+        a.text = w[1] == "off" ? "" : w[1];
+        return a;
+    }
     auto oneNumber = [&](PanelAction::Kind kind, const char* usage) {
         need(2, usage);
         a.kind = kind;
@@ -833,6 +848,7 @@ RenderSettings paneSettings(const ViewState& state, int pane, glm::ivec2 size) {
     s.ambient = state.ambient;
     s.shadows = state.shadows;
     s.background = state.background;
+    s.environment = state.environment;
     applyPreset(s, p.gi, p.preset);
     const std::string bounces = roleParamKey(MethodRole::Reference, "bounces");
     s.params[bounces] = ParamValue{double(state.maxBounces)};  // shared by every pane

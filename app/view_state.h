@@ -88,6 +88,7 @@ struct ViewState {
     glm::vec3 ambient{0.03f};
     bool shadows = true;
     std::optional<glm::vec3> background;
+    std::string environment;              // an equirectangular .hdr (RenderSettings::environment), or none
     int maxBounces = 16;                  // path tracer
     float renderScale = 1.0f;             // render at this fraction of the view's pixels, [0.125, 1]
 
@@ -120,7 +121,7 @@ struct PanelAction {
         SetMethod, SetPreset, SetDiffuse, SetSpecular, SetDisplay, SetDirectOnly,  // pane, text / flag
         SetParam, ResetParams,  // pane, text = "method.key", value = its text (`set 0 ssao.samples 32`)
         SetMode, SetDivider,
-        SetExposure, SetTonemap, SetAmbient, SetShadows, SetBackground, SetMaxBounces, SetRenderScale,
+        SetExposure, SetTonemap, SetAmbient, SetShadows, SetBackground, SetEnvironment, SetMaxBounces, SetRenderScale,
         SetHeatmapMetric, SetReferenceSpp,
         SetCameraMode, OrbitCamera, PanCamera, ZoomCamera, MoveCamera, LookCamera, ResetCamera,
         SetLightEnabled, SetLightIntensity, SetLightColor, SetLightPosition, SetLightDirection, AddLight,

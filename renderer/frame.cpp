@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "services/scene_services.h"
+
 namespace gis {
 
 void Frame::checkDeclared(const std::string& name, bool write) const {
@@ -12,6 +14,8 @@ void Frame::checkDeclared(const std::string& name, bool write) const {
     throw Error(std::string("internal: pass '") + pass->name() + (write ? "' writes '" : "' reads '") + name +
                 "', which its " + (write ? "outputs()" : "inputs()") + " do not declare");
 }
+
+void Frame::bindEnvironment() const { services.environment->bind(background()); }
 
 void Frame::put(const std::string& name, const gl::Texture& t) {
     checkDeclared(name, true);

@@ -78,8 +78,12 @@ struct Frame {
     GLuint texture(const std::string& name) const;
     GLuint buffer(const std::string& name) const;
     StepTimers::Scope step(const std::string& name) { return steps->scope(name); }
-    // The radiance of rays that leave the scene: --background when given, else the scene's own.
+    // The radiance of rays that leave the scene when it is a constant: --background when given,
+    // else the scene's own.
     glm::vec3 background() const { return settings.background.value_or(scene.cpu.background); }
+    // Binds the environment (shaders/environment.glsl) for the programs the pass runs next: the
+    // map of --environment, else background() as a constant map.
+    void bindEnvironment() const;
 
 private:
     void checkDeclared(const std::string& name, bool write) const;

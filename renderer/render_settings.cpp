@@ -33,6 +33,11 @@ bool physicallyBased(DiffuseModel d, SpecularModel s) {
     return (d == DiffuseModel::Lambert || d == DiffuseModel::Burley) && (s == SpecularModel::Ggx || s == SpecularModel::None);
 }
 
+void checkEnvironmentChoice(bool background, const std::string& environment) {
+    if (background && !environment.empty())
+        throw Error("background and environment both set the radiance of rays that leave the scene: give one of them");
+}
+
 void setParam(RenderSettings& s, const std::string& fullKey, const std::string& text) {
     // An alias flag (--spp, --ao-radius) sets every row that declares it.
     bool any = false;

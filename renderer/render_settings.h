@@ -44,10 +44,17 @@ struct RenderSettings {
     bool shadows = true;
     bool hdr32 = false;                // RGBA32F lighting buffer instead of RGBA16F
     std::optional<glm::vec3> background;  // overrides the scene's environment radiance
+    // An equirectangular Radiance .hdr lighting the scene from afar (renderer/environment_gpu.h);
+    // empty: the constant `background` (or the scene's own). The two are exclusive.
+    std::string environment;
     int samplesPerFrame = 1;           // progressive methods: samples added by each renderFrame()
     uint32_t seed = 0;                 // fixed: the same settings give the same image
     std::string view = "final";        // "final" or a debug view some pass offers (Renderer::views)
 };
+
+// An environment is a map or a constant, not both: --background with --environment (or the
+// viewer's `background` with `environment`) is one error, the same for every caller.
+void checkEnvironmentChoice(bool background, const std::string& environment);
 
 // Parses and validates "method.key" = text against the registry and stores it in s.params.
 void setParam(RenderSettings& s, const std::string& fullKey, const std::string& text);

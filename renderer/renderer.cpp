@@ -53,6 +53,7 @@ void checkSettings(const RenderSettings& s) {
         for (int c = 0; c < 3; ++c)
             if (!std::isfinite((*s.background)[c]) || (*s.background)[c] < 0.0f)
                 throw Error("background radiance must be finite and non-negative");
+    checkEnvironmentChoice(s.background.has_value(), s.environment);
     range("samples per frame", s.samplesPerFrame, 1, 1 << 16);
     const GiMethod& method = giMethod(s.gi);
     if (method.physicalBrdfsOnly && !physicallyBased(s.diffuse, s.specular))
@@ -81,6 +82,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     camera_ = cameraMatrices(scene, settings_.camera, float(settings_.width) / float(settings_.height));
     gpuScene_ = std::make_unique<GpuScene>(scene, ledger_);
     services_ = std::make_unique<SceneServices>(*gpuScene_, ledger_);
+    services_->environment = std::make_unique<GpuEnvironment>(settings_.environment, ledger_);
     const GiMethod& method = giMethod(settings_.gi);
     const int w = settings_.width, h = settings_.height;
     const bool deferred = method.pipeline == MethodPipeline::Deferred;
@@ -266,7 +268,7 @@ void Renderer::invalidate(Changes changes) {
 bool requiresRebuild(const RenderSettings& a, const RenderSettings& b) {
     if (a.width != b.width || a.height != b.height || a.gi != b.gi || a.shadowMapSize != b.shadowMapSize ||
         a.shadowCubeSize != b.shadowCubeSize || a.shadows != b.shadows || a.hdr32 != b.hdr32 || a.seed != b.seed ||
-        a.view != b.view || a.samplesPerFrame != b.samplesPerFrame)
+        a.view != b.view || a.samplesPerFrame != b.samplesPerFrame || a.environment != b.environment)
         return true;
     // A rebuild parameter of the method or of a shared table whose value differs (defaults included).
     auto differs = [&a, &b](const std::string& prefix, const std::vector<ParamDesc>& rows) {
@@ -374,7 +376,7 @@ ProgramDesc brdfProbeProgram() { return {"brdf_probe", {"brdf_probe.comp"}, {}};
 std::vector<ProgramDesc> allPrograms() {
     std::vector<ProgramDesc> all;
     for (auto list : {ShadowPass::programs(), GBufferPass::programs(), LightingPass::programs(), EmitterLightPass::programs(),
-                      TonemapPass::programs(), ChannelDisplay::programs()})
+                      TonemapPass::programs(), ChannelDisplay::programs(), GpuEnvironment::programs()})
         all.insert(all.end(), list.begin(), list.end());
     for (const GiMethod& m : giMethods())
         if (m.programs) {

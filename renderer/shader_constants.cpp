@@ -6,6 +6,7 @@
 #include <string>
 
 #include "emitters/emitter_uniforms.h"
+#include "environment_gpu.h"
 #include "probes/probe_uniforms.h"
 #include "gi/hddagi/hddagi_uniforms.h"
 #include "gi/sdf/sdf_gi_uniforms.h"
@@ -72,6 +73,12 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
             {"OCC_REGION", std::to_string(kOccupancyRegion)},
             {"OCC_BLOCKS_BINDING", std::to_string(kOccupancyBlocksBinding)},
             {"OCC_REGIONS_BINDING", std::to_string(kOccupancyRegionsBinding)},
+            {"ENV_BLOCK_BINDING", std::to_string(kEnvironmentBlockBinding)},
+            {"ENV_BRDF_UNIT", std::to_string(kEnvironmentBrdfUnit)},
+            {"ENV_RADIANCE_UNIT", std::to_string(kEnvironmentRadianceUnit)},
+            {"ENV_SPECULAR_UNIT", std::to_string(kEnvironmentSpecularUnit)},
+            {"ENV_MARGINAL_UNIT", std::to_string(kEnvironmentMarginalUnit)},
+            {"ENV_CONDITIONAL_UNIT", std::to_string(kEnvironmentConditionalUnit)},
         };
         for (const gl::UniformSlot& u : uniformSlots()) d.emplace_back(u.name, std::to_string(u.location));
         for (const gl::UniformBlockDesc& b : uniformBlocks()) d.emplace_back(b.name, gl::glslBlockDeclaration(b));

@@ -31,7 +31,6 @@ constexpr int kSsaoMaxKernel = 256;
     X(U_CAMERA_POS, 21, 1) \
     X(U_LIGHT_COUNT, 22, 1) \
     X(U_AMBIENT, 23, 1) \
-    X(U_BACKGROUND, 24, 1) \
     X(U_BRDF_MODELS, 25, 1) /* diffuse model, specular model */ \
     X(U_SHADOWS_ENABLED, 26, 1) \
     X(U_MAX_RADIANCE, 27, 1) /* largest value the radiance target can hold */ \
@@ -43,6 +42,7 @@ constexpr int kSsaoMaxKernel = 256;
     X(U_RR_START, 44, 1) \
     X(U_CAUSTICS, 45, 1) /* 0: no light through glossy bounces after a diffuse one */ \
     X(U_PT_TERM, 46, 1) /* the term a path accumulates: 0 all, 1 direct, 2 emission, 3 indirect */ \
+    X(U_ENV_SAMPLING, 47, 1) /* 1: an environment map is sampled as a light (MIS) */ \
     /* ambient occlusion (SSAO, its blur and temporal passes, the ray-traced reference) */ \
     X(U_AO_RADIUS, 50, 1) \
     X(U_PROJ, 52, 1) \
@@ -52,6 +52,8 @@ constexpr int kSsaoMaxKernel = 256;
     X(U_FRAME_INDEX, 56, 1) \
     X(U_PREV_VIEW_PROJ, 57, 1) \
     X(U_AO_KERNEL, 600, kSsaoMaxKernel) /* a vec4 per direction; past every table, within GL's 1024 */ \
+    /* environment prefilter (renderer/environment_gpu.cpp) */ \
+    X(U_ENV_ROUGHNESS, 560, 1) /* the GGX roughness of the level being filtered */ \
     /* tonemap pass */ \
     X(U_EXPOSURE, 30, 1) \
     X(U_TONEMAPPER, 31, 1)

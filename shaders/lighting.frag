@@ -7,6 +7,8 @@
 #include "brdf.glsl"
 #include "gbuffer_layout.glsl"
 #include "lights.glsl"
+#include "environment.glsl"
+#include "environment_brdf.glsl"
 
 layout(binding = 0) uniform sampler2D s_depth;
 layout(binding = 1) uniform sampler2D s_gbufBaseColor;
@@ -24,7 +26,6 @@ layout(location = U_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = U_CAMERA_POS) uniform vec3 u_cameraPos;
 layout(location = U_LIGHT_COUNT) uniform int u_lightCount;
 layout(location = U_AMBIENT) uniform vec3 u_ambient;
-layout(location = U_BACKGROUND) uniform vec3 u_background;
 layout(location = U_BRDF_MODELS) uniform ivec2 u_brdfModels;  // diffuse, specular: --diffuse, --specular
 layout(location = U_SHADOWS_ENABLED) uniform int u_shadowsEnabled;
 layout(location = U_MAX_RADIANCE) uniform float u_maxRadiance;  // 65504 for an RGBA16F target: no Inf
@@ -84,8 +85,10 @@ vec3 addDirectLight(vec3 radiance, SurfaceBrdf surface, vec3 P, vec3 N, vec3 V, 
 }
 
 // Indirect light before occlusion, by lobe. Without a method's terms each is the constant ambient
-// times the lobe's colour (diffuse colour, F0): the constant-ambient baseline. With them (the
-// lighting contract):
+// times the lobe's colour (diffuse colour, F0): the constant-ambient baseline; under an
+// environment map, the map's irradiance from its SH9 projection (Ramamoorthi and Hanrahan 2001)
+// and its prefiltered radiance around the mirror direction times the lobe's albedo (the split
+// sum, Karis 2013), so metals reflect it. With a method's terms (the lighting contract):
 //   diffuse:  diffuseColor * indirect.diffuse (E / pi: a Lambert lobe integrated over the
 //             incoming radiance, as evaluateBrdfCosine's diffuse term under uniform light);
 //   specular: specularAlbedoSplitSum(F0, F90, roughness, N.V) * indirect.specular (the split-sum
@@ -94,13 +97,19 @@ void indirectLight(SurfaceBrdf surface, vec3 N, vec3 V, int specularModel, out v
 #if INDIRECT_DIFFUSE
     diffuse = texture(s_indirectDiffuse, v_uv).rgb * surface.diffuseColor;
 #else
-    diffuse = u_ambient * surface.diffuseColor;
+    diffuse = (environmentIsMap() ? environmentIrradiance(N) * INV_PI : u_ambient) * surface.diffuseColor;
 #endif
 #if INDIRECT_SPECULAR
     float NoV = max(dot(N, V), MIN_N_DOT_V);
     specular = texture(s_indirectSpecular, v_uv).rgb * specularAlbedoSplitSum(surface, NoV, specularModel);
 #else
-    specular = u_ambient * surface.f0;
+    if (environmentIsMap()) {
+        float NoV = max(dot(N, V), MIN_N_DOT_V);
+        specular = environmentSpecular(reflect(-V, N), surface.roughness) *
+                   environmentSpecularAlbedo(surface, NoV, specularModel);
+    } else {
+        specular = u_ambient * surface.f0;
+    }
 #endif
 }
 
@@ -115,7 +124,10 @@ void main() {
 #elif defined(TERM_DIRECT) || defined(TERM_INDIRECT_DIFFUSE) || defined(TERM_INDIRECT_SPECULAR)
         o_radiance = vec4(0.0, 0.0, 0.0, 1.0);
 #else
-        o_radiance = radianceOut(u_background);
+        // Along the pixel's ray: unprojecting two depths serves perspective and orthographic alike.
+        vec4 near = u_invViewProj * vec4(v_uv * 2.0 - 1.0, -1.0, 1.0);
+        vec4 far = u_invViewProj * vec4(v_uv * 2.0 - 1.0, 0.0, 1.0);
+        o_radiance = radianceOut(environmentRadiance(far.xyz / far.w - near.xyz / near.w));
 #endif
         return;
     }

@@ -216,8 +216,7 @@ void LightingPass::draw(const Frame& frame, GLuint p, GLuint fbo, float maxRadia
     glProgramUniform3fv(p, U_CAMERA_POS, 1, &frame.camera.position[0]);
     glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));
     glProgramUniform3fv(p, U_AMBIENT, 1, &s.ambient[0]);
-    const glm::vec3 background = frame.background();
-    glProgramUniform3fv(p, U_BACKGROUND, 1, &background[0]);
+    frame.bindEnvironment();
     glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));
     glProgramUniform1i(p, U_SHADOWS_ENABLED, s.shadows ? 1 : 0);
     glProgramUniform1f(p, U_MAX_RADIANCE, maxRadiance);

@@ -295,13 +295,12 @@ std::vector<int> ProbeField::schedule(const Frame& frame, const FieldSettings& l
 
 void ProbeField::trace(const Frame& frame, const FieldSettings& s, int batch) {
     const GLuint p = traceProgram_.id();
-    const glm::vec3 environment = frame.background();
+    frame.bindEnvironment();
     glUseProgram(p);
     setGridUniforms(p);
     setFieldUniforms(p);
     glProgramUniform1i(p, UP_RAYS, built_.rays);
     glProgramUniformMatrix3fv(p, UP_ROTATION, 1, GL_FALSE, &rotation_[0][0]);
-    glProgramUniform3fv(p, UP_ENVIRONMENT, 1, &environment[0]);
     setUpdateBlock(s);
     bindTracer();
     // Units 2.. (probe_trace.comp): the radiance, then each cascade's albedo (its own texture each,

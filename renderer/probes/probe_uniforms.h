@@ -18,7 +18,6 @@ constexpr int kMaxGrids = kMaxCascades;
     X(UP_STORAGE, 513, 1) /* 0 sh1, 1 sh2, 2 octahedral */ \
     X(UP_RAYS, 514, 1) /* rays per probe */ \
     X(UP_ROTATION, 515, 1) /* mat3: this update's random rotation of the ray set */ \
-    X(UP_ENVIRONMENT, 516, 1) /* sky radiance for rays that miss */ \
     X(UP_CASCADES, 517, kMaxGrids) /* the distance field's cascades: origin xyz, edge; finest first */ \
     X(UP_CASCADE_COUNT, 521, 1) \
     X(UP_SDF_RESOLUTION, 522, 1) /* cells per cascade edge */ \

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "debug_view.h"
+#include "environment_gpu.h"
 #include "gpu_scene.h"
 #include "ray_scene.h"
 #include "volume/scene_volume.h"
@@ -31,6 +32,9 @@ struct SceneServices {
     void lightsChanged();
     // The program debug views draw frame textures with (renderer/debug_view.h).
     ChannelDisplay& channelDisplay();
+    // The radiance of rays that leave the scene (renderer/environment_gpu.h): set by the renderer
+    // when it is built, as the map loads then and a bad file is an error before any frame.
+    std::unique_ptr<GpuEnvironment> environment;
 
 private:
     std::unique_ptr<RayScene> rays_;

@@ -187,7 +187,8 @@ void SceneVolume::relight(Frame& frame, int i, const ConeSettings& bounceCones) 
     }
     if (request_.bounces > 1) {
         auto t = frame.step(prefix + "bounce");
-        c.radiance->bounce(grid, bounceCones, frame.background());
+        frame.bindEnvironment();
+        c.radiance->bounce(grid, bounceCones);
     }
     if (layout_.count > 1) {  // into this cascade's layer, where tracers read it
         const int n = layout_.resolution();

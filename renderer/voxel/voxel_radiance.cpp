@@ -131,7 +131,7 @@ void VoxelRadiance::buildMips(const VoxelGrid& grid) {
     }
 }
 
-void VoxelRadiance::setBounceUniforms(const ConeSettings& cones, glm::vec3 environment) {
+void VoxelRadiance::setBounceUniforms(const ConeSettings& cones) {
     const int n = radiance_.width;
     const GLuint p = bounceProgram_.id();
     const float maxDistance = cones.maxDistance > 0.0f ? cones.maxDistance : std::sqrt(3.0f) * float(n);
@@ -142,7 +142,6 @@ void VoxelRadiance::setBounceUniforms(const ConeSettings& cones, glm::vec3 envir
     block.maxDistance = maxDistance;
     block.offset = cones.offset;
     coneBlock_.set(block);
-    glProgramUniform3fv(p, UV_ENVIRONMENT, 1, &environment[0]);
     glProgramUniform1i(p, UV_ANISOTROPIC, mipMode());
 }
 
@@ -162,9 +161,9 @@ void VoxelRadiance::gatherOnce(const VoxelGrid& grid, const gl::Texture& scratch
     buildMips(grid);
 }
 
-void VoxelRadiance::bounce(const VoxelGrid& grid, const ConeSettings& cones, glm::vec3 environment) {
+void VoxelRadiance::bounce(const VoxelGrid& grid, const ConeSettings& cones) {
     const int n = radiance_.width;
-    setBounceUniforms(cones, environment);
+    setBounceUniforms(cones);
     for (int b = 1; b < bounces_; ++b) gatherOnce(grid, gl::createTexture3D(scope_, GL_RGBA16F, n, n, n));
 }
 
@@ -177,10 +176,10 @@ void VoxelRadiance::restartFeedback(const VoxelGrid& grid, const gl::Texture& in
     buildMips(grid);
 }
 
-void VoxelRadiance::feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones, glm::vec3 environment) {
+void VoxelRadiance::feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones) {
     const int n = radiance_.width;
     if (!feedbackScratch_.id()) feedbackScratch_ = gl::createTexture3D(scope_, GL_RGBA16F, n, n, n);
-    setBounceUniforms(cones, environment);
+    setBounceUniforms(cones);
     gatherOnce(grid, feedbackScratch_);
 }
 

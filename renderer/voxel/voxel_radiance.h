@@ -50,7 +50,8 @@ public:
     // grid's normals).
     void buildMips(const VoxelGrid& grid);
     // bounces - 1 more bounces, each followed by new mips. Needs inject() and buildMips() first.
-    void bounce(const VoxelGrid& grid, const ConeSettings& cones, glm::vec3 environment);
+    // Cones that leave the volume see the environment the caller bound (Frame::bindEnvironment).
+    void bounce(const VoxelGrid& grid, const ConeSettings& cones);
     // Bounce feedback (vct.feedback; needs bounces > 1 for the direct-light volume): level 0 of
     // `injected` (another volume's direct light and emission) becomes this one's direct light and
     // its starting radiance, followed by its mips.
@@ -59,7 +60,7 @@ public:
     // from the previous result, then new mips. Repeated, it sums the bounce series (the voxel
     // counterpart of DDGI's recursive irradiance); it cannot diverge for albedo < 1, as each term
     // is the previous one scaled by albedo times the gathered fraction (at most 1).
-    void feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones, glm::vec3 environment);
+    void feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones);
     // Seven consecutive texture units from `unit` (shaders/voxel/cone_trace.glsl's layout).
     void bind(GLuint unit) const;
     const gl::Texture& radiance() const { return radiance_; }
@@ -70,7 +71,7 @@ public:
     static std::vector<ProgramDesc> programs();
 
 private:
-    void setBounceUniforms(const ConeSettings& cones, glm::vec3 environment);
+    void setBounceUniforms(const ConeSettings& cones);
     // One gather of the current chain into `scratch`, copied over level 0, then new mips.
     void gatherOnce(const VoxelGrid& grid, const gl::Texture& scratch);
     void downsample(const gl::Texture& source, int sourceLevel, const gl::Texture& target, int targetLevel, int direction,

@@ -21,7 +21,6 @@ namespace gis::voxel {
     X(UV_INV_VIEW_PROJ, 110, 1) \
     X(UV_CAMERA_POS, 111, 1) \
     X(UV_CONE_SET, 112, 1) /* 0 = six cones (60 degrees), 1 = four (90), 2 = many (32 of 14) */ \
-    X(UV_ENVIRONMENT, 114, 1) \
     X(UV_ANISOTROPIC, 115, 1) /* 0 isotropic, 1 directional mips, 2 directional without back faces */ \
     X(UV_INTENSITY, 116, 1) \
     X(UV_BOUNCE, 118, 1) \

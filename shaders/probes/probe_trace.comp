@@ -7,6 +7,7 @@
 // times the voxel albedo; a miss sees the sky. One workgroup per probe; rays go to the ray buffer for the
 // blend steps, and their count to the change buffer (what a ray budget is checked against).
 #include "probes/probe_common.glsl"
+#include "environment.glsl"
 #ifdef PROBE_TRACER_OCCUPANCY
 #include "volume/hdda.glsl"
 #else
@@ -31,7 +32,6 @@ layout(binding = 6) uniform sampler3D s_voxelAlbedo3;
 layout(location = UP_RAYS) uniform int u_rays;
 layout(location = UP_SLOT_OFFSET) uniform int u_slotOffset;  // several dispatches past the work-group limit
 layout(location = UP_ROTATION) uniform mat3 u_rotation;
-layout(location = UP_ENVIRONMENT) uniform vec3 u_environment;
 layout(location = UP_CASCADES) uniform vec4 u_cascades[SDF_MAX_CASCADES];
 layout(location = UP_CASCADE_COUNT) uniform int u_cascadeCount;
 layout(location = UP_SDF_RESOLUTION) uniform int u_sdfResolution;
@@ -73,7 +73,7 @@ vec3 voxelAlbedoAt(int cascade, ivec3 v) {
 vec4 traceRay(vec3 origin, vec3 dir) {
     HddaCascades cs = HddaCascades(u_cascades, u_cascadeCount, u_sdfResolution);
     HddaHit h = hddaTraceCascades(cs, origin, dir, 0.0, u_update.missDistance, 4096);
-    if (!h.hit) return vec4(u_environment, u_update.missDistance);
+    if (!h.hit) return vec4(environmentRadiance(dir), u_update.missDistance);
     vec3 radiance = unpremultiply(texelFetch(s_voxelRadiance, h.voxel + ivec3(0, 0, h.cascade * u_sdfResolution), 0));
     radiance += bounceLight(h.position, h.normal, voxelAlbedoAt(h.cascade, h.voxel));
     return vec4(finiteOrZero(radiance), max(h.t, 0.0));
@@ -84,7 +84,7 @@ vec4 traceRay(vec3 origin, vec3 dir) {
     SdfMarchParams params = sdfDefaultParams(u_update.missDistance);
     params.maxSteps = 128;
     SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, dir, params);
-    if (!h.hit) return vec4(u_environment, u_update.missDistance);
+    if (!h.hit) return vec4(environmentRadiance(dir), u_update.missDistance);
     SdfVolume vol = sdfCascadeVolume(cs, h.cascade);
     vec3 radiance = unpremultiply(textureLod(s_voxelRadiance, sdfLayerCoord(vol, h.cascade, cs.count, h.position), 0.0));
     radiance += bounceLight(h.position, h.normal, voxelAlbedo(h.cascade, (h.position - vol.origin) / vol.size));

@@ -14,7 +14,6 @@ layout(rgba16f, binding = 0) uniform writeonly image3D i_radiance;
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_CONE_SET) uniform int u_coneSet;
 ConeTraceBlock u_cones;
-layout(location = UV_ENVIRONMENT) uniform vec3 u_environment;
 layout(location = UV_ANISOTROPIC) uniform int u_anisotropic;
 
 void main() {
@@ -31,7 +30,7 @@ void main() {
     ConeTracer t = makeConeTracer(u_resolution, u_cones.stepFactor, u_cones.maxDistance, u_anisotropic);
     vec3 n = meanNormal / len;
     vec3 origin = vec3(v) + 0.5 + n * u_cones.offset;
-    vec4 gathered = traceDiffuse(t, origin, n, u_coneSet, 1.0, u_environment, 0.0);
+    vec4 gathered = traceDiffuse(t, origin, n, u_coneSet, 1.0, 0.0);
     vec3 radiance = direct.rgb + albedo.rgb * gathered.rgb;
     imageStore(i_radiance, v, vec4(min(finiteOrZero(radiance), vec3(MAX_HALF_FLOAT)), direct.a));
 }

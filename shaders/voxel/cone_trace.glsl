@@ -3,6 +3,8 @@
 // The including shader declares the uniforms below at these bindings by including this file after
 // defining VOXEL_TEXTURE_UNIT (the first of seven consecutive units: isotropic chain, then the six
 // directional chains +X -X +Y -Y +Z -Z, which start at half resolution).
+#include "environment.glsl"
+
 layout(binding = VOXEL_TEXTURE_UNIT + 0) uniform sampler3D s_voxelRadiance;
 layout(binding = VOXEL_TEXTURE_UNIT + 1) uniform sampler3D s_voxelPosX;
 layout(binding = VOXEL_TEXTURE_UNIT + 2) uniform sampler3D s_voxelNegX;
@@ -169,10 +171,11 @@ mat3 tangentFrame(vec3 n) {
 }
 
 // Cosine-weighted mean incoming radiance (E / pi) at a surface point with normal n, and the
-// occlusion (mean opacity) of the cones. Cones that leave the volume see `environment`. The cone
+// occlusion (mean opacity) of the cones. Cones that leave the volume see the environment
+// (environment.glsl, averaged over the cone's solid angle). The cone
 // set is turned about n by `rotation` (a fraction of a full turn; for methods that vary it over
 // pixels or frames and filter, which a fixed set of a few cones otherwise aliases).
-vec4 traceDiffuse(ConeTracer t, vec3 origin, vec3 n, int coneSet, float start, vec3 environment, float rotation) {
+vec4 traceDiffuse(ConeTracer t, vec3 origin, vec3 n, int coneSet, float start, float rotation) {
     mat3 frame = tangentFrame(n);
     float angle = rotation * 6.2831853;
     frame = mat3(frame[0] * cos(angle) + frame[1] * sin(angle), -frame[0] * sin(angle) + frame[1] * cos(angle), frame[2]);
@@ -183,7 +186,7 @@ vec4 traceDiffuse(ConeTracer t, vec3 origin, vec3 n, int coneSet, float start, v
         diffuseCone(coneSet, i, d, tanHalf, weight);
         bool escaped;
         vec4 c = traceCone(t, origin, frame * d, tanHalf, start, n, escaped);
-        if (escaped) c.rgb += (1.0 - c.a) * environment;
+        if (escaped) c.rgb += (1.0 - c.a) * environmentCone(frame * d, coneSteradians(tanHalf));
         sum += weight * c;
     }
     return sum;

@@ -625,5 +625,27 @@ TEST(FirstHour, SwapFlipsTheSplitsSides) {
     EXPECT_THROW(parsePanelAction(splitWords("swap 1")), Error);
 }
 
+// --environment in the viewer: the script line says what render says for the same settings, and a
+// settings file carries the map.
+TEST(Script, EnvironmentLinesSayWhatRenderSays) {
+    const Scene scene = loadScene("builtin:cornell");
+    const ViewState state = stateFor(scene);
+    const std::string sky = std::string(GIS_SOURCE_DIR) + "/assets/environments/sky_sun.hdr";
+    const std::string missing = tempDir("view_environment") + "/missing.hdr";
+    EXPECT_EQ(contextError("environment " + missing + "\n", state), cliError("--environment " + missing));
+    const std::string both = cliError("--background 1 --environment " + sky);
+    EXPECT_NE(both.find("give one of them"), std::string::npos) << both;
+    EXPECT_EQ(contextError("background 1 1 1\nenvironment " + sky + "\n", state), both);
+    EXPECT_EQ(contextError("environment " + sky + "\nbackground 1 1 1\n", state), both);
+    EXPECT_EQ(contextError("environment " + sky + "\nenvironment off\nbackground 1 1 1\n", state), "");
+
+    ViewState s = state;
+    applyPanelAction(s, parsePanelAction(splitWords("environment " + sky)));
+    EXPECT_EQ(paneSettings(s, 0, {64, 48}).environment, sky);
+    const std::string dir = tempDir("view_environment_roundtrip");
+    saveViewSettings(dir + "/a.json", s);
+    EXPECT_EQ(viewStateToJson(loadViewSettings(dir + "/a.json")).dump(), viewStateToJson(s).dump());
+}
+
 }  // namespace
 }  // namespace gis::test

@@ -50,6 +50,10 @@ const ParamTable<PathTraceSettings>& pathTraceParams() {
                  "bounce from which Russian roulette may end a path", 0, 1024, ParamUpdate::Live)
         .boolean(&S::caustics, "caustics", "Caustics",
                  "false: after a diffuse bounce no glossy/specular light is picked up (Cycles' caustics switches)",
+                 ParamUpdate::Live)
+        .boolean(&S::environmentSampling, "env-sampling", "Sample the environment",
+                 "true: an --environment map is also sampled by its luminance, weighted by MIS; false: BSDF samples "
+                 "alone reach it (the same mean, noisier)",
                  ParamUpdate::Live);
     return table;
 }
@@ -79,7 +83,7 @@ void PathTracePass::execute(Frame& frame) {
     // Live parameters: a new sample count only moves the target; new bounces restart.
     const PathTraceSettings now = pathTraceParams().read("pathtrace", s.params);
     if (now.bounces != params_.bounces || now.russianRouletteStart != params_.russianRouletteStart ||
-        now.caustics != params_.caustics)
+        now.caustics != params_.caustics || now.environmentSampling != params_.environmentSampling)
         samples_.done = 0;
     if (now.spp < samples_.done) samples_.done = 0;
     params_ = now;
@@ -94,16 +98,16 @@ void PathTracePass::execute(Frame& frame) {
     glUseProgram(p);
     rays_.bind();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RAY_COUNTS_BINDING, rayCounts_.id());
-    const glm::vec3 background = frame.background();
+    frame.bindEnvironment();
     glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));
-    glProgramUniform3fv(p, U_BACKGROUND, 1, &background[0]);
     glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));
     glProgramUniform1ui(p, U_SEED, s.seed);
     glProgramUniform1i(p, U_MAX_BOUNCES, params_.bounces);
     glProgramUniform1i(p, U_EMITTER_COUNT, int(rays_.emitterCount));
     glProgramUniform1i(p, U_RR_START, params_.russianRouletteStart);
     glProgramUniform1i(p, U_CAUSTICS, params_.caustics ? 1 : 0);
+    glProgramUniform1i(p, U_ENV_SAMPLING, params_.environmentSampling ? 1 : 0);
     glProgramUniform1i(p, U_PT_TERM, term_);
     samples_.runBatch(p);
 }

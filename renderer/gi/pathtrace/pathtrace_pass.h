@@ -14,6 +14,7 @@ struct PathTraceSettings {
     int bounces = 16;              // indirect bounces; 0 = direct lighting only
     int russianRouletteStart = 3;  // bounce from which Russian roulette may end a path
     bool caustics = true;          // false: no glossy light after a diffuse bounce (Cycles' switch)
+    bool environmentSampling = true;  // an environment map sampled as a light (MIS); false: BSDF samples only
 };
 const ParamTable<PathTraceSettings>& pathTraceParams();
 

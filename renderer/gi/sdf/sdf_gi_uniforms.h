@@ -15,7 +15,6 @@ namespace gis::sdfgi {
     X(UG_RESOLUTION, 423, 1) /* cells per edge */ \
     X(UG_RAYS, 425, 1) /* diffuse rays per traced pixel */ \
     X(UG_FRAME, 426, 1) /* frames rendered before this one (decorrelates the rays) */ \
-    X(UG_ENVIRONMENT, 427, 1) /* radiance of rays that miss */ \
     X(UG_SPECULAR, 428, 1) /* reflection ray on (0/1), roughness cut-off */ \
     X(UG_SCALE, 429, 1) /* full-resolution pixels per traced pixel (1 or 2) */ \
     X(UG_AO, 430, 1) /* soft-occlusion strength */ \

@@ -155,7 +155,7 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     const GLuint p = traceProgram_.id();
     glUseProgram(p);
     setCommonUniforms(p, frame);
-    const glm::vec3 environment = frame.background();
+    frame.bindEnvironment();
     sdf::SdfMarchBlock march;
     march.hitThreshold = s.hitThreshold;
     march.relaxation = s.relaxation;
@@ -164,7 +164,6 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     march_.set(march);
     glProgramUniform1i(p, UG_RAYS, field_ ? 0 : s.rays);  // with probes, no diffuse rays per pixel
     glProgramUniform1ui(p, UG_FRAME, GLuint(frame.index * 7919u + frame.settings.seed));
-    glProgramUniform3fv(p, UG_ENVIRONMENT, 1, &environment[0]);
     glProgramUniform2f(p, UG_SPECULAR, s.specular ? 1.0f : 0.0f, s.specularRoughness);
     glProgramUniform1f(p, UG_AO, s.aoStrength);
     glProgramUniform2f(p, UG_GATHER, field_ ? 1.0f : 0.0f, built_.probeField().normalBias);

@@ -99,7 +99,7 @@ void VctPass::trace(const Frame& frame, const VctSettings& s, glm::ivec2 jitter)
     const GLuint p = traceProgram_.id();
     const VolumeFit& fit = volume_->grid().fit;
     const glm::mat4 worldToVoxel = fit.worldToVoxelMatrix();
-    const glm::vec3 environment = frame.background();
+    frame.bindEnvironment();
     glUseProgram(p);
     glProgramUniformMatrix4fv(p, UV_WORLD_TO_VOXEL, 1, GL_FALSE, &worldToVoxel[0][0]);
     glProgramUniform1i(p, UV_RESOLUTION, fit.resolution);
@@ -112,7 +112,6 @@ void VctPass::trace(const Frame& frame, const VctSettings& s, glm::ivec2 jitter)
     cones.offset = s.offset;
     cones.specular = s.specular ? 1 : 0;
     cones_.set(cones);
-    glProgramUniform3fv(p, UV_ENVIRONMENT, 1, &environment[0]);
     glProgramUniform1i(p, UV_ANISOTROPIC, tracedRadiance().mipMode());
     glProgramUniform1f(p, UV_INTENSITY, s.intensity);
     glProgramUniform3i(p, UV_TRACE_JITTER, built_.tracePixels(), jitter.x, jitter.y);
@@ -204,7 +203,8 @@ bool VctPass::updateFeedback(Frame& frame, const ConeSettings& cones) {
     }
     if (feedbackDone()) return false;
     auto t = frame.step("feedback");
-    feedback_->feedbackBounce(grid, cones, frame.background());
+    frame.bindEnvironment();
+    feedback_->feedbackBounce(grid, cones);
     ++feedbackUpdates_;
     return true;
 }

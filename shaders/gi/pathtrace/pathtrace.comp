@@ -1,12 +1,15 @@
 // Path-traced reference: one sample per pixel per dispatch, accumulated. Unidirectional path
 // tracing with next-event estimation to every punctual light and to emissive triangles, multiple
 // importance sampling (power heuristic, Veach 1997) between light and BSDF sampling for emitters,
-// Russian roulette, a constant environment colour. The BRDF is the rasterizer's (brdf.glsl).
+// Russian roulette, and the environment (environment.glsl): a constant, or a map sampled by its
+// luminance at every vertex and weighted by MIS against the BSDF's samples that escape. The BRDF
+// is the rasterizer's (brdf.glsl).
 #include "common.glsl"
 #include "brdf.glsl"
 #include "lights.glsl"
 #include "random.glsl"
 #include "ray_scene.glsl"
+#include "environment.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -15,7 +18,6 @@ layout(binding = 1, rgba32f) uniform writeonly image2D u_output;
 
 layout(location = U_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = U_LIGHT_COUNT) uniform int u_lightCount;
-layout(location = U_BACKGROUND) uniform vec3 u_background;
 layout(location = U_BRDF_MODELS) uniform ivec2 u_brdfModels;
 layout(location = U_SAMPLE_INDEX) uniform uint u_sampleIndex;
 layout(location = U_SEED) uniform uint u_seed;
@@ -30,6 +32,8 @@ layout(location = U_CAUSTICS) uniform int u_caustics;
 // Which of the path's contributions are kept, for the term views (pathtrace_pass.cpp): the same
 // paths (the random numbers do not depend on it), so the terms add up to the full radiance.
 layout(location = U_PT_TERM) uniform int u_term;
+// 1: an environment map is sampled as a light too (pathtrace.env-sampling); 0: BSDF samples alone.
+layout(location = U_ENV_SAMPLING) uniform int u_sampleEnvironment;
 const int TERM_ALL = 0, TERM_DIRECT = 1, TERM_EMISSION = 2, TERM_INDIRECT = 3;
 // 1 where a contribution of `term` is kept.
 float kept(int term) { return u_term == TERM_ALL || u_term == term ? 1.0 : 0.0; }
@@ -234,6 +238,21 @@ vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, ino
     return sum;
 }
 
+// The environment map as a light: one direction drawn from its luminance, weighted by MIS (power
+// heuristic) against the BSDF sampling the same direction (PBRT 3rd ed., 14.3.1). A constant
+// environment is reached by BSDF samples alone, as it always was, and draws no random numbers.
+vec3 environmentLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, inout Rng rng) {
+    if (!environmentIsMap() || u_sampleEnvironment == 0) return vec3(0.0);
+    float lightPdf;
+    vec3 L = sampleEnvironment(nextFloat2(rng), lightPdf);
+    float NoL = dot(s.normal, L);
+    if (!(lightPdf > 0.0) || NoL <= 0.0 || dot(s.geometricNormal, L) <= 0.0) return vec3(0.0);
+    if (!visible(offsetRayOrigin(s.position, s.geometricNormal), L, 1e30)) return vec3(0.0);
+    float weight = powerHeuristic(lightPdf, bsdfPdf(s, V, L, pSpecular));
+    return evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel) * environmentRadiance(L) * NoL *
+           (weight / lightPdf);
+}
+
 vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
     vec3 radiance = vec3(0.0);
     vec3 throughput = vec3(1.0);
@@ -250,7 +269,9 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
         // or an emitter (sampled there, or hit by its BSDF sample, the other half of the MIS);
         // everything after is indirect, the environment lighting the first surface included.
         if (!traceRay(origin, dir, 1e30, false, depth == 0, hit)) {
-            radiance += throughput * u_background * kept(depth == 0 ? TERM_EMISSION : TERM_INDIRECT);
+            // A map was also sampled as a light at the vertex this ray left: the other half of the MIS.
+            float weight = environmentIsMap() && u_sampleEnvironment != 0 && lastBsdfPdf > 0.0 ? powerHeuristic(lastBsdfPdf, environmentPdf(dir)) : 1.0;
+            radiance += throughput * environmentRadiance(dir) * weight * kept(depth == 0 ? TERM_EMISSION : TERM_INDIRECT);
             break;
         }
         SurfacePoint s = shade(hit, dir);
@@ -274,6 +295,8 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
         float pSpecular = specularChoice(s, NoV);
         radiance += throughput * directLight(s, V, pSpecular, specularModel, rng) *
                     kept(depth == 0 ? TERM_DIRECT : TERM_INDIRECT);
+        // The environment lights the first surface as indirect light, as the lighting pass splits it.
+        radiance += throughput * environmentLight(s, V, pSpecular, specularModel, rng) * kept(TERM_INDIRECT);
 
         vec3 L;
         bool specularLobe;

@@ -9,6 +9,7 @@
 #include "common.glsl"
 #include "random.glsl"
 #include "sampling.glsl"
+#include "environment.glsl"
 #include "gi/sdf/sdf_gbuffer.glsl"
 #include "sdf/sdf_march.glsl"
 #include "probes/probe_common.glsl"
@@ -30,7 +31,6 @@ layout(location = UG_CASCADE_COUNT) uniform int u_cascadeCount;
 SdfMarchBlock u_march;
 layout(location = UG_RAYS) uniform int u_rays;
 layout(location = UG_FRAME) uniform uint u_frame;
-layout(location = UG_ENVIRONMENT) uniform vec3 u_environment;
 layout(location = UG_SPECULAR) uniform vec2 u_specular;
 layout(location = UG_AO) uniform float u_aoStrength;
 layout(location = UG_GATHER) uniform vec2 u_gather;   // from SDFGI's probes (0/1), bias x the probe step
@@ -47,9 +47,9 @@ SdfMarchParams marchParams() {
     return p;
 }
 
-// What a ray brings back: the voxel radiance around its hit, or the environment.
-vec3 rayRadiance(SdfHit h) {
-    if (!h.hit) return u_environment;
+// What a ray along `dir` brings back: the voxel radiance around its hit, or the environment.
+vec3 rayRadiance(SdfHit h, vec3 dir) {
+    if (!h.hit) return environmentRadiance(dir);
     // Half a cell into the surface: the level set runs through the centres of the outermost surface
     // voxels, so the trilinear lookup mixes them with the voxels behind (occupied, or empty and
     // divided out below) rather than with the empty ones in front of the surface. The radiance of
@@ -102,8 +102,9 @@ void main() {
     float steps = 0.0;
     vec3 firstNormal = vec3(0.0);
     for (int i = 0; i < u_rays; ++i) {
-        SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, cosineDirection(s.normal, nextFloat2(rng)), params);
-        sum += rayRadiance(h);
+        vec3 dir = cosineDirection(s.normal, nextFloat2(rng));
+        SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, dir, params);
+        sum += rayRadiance(h, dir);
         steps += float(h.steps);
         if (i == 0 && h.hit) firstNormal = h.normal * 0.5 + 0.5;  // black: a miss
     }
@@ -114,7 +115,7 @@ void main() {
         vec3 R = reflect(normalize(s.position - u_cameraPos), s.normal);
         SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, R, params);
         // Blend towards the diffuse term as the lobe widens: a mirror ray is right only at 0.
-        reflection = vec4(rayRadiance(h), 1.0 - roughness / max(u_specular.y, 1e-6));
+        reflection = vec4(rayRadiance(h, R), 1.0 - roughness / max(u_specular.y, 1e-6));
     }
 
     // SDFGI: the diffuse term from the probes around the surface (shaders/probes/probe_common.glsl).

@@ -21,7 +21,6 @@ layout(location = UV_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = UV_CAMERA_POS) uniform vec3 u_cameraPos;
 layout(location = UV_CONE_SET) uniform int u_coneSet;
 ConeTraceBlock u_cones;
-layout(location = UV_ENVIRONMENT) uniform vec3 u_environment;
 layout(location = UV_ANISOTROPIC) uniform int u_anisotropic;
 layout(location = UV_INTENSITY) uniform float u_intensity;
 layout(location = UV_TRACE_JITTER) uniform ivec3 u_traceJitter;  // pixels per texel, this frame's pixel in the block
@@ -51,7 +50,7 @@ void main() {
     ConeTracer t = makeConeTracer(u_resolution, u_cones.stepFactor, u_cones.maxDistance, u_anisotropic);
     vec3 origin = (u_worldToVoxel * vec4(P, 1.0)).xyz + N * u_cones.offset;
 
-    vec4 diffuse = traceDiffuse(t, origin, N, u_coneSet, 1.0, u_environment, 0.0);
+    vec4 diffuse = traceDiffuse(t, origin, N, u_coneSet, 1.0, 0.0);
     vec3 specular = vec3(0.0);
     if (u_cones.specular != 0 && material.y > u_specularRoughness) {
         // So rough a lobe takes in most of the hemisphere: it sees about what the diffuse cones
@@ -62,7 +61,7 @@ void main() {
         vec3 R = reflect(-V, N);
         bool escaped;
         vec4 c = traceCone(t, origin, R, specularConeTan(material.y), 1.0, N, escaped);
-        specular = c.rgb + (escaped ? (1.0 - c.a) * u_environment : vec3(0.0));
+        specular = c.rgb + (escaped ? (1.0 - c.a) * environmentCone(R, coneSteradians(specularConeTan(material.y))) : vec3(0.0));
     }
     imageStore(i_diffuse, texel, vec4(finiteOrZero(diffuse.rgb * u_intensity), 1.0));
     imageStore(i_specular, texel, vec4(finiteOrZero(specular * u_intensity), 1.0));

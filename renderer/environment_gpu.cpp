@@ -1,0 +1,156 @@
+#include "environment_gpu.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gl/dispatch.h"
+#include "uniforms.h"
+
+namespace gis {
+
+namespace {
+
+// shaders/environment.glsl's EnvironmentBlock (std140).
+struct EnvironmentBlock {
+    glm::vec4 constant{0.0f};   // rgb: a constant environment's radiance
+    glm::ivec4 size{0};         // width, height, radiance mip levels, 1 = a map
+    glm::vec4 sampling{0.0f};   // x: the CDFs' total weight, y: steradians of a level-0 texel (mean)
+    glm::vec4 sh[9]{};          // rgb: SH9 projection of the radiance
+};
+
+const ProgramDesc kPrefilterProgram{"environment_prefilter", {"environment_prefilter.comp"}, {}};
+const ProgramDesc kBrdfTableProgram{"environment_brdf_lut", {"environment_brdf_lut.comp"}, {}};
+constexpr GLenum kFormat = GL_RGBA32F;
+// Prefiltered levels are no wider than this: a rough lobe needs no more, and a large map would
+// otherwise cost seconds of GGX samples per texel at build time.
+constexpr int kSpecularMaxWidth = 256;
+constexpr int kPrefilterGroup = 8;  // environment_prefilter.comp's local size
+
+void setLinearMipmapped(GLuint texture) {
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    // Azimuth wraps around; the poles do not.
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+void setNearest(GLuint texture) {
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+}
+
+gl::Texture floatTexture(const gl::MemoryScope& scope, int width, int height, const float* data) {
+    gl::Texture t = gl::createTexture2D(scope, GL_R32F, width, height);
+    glTextureSubImage2D(t.id(), 0, 0, 0, width, height, GL_RED, GL_FLOAT, data);
+    setNearest(t.id());
+    return t;
+}
+
+}  // namespace
+
+std::vector<ProgramDesc> GpuEnvironment::programs() { return {kPrefilterProgram, kBrdfTableProgram}; }
+
+GpuEnvironment::GpuEnvironment(const std::string& path, gl::MemoryLedger& ledger) : path_(path) {
+    const gl::MemoryScope scope{&ledger, "environment"};
+    if (!path.empty()) {
+        map_ = std::make_unique<EnvironmentMap>(loadEnvironmentMap(path));
+        sh_ = projectSh9(*map_);
+    }
+    upload(scope);
+    block_ = gl::createBuffer(scope, sizeof(EnvironmentBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    EnvironmentBlock b;
+    if (map_) {
+        b.size = glm::ivec4(map_->width, map_->height, radiance_.levels, 1);
+        b.sampling = glm::vec4(total_, 4.0f * 3.14159265f / float(map_->width * map_->height), 0.0f, 0.0f);
+        for (int k = 0; k < 9; ++k) b.sh[k] = glm::vec4(sh_[size_t(k)], 0.0f);
+    }
+    glNamedBufferSubData(block_.id(), 0, sizeof(b), &b);
+    if (map_) {
+        prefilterSpecular();
+        buildBrdfTable();
+    }
+}
+
+GpuEnvironment::~GpuEnvironment() = default;
+
+// The textures: a constant environment gets 1x1 placeholders, so every program's samplers have
+// something complete bound and a map is the only difference.
+void GpuEnvironment::upload(gl::MemoryScope scope) {
+    if (!map_) {
+        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        for (gl::Texture* t : {&radiance_, &specular_}) {
+            *t = gl::createTexture2D(scope, kFormat, 1, 1);
+            glTextureSubImage2D(t->id(), 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, zero);
+            setNearest(t->id());
+        }
+        marginal_ = floatTexture(scope, 1, 1, zero);
+        conditional_ = floatTexture(scope, 1, 1, zero);
+        brdf_ = floatTexture(scope, 1, 1, zero);
+        return;
+    }
+    const int w = map_->width, h = map_->height;
+    radiance_ = gl::createTexture2D(scope, kFormat, w, h, gl::mipLevelsFor(w, h));
+    glTextureSubImage2D(radiance_.id(), 0, 0, 0, w, h, GL_RGB, GL_FLOAT, map_->texels.data());
+    glGenerateTextureMipmap(radiance_.id());
+    setLinearMipmapped(radiance_.id());
+    const int sw = std::min(w, kSpecularMaxWidth), sh = std::max(1, sw * h / w);
+    specular_ = gl::createTexture2D(scope, kFormat, sw, sh,
+                                    std::min(kEnvironmentSpecularLevels, gl::mipLevelsFor(sw, sh)));
+    setLinearMipmapped(specular_.id());
+    brdf_ = gl::createTexture2D(scope, GL_RG32F, kEnvironmentBrdfTableSize, kEnvironmentBrdfTableSize);
+    glTextureParameteri(brdf_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(brdf_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(brdf_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(brdf_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    const EnvironmentSampler sampler(*map_);
+    total_ = sampler.marginalCdf().back();
+    marginal_ = floatTexture(scope, h + 1, 1, sampler.marginalCdf().data());
+    conditional_ = floatTexture(scope, w + 1, h, sampler.conditionalCdf().data());
+}
+
+// Every level of the specular chain, roughness 0 included, filtered from the radiance's mip chain
+// (environment_prefilter.comp: GGX samples read at the level their pdf covers).
+void GpuEnvironment::prefilterSpecular() {
+    const gl::Object program = buildProgram(kPrefilterProgram);
+    glUseProgram(program.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, kEnvironmentBlockBinding, block_.id());
+    glBindTextureUnit(kEnvironmentRadianceUnit, radiance_.id());
+    glBindSampler(kEnvironmentRadianceUnit, 0);
+    for (int level = 0; level < specular_.levels; ++level) {
+        const int w = std::max(1, specular_.width >> level), h = std::max(1, specular_.height >> level);
+        const float roughness = specular_.levels > 1 ? float(level) / float(specular_.levels - 1) : 0.0f;
+        glProgramUniform1f(program.id(), U_ENV_ROUGHNESS, roughness);
+        glBindImageTexture(0, specular_.id(), level, GL_FALSE, 0, GL_WRITE_ONLY, kFormat);
+        gl::dispatchCompute(GLuint((w + kPrefilterGroup - 1) / kPrefilterGroup),
+                        GLuint((h + kPrefilterGroup - 1) / kPrefilterGroup), 1, "environment prefilter");
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+// The split sum's BRDF table, once per map (a constant needs none: the baseline keeps its ambient).
+void GpuEnvironment::buildBrdfTable() {
+    const gl::Object program = buildProgram(kBrdfTableProgram);
+    glUseProgram(program.id());
+    glBindImageTexture(0, brdf_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    const GLuint groups = GLuint((kEnvironmentBrdfTableSize + kPrefilterGroup - 1) / kPrefilterGroup);
+    gl::dispatchCompute(groups, groups, 1, "environment BRDF table");
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void GpuEnvironment::bind(glm::vec3 constant) {
+    if (!map_ && constant != uploadedConstant_) {
+        const glm::vec4 c(constant, 0.0f);
+        glNamedBufferSubData(block_.id(), offsetof(EnvironmentBlock, constant), sizeof(c), &c);
+        uploadedConstant_ = constant;
+    }
+    glBindBufferBase(GL_UNIFORM_BUFFER, kEnvironmentBlockBinding, block_.id());
+    glBindTextureUnit(kEnvironmentBrdfUnit, brdf_.id());
+    glBindTextureUnit(kEnvironmentRadianceUnit, radiance_.id());
+    glBindTextureUnit(kEnvironmentSpecularUnit, specular_.id());
+    glBindTextureUnit(kEnvironmentMarginalUnit, marginal_.id());
+    glBindTextureUnit(kEnvironmentConditionalUnit, conditional_.id());
+    // The textures' own filtering and wrapping, whatever sampler object a unit last held.
+    glBindSamplers(kEnvironmentBrdfUnit, 5, nullptr);
+}
+
+}  // namespace gis

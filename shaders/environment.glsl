@@ -1,0 +1,127 @@
+// The radiance of rays that leave the scene (renderer/environment_gpu.h): a constant or an
+// equirectangular map, bound once for every program by GpuEnvironment::bind(). The mapping is
+// renderer/environment.h's: +Y up, u = 0.5 looks down -Z, u grows towards +X, rows from +Y down.
+// A constant environment returns its value exactly, with no texture read, so a constant is the
+// same bits whichever function reads it.
+#ifndef ENVIRONMENT_GLSL
+#define ENVIRONMENT_GLSL
+#include "common.glsl"
+
+layout(std140, binding = ENV_BLOCK_BINDING) uniform EnvironmentBlock {
+    vec4 u_envConstant;   // rgb: a constant environment's radiance
+    ivec4 u_envSize;      // width, height, radiance mip levels, 1 = a map
+    vec4 u_envSampling;   // x: the CDFs' total weight, y: mean steradians of a level-0 texel
+    vec4 u_envSh[9];      // rgb: SH9 projection of the radiance (environment.h's basis order)
+};
+layout(binding = ENV_RADIANCE_UNIT) uniform sampler2D s_envRadiance;        // box-filtered mips
+layout(binding = ENV_SPECULAR_UNIT) uniform sampler2D s_envSpecular;        // GGX-prefiltered levels
+layout(binding = ENV_MARGINAL_UNIT) uniform sampler2D s_envMarginal;        // (height + 1) x 1
+layout(binding = ENV_CONDITIONAL_UNIT) uniform sampler2D s_envConditional;  // (width + 1) x height
+
+bool environmentIsMap() { return u_envSize.w == 1; }
+
+vec2 environmentUv(vec3 d) {
+    d = normalize(d);
+    float u = atan(d.x, -d.z) * (0.5 * INV_PI) + 0.5;
+    return vec2(u, acos(clamp(d.y, -1.0, 1.0)) * INV_PI);
+}
+
+vec3 environmentDirection(vec2 uv) {
+    float phi = (uv.x - 0.5) * 2.0 * PI, theta = uv.y * PI;
+    float s = sin(theta);
+    return vec3(s * sin(phi), cos(theta), -s * cos(phi));
+}
+
+// Radiance arriving along -d (d points away from the scene).
+vec3 environmentRadiance(vec3 d) {
+    if (!environmentIsMap()) return u_envConstant.rgb;
+    return textureLod(s_envRadiance, environmentUv(d), 0.0).rgb;
+}
+
+// Mean radiance over a cone of solid angle `steradians` around d: the mip whose texels cover that
+// much (box-filtered in the equirectangular domain: near the poles a texel spans less, so wide
+// cones there are averaged over less than their solid angle).
+vec3 environmentCone(vec3 d, float steradians) {
+    if (!environmentIsMap()) return u_envConstant.rgb;
+    float lod = 0.5 * log2(max(steradians / u_envSampling.y, 1.0));
+    return textureLod(s_envRadiance, environmentUv(d), lod).rgb;
+}
+
+// Solid angle of a cone of half-angle atan(tanHalf): 2 pi (1 - cos).
+float coneSteradians(float tanHalf) { return 2.0 * PI * (1.0 - inversesqrt(1.0 + tanHalf * tanHalf)); }
+
+// Irradiance E(n) from the SH9 projection, the cosine lobe's band weights pi, 2pi/3, pi/4
+// (Ramamoorthi and Hanrahan 2001, eq. 8): environment.cpp's shIrradiance. A constant gives pi L.
+vec3 environmentIrradiance(vec3 n) {
+    if (!environmentIsMap()) return PI * u_envConstant.rgb;
+    n = normalize(n);
+    float b[9] = float[9](0.282095, 0.488603 * n.y, 0.488603 * n.z, 0.488603 * n.x, 1.092548 * n.x * n.y,
+                          1.092548 * n.y * n.z, 0.315392 * (3.0 * n.z * n.z - 1.0), 1.092548 * n.x * n.z,
+                          0.546274 * (n.x * n.x - n.y * n.y));
+    float band[9] = float[9](PI, 2.0 * PI / 3.0, 2.0 * PI / 3.0, 2.0 * PI / 3.0, PI / 4.0, PI / 4.0, PI / 4.0,
+                             PI / 4.0, PI / 4.0);
+    vec3 e = vec3(0.0);
+    for (int k = 0; k < 9; ++k) e += band[k] * b[k] * u_envSh[k].rgb;
+    return max(e, vec3(0.0));
+}
+
+// The split sum's first factor (Karis 2013): the radiance around the mirror direction R filtered
+// by the GGX lobe of `roughness` (the prefiltered chain, one roughness per level).
+vec3 environmentSpecular(vec3 R, float roughness) {
+    if (!environmentIsMap()) return u_envConstant.rgb;
+    float levels = float(textureQueryLevels(s_envSpecular));
+    return textureLod(s_envSpecular, environmentUv(R), clamp(roughness, 0.0, 1.0) * (levels - 1.0)).rgb;
+}
+
+// Importance sampling by luminance x solid angle: environment.cpp's EnvironmentSampler on the
+// GPU, read from its CDFs (PBRT 3rd ed. 13.6.7, 14.2.4). Uniform in solid angle inside a texel.
+
+// The first i in [0, n) with cdf[i + 1] > target (std::upper_bound's, as environment.cpp).
+int environmentInterval(sampler2D cdf, int row, int n, float target) {
+    int lo = 0, hi = n - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (texelFetch(cdf, ivec2(mid + 1, row), 0).r > target) hi = mid;
+        else lo = mid + 1;
+    }
+    return lo;
+}
+
+float environmentRowSteradians(int y) {
+    float h = float(u_envSize.y);
+    return 2.0 * PI / float(u_envSize.x) * (cos(PI * float(y) / h) - cos(PI * float(y + 1) / h));
+}
+
+// Density per steradian of sampling texel (x, y): its weight over the total, spread evenly over it.
+float environmentTexelPdf(int x, int y) {
+    float w = texelFetch(s_envConditional, ivec2(x + 1, y), 0).r - texelFetch(s_envConditional, ivec2(x, y), 0).r;
+    return w / (u_envSampling.x * environmentRowSteradians(y));
+}
+
+float environmentPdf(vec3 d) {
+    vec2 uv = environmentUv(d);
+    ivec2 t = min(ivec2(uv * vec2(u_envSize.xy)), u_envSize.xy - 1);
+    return environmentTexelPdf(t.x, t.y);
+}
+
+// A direction drawn from the map's distribution and its pdf (per steradian). Maps only.
+vec3 sampleEnvironment(vec2 u, out float pdf) {
+    int w = u_envSize.x, h = u_envSize.y;
+    float total = u_envSampling.x;
+    int y = environmentInterval(s_envMarginal, 0, h, u.y * total);
+    float rowStart = texelFetch(s_envMarginal, ivec2(y, 0), 0).r;
+    float row = texelFetch(s_envMarginal, ivec2(y + 1, 0), 0).r - rowStart;
+    int x = environmentInterval(s_envConditional, y, w, u.x * row);
+    float c0 = texelFetch(s_envConditional, ivec2(x, y), 0).r, c1 = texelFetch(s_envConditional, ivec2(x + 1, y), 0).r;
+    // Clear of the texel's edges, where rounding of the CDF would land in a neighbour of another pdf.
+    const float EDGE = 1e-4;
+    float fx = clamp(row > 0.0 ? (u.x * row - c0) / max(c1 - c0, 1e-30) : 0.5, EDGE, 1.0 - EDGE);
+    float fy = clamp(row > 0.0 ? (u.y * total - rowStart) / row : 0.5, EDGE, 1.0 - EDGE);
+    float phi = ((float(x) + fx) / float(w) - 0.5) * 2.0 * PI;
+    float z0 = cos(PI * float(y) / float(h)), z1 = cos(PI * float(y + 1) / float(h));
+    float cosTheta = mix(z0, z1, fy), sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+    pdf = environmentTexelPdf(x, y);
+    return vec3(sinTheta * sin(phi), cosTheta, -sinTheta * cos(phi));
+}
+
+#endif
