@@ -28,7 +28,7 @@ namespace gis {
 
 // Where the environment lives in every program (GLSL's ENV_* defines, shader_constants.cpp):
 // units and a uniform-block binding no pass uses for anything else.
-constexpr int kEnvironmentBlockBinding = 3;
+constexpr int kEnvironmentBlockBinding = 11;
 constexpr int kEnvironmentBrdfUnit = 11;
 constexpr int kEnvironmentRadianceUnit = 12;
 constexpr int kEnvironmentSpecularUnit = 13;
