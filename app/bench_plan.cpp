@@ -91,10 +91,8 @@ void validateFlags(const BenchOptions& o) {
     if (!o.ambient.empty()) colourFlag(o.ambient, "--ambient");
     if (!o.background.empty()) colourFlag(o.background, "--background");
     if (!o.environment.empty()) {  // the render's own checks, before any job runs
-        checkEnvironmentChoice(!o.background.empty(), o.environment);
+        checkEnvironmentChoice(!o.background.empty(), o.environment, !o.ambient.empty());
         loadEnvironmentMap(o.environment);
-        if (!o.ambient.empty())
-            throw Error("--ambient has no effect with --environment (the map lights what the ambient would): drop one");
     }
     cameraRequest(o.setup);  // validates the camera flags before any work
     parseLightingMode(o.setup.lighting);

@@ -301,9 +301,7 @@ int runRender(const RenderOptions& o) {
         if (!viewSettings && !(o.given && o.given("--ambient"))) s.ambient = *s.background;
     }
     if (use("--environment")) s.environment = o.environment;
-    // Under a map the baseline's ambient is the map's own irradiance: an --ambient would be ignored.
-    if (!s.environment.empty() && o.given && o.given("--ambient"))
-        throw Error("--ambient has no effect with --environment (the map lights what the ambient would): drop one");
+    checkEnvironmentChoice(false, s.environment, o.given && o.given("--ambient"));
     if (use("--preset")) applyRenderPreset(s, o.preset);
     // A shadow-map size given on the command line wins over the preset's.
     if (o.given && o.given("--shadow-size")) s.shadowMapSize = o.shadowSize;

@@ -51,10 +51,8 @@ CameraRequest cameraRequest(const SceneSetupOptions& o) {
 
 int prepareScene(Scene& scene, const SceneSetupOptions& o, float aspect, RenderSettings* settings, bool ambientGiven) {
     if (settings && !o.emitters.empty()) setParam(*settings, "emitters.mode", o.emitters);
-    LightingMode mode = parseLightingMode(o.lighting);
-    // An environment map is the sky (the shipped one has the default sun in it): auto adds no
-    // second sun and sky over it.
-    if (mode == LightingMode::Auto && settings && !settings->environment.empty()) mode = LightingMode::Scene;
+    const LightingMode mode =
+        lightingUnderEnvironment(parseLightingMode(o.lighting), settings && !settings->environment.empty());
     // Measured before: applyLighting keeps the emission but the reason belongs in the line.
     const double emitted = mode == LightingMode::Auto ? meanEmittedRadiance(scene) : 0.0;
     if (applyLighting(scene, mode)) {

@@ -98,9 +98,7 @@ bool ViewSession::openScene(ViewState& state, const std::string& spec, const Cam
         auto scene = std::make_unique<Scene>(loadScene(spec));
         ViewState s = state;
         s.scene = spec;
-        LightingMode lighting = parseLightingMode(state.lighting);
-        // As render's prepareScene: under an environment map auto adds no default sun and sky.
-        if (lighting == LightingMode::Auto && !state.environment.empty()) lighting = LightingMode::Scene;
+        const LightingMode lighting = lightingUnderEnvironment(parseLightingMode(state.lighting), !state.environment.empty());
         if (applyLighting(*scene, lighting)) s.ambient = glm::vec3(kDefaultSkyRadiance);
         const int camera =
             resolveCamera(*scene, request, float(std::max(s.viewWidth, 1)) / float(std::max(s.viewHeight, 1)));

@@ -10,13 +10,6 @@ namespace gis {
 
 namespace {
 
-// shaders/environment.glsl's EnvironmentBlock (std140).
-struct EnvironmentBlock {
-    glm::vec4 constant{0.0f};   // rgb: a constant environment's radiance
-    glm::ivec4 size{0};         // width, height, radiance mip levels, 1 = a map
-    glm::vec4 sampling{0.0f};   // x: the CDFs' total weight, y: steradians of a level-0 texel (mean)
-    glm::vec4 sh[9]{};          // rgb: SH9 projection of the radiance
-};
 
 const ProgramDesc kPrefilterProgram{"environment_prefilter", {"environment_prefilter.comp"}, {}};
 const ProgramDesc kBrdfTableProgram{"environment_brdf_lut", {"environment_brdf_lut.comp"}, {}};
@@ -50,21 +43,20 @@ gl::Texture floatTexture(const gl::MemoryScope& scope, int width, int height, co
 
 std::vector<ProgramDesc> GpuEnvironment::programs() { return {kPrefilterProgram, kBrdfTableProgram}; }
 
-GpuEnvironment::GpuEnvironment(const std::string& path, gl::MemoryLedger& ledger) : path_(path) {
+GpuEnvironment::GpuEnvironment(const std::string& path, gl::MemoryLedger& ledger)
+    : block_(gl::MemoryScope{&ledger, "environment"}) {
     const gl::MemoryScope scope{&ledger, "environment"};
-    if (!path.empty()) {
-        map_ = std::make_unique<EnvironmentMap>(loadEnvironmentMap(path));
-        sh_ = projectSh9(*map_);
-    }
+    if (!path.empty()) map_ = std::make_unique<EnvironmentMap>(loadEnvironmentMap(path));
     upload(scope);
-    block_ = gl::createBuffer(scope, sizeof(EnvironmentBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    EnvironmentBlock b;
     if (map_) {
-        b.size = glm::ivec4(map_->width, map_->height, radiance_.levels, 1);
-        b.sampling = glm::vec4(total_, 4.0f * 3.14159265f / float(map_->width * map_->height), 0.0f, 0.0f);
-        for (int k = 0; k < 9; ++k) b.sh[k] = glm::vec4(sh_[size_t(k)], 0.0f);
+        const Sh9 sh = projectSh9(*map_);
+        values_.width = map_->width;
+        values_.height = map_->height;
+        values_.isMap = 1;
+        values_.cdfTotal = total_;
+        values_.texelSteradians = 4.0f * 3.14159265f / float(map_->width * map_->height);
+        for (int k = 0; k < 9; ++k) values_.sh[k] = glm::vec4(sh[size_t(k)], 0.0f);
     }
-    glNamedBufferSubData(block_.id(), 0, sizeof(b), &b);
     if (map_) {
         prefilterSpecular();
         buildBrdfTable();
@@ -113,7 +105,7 @@ void GpuEnvironment::upload(gl::MemoryScope scope) {
 void GpuEnvironment::prefilterSpecular() {
     const gl::Object program = buildProgram(kPrefilterProgram);
     glUseProgram(program.id());
-    glBindBufferBase(GL_UNIFORM_BUFFER, kEnvironmentBlockBinding, block_.id());
+    block_.set(values_);
     glBindTextureUnit(kEnvironmentRadianceUnit, radiance_.id());
     glBindSampler(kEnvironmentRadianceUnit, 0);
     for (int level = 0; level < specular_.levels; ++level) {
@@ -138,19 +130,15 @@ void GpuEnvironment::buildBrdfTable() {
 }
 
 void GpuEnvironment::bind(glm::vec3 constant) {
-    if (!map_ && constant != uploadedConstant_) {
-        const glm::vec4 c(constant, 0.0f);
-        glNamedBufferSubData(block_.id(), offsetof(EnvironmentBlock, constant), sizeof(c), &c);
-        uploadedConstant_ = constant;
-    }
-    glBindBufferBase(GL_UNIFORM_BUFFER, kEnvironmentBlockBinding, block_.id());
+    if (!map_) values_.constant = glm::vec4(constant, 0.0f);
+    block_.set(values_);
     glBindTextureUnit(kEnvironmentBrdfUnit, brdf_.id());
     glBindTextureUnit(kEnvironmentRadianceUnit, radiance_.id());
     glBindTextureUnit(kEnvironmentSpecularUnit, specular_.id());
     glBindTextureUnit(kEnvironmentMarginalUnit, marginal_.id());
     glBindTextureUnit(kEnvironmentConditionalUnit, conditional_.id());
     // The textures' own filtering and wrapping, whatever sampler object a unit last held.
-    glBindSamplers(kEnvironmentBrdfUnit, 5, nullptr);
+    glBindSamplers(kEnvironmentBrdfUnit, kEnvironmentUnits, nullptr);
 }
 
 }  // namespace gis

@@ -23,20 +23,30 @@
 #include "environment.h"
 #include "gl/gl.h"
 #include "gl/shader.h"
+#include "gl/uniform_block.h"
 
 namespace gis {
 
-// Where the environment lives in every program (GLSL's ENV_* defines, shader_constants.cpp):
-// units and a uniform-block binding no pass uses for anything else.
-constexpr int kEnvironmentBlockBinding = 11;
+// What every program reads of the environment (shaders/environment.glsl's u_env).
+#define GIS_ENVIRONMENT_BLOCK(M, A) \
+    M(vec4, constant)          /* rgb: a constant environment's radiance */ \
+    M(int, width)              /* a map's texels */ \
+    M(int, height) \
+    M(int, isMap)              /* 0: the constant above is the environment */ \
+    M(float, cdfTotal)         /* the sampling CDFs' total weight */ \
+    M(float, texelSteradians)  /* the mean solid angle of a level-0 texel */ \
+    A(vec4, sh, 9)             /* rgb: the radiance's SH9 projection (environment.h's basis order) */
+GIS_UNIFORM_BLOCK(EnvironmentBlock, 11, GIS_ENVIRONMENT_BLOCK)
+
+// The texture units the environment holds in every program (GLSL's ENV_*_UNIT defines,
+// shader_constants.cpp), five consecutive ones no pass uses for anything else: bind() clears their
+// samplers as one range.
 constexpr int kEnvironmentBrdfUnit = 11;
-constexpr int kEnvironmentRadianceUnit = 12;
-constexpr int kEnvironmentSpecularUnit = 13;
-constexpr int kEnvironmentMarginalUnit = 14;
-constexpr int kEnvironmentConditionalUnit = 15;
-static_assert(kEnvironmentRadianceUnit == kEnvironmentBrdfUnit + 1 && kEnvironmentSpecularUnit == kEnvironmentRadianceUnit + 1 && kEnvironmentMarginalUnit == kEnvironmentRadianceUnit + 2 &&
-                  kEnvironmentConditionalUnit == kEnvironmentRadianceUnit + 3,
-              "bind() clears the five units' samplers as one range");
+constexpr int kEnvironmentRadianceUnit = kEnvironmentBrdfUnit + 1;
+constexpr int kEnvironmentSpecularUnit = kEnvironmentBrdfUnit + 2;
+constexpr int kEnvironmentMarginalUnit = kEnvironmentBrdfUnit + 3;
+constexpr int kEnvironmentConditionalUnit = kEnvironmentBrdfUnit + 4;
+constexpr int kEnvironmentUnits = 5;
 // Roughness levels of the prefiltered specular chain: level i holds roughness i / (levels - 1).
 constexpr int kEnvironmentSpecularLevels = 6;
 // The split-sum table's texels along N.V and along roughness.
@@ -51,11 +61,6 @@ public:
     GpuEnvironment(const GpuEnvironment&) = delete;
     GpuEnvironment& operator=(const GpuEnvironment&) = delete;
 
-    bool isMap() const { return map_ != nullptr; }
-    const std::string& path() const { return path_; }
-    // The map as loaded (isMap() only): tests compare against its CPU SH projection.
-    const EnvironmentMap& map() const { return *map_; }
-    const Sh9& sh() const { return sh_; }
     // Binds the block and the textures; `constant` is the radiance of a constant environment
     // (ignored for a map).
     void bind(glm::vec3 constant);
@@ -67,13 +72,11 @@ private:
     void prefilterSpecular();
     void buildBrdfTable();
 
-    std::string path_;
     std::unique_ptr<EnvironmentMap> map_;
-    Sh9 sh_{};
     float total_ = 0.0f;
     gl::Texture radiance_, specular_, marginal_, conditional_, brdf_;
-    gl::Buffer block_;
-    glm::vec3 uploadedConstant_{-1.0f};
+    EnvironmentBlock values_;
+    gl::UniformBuffer<EnvironmentBlock> block_;
 };
 
 }  // namespace gis

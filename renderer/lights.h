@@ -26,6 +26,9 @@ struct GpuLight {  // std430 and std140 alike (vec4s and a mat4), mirrors shader
 // 100 x 160 bytes fits the 16 KiB every GL 4.5 driver must allow a block. The light buffer holds at
 // least this many entries so the block is always backed; scenes with more use the storage buffer.
 constexpr int kUniformBlockLights = 100;
+// The lights' binding point, as a uniform block and as a storage buffer (GLSL's LIGHTS_BINDING);
+// parameter blocks (gl/uniform_block.h) start above it.
+constexpr int kLightsBinding = 0;
 static_assert(kUniformBlockLights * sizeof(GpuLight) <= 16384, "GL_MAX_UNIFORM_BLOCK_SIZE is at least 16 KiB");
 
 // GL_MAX_ARRAY_TEXTURE_LAYERS's GL 4.5 minimum (2048 on most drivers): what a check without a

@@ -166,7 +166,7 @@ void RayScene::updateLights(const Scene& scene) {
 }
 
 void RayScene::bind(GLuint textureUnit) const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightsBinding, lights.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, nodes.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, triangles.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, attributes.id());

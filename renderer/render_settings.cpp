@@ -33,9 +33,11 @@ bool physicallyBased(DiffuseModel d, SpecularModel s) {
     return (d == DiffuseModel::Lambert || d == DiffuseModel::Burley) && (s == SpecularModel::Ggx || s == SpecularModel::None);
 }
 
-void checkEnvironmentChoice(bool background, const std::string& environment) {
+void checkEnvironmentChoice(bool background, const std::string& environment, bool ambient) {
     if (background && !environment.empty())
         throw Error("background and environment both set the radiance of rays that leave the scene: give one of them");
+    if (ambient && !environment.empty())
+        throw Error("--ambient has no effect with --environment (the map lights what the ambient would): drop one");
 }
 
 void setParam(RenderSettings& s, const std::string& fullKey, const std::string& text) {

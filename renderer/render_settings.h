@@ -53,8 +53,9 @@ struct RenderSettings {
 };
 
 // An environment is a map or a constant, not both: --background with --environment (or the
-// viewer's `background` with `environment`) is one error, the same for every caller.
-void checkEnvironmentChoice(bool background, const std::string& environment);
+// viewer's `background` with `environment`) is one error, the same for every caller; and a map is
+// the baseline's ambient, so an ambient given beside it (`ambient`) would be ignored: refused too.
+void checkEnvironmentChoice(bool background, const std::string& environment, bool ambient = false);
 
 // Parses and validates "method.key" = text against the registry and stores it in s.params.
 void setParam(RenderSettings& s, const std::string& fullKey, const std::string& text);

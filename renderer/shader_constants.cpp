@@ -12,6 +12,7 @@
 #include "gi/sdf/sdf_gi_uniforms.h"
 #include "gl/gl.h"
 #include "gl/shader.h"
+#include "lights.h"
 #include "sdf/sdf_uniforms.h"
 #include "uniforms.h"
 #include "volume/occupancy.h"
@@ -54,11 +55,14 @@ const std::vector<gl::UniformBlockDesc>& uniformBlocks() {
         voxel::VctDebugBlock::desc(),
         sdf::SdfMarchBlock::desc(),
         sdfgi::SdfDebugBlock::desc(),
+        sdfgi::SdfTraceBlock::desc(),
+        sdfgi::SdfTemporalBlock::desc(),
         probes::ProbeUpdateBlock::desc(),
         probes::ProbeGatherBlock::desc(),
         hddagi::HddagiSliceBlock::desc(),
         SsaoBlock::desc(),
         SsaoTemporalBlock::desc(),
+        EnvironmentBlock::desc(),
     };
     return all;
 }
@@ -69,11 +73,11 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
             {"MAX_HALF_FLOAT", glslFloat(gl::kMaxHalfFloat)},
             {"SDF_MAX_CASCADES", std::to_string(kMaxCascades)},
             {"MAX_AO_KERNEL", std::to_string(kSsaoMaxKernel)},
+            {"LIGHTS_BINDING", std::to_string(kLightsBinding)},
             {"OCC_BLOCK", std::to_string(kOccupancyBlock)},
             {"OCC_REGION", std::to_string(kOccupancyRegion)},
             {"OCC_BLOCKS_BINDING", std::to_string(kOccupancyBlocksBinding)},
             {"OCC_REGIONS_BINDING", std::to_string(kOccupancyRegionsBinding)},
-            {"ENV_BLOCK_BINDING", std::to_string(kEnvironmentBlockBinding)},
             {"ENV_BRDF_UNIT", std::to_string(kEnvironmentBrdfUnit)},
             {"ENV_RADIANCE_UNIT", std::to_string(kEnvironmentRadianceUnit)},
             {"ENV_SPECULAR_UNIT", std::to_string(kEnvironmentSpecularUnit)},

@@ -24,8 +24,6 @@ constexpr int kSsaoMaxKernel = 256;
     X(U_OCCLUSION_STRENGTH, 62, 1) \
     X(U_NORMAL_SCALE, 63, 1) \
     X(U_DOUBLE_SIDED, 64, 1) \
-    /* shadow pass */ \
-    X(U_LIGHT_POS_FAR, 10, 1) /* point light position, 1/far */ \
     /* lighting pass */ \
     X(U_INV_VIEW_PROJ, 20, 1) \
     X(U_CAMERA_POS, 21, 1) \
@@ -49,7 +47,6 @@ constexpr int kSsaoMaxKernel = 256;
     X(U_INV_PROJ, 53, 1) \
     X(U_VIEW, 54, 1) \
     X(U_AO_KERNEL_SIZE, 55, 1) \
-    X(U_FRAME_INDEX, 56, 1) \
     X(U_PREV_VIEW_PROJ, 57, 1) \
     X(U_AO_KERNEL, 600, kSsaoMaxKernel) /* a vec4 per direction; past every table, within GL's 1024 */ \
     /* environment prefilter (renderer/environment_gpu.cpp) */ \

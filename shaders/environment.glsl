@@ -7,18 +7,13 @@
 #define ENVIRONMENT_GLSL
 #include "common.glsl"
 
-layout(std140, binding = ENV_BLOCK_BINDING) uniform EnvironmentBlock {
-    vec4 u_envConstant;   // rgb: a constant environment's radiance
-    ivec4 u_envSize;      // width, height, radiance mip levels, 1 = a map
-    vec4 u_envSampling;   // x: the CDFs' total weight, y: mean steradians of a level-0 texel
-    vec4 u_envSh[9];      // rgb: SH9 projection of the radiance (environment.h's basis order)
-};
+EnvironmentBlock u_env;  // renderer/environment_gpu.h
 layout(binding = ENV_RADIANCE_UNIT) uniform sampler2D s_envRadiance;        // box-filtered mips
 layout(binding = ENV_SPECULAR_UNIT) uniform sampler2D s_envSpecular;        // GGX-prefiltered levels
 layout(binding = ENV_MARGINAL_UNIT) uniform sampler2D s_envMarginal;        // (height + 1) x 1
 layout(binding = ENV_CONDITIONAL_UNIT) uniform sampler2D s_envConditional;  // (width + 1) x height
 
-bool environmentIsMap() { return u_envSize.w == 1; }
+bool environmentIsMap() { return u_env.isMap != 0; }
 
 vec2 environmentUv(vec3 d) {
     d = normalize(d);
@@ -34,7 +29,7 @@ vec3 environmentDirection(vec2 uv) {
 
 // Radiance arriving along -d (d points away from the scene).
 vec3 environmentRadiance(vec3 d) {
-    if (!environmentIsMap()) return u_envConstant.rgb;
+    if (!environmentIsMap()) return u_env.constant.rgb;
     return textureLod(s_envRadiance, environmentUv(d), 0.0).rgb;
 }
 
@@ -42,8 +37,8 @@ vec3 environmentRadiance(vec3 d) {
 // much (box-filtered in the equirectangular domain: near the poles a texel spans less, so wide
 // cones there are averaged over less than their solid angle).
 vec3 environmentCone(vec3 d, float steradians) {
-    if (!environmentIsMap()) return u_envConstant.rgb;
-    float lod = 0.5 * log2(max(steradians / u_envSampling.y, 1.0));
+    if (!environmentIsMap()) return u_env.constant.rgb;
+    float lod = 0.5 * log2(max(steradians / u_env.texelSteradians, 1.0));
     return textureLod(s_envRadiance, environmentUv(d), lod).rgb;
 }
 
@@ -53,7 +48,7 @@ float coneSteradians(float tanHalf) { return 2.0 * PI * (1.0 - inversesqrt(1.0 +
 // Irradiance E(n) from the SH9 projection, the cosine lobe's band weights pi, 2pi/3, pi/4
 // (Ramamoorthi and Hanrahan 2001, eq. 8): environment.cpp's shIrradiance. A constant gives pi L.
 vec3 environmentIrradiance(vec3 n) {
-    if (!environmentIsMap()) return PI * u_envConstant.rgb;
+    if (!environmentIsMap()) return PI * u_env.constant.rgb;
     n = normalize(n);
     float b[9] = float[9](0.282095, 0.488603 * n.y, 0.488603 * n.z, 0.488603 * n.x, 1.092548 * n.x * n.y,
                           1.092548 * n.y * n.z, 0.315392 * (3.0 * n.z * n.z - 1.0), 1.092548 * n.x * n.z,
@@ -61,14 +56,14 @@ vec3 environmentIrradiance(vec3 n) {
     float band[9] = float[9](PI, 2.0 * PI / 3.0, 2.0 * PI / 3.0, 2.0 * PI / 3.0, PI / 4.0, PI / 4.0, PI / 4.0,
                              PI / 4.0, PI / 4.0);
     vec3 e = vec3(0.0);
-    for (int k = 0; k < 9; ++k) e += band[k] * b[k] * u_envSh[k].rgb;
+    for (int k = 0; k < 9; ++k) e += band[k] * b[k] * u_env.sh[k].rgb;
     return max(e, vec3(0.0));
 }
 
 // The split sum's first factor (Karis 2013): the radiance around the mirror direction R filtered
 // by the GGX lobe of `roughness` (the prefiltered chain, one roughness per level).
 vec3 environmentSpecular(vec3 R, float roughness) {
-    if (!environmentIsMap()) return u_envConstant.rgb;
+    if (!environmentIsMap()) return u_env.constant.rgb;
     float levels = float(textureQueryLevels(s_envSpecular));
     return textureLod(s_envSpecular, environmentUv(R), clamp(roughness, 0.0, 1.0) * (levels - 1.0)).rgb;
 }
@@ -88,26 +83,26 @@ int environmentInterval(sampler2D cdf, int row, int n, float target) {
 }
 
 float environmentRowSteradians(int y) {
-    float h = float(u_envSize.y);
-    return 2.0 * PI / float(u_envSize.x) * (cos(PI * float(y) / h) - cos(PI * float(y + 1) / h));
+    float h = float(u_env.height);
+    return 2.0 * PI / float(u_env.width) * (cos(PI * float(y) / h) - cos(PI * float(y + 1) / h));
 }
 
 // Density per steradian of sampling texel (x, y): its weight over the total, spread evenly over it.
 float environmentTexelPdf(int x, int y) {
     float w = texelFetch(s_envConditional, ivec2(x + 1, y), 0).r - texelFetch(s_envConditional, ivec2(x, y), 0).r;
-    return w / (u_envSampling.x * environmentRowSteradians(y));
+    return w / (u_env.cdfTotal * environmentRowSteradians(y));
 }
 
 float environmentPdf(vec3 d) {
     vec2 uv = environmentUv(d);
-    ivec2 t = min(ivec2(uv * vec2(u_envSize.xy)), u_envSize.xy - 1);
+    ivec2 t = min(ivec2(uv * vec2(u_env.width, u_env.height)), ivec2(u_env.width, u_env.height) - 1);
     return environmentTexelPdf(t.x, t.y);
 }
 
 // A direction drawn from the map's distribution and its pdf (per steradian). Maps only.
 vec3 sampleEnvironment(vec2 u, out float pdf) {
-    int w = u_envSize.x, h = u_envSize.y;
-    float total = u_envSampling.x;
+    int w = u_env.width, h = u_env.height;
+    float total = u_env.cdfTotal;
     int y = environmentInterval(s_envMarginal, 0, h, u.y * total);
     float rowStart = texelFetch(s_envMarginal, ivec2(y, 0), 0).r;
     float row = texelFetch(s_envMarginal, ivec2(y + 1, 0), 0).r - rowStart;

@@ -4,13 +4,12 @@
 // a fixed Hammersley set so the table is the same every run.
 #include "common.glsl"
 #include "environment_brdf.glsl"
+#include "sampling.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rg32f) uniform writeonly image2D u_table;
 
 const uint SAMPLES = 1024u;
-
-vec2 hammersley(uint i, uint n) { return vec2(float(i) / float(n), float(bitfieldReverse(i)) * 2.3283064365386963e-10); }
 
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
@@ -27,8 +26,8 @@ void main() {
     vec2 sum = vec2(0.0);
     for (uint i = 0u; i < SAMPLES; ++i) {
         vec2 u = hammersley(i, SAMPLES);
-        float cosH = sqrt((1.0 - u.x) / (1.0 + (a2 - 1.0) * u.x)), sinH = sqrt(max(0.0, 1.0 - cosH * cosH));
-        vec3 H = vec3(sinH * cos(2.0 * PI * u.y), sinH * sin(2.0 * PI * u.y), cosH);
+        vec3 H = sampleGgxHalfVector(u, a2);
+        float cosH = H.z;
         vec3 L = reflect(-V, H);
         float VoH = dot(V, H);
         if (L.z <= 0.0 || VoH <= 0.0) continue;

@@ -14,9 +14,6 @@ layout(location = U_ENV_ROUGHNESS) uniform float u_roughness;
 
 const uint SAMPLES = 256u;
 
-// Hammersley point i of n (the radical inverse in base 2).
-vec2 hammersley(uint i, uint n) { return vec2(float(i) / float(n), float(bitfieldReverse(i)) * 2.3283064365386963e-10); }
-
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(u_level);
@@ -34,11 +31,10 @@ void main() {
     float weight = 0.0;
     for (uint i = 0u; i < SAMPLES; ++i) {
         vec2 u = hammersley(i, SAMPLES);
-        // GGX half-vector density D(h) cos(theta_h) (Walter et al. 2007, eq. 35-36).
         float a2 = alpha * alpha;
-        float cosH = sqrt((1.0 - u.x) / (1.0 + (a2 - 1.0) * u.x)), sinH = sqrt(max(0.0, 1.0 - cosH * cosH));
-        float phi = 2.0 * PI * u.y;
-        vec3 H = t * (sinH * cos(phi)) + b * (sinH * sin(phi)) + R * cosH;
+        vec3 h = sampleGgxHalfVector(u, a2);
+        float cosH = h.z;
+        vec3 H = t * h.x + b * h.y + R * cosH;
         vec3 L = reflect(-R, H);
         float NoL = dot(R, L);
         if (NoL <= 0.0) continue;

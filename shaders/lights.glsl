@@ -16,9 +16,9 @@ struct GpuLight {
 // fit (measured: that pass 35-40% faster on llvmpipe than with the storage buffer, same image);
 // the ray tracers and scenes with more lights read it as a storage buffer.
 #ifdef LIGHTS_UNIFORM_BLOCK_CAPACITY
-layout(std140, binding = 0) uniform LightBlock { GpuLight u_lights[LIGHTS_UNIFORM_BLOCK_CAPACITY]; };
+layout(std140, binding = LIGHTS_BINDING) uniform LightBlock { GpuLight u_lights[LIGHTS_UNIFORM_BLOCK_CAPACITY]; };
 #else
-layout(std430, binding = 0) readonly buffer LightBuffer { GpuLight u_lights[]; };
+layout(std430, binding = LIGHTS_BINDING) readonly buffer LightBuffer { GpuLight u_lights[]; };
 #endif
 
 // glTF's recommended smooth range window: (1 - (d/range)^4)^2, 1 without a range.

@@ -17,3 +17,15 @@ vec3 cosineDirection(vec3 n, vec2 u) {
     float r = sqrt(u.x), phi = 2.0 * PI * u.y;
     return t * (r * cos(phi)) + b * (r * sin(phi)) + n * sqrt(max(0.0, 1.0 - u.x));
 }
+
+// Hammersley point i of n: i / n and the radical inverse of i in base 2 (a low-discrepancy set for
+// the prefiltering integrals, which must not flicker between runs).
+vec2 hammersley(uint i, uint n) { return vec2(float(i) / float(n), float(bitfieldReverse(i)) * 2.3283064365386963e-10); }
+
+// A GGX half vector around +Z (a2 = alpha^2) with density D(h) cos(theta_h) (Walter et al. 2007,
+// eq. 35-36); z is cos(theta_h).
+vec3 sampleGgxHalfVector(vec2 u, float a2) {
+    float cosH = sqrt((1.0 - u.x) / (1.0 + (a2 - 1.0) * u.x)), sinH = sqrt(max(0.0, 1.0 - cosH * cosH));
+    float phi = 2.0 * PI * u.y;
+    return vec3(sinH * cos(phi), sinH * sin(phi), cosH);
+}

@@ -1,5 +1,6 @@
 #include "gi/params.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -25,15 +26,26 @@ std::string number(double v) {
     throw Error(method + "." + d.key + ": '" + text + "' " + why);
 }
 
-// Why `text` is not a number this parser takes ("" when it is one, in `out`).
-std::string parseDouble(const std::string& text, double& out) {
-    if (!isPlainNumber(text)) return "is not a number";
+enum class NumberText { Number, NotPlain, TooLarge, TooSmall };
+
+// Parameters hold floats: a number a float cannot hold is refused rather than read as Inf or as 0
+// (1e-50 would become 0, which for ssao.radius means "15% of the scene").
+NumberText parseNumber(const std::string& text, double& out) {
+    if (!isPlainNumber(text)) return NumberText::NotPlain;
     out = std::strtod(text.c_str(), nullptr);
-    if (!std::isfinite(out)) return "is too large for a double";
+    if (!std::isfinite(float(out))) return NumberText::TooLarge;
     const std::string mantissa = text.substr(0, text.find_first_of("eE"));
-    if (out == 0.0 && mantissa.find_first_of("123456789") != std::string::npos)
-        return "is too small for a double (it would be read as 0)";
-    return "";
+    if (float(out) == 0.0f && mantissa.find_first_of("123456789") != std::string::npos) return NumberText::TooSmall;
+    return NumberText::Number;
+}
+
+// The message for a number parseNumber refused; `notPlain` says what the text should have been.
+std::string numberProblem(NumberText problem, const std::string& notPlain) {
+    switch (problem) {
+        case NumberText::TooLarge: return "is too large for a float";
+        case NumberText::TooSmall: return "is too small for a float (it would be read as 0)";
+        default: return notPlain;
+    }
 }
 
 }  // namespace
@@ -119,8 +131,8 @@ ParamValue parseParamValue(const std::string& method, const ParamDesc& d, const 
     switch (d.type) {
         case ParamType::Int:
         case ParamType::Float:
-            if (const std::string why = parseDouble(text, v.number); !why.empty())
-                fail(method, d, text, why == "is not a number" && d.type == ParamType::Int ? "is not an integer" : why);
+            if (const NumberText n = parseNumber(text, v.number); n != NumberText::Number)
+                fail(method, d, text, numberProblem(n, d.type == ParamType::Int ? "is not an integer" : "is not a number"));
             break;
         case ParamType::Bool:
             if (text == "true" || text == "1" || text == "on") v.number = 1;
@@ -134,8 +146,8 @@ ParamValue parseParamValue(const std::string& method, const ParamDesc& d, const 
             std::string item;
             while (std::getline(ss, item, ',')) {
                 double x = 0;
-                if (const std::string why = parseDouble(item, x); !why.empty())
-                    fail(method, d, text, why == "is not a number" ? "is not a colour (R,G,B or one value)" : why);
+                if (const NumberText n = parseNumber(item, x); n != NumberText::Number)
+                    fail(method, d, text, numberProblem(n, "is not a colour (R,G,B or one value)"));
                 parts.push_back(x);
             }
             if (parts.size() == 1) v.colour = glm::vec3(float(parts[0]));

@@ -210,8 +210,8 @@ void LightingPass::draw(const Frame& frame, GLuint p, GLuint fbo, float maxRadia
                                  hasEmitters_ ? frame.texture(resource::kEmittersDirect) : unit_.id()};
     glBindTextures(0, 11, textures);
     glBindSamplers(0, 11, nullptr);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frame.buffer(resource::kLights));
-    glBindBufferBase(GL_UNIFORM_BUFFER, 0, frame.buffer(resource::kLights));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightsBinding, frame.buffer(resource::kLights));
+    glBindBufferBase(GL_UNIFORM_BUFFER, kLightsBinding, frame.buffer(resource::kLights));
     glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, U_CAMERA_POS, 1, &frame.camera.position[0]);
     glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));

@@ -176,6 +176,9 @@ constexpr float kDefaultSkyRadiance = 0.4f;
 bool hasOwnLighting(const Scene& scene);  // a punctual light, or emission that lights the scene
 // Applies `mode`; returns true when the default sun and sky were added (the caller says so once).
 bool applyLighting(Scene& scene, LightingMode mode);
+// An environment map is the sky (the shipped one has the default sun in it): under one, auto adds
+// no second sun and sky, as `scene` would not.
+LightingMode lightingUnderEnvironment(LightingMode mode, bool environmentMap);
 
 // Which camera to render from: the file's camera `index` (-1: the first, or `auto` framing when
 // the file has none), `autoFrame` (frame the scene's bounds), or a camera at `position` looking at

@@ -96,6 +96,10 @@ int feedbackBouncesFor(const Scene& scene) {
 
 bool hasOwnLighting(const Scene& scene) { return !scene.lights.empty() || emissionLightsScene(scene); }
 
+LightingMode lightingUnderEnvironment(LightingMode mode, bool environmentMap) {
+    return mode == LightingMode::Auto && environmentMap ? LightingMode::Scene : mode;
+}
+
 bool applyLighting(Scene& scene, LightingMode mode) {
     if (mode == LightingMode::Scene) return false;
     if (mode == LightingMode::None) {

@@ -11,7 +11,6 @@ namespace gis::sdf {
 #define GIS_SDF_UNIFORMS(X) \
     X(US_RESOLUTION, 400, 1) /* cells per edge */ \
     X(US_JFA_STEP, 401, 1) /* the jump of this flood pass, in cells */ \
-    X(US_ORIGIN, 402, 1) /* world position of the volume's minimum corner */ \
     X(US_CELL_SIZE, 403, 1) /* world edge of one cell */ \
     X(US_FAR, 404, 1) /* the value of cells no seed reaches */ \
     X(US_HAS_NORMALS, 405, 1) /* 1: sign from the seeds' normals; 0: unsigned */ \

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "emitters/emitter_lights.h"
+#include "lights.h"
 #include "gl/dispatch.h"
 #include "voxel/voxel_uniforms.h"
 
@@ -97,7 +98,7 @@ void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
     glBindSamplers(0, 7, nullptr);
     if (lights.shadowMaps) glBindTextureUnit(5, lights.shadowMaps);
     if (lights.shadowCubes) glBindTextureUnit(6, lights.shadowCubes);
-    if (lights.buffer) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights.buffer);
+    if (lights.buffer) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightsBinding, lights.buffer);
     const gl::Texture& target = bounces_ > 1 ? direct_ : radiance_;
     glBindImageTexture(0, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch3D(n, n, n);

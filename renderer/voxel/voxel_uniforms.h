@@ -23,7 +23,6 @@ namespace gis::voxel {
     X(UV_CONE_SET, 112, 1) /* 0 = six cones (60 degrees), 1 = four (90), 2 = many (32 of 14) */ \
     X(UV_ANISOTROPIC, 115, 1) /* 0 isotropic, 1 directional mips, 2 directional without back faces */ \
     X(UV_INTENSITY, 116, 1) \
-    X(UV_BOUNCE, 118, 1) \
     X(UV_NORMAL_WEIGHT, 119, 1) /* directional mip from level 0: 1 weigh voxels by |normal . axis|, 2 cull back faces */ \
     X(UV_EMISSION_WEIGHT, 120, 1) /* injection: 1 = emission is a light source of the volume, 0 = not (emitters.mode) */ \
     X(UV_EMITTER_SAMPLES, 121, 1) /* injection with emitter light: emitter count, samples per voxel */ \

@@ -21,6 +21,7 @@
 #include "settings_io.h"
 #include "view_session.h"
 #include "view_state.h"
+#include "lights.h"
 #include "uniforms.h"
 
 namespace gis::test {
@@ -397,7 +398,7 @@ TEST(Shaders, UniformBlocksAreLaidOutAsTheirCppStructs) {
     context();
     std::string preamble = "#version 450 core\n";
     for (const auto& [name, value] : sharedShaderDefines()) preamble += "#define " + name + " " + value + "\n";
-    std::set<int> bindings{0};
+    std::set<int> bindings{kLightsBinding};
     ASSERT_FALSE(uniformBlocks().empty());
     for (const gl::UniformBlockDesc& b : uniformBlocks()) {
         EXPECT_TRUE(bindings.insert(b.binding).second) << b.name << ": binding " << b.binding << " is taken";

@@ -518,4 +518,27 @@ TEST(Hardening, SdfResolutionListsOnlyWhatTheVoxelBudgetHolds) {
     EXPECT_NE(r.err.find("out of range [8, " + std::to_string(largest) + "]"), std::string::npos) << r.err;
 }
 
+// `bench --plan` refuses a scene named twice, as it refuses `--methods none,none` (issue 27:
+// duplicates are refused at --plan): the same builtin, or one file by another spelling or through
+// a symlink, planned every job twice under a second name (cornell-2), and the merge gave two rows
+// of the same numbers.
+TEST(Hardening, BenchPlanRefusesASceneNamedTwice) {
+    const std::string dir = tempDir("bench_plan_scene_twice");
+    ASSERT_EQ(runCli("export --scene builtin:cornell --out " + dir + "/a.gltf").status, 0);
+    fs::create_symlink(dir + "/a.gltf", dir + "/link.gltf");
+    const std::string plan =
+        "bench --plan --methods none --presets low --size 8x8 --frames 2 --warmup 1 --reference-spp 1 --scenes ";
+    for (const std::string& scenes : {std::string("builtin:cornell,builtin:cornell"), dir + "/a.gltf," + dir + "/./a.gltf",
+                                      dir + "/a.gltf," + dir + "/link.gltf"}) {
+        const gis::test::CliResult r = runCli(plan + scenes);
+        EXPECT_EQ(r.status, 1) << scenes;
+        EXPECT_EQ(countLines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find("--scenes names"), std::string::npos) << r.err;
+        EXPECT_TRUE(r.out.empty()) << r.out;
+    }
+    const gis::test::CliResult two = runCli(plan + "builtin:cornell," + dir + "/a.gltf");
+    EXPECT_EQ(two.status, 0) << two.err;
+    EXPECT_EQ(countLines(two.out), 4) << two.out;  // a reference and a cell per scene
+}
+
 }  // namespace

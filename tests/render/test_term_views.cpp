@@ -98,7 +98,8 @@ TEST_P(TermViews, AddUpToTheFinalImageBeforeToneMapping) {
         EXPECT_GT(maxChannel(terms[2]), 0.01f) << "indirect.specular";
     }
     // AO: a grey occlusion in [0, 1]; partly occluded pixels (the box's corners) where the method
-    // computes an occlusion, none else (the materials have no occlusion texture).
+    // computes an occlusion (sdf only with sdf.ao, off by default: its case turns it on), none else
+    // (the materials have no occlusion texture).
     int partly = 0;
     for (size_t i = 0; i < ao.rgba.size(); i += 4) {
         ASSERT_GE(ao.rgba[i], 0.0f);
@@ -118,7 +119,7 @@ TEST_P(TermViews, AddUpToTheFinalImageBeforeToneMapping) {
 
 INSTANTIATE_TEST_SUITE_P(, TermViews,
                          ::testing::Values(Case{"builtin:cornell", "none", ""}, Case{"builtin:cornell", "ssao", ""},
-                                           Case{"builtin:cornell", "vct", ""}, Case{"builtin:cornell", "sdf", ""},
+                                           Case{"builtin:cornell", "vct", ""}, Case{"builtin:cornell", "sdf", "--set sdf.ao=1"},
                                            Case{"builtin:cornell", "probes", "--preset low --set probes.max-updates=8"},
                                            Case{"builtin:cornell-area", "vct", "--set emitters.accumulate=4"},
                                            Case{"builtin:brdf-gallery", "vct", ""}),

@@ -235,29 +235,5 @@ TEST(Window, AKeyTapShorterThanAFrameTakesEffectUnderXvfb) {
     EXPECT_NE(r.err.find("bad.txt:2:"), std::string::npos) << r.err;
 }
 
-// `bench --plan` refuses a scene named twice, as it refuses `--methods none,none` (issue 27:
-// duplicates are refused at --plan): the same builtin, or one file by another spelling or through
-// a symlink, planned every job twice under a second name (cornell-2), and the merge gave two rows
-// of the same numbers. (A bench test among the view tests only because of where this change could
-// be made; it belongs beside Hardening.MergeVerifiesEachLineAgainstItsIdAndRefusesDuplicates.)
-TEST(BenchPlan, ASceneNamedTwiceIsRefused) {
-    const std::string dir = tempDir("bench_plan_scene_twice");
-    ASSERT_EQ(runCli("export --scene builtin:cornell --out " + dir + "/a.gltf").status, 0);
-    fs::create_symlink(dir + "/a.gltf", dir + "/link.gltf");
-    const std::string plan =
-        "bench --plan --methods none --presets low --size 8x8 --frames 2 --warmup 1 --reference-spp 1 --scenes ";
-    for (const std::string& scenes : {std::string("builtin:cornell,builtin:cornell"), dir + "/a.gltf," + dir + "/./a.gltf",
-                                      dir + "/a.gltf," + dir + "/link.gltf"}) {
-        const CliResult r = runCli(plan + scenes);
-        EXPECT_EQ(r.status, 1) << scenes;
-        EXPECT_EQ(countLines(r.err), 1) << r.err;
-        EXPECT_NE(r.err.find("--scenes names"), std::string::npos) << r.err;
-        EXPECT_TRUE(r.out.empty()) << r.out;
-    }
-    const CliResult two = runCli(plan + "builtin:cornell," + dir + "/a.gltf");
-    EXPECT_EQ(two.status, 0) << two.err;
-    EXPECT_EQ(countLines(two.out), 4) << two.out;  // a reference and a cell per scene
-}
-
 }  // namespace
 }  // namespace gis::test

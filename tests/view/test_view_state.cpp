@@ -282,7 +282,7 @@ TEST(SettingsFile, AWholeNumberWrittenAsADoubleLoads) {
 // word, and 1e-400 (strtod reads it as 0; ssao.radius 0 means "15% of the scene") is refused as
 // too small, where they were all taken silently. 0.0e-400 is zero however it is written.
 TEST(Script, ParameterValuesAreStrictNumbers) {
-    for (const char* bad : {"0x10", "+5", ".5", "inf", "1e-400", "5e-999"}) {
+    for (const char* bad : {"0x10", "+5", ".5", "inf", "1e-400", "5e-999", "1e-50"}) {
         for (const std::string& line : {std::string("set 0 ssao.radius ") + bad, std::string("set 0 ssao.slices ") + bad}) {
             try {
                 parseScript("method 0 ssao\n" + line + "\n", "s.txt");

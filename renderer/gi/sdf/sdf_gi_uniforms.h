@@ -15,18 +15,16 @@ namespace gis::sdfgi {
     X(UG_RESOLUTION, 423, 1) /* cells per edge */ \
     X(UG_RAYS, 425, 1) /* diffuse rays per traced pixel */ \
     X(UG_FRAME, 426, 1) /* frames rendered before this one (decorrelates the rays) */ \
-    X(UG_SPECULAR, 428, 1) /* reflection ray on (0/1), roughness cut-off */ \
     X(UG_SCALE, 429, 1) /* full-resolution pixels per traced pixel (1 or 2) */ \
     X(UG_AO, 430, 1) /* soft-occlusion strength */ \
     X(UG_INTENSITY, 431, 1) \
     X(UG_PREV_VIEW_PROJ, 432, 1) \
-    X(UG_TEMPORAL, 433, 1) /* largest history weight, history valid (0/1), camera moved (0/1) */ \
     X(UG_FILTER, 434, 1) /* filter radius in traced pixels */ \
     X(UG_PREV_CAMERA_POS, 435, 1) \
     X(UG_CASCADES, 437, kMaxCascades) /* vec4 per cascade: origin xyz, edge; finest first */ \
     X(UG_CASCADE_COUNT, 441, 1) \
     X(UG_SLICE_CASCADE, 442, 1) /* the cascade (layer) sdf.slice shows */ \
-    X(UG_GATHER, 443, 1) /* diffuse from the probes (0/1), gather bias x the probe step */
+
 
 enum SdfGiUniform : int { GIS_SDF_GI_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kSdfGiUniforms[] = {GIS_SDF_GI_UNIFORMS(GIS_UNIFORM_SLOT)};
@@ -38,4 +36,19 @@ inline constexpr gl::UniformSlot kSdfGiUniforms[] = {GIS_SDF_GI_UNIFORMS(GIS_UNI
     M(float, slicePosition) /* 0..1 along the axis */ \
     M(int, maxSteps)        /* the steps view's full scale */
 GIS_UNIFORM_BLOCK(SdfDebugBlock, 5, GIS_SDF_DEBUG_BLOCK)
+
+// What the trace does per traced pixel besides marching (sdf_trace.comp).
+#define GIS_SDF_TRACE_BLOCK(M, A) \
+    M(int, specular)            /* 1: a mirror ray for surfaces below the roughness cut-off */ \
+    M(float, specularRoughness) /* that cut-off */ \
+    M(int, probeGather)         /* 1: diffuse from SDFGI's probes, not rays */ \
+    M(float, gatherBias)        /* the probe lookup's offset, x the smallest probe step */
+GIS_UNIFORM_BLOCK(SdfTraceBlock, 12, GIS_SDF_TRACE_BLOCK)
+
+// The rays' temporal accumulation (sdf_temporal.comp).
+#define GIS_SDF_TEMPORAL_BLOCK(M, A) \
+    M(float, maxWeight)   /* the history's largest weight: 1 / (1 - it) frames while the camera moves */ \
+    M(int, hasHistory) \
+    M(int, cameraMoved)
+GIS_UNIFORM_BLOCK(SdfTemporalBlock, 13, GIS_SDF_TEMPORAL_BLOCK)
 }  // namespace gis::sdfgi

@@ -79,7 +79,8 @@ std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Sc
 }
 
 SdfGiPass::SdfGiPass(SceneServices& services, const RenderSettings& settings)
-    : built_(sdfParams().read("sdf", settings.params)), scope_{&services.ledger, name()}, march_(scope_), debug_(scope_) {
+    : built_(sdfParams().read("sdf", settings.params)), scope_{&services.ledger, name()}, march_(scope_), debug_(scope_),
+      traceBlock_(scope_), temporalBlock_(scope_) {
     volume_ = &services.volume(sdfVolumeRequest(built_));
     sceneBounds_ = services.bounds();
     if (built_.probeGather()) {
@@ -164,9 +165,13 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     march_.set(march);
     glProgramUniform1i(p, UG_RAYS, field_ ? 0 : s.rays);  // with probes, no diffuse rays per pixel
     glProgramUniform1ui(p, UG_FRAME, GLuint(frame.index * 7919u + frame.settings.seed));
-    glProgramUniform2f(p, UG_SPECULAR, s.specular ? 1.0f : 0.0f, s.specularRoughness);
+    SdfTraceBlock trace;
+    trace.specular = s.specular ? 1 : 0;
+    trace.specularRoughness = s.specularRoughness;
+    trace.probeGather = field_ ? 1 : 0;
+    trace.gatherBias = built_.probeField().normalBias;
+    traceBlock_.set(trace);
     glProgramUniform1f(p, UG_AO, s.aoStrength);
-    glProgramUniform2f(p, UG_GATHER, field_ ? 1.0f : 0.0f, built_.probeField().normalBias);
     if (field_) field_->bindForGather(p);
     std::vector<glm::vec4> volumes;
     const DistanceField& field = volume_->field();
@@ -194,7 +199,11 @@ void SdfGiPass::accumulate(const Frame& frame, const SdfGiSettings& s) {
     glProgramUniformMatrix4fv(p, UG_PREV_VIEW_PROJ, 1, GL_FALSE, &prevViewProj_[0][0]);
     glProgramUniform3fv(p, UG_PREV_CAMERA_POS, 1, &prevCameraPos_[0]);
     const bool moved = frame.camera.viewProj != prevViewProj_;
-    glProgramUniform3f(p, UG_TEMPORAL, s.temporal, hasHistory_ ? 1.0f : 0.0f, moved ? 1.0f : 0.0f);
+    SdfTemporalBlock temporal;
+    temporal.maxWeight = s.temporal;
+    temporal.hasHistory = hasHistory_ ? 1 : 0;
+    temporal.cameraMoved = moved ? 1 : 0;
+    temporalBlock_.set(temporal);
     const GLuint inputs[3] = {raw_.id(), history_[current_].id(), historyDistance_[current_].id()};
     glBindTextures(2, 3, inputs);
     const int next = 1 - current_;

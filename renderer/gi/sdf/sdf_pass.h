@@ -86,6 +86,8 @@ private:
     gl::Object traceProgram_, temporalProgram_, filterProgram_, debugProgram_;
     gl::UniformBuffer<sdf::SdfMarchBlock> march_;
     gl::UniformBuffer<sdfgi::SdfDebugBlock> debug_;
+    gl::UniformBuffer<sdfgi::SdfTraceBlock> traceBlock_;
+    gl::UniformBuffer<sdfgi::SdfTemporalBlock> temporalBlock_;
     glm::mat4 prevViewProj_{1.0f};
     glm::vec3 prevCameraPos_{0.0f};
     int current_ = 0;

@@ -2,7 +2,7 @@
 // history found by reprojecting the pixel's world position into the previous frame. The history
 // is trusted only where the previous frame saw the same surface there: its stored distance from
 // the previous camera must match this point's within 2% (else disocclusion: start again). The
-// blend is a running mean: while the camera moves, of at most 1 / (1 - u_temporal.x) frames (an
+// blend is a running mean: while the camera moves, of at most 1 / (1 - u_temporal.maxWeight) frames (an
 // exponential average beyond, so lighting seen from a new angle catches up); while it stands still,
 // of up to MAX_STATIC_FRAMES, so a static view keeps converging instead of flickering at the
 // exponential average's noise floor.
@@ -17,7 +17,7 @@ layout(rgba16f, binding = 0) uniform writeonly image2D i_history;
 layout(r32f, binding = 1) uniform writeonly image2D i_historyDistance;
 
 layout(location = UG_PREV_VIEW_PROJ) uniform mat4 u_prevViewProj;
-layout(location = UG_TEMPORAL) uniform vec3 u_temporal;   // largest history weight, history valid, camera moved
+SdfTemporalBlock u_temporal;
 
 const float MAX_STATIC_FRAMES = 256.0;
 layout(location = UG_CAMERA_POS) uniform vec3 u_cameraPos;
@@ -35,7 +35,7 @@ void main() {
         return;
     }
     vec4 result = vec4(current, 1.0);
-    if (u_temporal.y > 0.5 && u_temporal.x > 0.0) {
+    if (u_temporal.hasHistory != 0 && u_temporal.maxWeight > 0.0) {
         vec4 clip = u_prevViewProj * vec4(s.position, 1.0);
         if (clip.w > 0.0) {
             vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
@@ -47,7 +47,7 @@ void main() {
                 float stored = texelFetch(s_historyDistance, previous, 0).r;
                 if (stored > 0.0 && abs(stored - expected) < 0.02 * expected) {
                     vec4 history = texelFetch(s_history, previous, 0);
-                    float cap = u_temporal.z > 0.5 ? 1.0 / (1.0 - u_temporal.x) : MAX_STATIC_FRAMES;
+                    float cap = u_temporal.cameraMoved != 0 ? 1.0 / (1.0 - u_temporal.maxWeight) : MAX_STATIC_FRAMES;
                     float frames = min(history.a + 1.0, cap);
                     result = vec4(mix(history.rgb, current, 1.0 / frames), frames);
                 }

@@ -31,9 +31,8 @@ layout(location = UG_CASCADE_COUNT) uniform int u_cascadeCount;
 SdfMarchBlock u_march;
 layout(location = UG_RAYS) uniform int u_rays;
 layout(location = UG_FRAME) uniform uint u_frame;
-layout(location = UG_SPECULAR) uniform vec2 u_specular;
+SdfTraceBlock u_trace;
 layout(location = UG_AO) uniform float u_aoStrength;
-layout(location = UG_GATHER) uniform vec2 u_gather;   // from SDFGI's probes (0/1), bias x the probe step
 
 
 SdfCascades cascades() { return SdfCascades(u_cascades, u_cascadeCount, u_resolution); }
@@ -111,15 +110,15 @@ void main() {
 
     vec4 reflection = vec4(0.0);
     float roughness = texelFetch(s_gbufMaterial, pixel * u_scale, 0).y;
-    if (u_specular.x > 0.5 && roughness < u_specular.y) {
+    if (u_trace.specular != 0 && roughness < u_trace.specularRoughness) {
         vec3 R = reflect(normalize(s.position - u_cameraPos), s.normal);
         SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, R, params);
         // Blend towards the diffuse term as the lobe widens: a mirror ray is right only at 0.
-        reflection = vec4(rayRadiance(h, R), 1.0 - roughness / max(u_specular.y, 1e-6));
+        reflection = vec4(rayRadiance(h, R), 1.0 - roughness / max(u_trace.specularRoughness, 1e-6));
     }
 
     // SDFGI: the diffuse term from the probes around the surface (shaders/probes/probe_common.glsl).
-    vec3 diffuse = u_gather.x > 0.5 ? sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_gather.y, true)
+    vec3 diffuse = u_trace.probeGather != 0 ? sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_trace.gatherBias, true)
                                     : sum / float(max(u_rays, 1));
     imageStore(i_diffuse, pixel, vec4(finiteOrZero(diffuse), 1.0));
     imageStore(i_reflection, pixel, vec4(finiteOrZero(reflection.rgb), reflection.a));
