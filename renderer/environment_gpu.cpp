@@ -46,43 +46,45 @@ std::vector<ProgramDesc> GpuEnvironment::programs() { return {kPrefilterProgram,
 GpuEnvironment::GpuEnvironment(const std::string& path, gl::MemoryLedger& ledger)
     : block_(gl::MemoryScope{&ledger, "environment"}) {
     const gl::MemoryScope scope{&ledger, "environment"};
-    if (!path.empty()) map_ = std::make_unique<EnvironmentMap>(loadEnvironmentMap(path));
-    upload(scope);
-    if (map_) {
-        const Sh9 sh = projectSh9(*map_);
-        values_.width = map_->width;
-        values_.height = map_->height;
-        values_.isMap = 1;
-        values_.cdfTotal = total_;
-        values_.texelSteradians = 4.0f * 3.14159265f / float(map_->width * map_->height);
-        for (int k = 0; k < 9; ++k) values_.sh[k] = glm::vec4(sh[size_t(k)], 0.0f);
+    if (path.empty()) {
+        uploadConstant(scope);
+        return;
     }
-    if (map_) {
-        prefilterSpecular();
-        buildBrdfTable();
-    }
+    // The map itself is needed only here: what the shaders read of it is in the textures and values_.
+    const EnvironmentMap map = loadEnvironmentMap(path);
+    upload(scope, map);
+    const Sh9 sh = projectSh9(map);
+    values_.width = map.width;
+    values_.height = map.height;
+    values_.isMap = 1;
+    values_.texelSteradians = 4.0f * 3.14159265f / float(map.width * map.height);
+    for (int k = 0; k < 9; ++k) values_.sh[k] = glm::vec4(sh[size_t(k)], 0.0f);
+    prefilterSpecular();
+    buildBrdfTable();
 }
 
 GpuEnvironment::~GpuEnvironment() = default;
 
-// The textures: a constant environment gets 1x1 placeholders, so every program's samplers have
+// A constant environment's textures are 1x1 placeholders, so every program's samplers have
 // something complete bound and a map is the only difference.
-void GpuEnvironment::upload(gl::MemoryScope scope) {
-    if (!map_) {
-        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        for (gl::Texture* t : {&radiance_, &specular_}) {
-            *t = gl::createTexture2D(scope, kFormat, 1, 1);
-            glTextureSubImage2D(t->id(), 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, zero);
-            setNearest(t->id());
-        }
-        marginal_ = floatTexture(scope, 1, 1, zero);
-        conditional_ = floatTexture(scope, 1, 1, zero);
-        brdf_ = floatTexture(scope, 1, 1, zero);
-        return;
+void GpuEnvironment::uploadConstant(gl::MemoryScope scope) {
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (gl::Texture* t : {&radiance_, &specular_}) {
+        *t = gl::createTexture2D(scope, kFormat, 1, 1);
+        glTextureSubImage2D(t->id(), 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, zero);
+        setNearest(t->id());
     }
-    const int w = map_->width, h = map_->height;
+    marginal_ = floatTexture(scope, 1, 1, zero);
+    conditional_ = floatTexture(scope, 1, 1, zero);
+    brdf_ = floatTexture(scope, 1, 1, zero);
+}
+
+// A map's textures: its radiance with mips, the specular chain and BRDF table (filled after), and
+// the sampling CDFs.
+void GpuEnvironment::upload(gl::MemoryScope scope, const EnvironmentMap& map) {
+    const int w = map.width, h = map.height;
     radiance_ = gl::createTexture2D(scope, kFormat, w, h, gl::mipLevelsFor(w, h));
-    glTextureSubImage2D(radiance_.id(), 0, 0, 0, w, h, GL_RGB, GL_FLOAT, map_->texels.data());
+    glTextureSubImage2D(radiance_.id(), 0, 0, 0, w, h, GL_RGB, GL_FLOAT, map.texels.data());
     glGenerateTextureMipmap(radiance_.id());
     setLinearMipmapped(radiance_.id());
     const int sw = std::min(w, kSpecularMaxWidth), sh = std::max(1, sw * h / w);
@@ -94,8 +96,8 @@ void GpuEnvironment::upload(gl::MemoryScope scope) {
     glTextureParameteri(brdf_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(brdf_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(brdf_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    const EnvironmentSampler sampler(*map_);
-    total_ = sampler.marginalCdf().back();
+    const EnvironmentSampler sampler(map);
+    values_.cdfTotal = sampler.marginalCdf().back();
     marginal_ = floatTexture(scope, h + 1, 1, sampler.marginalCdf().data());
     conditional_ = floatTexture(scope, w + 1, h, sampler.conditionalCdf().data());
 }
@@ -130,7 +132,7 @@ void GpuEnvironment::buildBrdfTable() {
 }
 
 void GpuEnvironment::bind(glm::vec3 constant) {
-    if (!map_) values_.constant = glm::vec4(constant, 0.0f);
+    if (values_.isMap == 0) values_.constant = glm::vec4(constant, 0.0f);
     block_.set(values_);
     glBindTextureUnit(kEnvironmentBrdfUnit, brdf_.id());
     glBindTextureUnit(kEnvironmentRadianceUnit, radiance_.id());

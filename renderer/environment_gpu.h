@@ -15,7 +15,6 @@
 // pass that reads the environment calls bind() and sets nothing else.
 #pragma once
 
-#include <memory>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -68,12 +67,11 @@ public:
     static std::vector<ProgramDesc> programs();
 
 private:
-    void upload(gl::MemoryScope scope);
+    void uploadConstant(gl::MemoryScope scope);
+    void upload(gl::MemoryScope scope, const EnvironmentMap& map);
     void prefilterSpecular();
     void buildBrdfTable();
 
-    std::unique_ptr<EnvironmentMap> map_;
-    float total_ = 0.0f;
     gl::Texture radiance_, specular_, marginal_, conditional_, brdf_;
     EnvironmentBlock values_;
     gl::UniformBuffer<EnvironmentBlock> block_;
