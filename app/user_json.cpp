@@ -1,18 +1,10 @@
 #include "user_json.h"
 
+#include "gi/params.h"
 #include "scene/scene.h"
 
 namespace gis {
 namespace {
-
-// A literal with a non-zero digit before its exponent is not zero, whatever strtod made of it.
-bool hasNonZeroMantissa(const std::string& literal) {
-    for (char c : literal) {
-        if (c == 'e' || c == 'E') return false;
-        if (c >= '1' && c <= '9') return true;
-    }
-    return false;
-}
 
 // nlohmann's own DOM builder, checking each float against the text it was read from (sax_parse
 // calls the handler's members by its static type, so this one replaces the base's).

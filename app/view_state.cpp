@@ -1,9 +1,7 @@
 #include "view_state.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cstdlib>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>

@@ -34,8 +34,7 @@ NumberText parseNumber(const std::string& text, double& out) {
     if (!isPlainNumber(text)) return NumberText::NotPlain;
     out = std::strtod(text.c_str(), nullptr);
     if (!std::isfinite(float(out))) return NumberText::TooLarge;
-    const std::string mantissa = text.substr(0, text.find_first_of("eE"));
-    if (float(out) == 0.0f && mantissa.find_first_of("123456789") != std::string::npos) return NumberText::TooSmall;
+    if (float(out) == 0.0f && hasNonZeroMantissa(text)) return NumberText::TooSmall;
     return NumberText::Number;
 }
 
@@ -66,6 +65,14 @@ bool isPlainNumber(const std::string& w) {
         if (!digits()) return false;
     }
     return i == w.size();
+}
+
+bool hasNonZeroMantissa(const std::string& literal) {
+    for (char c : literal) {
+        if (c == 'e' || c == 'E') return false;
+        if (c >= '1' && c <= '9') return true;
+    }
+    return false;
 }
 
 const char* paramTypeName(ParamType t) {

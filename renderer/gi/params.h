@@ -50,6 +50,9 @@ struct ParamDesc {
 // 0x10, +5, .5, inf and nan: every number a user types (parameters, script and panel commands) is
 // held to this grammar instead, so each input reads the same text the same way.
 bool isPlainNumber(const std::string& word);
+// A literal with a non-zero digit before its exponent is not zero, whatever strtod made of it: the
+// test for a number that underflowed.
+bool hasNonZeroMantissa(const std::string& literal);
 
 // Parses `text` for `desc` ("32", "0.5", "true", "geometry", "1,0.5,0" or "0.5"); throws the one
 // validation message: "METHOD.KEY: VALUE is out of range [MIN, MAX]" and the like. Numbers are
