@@ -368,6 +368,7 @@ int ViewApp::run() {
         const int viewPixelsW = std::max(1, int(std::lround(viewW * sx))), viewPixelsH = fbh;
         state_.viewWidth = viewPixelsW;
         state_.viewHeight = viewPixelsH;
+        session_->relight(state_);
         session_->renderFrame(state_, viewPixelsW, viewPixelsH);
         // Panel and overlay after the frame: both show the frame on screen (the same "5/16 spp"),
         // and what the panel changes is rendered from the next frame on.

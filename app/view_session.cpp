@@ -76,6 +76,11 @@ std::string describe(const std::exception& e) {
     return dynamic_cast<const std::bad_alloc*>(&e) ? std::string("out of memory") : std::string(e.what());
 }
 
+// --lighting as the scene is lit under state's environment (a map replaces auto's default sky).
+LightingMode lightingFor(const ViewState& state) {
+    return lightingUnderEnvironment(parseLightingMode(state.lighting), !state.environment.empty());
+}
+
 }  // namespace
 
 float motionScale(double lastFullFrameMs, double budgetMs) {
@@ -98,7 +103,8 @@ bool ViewSession::openScene(ViewState& state, const std::string& spec, const Cam
         auto scene = std::make_unique<Scene>(loadScene(spec));
         ViewState s = state;
         s.scene = spec;
-        const LightingMode lighting = lightingUnderEnvironment(parseLightingMode(state.lighting), !state.environment.empty());
+        const LightingMode lighting = lightingFor(state);
+        std::vector<Light> fileLights = scene->lights;
         if (applyLighting(*scene, lighting)) s.ambient = glm::vec3(kDefaultSkyRadiance);
         const int camera =
             resolveCamera(*scene, request, float(std::max(s.viewWidth, 1)) / float(std::max(s.viewHeight, 1)));
@@ -107,6 +113,8 @@ bool ViewSession::openScene(ViewState& state, const std::string& spec, const Cam
         releaseRenderers();
         scene_ = std::move(scene);
         sceneLights_ = scene_->lights;
+        fileLights_ = std::move(fileLights);
+        litWith_ = lighting;
         lightsKey_ = lightsKey(sceneLights_);
         state = std::move(s);
         lastError_.clear();
@@ -170,6 +178,26 @@ void ViewSession::releaseRenderers() {
     for (PaneView& p : panes_) p = PaneView{};
     references_.clear();
     visible_ = 0;
+}
+
+void ViewSession::relight(ViewState& state) {
+    const LightingMode lighting = lightingFor(state);
+    if (!scene_ || lighting == litWith_) return;
+    // applyLighting reads the scene's own lights and emission; syncLights then hands the result to
+    // the renderers as it does a light edit.
+    const std::vector<Light> current = std::move(scene_->lights);
+    scene_->lights = fileLights_;
+    if (applyLighting(*scene_, lighting)) state.ambient = glm::vec3(kDefaultSkyRadiance);
+    sceneLights_ = std::move(scene_->lights);
+    scene_->lights = current;
+    litWith_ = lighting;
+    if (state.lightsEdited) {
+        state.sceneLights = sceneLights_;  // what "reset" returns to; the edited list stays
+    } else {
+        Scene lit;
+        lit.lights = sceneLights_;
+        resetLights(state, lit);
+    }
 }
 
 void ViewSession::syncLights(const ViewState& state) {

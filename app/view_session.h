@@ -101,6 +101,11 @@ public:
     bool hasScene() const { return scene_ != nullptr; }
     const Scene& scene() const { return *scene_; }
     const std::vector<Light>& sceneLights() const { return sceneLights_; }
+    // Applies state.lighting again when what it means changed since the scene was opened: an
+    // environment map set or cleared afterwards (the panel, a script, --environment over a
+    // settings file) turns `auto`'s default sun and sky off or on. The light list follows unless
+    // the user edited it. Call before renderFrame, as the window does every frame.
+    void relight(ViewState& state);
 
     // One frame of every visible pane for a 3D view of viewWidth x viewHeight window pixels.
     void renderFrame(const ViewState& state, int viewWidth, int viewHeight);
@@ -160,7 +165,9 @@ private:
     GLuint ensureDisplay(PaneView& pane);
 
     std::unique_ptr<Scene> scene_;
-    std::vector<Light> sceneLights_;     // as loaded
+    std::vector<Light> sceneLights_;     // after --lighting
+    std::vector<Light> fileLights_;      // as loaded, before --lighting
+    LightingMode litWith_ = LightingMode::Scene;  // what --lighting meant for sceneLights_
     std::string lightsKey_;              // the lights scene_ holds now
     PaneView panes_[kMaxPanes];
     std::map<std::string, Reference> references_;

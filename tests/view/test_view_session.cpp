@@ -36,6 +36,7 @@ struct Sandbox {
     // Frames until every pane has converged (progressive methods, heatmaps).
     void settle(int w, int h, int maxFrames = 400) {
         for (int i = 0; i < maxFrames; ++i) {
+            session->relight(state);  // as the window does before every frame
             session->renderFrame(state, w, h);
             if (session->settled()) return;
         }
@@ -324,6 +325,43 @@ TEST(Session, LightEditsChangeTheImage) {
     EXPECT_EQ(meanAbsDiff(s.view(32, 32), dark), 0.0) << "a disabled light lights nothing";
     s.act("lights reset");
     EXPECT_EQ(meanAbsDiff(s.view(32, 32), base), 0.0);
+}
+
+// --lighting auto gives an unlit model the default sun and sky unless an environment map lights
+// it. A map set after the scene opened (the panel, a script, --environment over a settings file)
+// takes the sun away as one set before would, and clearing it brings the sun back (#26).
+TEST(Session, AnEnvironmentMapSetLaterReplacesAutosDefaultSun) {
+    const std::string box = std::string(GIS_SHARED_DIR) + "/assets/gltf/Box/glTF-Binary/Box.glb";
+    const std::string sky = std::string(GIS_SOURCE_DIR) + "/assets/environments/sky_sun.hdr";
+    Sandbox later(box);
+    ASSERT_EQ(later.session->sceneLights().size(), 1u) << "auto adds the default sun to an unlit model";
+    const ImageU8 sunlit = later.view(32, 32);
+    later.act("environment " + sky);
+    const ImageU8 mapLit = later.view(32, 32);
+    EXPECT_GT(meanAbsDiff(sunlit, mapLit), 1.0);
+    EXPECT_TRUE(later.session->sceneLights().empty());
+    EXPECT_TRUE(later.state.lights.empty()) << "the panel's light list follows";
+
+    Sandbox first;  // the map chosen before the scene opens
+    first.act("environment " + sky);
+    ASSERT_TRUE(first.session->openScene(first.state, box)) << first.session->lastError();
+    EXPECT_TRUE(first.session->sceneLights().empty());
+    EXPECT_EQ(meanAbsDiff(first.view(32, 32), mapLit), 0.0);
+
+    later.act("environment off");
+    EXPECT_EQ(meanAbsDiff(later.view(32, 32), sunlit), 0.0) << "the sun comes back with the default sky";
+    EXPECT_EQ(later.session->sceneLights().size(), 1u);
+}
+
+// A light list the user edited stays as edited when the environment changes.
+TEST(Session, AnEnvironmentMapKeepsEditedLights) {
+    Sandbox s(std::string(GIS_SHARED_DIR) + "/assets/gltf/Box/glTF-Binary/Box.glb");
+    s.act("light 0 intensity 2");
+    s.act("environment " + std::string(GIS_SOURCE_DIR) + "/assets/environments/sky_sun.hdr");
+    s.session->relight(s.state);
+    ASSERT_EQ(s.state.lights.size(), 1u);
+    EXPECT_TRUE(s.state.lightsEdited);
+    EXPECT_TRUE(s.state.sceneLights.empty()) << "what \"lights reset\" returns to: the map alone";
 }
 
 TEST(Session, OpeningABadSceneKeepsThePreviousOne) {
