@@ -76,6 +76,20 @@ float wedgeSolidAngle(int y, int width, int height) {
 
 }  // namespace
 
+std::optional<glm::ivec2> environmentMapSize(const std::string& path) {
+    // A header is a few lines; its resolution line ends it.
+    constexpr size_t kHeaderBytes = 64 * 1024;
+    std::ifstream in(path, std::ios::binary);
+    std::vector<unsigned char> bytes(kHeaderBytes);
+    in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
+    bytes.resize(size_t(in.gcount()));
+    size_t dataStart = 0;
+    long width = 0, height = 0;
+    if (bytes.size() < 2 || bytes[0] != '#' || bytes[1] != '?' || !parseHeader(bytes, dataStart, width, height))
+        return std::nullopt;
+    return glm::ivec2(int(width), int(height));
+}
+
 EnvironmentMap loadEnvironmentMap(const std::string& path) {
     const std::string what = "environment map '" + path + "'";
     std::error_code ec;

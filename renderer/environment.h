@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct EnvironmentMap {
 EnvironmentMap loadEnvironmentMap(const std::string& path);
 // The same radiance from every direction: --background and the default sky as a map.
 EnvironmentMap constantEnvironment(glm::vec3 radiance);
+// A map's width and height from its header alone (the memory budget's estimate, before the map is
+// decoded); nothing for a file loadEnvironmentMap would refuse, which then says why.
+std::optional<glm::ivec2> environmentMapSize(const std::string& path);
 
 // +Y up; u = 0.5 looks down -Z (the glTF camera's default view), u grows towards +X.
 glm::vec2 directionToEquirect(glm::vec3 direction);  // [0, 1)^2

@@ -32,6 +32,17 @@ void setNearest(GLuint texture) {
     glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }
 
+// A width x height map's textures: every size upload() allocates, so mapBytes() counts the same.
+struct MapTextures {
+    int width, height;                // the radiance, with a full mip chain
+    int specularWidth, specularHeight, specularLevels;
+};
+
+MapTextures mapTextures(int width, int height) {
+    const int sw = std::min(width, kSpecularMaxWidth), sh = std::max(1, sw * height / width);
+    return {width, height, sw, sh, std::min(kEnvironmentSpecularLevels, gl::mipLevelsFor(sw, sh))};
+}
+
 gl::Texture floatTexture(const gl::MemoryScope& scope, int width, int height, const float* data) {
     gl::Texture t = gl::createTexture2D(scope, GL_R32F, width, height);
     glTextureSubImage2D(t.id(), 0, 0, 0, width, height, GL_RED, GL_FLOAT, data);
@@ -65,6 +76,14 @@ GpuEnvironment::GpuEnvironment(const std::string& path, gl::MemoryLedger& ledger
 
 GpuEnvironment::~GpuEnvironment() = default;
 
+int64_t GpuEnvironment::mapBytes(int width, int height) {
+    const MapTextures t = mapTextures(width, height);
+    return gl::texture2DBytes(kFormat, width, height, gl::mipLevelsFor(width, height)) +
+           gl::texture2DBytes(kFormat, t.specularWidth, t.specularHeight, t.specularLevels) +
+           gl::texture2DBytes(GL_RG32F, kEnvironmentBrdfTableSize, kEnvironmentBrdfTableSize) +
+           gl::texture2DBytes(GL_R32F, height + 1, 1) + gl::texture2DBytes(GL_R32F, width + 1, height);
+}
+
 // A constant environment's textures are 1x1 placeholders, so every program's samplers have
 // something complete bound and a map is the only difference.
 void GpuEnvironment::uploadConstant(gl::MemoryScope scope) {
@@ -83,13 +102,12 @@ void GpuEnvironment::uploadConstant(gl::MemoryScope scope) {
 // the sampling CDFs.
 void GpuEnvironment::upload(gl::MemoryScope scope, const EnvironmentMap& map) {
     const int w = map.width, h = map.height;
+    const MapTextures t = mapTextures(w, h);
     radiance_ = gl::createTexture2D(scope, kFormat, w, h, gl::mipLevelsFor(w, h));
     glTextureSubImage2D(radiance_.id(), 0, 0, 0, w, h, GL_RGB, GL_FLOAT, map.texels.data());
     glGenerateTextureMipmap(radiance_.id());
     setLinearMipmapped(radiance_.id());
-    const int sw = std::min(w, kSpecularMaxWidth), sh = std::max(1, sw * h / w);
-    specular_ = gl::createTexture2D(scope, kFormat, sw, sh,
-                                    std::min(kEnvironmentSpecularLevels, gl::mipLevelsFor(sw, sh)));
+    specular_ = gl::createTexture2D(scope, kFormat, t.specularWidth, t.specularHeight, t.specularLevels);
     setLinearMipmapped(specular_.id());
     brdf_ = gl::createTexture2D(scope, GL_RG32F, kEnvironmentBrdfTableSize, kEnvironmentBrdfTableSize);
     glTextureParameteri(brdf_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);

@@ -65,6 +65,8 @@ public:
     void bind(glm::vec3 constant);
 
     static std::vector<ProgramDesc> programs();
+    // GPU bytes a width x height map's textures take (the memory budget's estimate, before loading).
+    static int64_t mapBytes(int width, int height);
 
 private:
     void uploadConstant(gl::MemoryScope scope);

@@ -8,6 +8,8 @@
 #include <cstring>
 
 #include "emitters/emitter_lights.h"
+#include "environment.h"
+#include "environment_gpu.h"
 #include "gi/method.h"
 #include "gl/gl.h"
 #include "renderer.h"
@@ -72,6 +74,10 @@ MemoryEstimate estimateGpuMemory(const Scene& scene, const RenderSettings& s) {
         }
     }
     e.parts.push_back({"tonemap (RGBA8)", pixels * 4});
+    if (!s.environment.empty())
+        if (const std::optional<glm::ivec2> size = environmentMapSize(s.environment))
+            e.parts.push_back({"environment map (radiance, specular chain, sampling CDFs)",
+                               uint64_t(GpuEnvironment::mapBytes(size->x, size->y))});
     uint64_t vertices = 0, indices = 0, texels = 0;
     for (const Primitive& p : scene.primitives) {
         vertices += p.vertices.size();

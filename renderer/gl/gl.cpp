@@ -111,8 +111,12 @@ Texture createTexture2D(const MemoryScope& scope, GLenum format, int width, int 
     glTextureStorage2D(t.id(), levels, format, width, height);
     checkOutOfMemory("allocating a " + std::to_string(width) + "x" + std::to_string(height) + " texture for " +
                      scope.owner);
-    t.object.charge(scope, bytesPerTexel(format) * mipChainTexels(width, height, 1, levels, false));
+    t.object.charge(scope, texture2DBytes(format, width, height, levels));
     return t;
+}
+
+int64_t texture2DBytes(GLenum format, int width, int height, int levels) {
+    return bytesPerTexel(format) * mipChainTexels(width, height, 1, levels, false);
 }
 
 Texture createTexture2DArray(const MemoryScope& scope, GLenum format, int width, int height, int layers) {

@@ -70,6 +70,8 @@ Texture createTexture3D(const MemoryScope& scope, GLenum format, int width, int 
 // (a cube map array as a 2D array of its faces, say). Holds no memory of its own.
 Texture createTextureView(const Texture& source, GLenum target);
 int64_t bytesPerTexel(GLenum format);
+// What createTexture2D charges for these arguments (memory estimates made before allocating).
+int64_t texture2DBytes(GLenum format, int width, int height, int levels = 1);
 int mipLevelsFor(int width, int height);
 
 struct Buffer {

@@ -212,7 +212,9 @@ TEST(EnvironmentGpu, MetalsReflectTheMapUnderEveryMethod) {
         // (sdf's reflection rays, vct's specular cone) weigh it by the lighting contract's
         // analytic fit and blend it with their diffuse term: printed above, bounded only below.
         EXPECT_GT(mean / reference, 0.5) << m.name;
-        if (m.name == "none") EXPECT_NEAR(mean / reference, 1.0, 0.03);
+        if (m.name == "none") {
+            EXPECT_NEAR(mean / reference, 1.0, 0.03);
+        }
     }
 }
 

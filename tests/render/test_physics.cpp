@@ -296,5 +296,23 @@ TEST(MemoryBudget, EstimateCountsTheEmitterLights) {
     }
 }
 
+// An environment map's textures (its radiance with mips, the prefiltered specular chain, the
+// split-sum table and the sampling CDFs) are in the estimate, sized from the file's header before
+// the map is decoded.
+TEST(MemoryBudget, EstimateCountsTheEnvironmentMap) {
+    context();
+    const Scene scene = makeBuiltinScene("cornell");
+    RenderSettings s;
+    s.width = s.height = 64;
+    s.gi = "none";
+    const uint64_t without = estimateGpuMemory(scene, s).total();
+    s.environment = std::string(GIS_SOURCE_DIR) + "/assets/environments/sky_sun.hdr";
+    const uint64_t estimate = estimateGpuMemory(scene, s).total();
+    EXPECT_GT(estimate, without + 64 * 1024);
+    Renderer renderer(scene, s);
+    const double ledger = double(renderer.memory().total());
+    EXPECT_NEAR(double(estimate), ledger, 0.01 * ledger + 16 * 1024);
+}
+
 }  // namespace
 }  // namespace gis::test
