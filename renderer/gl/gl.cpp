@@ -55,7 +55,7 @@ void checkOutOfMemory(const std::string& what) {
 
 int64_t bytesPerTexel(GLenum format) {
     switch (format) {
-        case GL_R8: return 1;
+        case GL_R8: case GL_R8UI: return 1;
         case GL_RG8: case GL_R16F: case GL_DEPTH_COMPONENT16: return 2;
         case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_RGB10_A2: case GL_R32F: case GL_RG16F:
         case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: case GL_R32UI: case GL_DEPTH_COMPONENT24:

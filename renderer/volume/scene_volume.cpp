@@ -9,7 +9,7 @@ namespace gis {
 namespace {
 auto tied(const VolumeRequest& r) {
     return std::tie(r.method, r.resolution, r.resolutionKey, r.conservative, r.conservativeKey, r.marginVoxels,
-                    r.anisotropic, r.cullBackfaces, r.mips, r.bounces, r.distanceField, r.jfa, r.occupancy,
+                    r.anisotropic, r.cullBackfaces, r.cullUnlitOutsides, r.mips, r.bounces, r.distanceField, r.jfa, r.occupancy,
                     r.scroll, r.cascades, r.cascadeExtent);
 }
 
@@ -57,7 +57,7 @@ bool VolumeRequest::operator==(const VolumeRequest& o) const { return tied(*this
 
 int64_t sceneVolumeBytes(const VolumeRequest& r, int cascades) {
     const int n = r.resolution;
-    const int64_t perCascade = voxelGridBytes(n) + voxelRadianceBytes(n, r.anisotropic, r.bounces);
+    const int64_t perCascade = voxelGridBytes(n) + voxelRadianceBytes(n, r.anisotropic, r.bounces, r.cullUnlitOutsides);
     return cascades * perCascade + (r.distanceField ? distanceFieldBuildBytes(n, cascades) : 0) +
            (r.occupancy ? occupancyBytes(n, cascades) : 0) + radianceAtlasBytes(n, cascades);
 }
@@ -80,7 +80,8 @@ SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::M
         Cascade& c = cascades_[size_t(i)];
         const SdfVolume v = layout_.volume(i, layout_.centredOffset(i, layout_.scene.origin + 0.5f * layout_.scene.size));
         c.voxelizer = std::make_unique<Voxelizer>(fitOf(v), mode_, scope_, request.conservativeKey);
-        c.radiance = std::make_unique<VoxelRadiance>(n, request.anisotropic, request.bounces, scope_, request.cullBackfaces);
+        c.radiance = std::make_unique<VoxelRadiance>(n, request.anisotropic, request.bounces, scope_, request.cullBackfaces,
+                                                     request.cullUnlitOutsides);
     }
     if (request.distanceField)
         field_ = std::make_unique<DistanceField>(layout_.volume(count - 1, glm::ivec3(0)), scope_, count);

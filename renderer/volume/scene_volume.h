@@ -38,6 +38,7 @@ struct VolumeRequest {
     float marginVoxels = kVolumeMarginVoxels;
     // The voxels' light: directional mips (cones), back faces left out of them, further bounces.
     bool anisotropic = false, cullBackfaces = false, mips = false;
+    bool cullUnlitOutsides = false;   // surfaces facing air no light reaches leave the light (exterior.comp)
     int bounces = 1;
     bool distanceField = false;
     JfaVariant jfa = JfaVariant::OnePlusJfa;

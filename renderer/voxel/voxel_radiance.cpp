@@ -38,8 +38,9 @@ int64_t chainTexels(int n) {
 }
 }  // namespace
 
-int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces) {
+int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces, bool unlitOutsides) {
     int64_t bytes = 8 * chainTexels(resolution);
+    if (unlitOutsides) bytes += int64_t(resolution) * resolution * resolution + 4;
     if (anisotropic) bytes += 6 * 8 * chainTexels(resolution / 2);
     if (bounces > 1) bytes += 8 * int64_t(resolution) * resolution * resolution;
     return bytes;
@@ -55,14 +56,25 @@ const ProgramDesc kInjectProgram{"voxel_inject", {"voxel/inject.comp"}, {}};
 const ProgramDesc kEmitterInjectProgram{"voxel_inject_emitters", {"voxel/inject.comp"}, {{"EMITTER_LIGHT", "1"}}};
 const ProgramDesc kMipProgram{"voxel_mip", {"voxel/voxel_mip.comp"}, {}};
 const ProgramDesc kBounceProgram{"voxel_bounce", {"voxel/bounce.comp"}, {}};
+const ProgramDesc kExteriorProgram{"voxel_exterior", {"voxel/exterior.comp"}, {}};
+const ProgramDesc kExteriorSweepProgram{"voxel_exterior_sweep", {"voxel/exterior.comp"}, {{"SWEEP", "1"}}};
+constexpr int kExteriorSeed = 0, kExteriorCull = 2;
+constexpr int kSweepGroup = 8;  // exterior.comp's SWEEP local size
 
 std::vector<ProgramDesc> VoxelRadiance::programs() {
-    return {kInjectProgram, kMipProgram, kBounceProgram, kEmitterInjectProgram};
+    return {kInjectProgram, kMipProgram, kBounceProgram, kEmitterInjectProgram, kExteriorProgram, kExteriorSweepProgram};
 }
 
-VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::MemoryScope& scope, bool cullBackfaces)
+VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::MemoryScope& scope, bool cullBackfaces,
+                             bool cullUnlitOutsides)
     : coneBlock_(scope), scope_(scope), anisotropic_(anisotropic && n >= 2), cullBackfaces_(cullBackfaces && anisotropic_), bounces_(bounces) {
-    checkVoxelBudget(n, voxelRadianceBytes(n, anisotropic_, bounces), scope.owner);
+    checkVoxelBudget(n, voxelRadianceBytes(n, anisotropic_, bounces, cullUnlitOutsides), scope.owner);
+    if (cullUnlitOutsides) {
+        reach_ = gl::createTexture3D(scope, GL_R8UI, n, n, n);
+        changed_ = gl::createBuffer(scope, 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
+        exteriorProgram_ = buildProgram(kExteriorProgram);
+        sweepProgram_ = buildProgram(kExteriorSweepProgram);
+    }
     radiance_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n, levelsFor(n));
     setVolumeSampling(radiance_);
     if (anisotropic_)
@@ -103,7 +115,47 @@ void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
     glBindImageTexture(0, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch3D(n, n, n);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    if (reach_.id()) cullUnlitOutsides(grid, target, lights.environmentLit);
     if (bounces_ > 1) glCopyImageSubData(direct_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, radiance_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+}
+
+void VoxelRadiance::cullUnlitOutsides(const VoxelGrid& grid, const gl::Texture& target, bool environmentLit) {
+    const int n = radiance_.width;
+    const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), target.id()};
+    glBindTextures(0, 3, textures);
+    glBindSamplers(0, 3, nullptr);
+    const GLubyte zero = 0;
+    glClearTexImage(reach_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+    glBindImageTexture(0, reach_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R8UI);
+    glBindImageTexture(1, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, changed_.id());
+    const GLuint p = exteriorProgram_.id();
+    glUseProgram(p);
+    glProgramUniform1i(p, UV_RESOLUTION, n);
+    glProgramUniform2i(p, UV_EXTERIOR_STEP, kExteriorSeed, environmentLit ? 1 : 0);
+    dispatch3D(n, n, n);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    // Each round floods every straight run of air from what is reached; a path with k turns needs
+    // k rounds, and a round that reaches nothing new ends it (at most the grid's voxels).
+    const GLuint s = sweepProgram_.id();
+    glUseProgram(s);
+    glProgramUniform1i(s, UV_RESOLUTION, n);
+    for (int64_t round = 0; round < int64_t(n) * n * n; ++round) {
+        const GLuint none = 0;
+        glNamedBufferSubData(changed_.id(), 0, 4, &none);
+        for (int axis = 0; axis < 3; ++axis) {
+            glProgramUniform2i(s, UV_EXTERIOR_STEP, axis, 0);
+            gl::dispatchCompute(gl::groupsFor(n, kSweepGroup), gl::groupsFor(n, kSweepGroup), 1, "voxel exterior sweep");
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        }
+        GLuint added = 0;
+        glGetNamedBufferSubData(changed_.id(), 0, 4, &added);
+        if (added == 0) break;
+    }
+    glUseProgram(p);
+    glProgramUniform2i(p, UV_EXTERIOR_STEP, kExteriorCull, 0);
+    dispatch3D(n, n, n);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void VoxelRadiance::downsample(const gl::Texture& source, int sourceLevel, const gl::Texture& target, int targetLevel,
@@ -204,6 +256,8 @@ void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radia
     lights.shadowCubes = frame.texture(resource::kShadowCubes);
     lights.count = int(frame.scene.cpu.lights.size());
     lights.shadows = frame.settings.shadows;
+    const glm::vec3 background = frame.background();
+    lights.environmentLit = !frame.settings.environment.empty() || glm::any(glm::greaterThan(background, glm::vec3(0.0f)));
     const EmitterLightSettings emitters = emitterLightSettings(frame.settings);
     lights.emission = EmitterMode(emitters.mode) == EmitterMode::Gi ? 1.0f : 0.0f;
     if (emittersAreLights(frame.scene.cpu, frame.settings)) {

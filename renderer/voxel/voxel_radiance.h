@@ -21,7 +21,8 @@ struct ConeSettings {
 };
 
 // Bytes of the radiance chains at this resolution (for the budget check before allocating).
-int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces);
+// unlitOutsides: with the reach grid cullUnlitOutsides() floods (one byte a voxel).
+int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces, bool unlitOutsides = false);
 // Bytes of a feedback volume (VoxelRadiance::feedbackBounce) at this resolution: its chains, its
 // direct light and its scratch level.
 int64_t voxelFeedbackBytes(int resolution, bool anisotropic);
@@ -29,9 +30,10 @@ int64_t voxelFeedbackBytes(int resolution, bool anisotropic);
 class VoxelRadiance {
 public:
     // cullBackfaces: the directional chains leave out the voxels a cone meets from behind, so a
-    // cone never sees the surface it leaves (only with anisotropic).
+    // cone never sees the surface it leaves (only with anisotropic). cullUnlitOutsides: inject()
+    // leaves out the surfaces that face air no light reaches (shaders/voxel/exterior.comp).
     VoxelRadiance(int resolution, bool anisotropic, int bounces, const gl::MemoryScope& scope,
-                  bool cullBackfaces = false);
+                  bool cullBackfaces = false, bool cullUnlitOutsides = false);
     struct Lights {
         GLuint buffer = 0, shadowMaps = 0, shadowCubes = 0;
         int count = 0;
@@ -43,6 +45,8 @@ public:
         // (inject.comp's EMITTER_LIGHT), `emitterSamples` points per voxel; null: none.
         const RayScene* emitters = nullptr;
         int emitterSamples = 0;
+        // The environment sends light in from the volume's bounds (a map, or a background above 0).
+        bool environmentLit = false;
     };
     // Direct light + emission into level 0.
     void inject(const VoxelGrid& grid, const Lights& lights);
@@ -72,6 +76,8 @@ public:
 
 private:
     void setBounceUniforms(const ConeSettings& cones);
+    // exterior.comp's three steps on `target` (level 0 as injected): seed, flood, cull.
+    void cullUnlitOutsides(const VoxelGrid& grid, const gl::Texture& target, bool environmentLit);
     // One gather of the current chain into `scratch`, copied over level 0, then new mips.
     void gatherOnce(const VoxelGrid& grid, const gl::Texture& scratch);
     void downsample(const gl::Texture& source, int sourceLevel, const gl::Texture& target, int targetLevel, int direction,
@@ -81,6 +87,9 @@ private:
     gl::Texture directional_[6];
     gl::Object injectProgram_, mipProgram_, bounceProgram_;
     gl::Object emitterInjectProgram_;  // built on first need
+    gl::Object exteriorProgram_, sweepProgram_;  // with cullUnlitOutsides
+    gl::Texture reach_;                          // R8UI: air that light reaches
+    gl::Buffer changed_;                         // voxels a sweep round reached
     gl::UniformBuffer<voxel::ConeTraceBlock> coneBlock_;  // the bounces' cones
     gl::MemoryScope scope_;
     bool anisotropic_, cullBackfaces_;

@@ -33,7 +33,8 @@ namespace gis::voxel {
     X(UV_HISTORY, 126, 1) /* VCT upsample: history valid (0/1), camera moved (0/1) */ \
     X(UV_CASCADE, 127, 1) /* occupancy build: the cascade written */ \
     X(UV_KEEP_LO, 128, 1) /* scrolled voxelization: voxels in [lo, hi) were kept (moved), not voxelized again */ \
-    X(UV_KEEP_HI, 129, 1)
+    X(UV_KEEP_HI, 129, 1) \
+    X(UV_EXTERIOR_STEP, 130, 1) /* exterior.comp: seed 0 / cull 2 and environment lit, or the sweep's axis */
 
 enum VoxelUniform : int { GIS_VOXEL_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kVoxelUniforms[] = {GIS_VOXEL_UNIFORMS(GIS_UNIFORM_SLOT)};

@@ -23,7 +23,8 @@ void main() {
     vec4 albedo = texelFetch(s_albedo, v, 0);
     vec3 meanNormal = texelFetch(s_normal, v, 0).xyz * 2.0 - 1.0;
     float len = length(meanNormal);
-    if (albedo.a == 0.0 || len < 0.3) {
+    // direct.a 0 on a surface voxel: an unlit outside left out of the volume (exterior.comp).
+    if (albedo.a == 0.0 || len < 0.3 || direct.a == 0.0) {
         imageStore(i_radiance, v, direct);
         return;
     }

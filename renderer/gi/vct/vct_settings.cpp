@@ -18,6 +18,7 @@ VolumeRequest vctVolumeRequest(const VctSettings& s) {
     r.conservative = s.conservativeMode();
     r.conservativeKey = "vct.conservative";
     r.cullBackfaces = s.backfaces == 1;
+    r.cullUnlitOutsides = s.unlitOutsides == 0;
     r.marginVoxels = r.cullBackfaces ? 0.5f : kVolumeMarginVoxels;
     r.anisotropic = s.anisotropic;
     r.mips = true;
@@ -31,6 +32,7 @@ int maxVctResolution() {
         VctSettings smallest;  // no directional mips, one bounce: the least a volume of a size holds
         smallest.anisotropic = false;
         smallest.bounces = 1;
+        smallest.unlitOutsides = 1;
         smallest.resolution = 8;
         auto fits = [&](int n) {
             VctSettings s = smallest;
@@ -61,6 +63,11 @@ const ParamTable<VctSettings>& vctParams() {
                 "opaque = a voxel occludes and shows its light to cones from every side (a cone sees part of its own "
                 "surface); cull = the directional mips leave out voxels a cone meets from behind (needs anisotropic)",
                 {"opaque", "cull"}, U::Rebuild)
+        .choice(&S::unlitOutsides, "unlit-outsides", "Unlit outsides",
+                "cull = surfaces facing air that no light reaches (the outsides of a closed, lit room) leave the volume: "
+                "a coarse cone texel holding a wall otherwise shows its dark outside to the room's cones; keep = voxelized "
+                "as they are",
+                {"cull", "keep"}, U::Rebuild)
         .integer(&S::bounces, "bounces", "Bounces", "1 = direct light and emission; more gather in voxel space again", 1,
                  4, U::Rebuild)
         .boolean(&S::feedback, "feedback", "Bounce feedback",

@@ -437,6 +437,69 @@ TEST(Vct, ClosedEmissiveBoxIsAFurnace) {
     }
 }
 
+// A closed room's walls are boxes: each has an outside that no light reaches, in the same coarse
+// texels as its inside. Travelling outwards, a cone meets the outside first in the directional
+// mips, so the room's own cones saw its walls as black (34% of their weight under a uniform light,
+// README "Unlit outsides"). With vct.unlit-outsides=cull (the default) those voxels leave the
+// volume, and the one-bounce indirect light of the point-lit room comes near the path tracer's.
+TEST(Vct, UnlitOutsidesOfAClosedRoomLeaveTheVolume) {
+    const Scene room = makeBuiltinScene("room");
+    constexpr int kRoomSize = 64;
+    auto meanOf = [](const ImageF& img) {
+        double sum = 0.0;
+        for (size_t i = 0; i < img.rgba.size(); i += 4) sum += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2];
+        return sum / (3.0 * double(img.rgba.size() / 4));
+    };
+    RenderSettings pt = baseSettings("pathtrace");
+    pt.width = pt.height = kRoomSize;
+    setParam(pt, "pathtrace.spp", "128");
+    setParam(pt, "pathtrace.bounces", "0");
+    const double direct = meanOf(renderHdr(room, pt));
+    setParam(pt, "pathtrace.bounces", "1");
+    const double oneBounce = meanOf(renderHdr(room, pt)) - direct;
+    double ratio[2] = {};
+    for (int keep = 0; keep < 2; ++keep) {
+        RenderSettings r = vctSettings();
+        r.width = r.height = kRoomSize;
+        setVct(r, "unlit-outsides", keep ? "keep" : "cull");
+        const VctImages v = renderVct(room, r);
+        ASSERT_TRUE(allFinite(v.indirect));
+        int culled = 0;
+        for (size_t i = 0; i < v.albedo.size() / 4; ++i) culled += v.albedo[4 * i + 3] > 0 && v.radiance[4 * i + 3] == 0.0f;
+        ratio[keep] = meanOf(v.indirect) / oneBounce;
+        std::printf("VCT-TABLE room (point lamp), unlit outsides %s: %d voxels left out, indirect %.4f, path tracer's "
+                    "one bounce %.4f (%.0f%%)\n", keep ? "keep" : "cull", culled, meanOf(v.indirect), oneBounce,
+                    100.0 * ratio[keep]);
+        if (keep) EXPECT_EQ(culled, 0);
+        else EXPECT_GT(culled, 1000) << "the room's outsides";
+    }
+    EXPECT_NEAR(ratio[0], 1.0, 0.2);
+    EXPECT_LT(ratio[1], 0.8) << "what the outsides cost when kept";
+}
+
+// In an open scene light reaches the air around everything: only shadowed pockets of air that the
+// voxels close off (beside the blocks) lose their few surface voxels, and the light stays as it was.
+TEST(Vct, UnlitOutsidesOfAnOpenSceneStay) {
+    const Scene cornell = makeBuiltinScene("cornell");
+    RenderSettings cull = vctSettings(), keep = vctSettings();
+    cull.width = cull.height = keep.width = keep.height = 64;
+    setVct(keep, "unlit-outsides", "keep");
+    const VctImages culled = renderVct(cornell, cull), kept = renderVct(cornell, keep);
+    int left = 0, surface = 0;
+    for (size_t i = 0; i < culled.albedo.size() / 4; ++i) {
+        surface += culled.albedo[4 * i + 3] > 0;
+        left += culled.albedo[4 * i + 3] > 0 && culled.radiance[4 * i + 3] == 0.0f;
+    }
+    std::printf("VCT-TABLE cornell, unlit outsides cull: %d of %d surface voxels left out\n", left, surface);
+    EXPECT_LT(left, surface / 200);
+    double a = 0.0, b = 0.0;
+    for (size_t i = 0; i < culled.indirect.rgba.size(); ++i) {
+        a += culled.indirect.rgba[i];
+        b += kept.indirect.rgba[i];
+    }
+    EXPECT_NEAR(a / b, 1.0, 0.01);
+}
+
 // The specular cone: a glossy metal floor in front of a red emissive wall reflects red, and a
 // rough one reflects a wider, dimmer, still red image.
 TEST(Vct, GlossyFloorReflectsAnEmitter) {
