@@ -126,6 +126,12 @@ TEST(EmitterTables, DISABLED_PanelRoomEnergy) {
             const double m = mean(renderHdr(scene, r));
             std::printf("PANEL-ROOM-TABLE | %s | %s | %.4f | %.4f | %.2f |\n", mode, gi, m, truth, m / truth);
         }
+    // vct at its default sums one bounce; its feedback (off by default: the bounces cost) all of them.
+    RenderSettings feedback = cornellSettings("vct", "lights");
+    feedback.width = feedback.height = 64;
+    setParam(feedback, "vct.feedback", "true");
+    const double m = mean(renderHdr(scene, feedback));
+    std::printf("PANEL-ROOM-TABLE | lights | vct, vct.feedback=true | %.4f | %.4f | %.2f |\n", m, truth, m / truth);
 }
 
 // ReSTIR's GPU time per frame at 256x256 (median of 16 frames after 4), biased and unbiased.
