@@ -130,39 +130,49 @@ INSTANTIATE_TEST_SUITE_P(, TermViews,
                          });
 
 // The path tracer's terms (issue 26): the same paths keep only the viewed term, so direct +
-// emission + pathtrace.indirect is the final image, up to the half-float debug target's rounding.
+// emission + pathtrace.indirect is the final image, up to the half-float debug target's rounding,
+// and indirect.diffuse + indirect.specular (the first surface's two lobes) is pathtrace.indirect.
 // On cornell-area the area light is both seen (emission) and the first surfaces' direct light
 // (sampled there and hit by BSDF samples, the two halves of the MIS).
 TEST(PathTracerTermViews, AddUpToTheFinalImage) {
     const std::string dir = tempDir("term_views_pathtrace");
-    auto render = [&](const std::string& view) {
-        const std::string out = dir + "/" + view + ".exr";
-        const CliResult r = runCli("render --scene builtin:cornell-area --gi pathtrace --spp 4 --size 32x32 --hdr32 "
+    auto render = [&](const std::string& view, const std::string& scene = "cornell-area") {
+        const std::string out = dir + "/" + scene + view + ".exr";
+        const CliResult r = runCli("render --scene builtin:" + scene + " --gi pathtrace --spp 4 --size 32x32 --hdr32 "
                                    "--view " + view + " --out " + out);
         EXPECT_EQ(r.status, 0) << view << ": " << r.err;
         return r.status == 0 ? readExr(out) : ImageF{};
     };
     const ImageF final = render("final");
     const std::vector<ImageF> terms{render("direct"), render("emission"), render("pathtrace.indirect")};
+    const std::vector<ImageF> lobes{render("indirect.diffuse"), render("indirect.specular")};
     ASSERT_FALSE(::testing::Test::HasFailure());
     constexpr double kRelative = 1e-3, kAbsolute = 1e-5;  // as above: a half float per term
-    int bad = 0;
-    for (size_t i = 0; i < final.rgba.size(); ++i) {
-        if (i % 4 == 3) continue;
-        double sum = 0.0;
-        for (const ImageF& t : terms) sum += t.rgba[i];
-        bad += std::abs(sum - final.rgba[i]) > kRelative * final.rgba[i] + kAbsolute;
-    }
-    EXPECT_EQ(bad, 0) << "channels where the terms do not add up to final";
+    auto badChannels = [&](const std::vector<ImageF>& parts, const ImageF& whole) {
+        int bad = 0;
+        for (size_t i = 0; i < whole.rgba.size(); ++i) {
+            if (i % 4 == 3) continue;
+            double sum = 0.0;
+            for (const ImageF& t : parts) sum += t.rgba[i];
+            bad += std::abs(sum - whole.rgba[i]) > kRelative * whole.rgba[i] + kAbsolute;
+        }
+        return bad;
+    };
+    EXPECT_EQ(badChannels(terms, final), 0) << "channels where the terms do not add up to final";
+    EXPECT_EQ(badChannels(lobes, terms[2]), 0) << "channels where the lobes do not add up to pathtrace.indirect";
+    // cornell-area's walls are Lambertian: their indirect light is all diffuse. The mirror sphere of
+    // builtin:mirror reflects the room: indirect specular light.
+    EXPECT_NEAR(meanRgb(lobes[0]), meanRgb(terms[2]), 1e-3 * meanRgb(terms[2]));
+    EXPECT_GT(meanRgb(render("indirect.specular", "mirror")), 0.002);
     std::printf("pathtrace on cornell-area: mean final %.4f = direct %.4f + emission %.4f + indirect %.4f\n",
                 meanRgb(final), meanRgb(terms[0]), meanRgb(terms[1]), meanRgb(terms[2]));
     EXPECT_GT(maxChannel(terms[0]), 0.1f) << "direct";
     EXPECT_GT(maxChannel(terms[1]), 10.0f) << "emission: the area light seen";
     EXPECT_GT(meanRgb(terms[2]), 0.01) << "indirect";
-    const CliResult r = runCli("render --scene builtin:cornell --gi pathtrace --size 8x8 --view indirect.diffuse --out " +
+    const CliResult r = runCli("render --scene builtin:cornell --gi ao-reference --size 8x8 --view indirect.diffuse --out " +
                                dir + "/x.exr");
     EXPECT_NE(r.status, 0);
-    EXPECT_NE(r.err.find("it exists for none, ssao, vct"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("it exists for none, ssao, pathtrace, vct"), std::string::npos) << r.err;
 }
 
 // Every method that lights a G-buffer offers every term, each once (a method's own "ao" stands

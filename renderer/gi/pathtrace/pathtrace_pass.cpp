@@ -10,14 +10,19 @@ namespace gis {
 namespace {
 constexpr GLuint RAY_COUNTS_BINDING = 6;  // pathtrace.comp's RayCounts
 
-// The term views in pathtrace.comp's u_term order (1, 2, 3): they add up to the final image.
+// The term views in pathtrace.comp's u_term order (1 ... 5): direct + emission + pathtrace.indirect
+// add up to the final image, and indirect.diffuse + indirect.specular to pathtrace.indirect.
 const std::vector<DebugViewDesc>& termViews() {
     static const std::vector<DebugViewDesc> views{
         {"direct", "radiance the first surface receives straight from the lights and emitters (as the lighting "
                    "pass's direct term); direct + emission + pathtrace.indirect = final before tone mapping"},
         {"emission", "emitted radiance seen directly: surfaces' emission, the background elsewhere"},
         {"pathtrace.indirect", "everything after the first bounce: final - direct - emission (indirect diffuse and "
-                               "specular together, the environment's light on the first surface included)"}};
+                               "specular together, the environment's light on the first surface included)"},
+        {"indirect.diffuse", "the indirect light the first surface's diffuse lobe reflects (pathtrace.indirect split by the "
+                             "lobe of its first bounce, per channel)"},
+        {"indirect.specular", "the indirect light the first surface's specular lobe reflects: indirect.diffuse + "
+                              "indirect.specular = pathtrace.indirect"}};
     return views;
 }
 
@@ -119,7 +124,7 @@ GiMethod pathtraceMethod() {
     m.pipeline = MethodPipeline::Standalone;
     m.role = MethodRole::Reference;
     m.physicalBrdfsOnly = true;
-    m.termViews = {"direct", "emission"};
+    m.termViews = {"direct", "emission", "indirect.diffuse", "indirect.specular"};
     m.params = pathTraceParams().rows;
     // At low sample counts: the reference's own speed/noise trade.
     for (auto [name, spp] : {std::pair{"low", 4}, {"medium", 16}, {"high", 64}})

@@ -37,8 +37,9 @@ public:
         if (c & ChangeLiveParams) liveChanged_ = true;
     }
     const Bvh& bvh() const { return rays_.bvh; }
-    // The radiance split as the lighting pass's term views split it (direct, emission) and the
-    // rest, pathtrace.indirect: with --view one of them the paths keep only that term.
+    // The radiance split as the lighting pass's term views split it (direct, emission,
+    // indirect.diffuse, indirect.specular) and pathtrace.indirect, the last two's sum: with --view
+    // one of them the paths keep only that term.
     std::vector<DebugViewDesc> debugViews() const override;
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     std::optional<RayCounts> raysTraced() const override;

@@ -35,8 +35,20 @@ layout(location = U_PT_TERM) uniform int u_term;
 // 1: an environment map is sampled as a light too (pathtrace.env-sampling); 0: BSDF samples alone.
 layout(location = U_ENV_SAMPLING) uniform int u_sampleEnvironment;
 const int TERM_ALL = 0, TERM_DIRECT = 1, TERM_EMISSION = 2, TERM_INDIRECT = 3;
+const int TERM_INDIRECT_DIFFUSE = 4, TERM_INDIRECT_SPECULAR = 5;  // TERM_INDIRECT by the first surface's lobe
 // 1 where a contribution of `term` is kept.
 float kept(int term) { return u_term == TERM_ALL || u_term == term ? 1.0 : 0.0; }
+// What is kept of an indirect contribution whose diffuse share (per channel) of the first
+// surface's reflection is `diffuseShare`: the two lobes' views split it, the rest keep it whole.
+vec3 keptIndirect(vec3 diffuseShare) {
+    if (u_term == TERM_INDIRECT_DIFFUSE) return diffuseShare;
+    if (u_term == TERM_INDIRECT_SPECULAR) return vec3(1.0) - diffuseShare;
+    return vec3(kept(TERM_INDIRECT));
+}
+// part / whole per channel, 0 where the whole is (nothing of it is then added anyway).
+vec3 shareOf(vec3 part, vec3 whole) {
+    return vec3(greaterThan(whole, vec3(0.0))) * clamp(part / max(whole, vec3(1e-30)), 0.0, 1.0);
+}
 
 // Throughput figures (`--timings`' rays/s): rays traced, as 64-bit counts kept in pairs of uints
 // (low, high) since core GL has no 64-bit atomics. Each invocation counts in registers and adds
@@ -241,7 +253,8 @@ vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, ino
 // The environment map as a light: one direction drawn from its luminance, weighted by MIS (power
 // heuristic) against the BSDF sampling the same direction (PBRT 3rd ed., 14.3.1). A constant
 // environment is reached by BSDF samples alone, as it always was, and draws no random numbers.
-vec3 environmentLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, inout Rng rng) {
+vec3 environmentLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, inout Rng rng, out vec3 diffuseShare) {
+    diffuseShare = vec3(0.0);
     if (!environmentIsMap() || u_sampleEnvironment == 0) return vec3(0.0);
     float lightPdf;
     vec3 L = sampleEnvironment(nextFloat2(rng), lightPdf);
@@ -249,8 +262,9 @@ vec3 environmentLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel
     if (!(lightPdf > 0.0) || NoL <= 0.0 || dot(s.geometricNormal, L) <= 0.0) return vec3(0.0);
     if (!visible(offsetRayOrigin(s.position, s.geometricNormal), L, 1e30)) return vec3(0.0);
     float weight = powerHeuristic(lightPdf, bsdfPdf(s, V, L, pSpecular));
-    return evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel) * environmentRadiance(L) * NoL *
-           (weight / lightPdf);
+    vec3 f = evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel);
+    diffuseShare = shareOf(evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, SPECULAR_NONE), f);
+    return f * environmentRadiance(L) * NoL * (weight / lightPdf);
 }
 
 vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
@@ -258,6 +272,9 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
     vec3 throughput = vec3(1.0);
     float lastBsdfPdf = 0.0;   // 0 = the ray came from the camera (no MIS for what it hits)
     bool afterDiffuse = false; // the path has made a diffuse bounce (caustics switch)
+    // The first surface's diffuse lobe's share of the throughput, per channel (set by its BSDF
+    // sample): what of everything after it is indirect diffuse light, the rest indirect specular.
+    vec3 diffuseShare = vec3(0.0);
     for (int depth = 0;; ++depth) {
         Hit hit;
         ++g_rays[depth == 0 ? RAYS_PRIMARY : RAYS_BOUNCE];
@@ -271,7 +288,8 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
         if (!traceRay(origin, dir, 1e30, false, depth == 0, hit)) {
             // A map was also sampled as a light at the vertex this ray left: the other half of the MIS.
             float weight = environmentIsMap() && u_sampleEnvironment != 0 && lastBsdfPdf > 0.0 ? powerHeuristic(lastBsdfPdf, environmentPdf(dir)) : 1.0;
-            radiance += throughput * environmentRadiance(dir) * weight * kept(depth == 0 ? TERM_EMISSION : TERM_INDIRECT);
+            radiance += throughput * environmentRadiance(dir) * weight *
+                        (depth == 0 ? vec3(kept(TERM_EMISSION)) : keptIndirect(diffuseShare));
             break;
         }
         SurfacePoint s = shade(hit, dir);
@@ -282,8 +300,8 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
                 float lightPdf = s.emitterPdfPerArea * hit.t * hit.t / max(cosLight, 1e-8);
                 weight = powerHeuristic(lastBsdfPdf, lightPdf);
             }
-            int term = depth == 0 ? TERM_EMISSION : depth == 1 ? TERM_DIRECT : TERM_INDIRECT;
-            radiance += throughput * s.emission * weight * kept(term);
+            vec3 keep = depth == 0 ? vec3(kept(TERM_EMISSION)) : depth == 1 ? vec3(kept(TERM_DIRECT)) : keptIndirect(diffuseShare);
+            radiance += throughput * s.emission * weight * keep;
         }
         if (depth > u_maxBounces) break;  // that hit was only looked at for emission
 
@@ -294,9 +312,11 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
         int specularModel = noGlossy ? SPECULAR_NONE : u_brdfModels.y;
         float pSpecular = specularChoice(s, NoV);
         radiance += throughput * directLight(s, V, pSpecular, specularModel, rng) *
-                    kept(depth == 0 ? TERM_DIRECT : TERM_INDIRECT);
+                    (depth == 0 ? vec3(kept(TERM_DIRECT)) : keptIndirect(diffuseShare));
         // The environment lights the first surface as indirect light, as the lighting pass splits it.
-        radiance += throughput * environmentLight(s, V, pSpecular, specularModel, rng) * kept(TERM_INDIRECT);
+        vec3 environmentDiffuseShare;
+        vec3 environment = environmentLight(s, V, pSpecular, specularModel, rng, environmentDiffuseShare);
+        radiance += throughput * environment * keptIndirect(depth == 0 ? environmentDiffuseShare : diffuseShare);
 
         vec3 L;
         bool specularLobe;
@@ -304,7 +324,9 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
         afterDiffuse = afterDiffuse || !specularLobe;
         float pdf = bsdfPdf(s, V, L, pSpecular);
         if (!(pdf > 1e-12)) break;
-        throughput *= evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel) * dot(s.normal, L) / pdf;
+        vec3 f = evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel);
+        if (depth == 0) diffuseShare = shareOf(evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, SPECULAR_NONE), f);
+        throughput *= f * dot(s.normal, L) / pdf;
         if (!(max(max(throughput.r, throughput.g), throughput.b) > MIN_THROUGHPUT)) break;
         if (depth >= u_rrStart) {
             float survive = min(max(max(throughput.r, throughput.g), throughput.b), MAX_SURVIVAL);
