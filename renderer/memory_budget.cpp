@@ -11,6 +11,7 @@
 #include "environment.h"
 #include "environment_gpu.h"
 #include "gi/method.h"
+#include "passes/gbuffer_pass.h"
 #include "gl/gl.h"
 #include "renderer.h"
 #include "scene/scene.h"
@@ -59,7 +60,11 @@ MemoryEstimate estimateGpuMemory(const Scene& scene, const RenderSettings& s) {
         for (const auto& part : method.estimateMemory(scene, s)) e.parts.push_back(part);
     const bool deferred = method.pipeline == MethodPipeline::Deferred;
     // A G-buffer view of a standalone method adds the G-buffer; any debug view its RGBA16F target.
-    if (deferred || s.view.rfind("gbuffer.", 0) == 0) e.parts.push_back({"G-buffer (28 bytes/pixel)", pixels * 28});
+    if (deferred || s.view.rfind("gbuffer.", 0) == 0) {
+        e.parts.push_back({"G-buffer (28 bytes/pixel)", pixels * 28});
+        if (const int64_t aa = emissionAntialiasingBytes(scene, s.width, s.height))
+            e.parts.push_back({"G-buffer emission antialiasing (multisampled)", uint64_t(aa)});
+    }
     if (s.view != "final") e.parts.push_back({"debug view (RGBA16F)", pixels * 8});
     if (deferred) {
         e.parts.push_back({s.hdr32 ? "lighting (RGBA32F)" : "lighting (RGBA16F)", pixels * (s.hdr32 ? 16 : 8)});

@@ -88,7 +88,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     const bool deferred = method.pipeline == MethodPipeline::Deferred;
     const bool gbufferView = settings_.view.rfind("gbuffer.", 0) == 0;
     if (deferred) passes_.push_back(std::make_unique<ShadowPass>(*gpuScene_, settings_, ledger_));
-    if (deferred || gbufferView) passes_.push_back(std::make_unique<GBufferPass>(w, h, ledger_));
+    if (deferred || gbufferView) passes_.push_back(std::make_unique<GBufferPass>(scene, w, h, ledger_));
     // Emissive triangles as lights of the direct pass: only when there are any (no cost otherwise).
     if (deferred && emittersAreLights(scene, settings_) && services_->rays().emitterCount > 0)
         passes_.push_back(std::make_unique<EmitterLightPass>(*services_, settings_, ledger_));

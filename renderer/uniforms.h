@@ -39,7 +39,7 @@ constexpr int kSsaoMaxKernel = 256;
     X(U_EMITTER_COUNT, 43, 1) \
     X(U_RR_START, 44, 1) \
     X(U_CAUSTICS, 45, 1) /* 0: no light through glossy bounces after a diffuse one */ \
-    X(U_PT_TERM, 46, 1) /* the term a path accumulates: 0 all, 1 direct, 2 emission, 3 indirect */ \
+    X(U_PT_TERM, 46, 1) /* the term a path accumulates: 0 all, 1 direct, 2 emission, 3 indirect, 4/5 its diffuse/specular split */ \
     X(U_ENV_SAMPLING, 47, 1) /* 1: an environment map is sampled as a light (MIS) */ \
     /* ambient occlusion (SSAO, its blur and temporal passes, the ray-traced reference) */ \
     X(U_AO_RADIUS, 50, 1) \
@@ -49,6 +49,8 @@ constexpr int kSsaoMaxKernel = 256;
     X(U_AO_KERNEL_SIZE, 55, 1) \
     X(U_PREV_VIEW_PROJ, 57, 1) \
     X(U_AO_KERNEL, 600, kSsaoMaxKernel) /* a vec4 per direction; past every table, within GL's 1024 */ \
+    /* the G-buffer's emission resolve (passes/gbuffer_pass.cpp): this pass's index, the pass count */ \
+    X(U_EMISSION_PASS, 561, 1) \
     /* environment prefilter (renderer/environment_gpu.cpp) */ \
     X(U_ENV_ROUGHNESS, 560, 1) /* the GGX roughness of the level being filtered */ \
     /* tonemap pass */ \

@@ -119,6 +119,15 @@ int64_t texture2DBytes(GLenum format, int width, int height, int levels) {
     return bytesPerTexel(format) * mipChainTexels(width, height, 1, levels, false);
 }
 
+Texture createTexture2DMultisample(const MemoryScope& scope, GLenum format, int width, int height, int samples) {
+    Texture t = makeTexture(GL_TEXTURE_2D_MULTISAMPLE, format, width, height, samples, 1);
+    glTextureStorage2DMultisample(t.id(), samples, format, width, height, GL_TRUE);
+    checkOutOfMemory("allocating a " + std::to_string(width) + "x" + std::to_string(height) + "x" +
+                     std::to_string(samples) + "-sample texture for " + scope.owner);
+    t.object.charge(scope, bytesPerTexel(format) * int64_t(width) * height * samples);
+    return t;
+}
+
 Texture createTexture2DArray(const MemoryScope& scope, GLenum format, int width, int height, int layers) {
     Texture t = makeTexture(GL_TEXTURE_2D_ARRAY, format, width, height, layers, 1);
     glTextureStorage3D(t.id(), 1, format, width, height, layers);

@@ -64,6 +64,8 @@ struct Texture {
 // Immutable-storage textures (glTextureStorage*). Throws gis::Error on GL_OUT_OF_MEMORY.
 Texture createTexture2D(const MemoryScope& scope, GLenum format, int width, int height, int levels = 1);
 Texture createTexture2DArray(const MemoryScope& scope, GLenum format, int width, int height, int layers);
+// `samples` per texel (GL_TEXTURE_2D_MULTISAMPLE, fixed sample locations); depth holds the samples.
+Texture createTexture2DMultisample(const MemoryScope& scope, GLenum format, int width, int height, int samples);
 Texture createTextureCubeArray(const MemoryScope& scope, GLenum format, int size, int cubes);
 Texture createTexture3D(const MemoryScope& scope, GLenum format, int width, int height, int depth, int levels = 1);
 // Another view of `source`'s storage (glTextureView): all its levels and layers, seen as `target`

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "debug_view.h"
+#include "gl/dispatch.h"
 
 #include "uniforms.h"
 
@@ -11,6 +12,14 @@ namespace gis {
 
 namespace {
 constexpr unsigned kAllTextures = 31;  // GpuMaterial::textures
+// Samples per draw (4x MSAA, which llvmpipe offers for float colour and depth textures too) and
+// draws: offset by (+-1/16, +-1/16) pixel, the common rotated-grid 4x pattern's x and y positions
+// (multiples of 1/4 apart) become 8 evenly spaced ones per axis, so an edge along a pixel row is
+// covered in eighths instead of quarters.
+constexpr int kEmissionSamples = 4;
+constexpr int kEmissionDraws = 4;
+const ProgramDesc kEmissionResolveProgram{"emission_resolve", {"emission_resolve.comp"}, {}};
+constexpr int64_t kEmissionSampleBytes = 8 + 4;  // RGBA16F emission, 32-bit float depth
 
 // The G-buffer program for materials with the textures in `textures` (material.glsl's
 // MATERIAL_TEXTURES): a texture the material lacks is not sampled at all.
@@ -21,7 +30,9 @@ ProgramDesc gbufferProgram(unsigned textures) {
 }  // namespace
 
 // Every texture and none (for `gisandbox shaders`; the others only leave lookups out).
-std::vector<ProgramDesc> GBufferPass::programs() { return {gbufferProgram(kAllTextures), gbufferProgram(0)}; }
+std::vector<ProgramDesc> GBufferPass::programs() {
+    return {gbufferProgram(kAllTextures), gbufferProgram(0), kEmissionResolveProgram};
+}
 
 // Built on first need: one per set of textures the scene's materials have.
 GLuint GBufferPass::programFor(const GpuMaterial& material) {
@@ -30,7 +41,20 @@ GLuint GBufferPass::programFor(const GpuMaterial& material) {
     return program.id();
 }
 
-GBufferPass::GBufferPass(int width, int height, gl::MemoryLedger& ledger) {
+int emissionSamples(const Scene& scene) {
+    for (const DrawItem& d : scene.draws) {
+        const Primitive& p = scene.primitives[size_t(d.primitive)];
+        if (p.material >= 0 && glm::any(glm::greaterThan(scene.materials[size_t(p.material)].emissive, glm::vec3(0.0f))))
+            return kEmissionSamples;
+    }
+    return 0;
+}
+
+int64_t emissionAntialiasingBytes(const Scene& scene, int width, int height) {
+    return int64_t(width) * height * emissionSamples(scene) * kEmissionSampleBytes;
+}
+
+GBufferPass::GBufferPass(const Scene& scene, int width, int height, gl::MemoryLedger& ledger) {
     const gl::MemoryScope scope{&ledger, name()};
     depth_ = gl::createTexture2D(scope, GL_DEPTH_COMPONENT32F, width, height);
     // sRGB storage keeps dark albedos (0.05) precise to ~0.1% instead of 8-bit linear's ~2%.
@@ -48,10 +72,22 @@ GBufferPass::GBufferPass(int width, int height, gl::MemoryLedger& ledger) {
     const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
     glNamedFramebufferDrawBuffers(f, 4, buffers);
     gl::checkFramebuffer(f, "G-buffer");
+    const int samples = emissionSamples(scene);
+    if (samples == 0) return;
+    multisampleDepth_ = gl::createTexture2DMultisample(scope, GL_DEPTH_COMPONENT32F, width, height, samples);
+    multisampleEmissive_ = gl::createTexture2DMultisample(scope, GL_RGBA16F, width, height, samples);
+    multisampleFbo_ = gl::createFramebuffer();
+    const GLuint m = multisampleFbo_.id();
+    glNamedFramebufferTexture(m, GL_DEPTH_ATTACHMENT, multisampleDepth_.id(), 0);
+    glNamedFramebufferTexture(m, GL_COLOR_ATTACHMENT3, multisampleEmissive_.id(), 0);
+    // gbuffer.frag's outputs 0-2 go nowhere: the same program writes the emission alone.
+    const GLenum emissionOnly[4] = {GL_NONE, GL_NONE, GL_NONE, GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(m, 4, emissionOnly);
+    gl::checkFramebuffer(m, "G-buffer emission (multisampled)");
+    resolveProgram_ = buildProgram(kEmissionResolveProgram);
 }
 
 void GBufferPass::execute(Frame& frame) {
-    const GpuScene& scene = frame.scene;
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
     glViewport(0, 0, depth_.width, depth_.height);
     glEnable(GL_FRAMEBUFFER_SRGB);  // encode base colour into its sRGB target
@@ -61,13 +97,54 @@ void GBufferPass::execute(Frame& frame) {
     glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &farDepth);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
+    drawScene(frame, frame.camera.viewProj);
+    if (multisampleFbo_.id()) antialiasEmission(frame);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    frame.put(resource::kGbufferDepth, depth_);
+    frame.put(resource::kGbufferBaseColor, baseColor_);
+    frame.put(resource::kGbufferNormal, normal_);
+    frame.put(resource::kGbufferMaterial, material_);
+    frame.put(resource::kGbufferEmissive, emissive_);
+    stale_ = false;
+}
+
+void GBufferPass::antialiasEmission(const Frame& frame) {
+    const GLuint m = multisampleFbo_.id(), resolve = resolveProgram_.id();
+    const int w = depth_.width, h = depth_.height;
+    const float zero[4] = {0, 0, 0, 0};
+    const float farDepth = 1.0f;
+    glBindFramebuffer(GL_FRAMEBUFFER, m);
+    glEnable(GL_MULTISAMPLE);
+    for (int k = 0; k < kEmissionDraws; ++k) {
+        // The offset in NDC: a pixel is 2 / size.
+        glm::mat4 offset(1.0f);
+        offset[3][0] = ((k & 1) ? 1.0f : -1.0f) / 16.0f * 2.0f / float(w);
+        offset[3][1] = ((k & 2) ? 1.0f : -1.0f) / 16.0f * 2.0f / float(h);
+        glClearNamedFramebufferfv(m, GL_COLOR, 3, zero);
+        glClearNamedFramebufferfv(m, GL_DEPTH, 0, &farDepth);
+        drawScene(frame, offset * frame.camera.viewProj);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glUseProgram(resolve);
+        glProgramUniform2i(resolve, U_EMISSION_PASS, k, kEmissionDraws);
+        glBindTextureUnit(0, multisampleEmissive_.id());
+        glBindSampler(0, 0);
+        glBindImageTexture(0, emissive_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+        gl::dispatchCompute(gl::groupsFor(w, 8), gl::groupsFor(h, 8), 1, "G-buffer emission resolve");
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+}
+
+void GBufferPass::drawScene(const Frame& frame, const glm::mat4& viewProj) {
+    const GpuScene& scene = frame.scene;
     glFrontFace(GL_CCW);
     glBindVertexArray(scene.vao.id());
     for (const GpuDraw& d : scene.draws) {
         const GpuMaterial& m = scene.materials[d.material];
         const GLuint program = programFor(m);
         glUseProgram(program);
-        glProgramUniformMatrix4fv(program, U_VIEW_PROJ, 1, GL_FALSE, &frame.camera.viewProj[0][0]);
+        glProgramUniformMatrix4fv(program, U_VIEW_PROJ, 1, GL_FALSE, &viewProj[0][0]);
         if (m.params.doubleSided) glDisable(GL_CULL_FACE);
         else glEnable(GL_CULL_FACE);
         // A mirroring transform (negative determinant) flips the winding.
@@ -78,14 +155,6 @@ void GBufferPass::execute(Frame& frame) {
                                  reinterpret_cast<const void*>(uintptr_t(d.firstIndex) * 4), d.baseVertex);
     }
     glFrontFace(GL_CCW);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_FRAMEBUFFER_SRGB);
-    frame.put(resource::kGbufferDepth, depth_);
-    frame.put(resource::kGbufferBaseColor, baseColor_);
-    frame.put(resource::kGbufferNormal, normal_);
-    frame.put(resource::kGbufferMaterial, material_);
-    frame.put(resource::kGbufferEmissive, emissive_);
-    stale_ = false;
 }
 
 namespace {

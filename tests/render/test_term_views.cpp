@@ -175,6 +175,34 @@ TEST(PathTracerTermViews, AddUpToTheFinalImage) {
     EXPECT_NE(r.err.find("it exists for none, ssao, pathtrace, vct"), std::string::npos) << r.err;
 }
 
+// The emission seen directly is box-filtered over each pixel, as the path tracer (a uniformly
+// jittered point per sample) and the Cycles references filter it: the G-buffer's emission is the
+// resolve of a multisampled draw. Point-sampled, each pixel an emitter's edge crosses was all or
+// nothing of its radiance. Against the path tracer's own emission term on cornell-area (its area
+// light seen from below at 64x64): the same total, pixels part-covered along the edge, and no
+// pixel off by more than the path tracer's own coverage noise at 256 spp allows.
+TEST(EmissionAntialiasing, EmitterEdgesAreBoxFilteredAsInThePathTracer) {
+    const std::string dir = tempDir("emission_antialiasing");
+    const ImageF raster = renderView(Case{"builtin:cornell-area", "none", ""}, "emission", dir);
+    const ImageF traced =
+        renderView(Case{"builtin:cornell-area", "pathtrace", "--spp 256"}, "emission", tempDir("emission_antialiasing_pt"));
+    ASSERT_FALSE(::testing::Test::HasFailure());
+    const float radiance = maxChannel(traced);
+    ASSERT_GT(radiance, 1.0f);
+    int partial = 0;
+    double worst = 0.0;
+    for (size_t i = 0; i < raster.rgba.size(); i += 4) {
+        const float v = raster.rgba[i];
+        partial += v > 0.05f * radiance && v < 0.95f * radiance;
+        worst = std::max(worst, double(std::abs(v - traced.rgba[i])) / radiance);
+    }
+    std::printf("cornell-area 64x64 emission: mean %.4f, path tracer %.4f; %d part-covered pixels; worst pixel %.3f "
+                "of the radiance\n", meanRgb(raster), meanRgb(traced), partial, worst);
+    EXPECT_NEAR(meanRgb(raster) / meanRgb(traced), 1.0, 0.02);
+    EXPECT_GE(partial, 8) << "the edge's pixels";
+    EXPECT_LT(worst, 0.25);
+}
+
 // Every method that lights a G-buffer offers every term, each once (a method's own "ao" stands
 // for the lighting's), with its help line.
 TEST(TermViewList, EveryDeferredMethodOffersEveryTerm) {

@@ -379,11 +379,11 @@ TEST(Script, LinesThatFailOnlyInContextAreRefusedBeforeTheWindowOpens) {
     EXPECT_EQ(line, 2);
     EXPECT_EQ(contextError("method 0 sdf\ndisplay 0 sdf.slice\n", state), "");
     // A lighting term a method without the lighting pass does not write itself (issue 26's
-    // per-term views: the path tracer writes direct and emission, not the indirect split).
-    const std::string term = contextError("method 0 pathtrace\ndisplay 0 indirect.diffuse\n", state);
-    EXPECT_EQ(term, cliError("--gi pathtrace --view indirect.diffuse"));
-    EXPECT_NE(term.find("none, ssao, vct"), std::string::npos) << term;
-    EXPECT_EQ(contextError("method 0 pathtrace\ndisplay 0 direct\ndisplay 0 pathtrace.indirect\n", state), "");
+    // per-term views: the AO reference writes none; the path tracer writes them all).
+    const std::string term = contextError("method 0 ao-reference\ndisplay 0 indirect.diffuse\n", state);
+    EXPECT_EQ(term, cliError("--gi ao-reference --view indirect.diffuse"));
+    EXPECT_NE(term.find("none, ssao, pathtrace, vct"), std::string::npos) << term;
+    EXPECT_EQ(contextError("method 0 pathtrace\ndisplay 0 direct\ndisplay 0 pathtrace.indirect\ndisplay 0 indirect.diffuse\n", state), "");
     EXPECT_NE(contextError("method 0 ao-reference\ndisplay 0 direct\n", state).find("pathtrace"), std::string::npos);
     EXPECT_EQ(contextError("method 0 ssao\ndisplay 0 indirect.diffuse\nmethod 0 pathtrace\n", state), "")
         << "a new method resets the display";
