@@ -55,10 +55,10 @@ TEST(EmitterTables, DISABLED_CornellBoxDirectLightPerFace) {
 }
 
 // The emitter's outline in Cycles' image: its pixels (radiance above 1; the lit walls stay below
-// 0.5) and their 8 neighbours. Cycles filters every pixel over 1.5 pixels (Blackman-Harris), so the
-// 15-radiance emitter spills over a pixel around its edge; the rasterizer samples pixel centres,
-// without antialiasing, so that ring differs by up to the emitter's radiance whatever the GI does.
-// Found from the reference alone: the same pixels for every method.
+// 0.5) and their 8 neighbours. Cycles averages each pixel over its square, so the pixels the
+// 15-radiance emitter's edge crosses hold its share of them; a rasterizer sampling pixel centres
+// gave them all or nothing of it (the G-buffer's emission is box-filtered since, so the column now
+// measures what is left there). Found from the reference alone: the same pixels for every method.
 MetricOptions emitterOutlineLeftOut(const ImageF& ref) {
     MetricOptions o;
     o.ignore.assign(size_t(ref.width) * ref.height, 0);
