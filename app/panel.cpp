@@ -144,7 +144,10 @@ void paneControls(PanelContext& ctx, int i) {
     if (ImGui::Checkbox("Direct light only", &direct)) act(ctx, PanelAction::directOnly(i, direct));
     const PaneView& pv = ctx.session.pane(i);
     if (!pv.status.empty()) ImGui::TextDisabled("%s", pv.status.c_str());
-    if (pv.heatmapReady) ImGui::Text("%s vs reference: %s", pv.metricName.c_str(), formatMetric(pv.metricValue, 4).c_str());
+    if (pv.heatmapReady) {
+        ImGui::Text("%s vs reference: %s", pv.metricName.c_str(), formatMetric(pv.metricValue, 4).c_str());
+        ImGui::Text("colour bar (pane's bottom): 0 to %s", formatMetric(pv.heatmapMax, 3).c_str());
+    }
     ImGui::PopID();
 }
 

@@ -457,7 +457,9 @@ void ViewSession::updateHeatmap(const ViewState& state, int index, const CameraM
             case ErrorMetric::Ssim: p.metricValue = 1.0 - sum / n; p.metricName = "SSIM"; break;
         }
         const bool unitRange = state.heatmapMetric == ErrorMetric::Flip || state.heatmapMetric == ErrorMetric::Ssim;
-        const ImageU8 heat = heatmapImage(map, unitRange ? 1.0f : std::max(largest, 1e-12f));
+        p.heatmapMax = unitRange ? 1.0f : std::max(largest, 1e-12f);
+        ImageU8 heat = heatmapImage(map, float(p.heatmapMax));
+        overlayColorBar(heat);  // 0 at the left to heatmapMax at the right (the panel says the number)
         const GLuint tex = ensureDisplay(p);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
         const size_t row = size_t(heat.width) * 4;

@@ -71,6 +71,7 @@ struct PaneView {
     std::string heatmapKey;
     bool heatmapReady = false;
     double metricValue = 0.0;
+    double heatmapMax = 0.0;          // the colour bar's right end (the map's largest value, or 1)
     std::string metricName;
 };
 

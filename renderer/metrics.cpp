@@ -581,6 +581,30 @@ glm::vec3 heatmapColor(float t) {
     return ramp()[size_t(std::lround(t * float(kRampSize - 1)))];
 }
 
+namespace {
+int colorBarRows(int imageHeight) { return std::max(8, imageHeight / 16); }
+
+// Rows [y0, y0 + rows) of `img`: the ramp from 0 (left) to its maximum (right).
+void paintColorBar(ImageU8& img, int y0, int rows) {
+    for (int y = std::max(y0, 0); y < std::min(y0 + rows, img.height); ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const glm::vec3 c = heatmapColor(img.width > 1 ? float(x) / float(img.width - 1) : 1.0f);
+            uint8_t* px = &img.rgba[(size_t(y) * img.width + x) * 4];
+            for (int k = 0; k < 3; ++k) px[k] = uint8_t(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
+            px[3] = 255;
+        }
+}
+}  // namespace
+
+void overlayColorBar(ImageU8& img) {
+    const int rows = std::min(colorBarRows(img.height), img.height / 4);
+    if (rows < 1) return;
+    const int line = img.height - rows - 1;
+    if (line >= 0)
+        for (int x = 0; x < img.width; ++x) std::fill_n(&img.rgba[(size_t(line) * img.width + x) * 4], 4, uint8_t(255));
+    paintColorBar(img, img.height - rows, rows);
+}
+
 ImageU8 heatmapImage(const ErrorMap& map, float maxValue, bool colorBar, const std::vector<uint8_t>& ignore) {
     if (map.width <= 0 || map.height <= 0 || map.values.size() != size_t(map.width) * map.height)
         throw Error("heatmap: error map is empty or inconsistent (" + std::to_string(map.width) + "x" +
@@ -590,7 +614,7 @@ ImageU8 heatmapImage(const ErrorMap& map, float maxValue, bool colorBar, const s
     if (!ignore.empty() && ignore.size() != map.values.size())
         throw Error("heatmap: ignore mask has " + std::to_string(ignore.size()) + " entries for " +
                     std::to_string(map.values.size()) + " pixels");
-    const int barHeight = colorBar ? std::max(8, map.height / 16) : 0;
+    const int barHeight = colorBar ? colorBarRows(map.height) : 0;
     const int gap = colorBar ? 2 : 0;
     ImageU8 img;
     img.width = map.width;
@@ -608,9 +632,7 @@ ImageU8 heatmapImage(const ErrorMap& map, float maxValue, bool colorBar, const s
         }
     for (int y = map.height; y < map.height + gap; ++y)
         for (int x = 0; x < map.width; ++x) put(x, y, glm::vec3(1.0f));
-    for (int y = map.height + gap; y < img.height; ++y)
-        for (int x = 0; x < map.width; ++x)
-            put(x, y, heatmapColor(map.width > 1 ? float(x) / float(map.width - 1) : 1.0f));
+    paintColorBar(img, map.height + gap, barHeight);
     return img;
 }
 

@@ -103,6 +103,9 @@ glm::vec3 heatmapColor(float t);  // t in [0, 1] -> sRGB-encoded colour in [0, 1
 // to maxValue (right) is added below the image. maxValue must be > 0.
 ImageU8 heatmapImage(const ErrorMap& map, float maxValue, bool colorBar = false,
                      const std::vector<uint8_t>& ignore = {});
+// The same strip over the image's bottom rows (a white line above it), for a view whose size is
+// fixed (the viewer's panes).
+void overlayColorBar(ImageU8& img);
 // Written atomically (writePng); throws gis::Error naming the file.
 void writeHeatmap(const std::string& path, const ErrorMap& map, float maxValue, bool colorBar = false,
                   const std::vector<uint8_t>& ignore = {});

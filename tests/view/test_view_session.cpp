@@ -14,6 +14,7 @@
 
 #include "brdf_cpu.h"
 #include "cli_util.h"
+#include "metrics.h"
 #include "settings_io.h"
 #include "view_session.h"
 #include "view_test_util.h"
@@ -260,6 +261,14 @@ TEST(Session, HeatmapAgainstTheReference) {
     const ImageU8 heat = s.session->readPane(0);
     const ImageU8 zero = s.session->readPane(1);
     EXPECT_GT(meanAbsDiff(heat, zero), 5.0);
+    // The colour bar across the pane's bottom rows: the ramp from 0 (left) to heatmapMax (right).
+    EXPECT_EQ(raster.heatmapMax, 1.0) << "FLIP's range";
+    for (const ImageU8* pane : {&heat, &zero})
+        for (int x : {0, pane->width - 1}) {
+            const glm::vec3 expected = heatmapColor(x == 0 ? 0.0f : 1.0f) * 255.0f;
+            const uint8_t* px = &pane->rgba[(size_t(pane->height - 1) * pane->width + x) * 4];
+            for (int k = 0; k < 3; ++k) EXPECT_NEAR(px[k], expected[k], 2.0) << "x " << x << " channel " << k;
+        }
     // The reference is cached: switching the metric recomputes the map, not the reference.
     const int builds = s.session->rebuilds();
     s.act("metric rmse");
