@@ -57,6 +57,14 @@ std::vector<ProgramDesc> GpuEnvironment::programs() { return {kPrefilterProgram,
 GpuEnvironment::GpuEnvironment(const std::string& path, gl::MemoryLedger& ledger)
     : block_(gl::MemoryScope{&ledger, "environment"}) {
     const gl::MemoryScope scope{&ledger, "environment"};
+    // The split sum's table for either kind: a constant is a uniform map, whose specular is its
+    // radiance times the table's directional albedo as a map's is.
+    brdf_ = gl::createTexture2D(scope, GL_RG32F, kEnvironmentBrdfTableSize, kEnvironmentBrdfTableSize);
+    glTextureParameteri(brdf_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(brdf_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(brdf_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(brdf_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    buildBrdfTable();
     if (path.empty()) {
         uploadConstant(scope);
         return;
@@ -71,16 +79,18 @@ GpuEnvironment::GpuEnvironment(const std::string& path, gl::MemoryLedger& ledger
     values_.texelSteradians = 4.0f * 3.14159265f / float(map.width * map.height);
     for (int k = 0; k < 9; ++k) values_.sh[k] = glm::vec4(sh[size_t(k)], 0.0f);
     prefilterSpecular();
-    buildBrdfTable();
 }
 
 GpuEnvironment::~GpuEnvironment() = default;
+
+int64_t GpuEnvironment::tableBytes() {
+    return gl::texture2DBytes(GL_RG32F, kEnvironmentBrdfTableSize, kEnvironmentBrdfTableSize);
+}
 
 int64_t GpuEnvironment::mapBytes(int width, int height) {
     const MapTextures t = mapTextures(width, height);
     return gl::texture2DBytes(kFormat, width, height, gl::mipLevelsFor(width, height)) +
            gl::texture2DBytes(kFormat, t.specularWidth, t.specularHeight, t.specularLevels) +
-           gl::texture2DBytes(GL_RG32F, kEnvironmentBrdfTableSize, kEnvironmentBrdfTableSize) +
            gl::texture2DBytes(GL_R32F, height + 1, 1) + gl::texture2DBytes(GL_R32F, width + 1, height);
 }
 
@@ -95,7 +105,6 @@ void GpuEnvironment::uploadConstant(gl::MemoryScope scope) {
     }
     marginal_ = floatTexture(scope, 1, 1, zero);
     conditional_ = floatTexture(scope, 1, 1, zero);
-    brdf_ = floatTexture(scope, 1, 1, zero);
 }
 
 // A map's textures: its radiance with mips, the specular chain and BRDF table (filled after), and
@@ -109,11 +118,6 @@ void GpuEnvironment::upload(gl::MemoryScope scope, const EnvironmentMap& map) {
     setLinearMipmapped(radiance_.id());
     specular_ = gl::createTexture2D(scope, kFormat, t.specularWidth, t.specularHeight, t.specularLevels);
     setLinearMipmapped(specular_.id());
-    brdf_ = gl::createTexture2D(scope, GL_RG32F, kEnvironmentBrdfTableSize, kEnvironmentBrdfTableSize);
-    glTextureParameteri(brdf_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(brdf_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(brdf_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(brdf_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     const EnvironmentSampler sampler(map);
     values_.cdfTotal = sampler.marginalCdf().back();
     marginal_ = floatTexture(scope, h + 1, 1, sampler.marginalCdf().data());
@@ -139,7 +143,7 @@ void GpuEnvironment::prefilterSpecular() {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-// The split sum's BRDF table, once per map (a constant needs none: the baseline keeps its ambient).
+// The split sum's BRDF table (shaders/environment_brdf.glsl), once per environment.
 void GpuEnvironment::buildBrdfTable() {
     const gl::Object program = buildProgram(kBrdfTableProgram);
     glUseProgram(program.id());

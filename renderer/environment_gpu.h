@@ -65,8 +65,10 @@ public:
     void bind(glm::vec3 constant);
 
     static std::vector<ProgramDesc> programs();
-    // GPU bytes a width x height map's textures take (the memory budget's estimate, before loading).
+    // GPU bytes a width x height map's textures take (the memory budget's estimate, before loading),
+    // and the split-sum table every environment holds.
     static int64_t mapBytes(int width, int height);
+    static int64_t tableBytes();
 
 private:
     void uploadConstant(gl::MemoryScope scope);

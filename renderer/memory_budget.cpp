@@ -79,6 +79,7 @@ MemoryEstimate estimateGpuMemory(const Scene& scene, const RenderSettings& s) {
         }
     }
     e.parts.push_back({"tonemap (RGBA8)", pixels * 4});
+    e.parts.push_back({"environment (split-sum table)", uint64_t(GpuEnvironment::tableBytes())});
     if (!s.environment.empty())
         if (const std::optional<glm::ivec2> size = environmentMapSize(s.environment))
             e.parts.push_back({"environment map (radiance, specular chain, sampling CDFs)",

@@ -103,13 +103,10 @@ void indirectLight(SurfaceBrdf surface, vec3 N, vec3 V, int specularModel, out v
     float NoV = max(dot(N, V), MIN_N_DOT_V);
     specular = texture(s_indirectSpecular, v_uv).rgb * specularAlbedoSplitSum(surface, NoV, specularModel);
 #else
-    if (environmentIsMap()) {
-        float NoV = max(dot(N, V), MIN_N_DOT_V);
-        specular = environmentSpecular(reflect(-V, N), surface.roughness) *
-                   environmentSpecularAlbedo(surface, NoV, specularModel);
-    } else {
-        specular = u_ambient * surface.f0;
-    }
+    // A constant ambient is a uniform map: its prefiltered radiance is itself at every roughness.
+    float NoV = max(dot(N, V), MIN_N_DOT_V);
+    vec3 incoming = environmentIsMap() ? environmentSpecular(reflect(-V, N), surface.roughness) : u_ambient;
+    specular = incoming * environmentSpecularAlbedo(surface, NoV, specularModel);
 #endif
 }
 

@@ -44,9 +44,9 @@ void writeHdr(const std::string& path, int width, int height, const std::functio
 }
 
 // A white (or grey) sphere on a grey floor, the sky visible above: rays escape in every direction.
-Scene sphereScene(float sphereAlbedo, bool floor) {
+Scene sphereScene(const Material& sphereLook, bool floor) {
     Scene s;
-    const int sphereMaterial = detail::addMaterial(s, detail::lambert("sphere", glm::vec3(sphereAlbedo)));
+    const int sphereMaterial = detail::addMaterial(s, sphereLook);
     const int sphere = detail::addPrimitive(s, detail::uvSphere(0.5f, 96, 48, sphereMaterial));
     DrawItem d;
     d.primitive = sphere;
@@ -59,6 +59,19 @@ Scene sphereScene(float sphereAlbedo, bool floor) {
     s.cameras.push_back(lookAtCamera({0.0f, 1.1f, 2.2f}, {0.0f, 0.45f, 0.0f}, 45.0f));
     finalizeScene(s);
     return s;
+}
+
+Scene sphereScene(float sphereAlbedo, bool floor) {
+    return sphereScene(detail::lambert("sphere", glm::vec3(sphereAlbedo)), floor);
+}
+
+// A sphere with a specular lobe: a glossy dielectric or a rough metal.
+Material glossy(float metallic, float roughness) {
+    Material m = detail::lambert("glossy", glm::vec3(0.8f, 0.6f, 0.4f));
+    m.metallicFactor = metallic;
+    m.roughnessFactor = roughness;
+    m.specularFactor = 1.0f;
+    return m;
 }
 
 RenderSettings small(const std::string& gi) {
@@ -102,7 +115,21 @@ TEST(EnvironmentGpu, UniformMapEqualsBackgroundForEveryMethod) {
     const std::string file = dir + "/uniform.hdr";
     writeHdr(file, 32, 16, [](glm::vec3) { return glm::vec3(0.75f, 0.5f, 0.25f); });
     const glm::vec3 value = loadEnvironmentMap(file).texels[0];  // as RGBE stored it
-    const Scene scene = sphereScene(0.8f, true);
+    const Scene lambertSphere = sphereScene(0.8f, true);
+    // The specular term too: the constant goes through the split sum as the map does (the
+    // baseline's methods; the others read the environment along their own rays and cones).
+    const Scene glossySphere = sphereScene(glossy(0.0f, 0.3f), true), metalSphere = sphereScene(glossy(1.0f, 0.5f), true);
+    for (const char* gi : {"none", "ssao"})
+        for (const Scene* scene : {&glossySphere, &metalSphere}) {
+            SCOPED_TRACE(std::string(gi) + " on " + scene->materials[0].name);
+            RenderSettings constant = small(gi), map = small(gi);
+            constant.background = value;
+            constant.ambient = value;
+            map.environment = file;
+            const Difference d = compare(renderHdr(*scene, constant), renderHdr(*scene, map));
+            EXPECT_LE(d.maxRelative, 1e-3) << d.differing << " channel values differ";
+        }
+    const Scene& scene = lambertSphere;
     for (const GiMethod& m : giMethods()) {
         SCOPED_TRACE(m.name);
         RenderSettings constant = small(m.name), map = small(m.name);
