@@ -296,9 +296,9 @@ TEST(MemoryBudget, EstimateCountsTheEmitterLights) {
     }
 }
 
-// An environment map's textures (its radiance with mips, the prefiltered specular chain, the
-// split-sum table and the sampling CDFs) are in the estimate, sized from the file's header before
-// the map is decoded.
+// An environment map's textures (its radiance with mips, the prefiltered specular chain and the
+// sampling CDFs; the split-sum table every environment has) are in the estimate, sized from the
+// file's header before the map is decoded.
 TEST(MemoryBudget, EstimateCountsTheEnvironmentMap) {
     context();
     const Scene scene = makeBuiltinScene("cornell");
