@@ -45,10 +45,6 @@ vec3 keptIndirect(vec3 diffuseShare) {
     if (u_term == TERM_INDIRECT_SPECULAR) return vec3(1.0) - diffuseShare;
     return vec3(kept(TERM_INDIRECT));
 }
-// part / whole per channel, 0 where the whole is (nothing of it is then added anyway).
-vec3 shareOf(vec3 part, vec3 whole) {
-    return vec3(greaterThan(whole, vec3(0.0))) * clamp(part / max(whole, vec3(1e-30)), 0.0, 1.0);
-}
 
 // Throughput figures (`--timings`' rays/s): rays traced, as 64-bit counts kept in pairs of uints
 // (low, high) since core GL has no 64-bit atomics. Each invocation counts in registers and adds
@@ -250,10 +246,19 @@ vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, ino
     return sum;
 }
 
+// The diffuse lobe's share of `f` (the whole BRDF at L), per channel; 0 where f is (nothing of it is
+// then added anyway). Evaluated only for the two lobe views: the other terms do not read it.
+vec3 diffuseShareOf(SurfacePoint s, vec3 V, vec3 L, vec3 f) {
+    if (u_term != TERM_INDIRECT_DIFFUSE && u_term != TERM_INDIRECT_SPECULAR) return vec3(0.0);
+    vec3 diffuse = evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, SPECULAR_NONE);
+    return vec3(greaterThan(f, vec3(0.0))) * clamp(diffuse / max(f, vec3(1e-30)), 0.0, 1.0);
+}
+
 // The environment map as a light: one direction drawn from its luminance, weighted by MIS (power
 // heuristic) against the BSDF sampling the same direction (PBRT 3rd ed., 14.3.1). A constant
 // environment is reached by BSDF samples alone, as it always was, and draws no random numbers.
-vec3 environmentLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, inout Rng rng, out vec3 diffuseShare) {
+vec3 environmentLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, inout Rng rng, bool first,
+                      out vec3 diffuseShare) {
     diffuseShare = vec3(0.0);
     if (!environmentIsMap() || u_sampleEnvironment == 0) return vec3(0.0);
     float lightPdf;
@@ -263,7 +268,8 @@ vec3 environmentLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel
     if (!visible(offsetRayOrigin(s.position, s.geometricNormal), L, 1e30)) return vec3(0.0);
     float weight = powerHeuristic(lightPdf, bsdfPdf(s, V, L, pSpecular));
     vec3 f = evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel);
-    diffuseShare = shareOf(evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, SPECULAR_NONE), f);
+    // At the first surface it is split by its own lobes; later ones by the first surface's.
+    if (first) diffuseShare = diffuseShareOf(s, V, L, f);
     return f * environmentRadiance(L) * NoL * (weight / lightPdf);
 }
 
@@ -315,7 +321,7 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
                     (depth == 0 ? vec3(kept(TERM_DIRECT)) : keptIndirect(diffuseShare));
         // The environment lights the first surface as indirect light, as the lighting pass splits it.
         vec3 environmentDiffuseShare;
-        vec3 environment = environmentLight(s, V, pSpecular, specularModel, rng, environmentDiffuseShare);
+        vec3 environment = environmentLight(s, V, pSpecular, specularModel, rng, depth == 0, environmentDiffuseShare);
         radiance += throughput * environment * keptIndirect(depth == 0 ? environmentDiffuseShare : diffuseShare);
 
         vec3 L;
@@ -325,7 +331,7 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
         float pdf = bsdfPdf(s, V, L, pSpecular);
         if (!(pdf > 1e-12)) break;
         vec3 f = evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel);
-        if (depth == 0) diffuseShare = shareOf(evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, SPECULAR_NONE), f);
+        if (depth == 0) diffuseShare = diffuseShareOf(s, V, L, f);
         throughput *= f * dot(s.normal, L) / pdf;
         if (!(max(max(throughput.r, throughput.g), throughput.b) > MIN_THROUGHPUT)) break;
         if (depth >= u_rrStart) {
