@@ -109,7 +109,7 @@ bool ViewSession::openScene(ViewState& state, const std::string& spec, const Cam
         const int camera =
             resolveCamera(*scene, request, float(std::max(s.viewWidth, 1)) / float(std::max(s.viewHeight, 1)));
         resetCamera(s, *scene, camera);
-        resetLights(s, *scene);
+        resetLights(s, scene->lights);
         releaseRenderers();
         scene_ = std::move(scene);
         sceneLights_ = scene_->lights;
@@ -191,13 +191,8 @@ void ViewSession::relight(ViewState& state) {
     sceneLights_ = std::move(scene_->lights);
     scene_->lights = current;
     litWith_ = lighting;
-    if (state.lightsEdited) {
-        state.sceneLights = sceneLights_;  // what "reset" returns to; the edited list stays
-    } else {
-        Scene lit;
-        lit.lights = sceneLights_;
-        resetLights(state, lit);
-    }
+    if (state.lightsEdited) state.sceneLights = sceneLights_;  // what "reset" returns to; the edited list stays
+    else resetLights(state, sceneLights_);
 }
 
 void ViewSession::syncLights(const ViewState& state) {

@@ -266,10 +266,10 @@ void resetCamera(ViewState& state, const Scene& scene, int cameraIndex) {
     state.homeCamera = c;
 }
 
-void resetLights(ViewState& state, const Scene& scene) {
-    state.sceneLights = scene.lights;
+void resetLights(ViewState& state, const std::vector<Light>& sceneLights) {
+    state.sceneLights = sceneLights;
     state.lights.clear();
-    for (const Light& l : scene.lights) state.lights.push_back({l, true});
+    for (const Light& l : sceneLights) state.lights.push_back({l, true});
     state.lightsEdited = false;
 }
 

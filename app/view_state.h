@@ -178,7 +178,7 @@ std::vector<std::string> splitWords(const std::string& line);
 // Scene-dependent initial state: the camera from scene camera `cameraIndex` (or the default one),
 // the light list from the scene's lights, fly speed from its size.
 void resetCamera(ViewState& state, const Scene& scene, int cameraIndex);
-void resetLights(ViewState& state, const Scene& scene);
+void resetLights(ViewState& state, const std::vector<Light>& sceneLights);
 // The lights the renderers should see: the edited list's enabled lights, or `sceneLights` (the
 // scene's own, as loaded).
 std::vector<Light> effectiveLights(const ViewState& state, const std::vector<Light>& sceneLights);

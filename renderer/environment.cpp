@@ -45,6 +45,11 @@ bool pixelDataComplete(const std::vector<unsigned char>& bytes, size_t at, long 
     return true;
 }
 
+// Every Radiance file starts "#?" (#?RADIANCE or #?RGBE).
+bool hasRadianceSignature(const std::vector<unsigned char>& bytes) {
+    return bytes.size() >= 2 && bytes[0] == '#' && bytes[1] == '?';
+}
+
 // The header's end and the resolution line ("-Y H +X W", the only layout stb_image reads).
 bool parseHeader(const std::vector<unsigned char>& bytes, size_t& dataStart, long& width, long& height) {
     size_t at = 0;
@@ -85,7 +90,7 @@ std::optional<glm::ivec2> environmentMapSize(const std::string& path) {
     bytes.resize(size_t(in.gcount()));
     size_t dataStart = 0;
     long width = 0, height = 0;
-    if (bytes.size() < 2 || bytes[0] != '#' || bytes[1] != '?' || !parseHeader(bytes, dataStart, width, height))
+    if (!hasRadianceSignature(bytes) || !parseHeader(bytes, dataStart, width, height))
         return std::nullopt;
     return glm::ivec2(int(width), int(height));
 }
@@ -98,7 +103,7 @@ EnvironmentMap loadEnvironmentMap(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(what + ": cannot read (" + std::strerror(errno) + ")");
     const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (bytes.size() < 2 || bytes[0] != '#' || bytes[1] != '?')
+    if (!hasRadianceSignature(bytes))
         throw Error(what + " is not a Radiance .hdr file (no #?RADIANCE or #?RGBE header)");
     size_t dataStart = 0;
     long headerW = 0, headerH = 0;

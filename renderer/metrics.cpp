@@ -584,15 +584,18 @@ glm::vec3 heatmapColor(float t) {
 namespace {
 int colorBarRows(int imageHeight) { return std::max(8, imageHeight / 16); }
 
+// One opaque pixel of an sRGB-encoded colour in [0, 1].
+void setPixel(ImageU8& img, int x, int y, glm::vec3 c) {
+    uint8_t* px = &img.rgba[(size_t(y) * img.width + x) * 4];
+    for (int k = 0; k < 3; ++k) px[k] = uint8_t(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
+    px[3] = 255;
+}
+
 // Rows [y0, y0 + rows) of `img`: the ramp from 0 (left) to its maximum (right).
 void paintColorBar(ImageU8& img, int y0, int rows) {
     for (int y = std::max(y0, 0); y < std::min(y0 + rows, img.height); ++y)
-        for (int x = 0; x < img.width; ++x) {
-            const glm::vec3 c = heatmapColor(img.width > 1 ? float(x) / float(img.width - 1) : 1.0f);
-            uint8_t* px = &img.rgba[(size_t(y) * img.width + x) * 4];
-            for (int k = 0; k < 3; ++k) px[k] = uint8_t(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
-            px[3] = 255;
-        }
+        for (int x = 0; x < img.width; ++x)
+            setPixel(img, x, y, heatmapColor(img.width > 1 ? float(x) / float(img.width - 1) : 1.0f));
 }
 }  // namespace
 
@@ -620,18 +623,13 @@ ImageU8 heatmapImage(const ErrorMap& map, float maxValue, bool colorBar, const s
     img.width = map.width;
     img.height = map.height + gap + barHeight;
     img.rgba.assign(size_t(img.width) * img.height * 4, 255);
-    auto put = [&](int x, int y, glm::vec3 c) {
-        uint8_t* px = &img.rgba[(size_t(y) * img.width + x) * 4];
-        for (int k = 0; k < 3; ++k) px[k] = uint8_t(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
-        px[3] = 255;
-    };
     for (int y = 0; y < map.height; ++y)
         for (int x = 0; x < map.width; ++x) {
             const size_t p = size_t(y) * map.width + x;
-            put(x, y, ignored(ignore, p) ? glm::vec3(0.5f) : heatmapColor(map.values[p] / maxValue));
+            setPixel(img, x, y, ignored(ignore, p) ? glm::vec3(0.5f) : heatmapColor(map.values[p] / maxValue));
         }
     for (int y = map.height; y < map.height + gap; ++y)
-        for (int x = 0; x < map.width; ++x) put(x, y, glm::vec3(1.0f));
+        for (int x = 0; x < map.width; ++x) setPixel(img, x, y, glm::vec3(1.0f));
     paintColorBar(img, map.height + gap, barHeight);
     return img;
 }

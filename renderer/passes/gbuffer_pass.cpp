@@ -19,6 +19,9 @@ constexpr unsigned kAllTextures = 31;  // GpuMaterial::textures
 constexpr int kEmissionSamples = 4;
 constexpr int kEmissionDraws = 4;
 const ProgramDesc kEmissionResolveProgram{"emission_resolve", {"emission_resolve.comp"}, {}};
+// What every target is cleared to before a draw.
+constexpr float kNoColour[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+constexpr float kFarDepth = 1.0f;
 constexpr int64_t kEmissionSampleBytes = 8 + 4;  // RGBA16F emission, 32-bit float depth
 
 // The G-buffer program for materials with the textures in `textures` (material.glsl's
@@ -91,10 +94,8 @@ void GBufferPass::execute(Frame& frame) {
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
     glViewport(0, 0, depth_.width, depth_.height);
     glEnable(GL_FRAMEBUFFER_SRGB);  // encode base colour into its sRGB target
-    const float zero[4] = {0, 0, 0, 0};
-    const float farDepth = 1.0f;
-    for (int i = 0; i < 4; ++i) glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, i, zero);
-    glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &farDepth);
+    for (int i = 0; i < 4; ++i) glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, i, kNoColour);
+    glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &kFarDepth);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     drawScene(frame, frame.camera.viewProj);
@@ -112,8 +113,6 @@ void GBufferPass::execute(Frame& frame) {
 void GBufferPass::antialiasEmission(const Frame& frame) {
     const GLuint m = multisampleFbo_.id(), resolve = resolveProgram_.id();
     const int w = depth_.width, h = depth_.height;
-    const float zero[4] = {0, 0, 0, 0};
-    const float farDepth = 1.0f;
     glBindFramebuffer(GL_FRAMEBUFFER, m);
     glEnable(GL_MULTISAMPLE);
     for (int k = 0; k < kEmissionDraws; ++k) {
@@ -121,8 +120,8 @@ void GBufferPass::antialiasEmission(const Frame& frame) {
         glm::mat4 offset(1.0f);
         offset[3][0] = ((k & 1) ? 1.0f : -1.0f) / 16.0f * 2.0f / float(w);
         offset[3][1] = ((k & 2) ? 1.0f : -1.0f) / 16.0f * 2.0f / float(h);
-        glClearNamedFramebufferfv(m, GL_COLOR, 3, zero);
-        glClearNamedFramebufferfv(m, GL_DEPTH, 0, &farDepth);
+        glClearNamedFramebufferfv(m, GL_COLOR, 3, kNoColour);
+        glClearNamedFramebufferfv(m, GL_DEPTH, 0, &kFarDepth);
         drawScene(frame, offset * frame.camera.viewProj);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         glUseProgram(resolve);

@@ -59,7 +59,8 @@ const ProgramDesc kBounceProgram{"voxel_bounce", {"voxel/bounce.comp"}, {}};
 const ProgramDesc kExteriorProgram{"voxel_exterior", {"voxel/exterior.comp"}, {}};
 const ProgramDesc kExteriorSweepProgram{"voxel_exterior_sweep", {"voxel/exterior.comp"}, {{"SWEEP", "1"}}};
 constexpr int kExteriorSeed = 0, kExteriorCull = 2;
-constexpr int kSweepGroup = 8;  // exterior.comp's SWEEP local size
+constexpr int kSweepGroup = 8;          // exterior.comp's SWEEP local size
+constexpr GLuint kChangedBinding = 0;    // exterior.comp's Changed
 
 std::vector<ProgramDesc> VoxelRadiance::programs() {
     return {kInjectProgram, kMipProgram, kBounceProgram, kEmitterInjectProgram, kExteriorProgram, kExteriorSweepProgram};
@@ -128,7 +129,7 @@ void VoxelRadiance::cullUnlitOutsides(const VoxelGrid& grid, const gl::Texture& 
     glClearTexImage(reach_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
     glBindImageTexture(0, reach_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R8UI);
     glBindImageTexture(1, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, changed_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kChangedBinding, changed_.id());
     const GLuint p = exteriorProgram_.id();
     glUseProgram(p);
     glProgramUniform1i(p, UV_RESOLUTION, n);

@@ -298,7 +298,7 @@ TEST(Hardening, WhatIsAcceptedWhenSetSavesAndLoadsAgain) {
     const gis::Scene scene = gis::makeBuiltinScene("cornell");
     s.scene = "builtin:cornell";
     gis::view::resetCamera(s, scene, 0);
-    gis::view::resetLights(s, scene);
+    gis::view::resetLights(s, scene.lights);
     for (const char* line : {"camera move 3e38 0 0", "camera move 3e38 0 0", "light 0 intensity 3e38",
                              "light 0 color 3e38 3e38 3e38"}) {
         const gis::view::PanelAction a = gis::view::parsePanelAction(gis::view::splitWords(line));

@@ -31,7 +31,7 @@ TEST(RenderSettings, EqualsTheSameRenderWithFlags) {
     const Scene scene = makeBuiltinScene("cornell-area");
     s.scene = "builtin:cornell-area";
     resetCamera(s, scene, 0);
-    resetLights(s, scene);
+    resetLights(s, scene.lights);
     s.viewWidth = 48;
     s.viewHeight = 40;
     for (const char* line : {"specular 0 none", "exposure 1.5", "tonemap linear", "ambient 0.05 0.1 0.2", "preset 0 low"})

@@ -23,7 +23,7 @@ using namespace gis::view;
 ViewState stateFor(const Scene& scene) {
     ViewState s;
     resetCamera(s, scene, 0);
-    resetLights(s, scene);
+    resetLights(s, scene.lights);
     return s;
 }
 
