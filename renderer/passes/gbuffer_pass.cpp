@@ -19,6 +19,7 @@ constexpr unsigned kAllTextures = 31;  // GpuMaterial::textures
 constexpr int kEmissionSamples = 4;
 constexpr int kEmissionDraws = 4;
 const ProgramDesc kEmissionResolveProgram{"emission_resolve", {"emission_resolve.comp"}, {}};
+constexpr int kResolveGroup = 8;  // emission_resolve.comp's local size
 // What every target is cleared to before a draw.
 constexpr float kNoColour[4] = {0.0f, 0.0f, 0.0f, 0.0f};
 constexpr float kFarDepth = 1.0f;
@@ -129,7 +130,7 @@ void GBufferPass::antialiasEmission(const Frame& frame) {
         glBindTextureUnit(0, multisampleEmissive_.id());
         glBindSampler(0, 0);
         glBindImageTexture(0, emissive_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-        gl::dispatchCompute(gl::groupsFor(w, 8), gl::groupsFor(h, 8), 1, "G-buffer emission resolve");
+        gl::dispatchCompute(gl::groupsFor(w, kResolveGroup), gl::groupsFor(h, kResolveGroup), 1, "G-buffer emission resolve");
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
