@@ -101,7 +101,7 @@ TEST(EmitterFurnace, ProbesWithoutFeedbackFallShort) {
 // printed for the README, not asserted.
 TEST(EmitterFurnace, VctFigureIsPrinted) {
     const Scene scene = furnaceBox();
-    for (const char* bounces : {"1", "2"}) {
+    for (const char* bounces : {"1", "2", "3"}) {
         RenderSettings r = furnaceSettings("vct");
         setParam(r, "vct.bounces", bounces);
         setParam(r, "vct.feedback", "false");
@@ -132,7 +132,7 @@ TEST(EmitterFurnace, VctFeedbackGathersMoreThanFixedBounces) {
 }
 
 // Feedback off (the default) is the fixed-bounce volume as before: the same bits as settings that
-// do not name vct.feedback, and one bounce falls far short of the value.
+// do not name vct.feedback, and the default's fixed bounces fall far short of the value.
 TEST(EmitterFurnace, VctWithoutFeedbackKeepsItsFixedBounces) {
     const Scene scene = furnaceBox();
     RenderSettings off = furnaceSettings("vct");

@@ -107,26 +107,22 @@ TEST(EmitterTables, DISABLED_CornellBoxPsnrHighPresets) {
 // 85-115%).
 TEST(EmitterTables, DISABLED_PanelRoomEnergy) {
     const Scene scene = makeBuiltinScene("room?lamp=panel");
-    auto mean = [](const ImageF& img) {
-        double sum = 0;
-        for (size_t i = 0; i < img.rgba.size(); i += 4)
-            if (img.rgba[i] < 10.0f) sum += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2];  // not the panel
-        return sum / (3.0 * double(img.rgba.size() / 4));
-    };
     RenderSettings pt = cornellSettings("pathtrace", "lights");
     pt.width = pt.height = 64;
+    const std::vector<bool> panel = emitterPixels(scene, pt);  // its own radiance, the same in every method
+    auto mean = [&](const ImageF& img) { return meanRgbExcept(img, panel); };
     pt.samplesPerFrame = 16;
     setParam(pt, "pathtrace.spp", "256");
     setParam(pt, "pathtrace.bounces", "64");
     const double truth = mean(renderHdr(scene, pt));
     for (const char* mode : {"lights", "gi"})
-        for (const char* gi : {"none", "vct", "sdf", "probes"}) {
+        for (const char* gi : {"none", "vct", "sdf", "probes", "hddagi"}) {
             RenderSettings r = cornellSettings(gi, mode);
             r.width = r.height = 64;
             const double m = mean(renderHdr(scene, r));
             std::printf("PANEL-ROOM-TABLE | %s | %s | %.4f | %.4f | %.2f |\n", mode, gi, m, truth, m / truth);
         }
-    // vct at its default sums one bounce; its feedback (off by default: the bounces cost) all of them.
+    // vct at its default sums two bounces; its feedback (off by default: the bounces cost) all of them.
     RenderSettings feedback = cornellSettings("vct", "lights");
     feedback.width = feedback.height = 64;
     setParam(feedback, "vct.feedback", "true");
@@ -155,20 +151,18 @@ TEST(EmitterTables, DISABLED_RestirCostPerFrame) {
 // (128x128, default settings, --emitters lights and gi; the goal: within 10%).
 TEST(EmitterTables, DISABLED_SmallEmitterOfEqualPower) {
     const Scene big = makeBuiltinScene("cornell-area"), small = makeBuiltinScene("cornell-area?emitter-size=0.04");
+    RenderSettings size = cornellSettings("none", "lights");
+    size.width = size.height = 128;
+    // Both emitters' pixels left out of both images: their visible radiance differs by (0.5/0.04)^2
+    // by design, and the same pixels are averaged in both.
+    std::vector<bool> emitters = emitterPixels(big, size);
+    const std::vector<bool> smallOnes = emitterPixels(small, size);
+    for (size_t p = 0; p < emitters.size(); ++p) emitters[p] = emitters[p] || smallOnes[p];
     for (const char* mode : {"lights", "gi"})
-        for (const char* gi : {"none", "vct", "sdf", "probes"}) {
+        for (const char* gi : {"none", "vct", "sdf", "probes", "hddagi"}) {
             RenderSettings r = cornellSettings(gi, mode);
             r.width = r.height = 128;
-            // The emitter's own pixels left out: its visible radiance differs by (0.5/0.04)^2 by design.
-            auto mean = [&](const Scene& scene) {
-                const ImageF img = renderHdr(scene, r);
-                double sum = 0;
-                int n = 0;
-                for (size_t i = 0; i < img.rgba.size(); i += 4)
-                    if (img.rgba[i] < 10.0f) sum += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2], ++n;
-                return sum / (3.0 * n);
-            };
-            const double a = mean(big), b = mean(small);
+            const double a = meanRgbExcept(renderHdr(big, r), emitters), b = meanRgbExcept(renderHdr(small, r), emitters);
             std::printf("EMITTER-SIZE-TABLE | %s | %s | %.4f | %.4f | %.3f |\n", mode, gi, a, b, b / a);
         }
 }

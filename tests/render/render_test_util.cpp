@@ -86,6 +86,31 @@ ImageF renderHdr(const Scene& scene, RenderSettings settings) {
     return renderer.readHdr();
 }
 
+std::vector<bool> emitterPixels(const Scene& scene, RenderSettings settings) {
+    settings.gi = "none";
+    settings.view = "emission";
+    settings.background = glm::vec3(0.0f);
+    settings.environment.clear();
+    const ImageF emission = renderHdr(scene, settings);
+    std::vector<bool> seen(size_t(emission.width) * emission.height, false);
+    for (int y = 0; y < emission.height; ++y)
+        for (int x = 0; x < emission.width; ++x) {
+            const float* p = emission.at(x, y);
+            if (p[0] + p[1] + p[2] <= 0.0f) continue;
+            for (int j = std::max(0, y - 1); j <= std::min(emission.height - 1, y + 1); ++j)
+                for (int i = std::max(0, x - 1); i <= std::min(emission.width - 1, x + 1); ++i)
+                    seen[size_t(j) * emission.width + i] = true;
+        }
+    return seen;
+}
+
+double meanRgbExcept(const ImageF& img, const std::vector<bool>& skip) {
+    double sum = 0.0;
+    for (size_t p = 0; p < skip.size(); ++p)
+        if (!skip[p]) sum += img.rgba[4 * p] + img.rgba[4 * p + 1] + img.rgba[4 * p + 2];
+    return sum / (3.0 * double(skip.size()));
+}
+
 double meanAround(const ImageF& img, int x, int y, int r, int c) {
     double sum = 0.0;
     int n = 0;

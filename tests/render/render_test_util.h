@@ -62,6 +62,12 @@ Scene scaledScene(const Scene& scene, float scale);
 
 // No NaN or Inf in any channel.
 bool allFinite(const ImageF& img);
+// The pixels that see an emitter at `settings`' size and camera (the G-buffer's emission, its
+// antialiased edges included), grown by one pixel for a path tracer's whole-pixel footprint: what an
+// energy comparison leaves out, since an emitter's own radiance is the same in every method.
+std::vector<bool> emitterPixels(const Scene& scene, RenderSettings settings);
+// Mean of R, G, B over the pixels not in `skip`, divided by all of the image's pixels.
+double meanRgbExcept(const ImageF& img, const std::vector<bool>& skip);
 // The mean over the interior pixels that see `region` (castPixels' ids) of channel c, or of R, G, B
 // when c < 0.
 double regionMean(const ImageF& img, const std::vector<PixelHit>& hits, const std::vector<bool>& interior, int region,

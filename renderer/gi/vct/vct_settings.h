@@ -17,7 +17,7 @@ struct VctSettings {
     bool anisotropic = true;   // vct.anisotropic: six directional mip chains (rebuild)
     int backfaces = 0;         // vct.backfaces: opaque | cull, what directional mips do with back faces (rebuild)
     int unlitOutsides = 0;     // vct.unlit-outsides: cull | keep, surfaces facing air no light reaches (rebuild)
-    int bounces = 1;           // vct.bounces: 1 = direct light re-emitted once; more gather again (rebuild)
+    int bounces = 3;           // vct.bounces: 1 = direct light re-emitted once; more gather again (rebuild)
     bool feedback = false;     // vct.feedback: each update adds a bounce until converged (rebuild)
     int coneSet = 0;           // vct.cones: six (60-degree, Godot's) | four (90-degree) | many (32) (live)
     float stepFactor = 0.5f;   // vct.step: step as a fraction of the cone diameter (live)
