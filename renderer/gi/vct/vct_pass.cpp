@@ -252,17 +252,18 @@ GiMethod vctMethod() {
           {"vct.specular", {0.0}},
           {"vct.cones", choiceValue("four")}}},
         {"medium", "64^3, directional mips, three bounces, six cones", {}},
-        // Traced at half resolution: once converged (framesToConverge) its image is the full-
-        // resolution trace's, at a quarter of the cones per frame. The offset is medium's distance
+        // Traced at quarter resolution: once converged (framesToConverge, 16 frames) its image is
+        // the full-resolution trace's, at a sixteenth of the cones per frame (issue #24: a high
+        // preset within 3x what Godot's GIProbe 128 adds to a frame). The offset is medium's distance
         // in the scene (twice the voxels at twice the resolution): at medium's voxel count, the
         // cones' first samples filtered in more of their own surface, a lit floor lighting itself
         // (both Cornell boxes measured, renderer/gi/vct/README.md). Two bounces: each gathers over
         // eight times medium's voxels once per lighting, and a third scored no better against Cycles.
-        {"high", "128^3, directional mips, two bounces, offset 3, trace scale 2",
+        {"high", "128^3, directional mips, two bounces, offset 3, trace scale 4",
          {{"vct.resolution", {128.0}},
           {"vct.bounces", {2.0}},
           {"vct.offset", {3.0}},
-          {"vct.trace-scale", choiceValue("2")}}},
+          {"vct.trace-scale", choiceValue("4")}}},
         // The cheapest settings found that keep cornell_point at 24.5 dB PSNR or more against
         // Cycles (the table in renderer/gi/vct/README.md): the trace is the per-frame cost, so it
         // is cut on every axis. Two bounces (once per lighting) scored best of one to three.
