@@ -1,10 +1,9 @@
 // The closed room lit by its emissive panel (builtin:room?lamp=panel), where bounce light is most
 // of the image: issue #23's energy check. Each GI method at its defaults, the emitter a light of the
-// direct pass, must bring the room's mean radiance within 85-115% of the path tracer's (64 bounces,
-// every bounce that matters in a room of albedo 0.8). The panel's own pixels are left out: they are
-// its emission, the same in every method. renderer/emitters/README.md has the measured table
-// (EmitterTables.DISABLED_PanelRoomEnergy, 256 spp, and the `gi` mode's rows). The panel's pixels
-// are left out (tests/render/render_test_util.h: emitterPixels).
+// direct pass, must bring the room's mean radiance within 85-115% of the path tracer's (64
+// bounces). The pixels that see the panel are left out (emitterPixels): they are its emission, the
+// same in every method. renderer/emitters/README.md has the measured table
+// (EmitterTables.DISABLED_PanelRoomEnergy, 256 spp, and the `gi` mode's rows).
 #include <cstdio>
 
 #include "render_test_util.h"
