@@ -254,6 +254,8 @@ TEST(Vct, CameraMoveReusesVoxels) {
     EXPECT_FALSE(r.skippedLastFrame()[index]) << "a camera move must trace again";
     EXPECT_TRUE(pass->voxelsReusedLastFrame());
     EXPECT_EQ(pass->voxelizations(), 1);
+    // Nor is the light relit: injection and the default's voxel-space bounces run with it.
+    EXPECT_EQ(pass->injections(), 1);
 }
 
 // A light edit keeps the voxels (occupancy, albedo, normals) and injects the light again: the
