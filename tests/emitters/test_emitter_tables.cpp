@@ -122,7 +122,7 @@ TEST(EmitterTables, DISABLED_PanelRoomEnergy) {
             const double m = mean(renderHdr(scene, r));
             std::printf("PANEL-ROOM-TABLE | %s | %s | %.4f | %.4f | %.2f |\n", mode, gi, m, truth, m / truth);
         }
-    // vct at its default sums two bounces; its feedback (off by default: the bounces cost) all of them.
+    // vct at its default sums three bounces; its feedback (off by default: the bounces cost) all of them.
     RenderSettings feedback = cornellSettings("vct", "lights");
     feedback.width = feedback.height = 64;
     setParam(feedback, "vct.feedback", "true");
