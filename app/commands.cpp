@@ -153,11 +153,18 @@ void applyRenderPreset(RenderSettings& s, const std::string& given) {
     if (has || !given.empty()) applyPreset(s, s.gi, preset);
 }
 
+// With GIS_CHECK_FINITE=1 an image whose shaders replaced a NaN or Inf is a bug's image: not written.
+void refuseNonFinite(const Renderer& renderer) {
+    const std::string report = renderer.nonFiniteReport();
+    if (!report.empty()) throw Error("GIS_CHECK_FINITE: " + report + "; the image is not written");
+}
+
 // `render --flythrough`: the scripted path's frames (renderer/camera_path.h), the last one written;
 // with --timings each frame's GPU and wall ms and the cascades it rebuilt, then the passes' medians
 // over the path (the warm-up frame left out).
 int renderFlythrough(Renderer& renderer, const Scene& scene, const RenderOptions& o, bool exr) {
     const std::vector<FlythroughFrame> frames = flyThrough(renderer, scene.bounds, o.flythrough);
+    refuseNonFinite(renderer);
     if (exr) writeExr(o.out, renderer.readHdr());
     else writePng(o.out, renderer.readLdr());
     if (o.timings) {
@@ -393,6 +400,7 @@ int runRender(const RenderOptions& o) {
         renderToConvergence(renderer, progress);
     }
 
+    refuseNonFinite(renderer);
     if (exr) writeExr(o.out, renderer.readHdr());
     else writePng(o.out, renderer.readLdr());
 

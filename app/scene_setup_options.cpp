@@ -21,7 +21,8 @@ void addSceneSetupOptions(CLI::App& cmd, SceneSetupOptions& o) {
     cmd.add_option("--fov", o.fov, "Vertical field of view in degrees, with --camera-pos")->capture_default_str();
     cmd.add_option("--emitters", o.emitters,
                    "How emissive surfaces light the scene: lights (direct light by ReSTIR, the GI volume without "
-                   "emission), gi (only through the GI method), off (only the visible emission); sets emitters.mode");
+                   "emission), gi (only through the GI method), off (only the visible emission), auto (the default: "
+                   "lights when the emission is bright enough to light the scene, else off); sets emitters.mode");
 }
 
 CameraRequest cameraRequest(const SceneSetupOptions& o) {
@@ -60,7 +61,7 @@ int prepareScene(Scene& scene, const SceneSetupOptions& o, float aspect, RenderS
         if (emitted > 0.0)
             std::snprintf(why, sizeof why,
                           "the scene's emission is a surface detail, not a light (mean emitted radiance %.3g over its "
-                          "surfaces, below %g)", emitted, kEmitterLightingFloor);
+                          "surfaces, below %g; --emitters lights makes it one)", emitted, kEmitterLightingFloor);
         std::fprintf(stderr,
                      "gisandbox: %s: added the default sun (irradiance %g, elevation %g deg, azimuth %g deg) and sky "
                      "(radiance %g); --lighting scene renders without them\n",

@@ -124,6 +124,9 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     }
     if (settings_.view != "final")
         debugTarget_ = gl::createTexture2D({&ledger_, "debug view"}, GL_RGBA16F, w, h);
+    // One counter per pass and one for the debug view drawn after them.
+    if (countingNonFinite())
+        nonFinite_ = std::make_unique<NonFiniteCounter>(int(passes_.size()) + 1, gl::MemoryScope{&ledger_, "checks"});
     gl::checkOutOfMemory("creating the render passes");
 }
 
@@ -199,6 +202,7 @@ void Renderer::renderFrame() {
         }
         frame.steps = &pass.steps;
         frame.pass = &pass;
+        if (nonFinite_) nonFinite_->bind(int(k));
         pass.timer.begin();
         pass.execute(frame);
         pass.timer.end(!pass.reusedLastFrame());
@@ -208,9 +212,11 @@ void Renderer::renderFrame() {
         if (pass.writesImagesOrBuffers()) glMemoryBarrier(barrierBitsFor(pass, frame));
     }
     frame.pass = nullptr;
+    if (nonFinite_) nonFinite_->collect();
     ++frameIndex_;
     hdr_ = frame.texture(resource::kRadiance);
     ldr_ = frame.texture(resource::kDisplay);
+    if (nonFinite_) nonFinite_->bind(int(passes_.size()));
     if (settings_.view != "final") drawDebugView(frame);
     frameResources_ = frame.resources;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -219,6 +225,25 @@ void Renderer::renderFrame() {
         for (auto& step : pass->steps.steps) step.second->collect(false);
     }
     gl::checkOutOfMemory("rendering a frame");
+}
+
+std::vector<uint64_t> Renderer::nonFiniteCounts() const {
+    std::vector<uint64_t> counts;
+    if (nonFinite_)
+        for (size_t k = 0; k <= passes_.size(); ++k) counts.push_back(nonFinite_->total(int(k)));
+    return counts;
+}
+
+std::string Renderer::nonFiniteReport() const {
+    std::string report;
+    const std::vector<uint64_t> counts = nonFiniteCounts();
+    for (size_t k = 0; k < counts.size(); ++k)
+        if (counts[k] > 0)
+            report += std::string(report.empty() ? "" : "; ") +
+                      (k < passes_.size() ? "pass '" + std::string(passes_[k]->name()) + "'" : "the debug view") +
+                      " replaced " +
+                      std::to_string(counts[k]) + " NaN/Inf values by 0";
+    return report;
 }
 
 // A debug view replaces both outputs: its values are written as they are (no tone mapping).

@@ -12,6 +12,7 @@
 #include "gl/gl.h"
 #include "gl/shader.h"
 #include "image.h"
+#include "nonfinite_counter.h"
 #include "render_settings.h"
 #include "scene/scene.h"
 
@@ -57,6 +58,11 @@ public:
     GLuint frameTexture(const std::string& name) const;
     const std::map<std::string, FrameResource>& frameResources() const { return frameResources_; }
     SceneServices& services() { return *services_; }
+    // With GIS_CHECK_FINITE=1 (nonfinite_counter.h): per pass, in passes() order, then the debug
+    // view, the NaN and Inf values its shaders replaced by 0 so far; empty when not counting.
+    std::vector<uint64_t> nonFiniteCounts() const;
+    // "" or one line naming each pass that replaced NaN or Inf, and how many.
+    std::string nonFiniteReport() const;
 
 private:
     void drawDebugView(Frame& frame);
@@ -74,6 +80,7 @@ private:
     std::map<std::string, FrameResource> frameResources_;  // the last frame's named resources
     bool skipSettled_ = true;
     std::vector<bool> skipped_;
+    std::unique_ptr<NonFiniteCounter> nonFinite_;  // with GIS_CHECK_FINITE=1 only
 };
 
 // True when going from `built` to `wanted` needs a new Renderer: anything baked into GPU

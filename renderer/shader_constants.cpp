@@ -13,6 +13,7 @@
 #include "gl/gl.h"
 #include "gl/shader.h"
 #include "lights.h"
+#include "nonfinite_counter.h"
 #include "sdf/sdf_uniforms.h"
 #include "uniforms.h"
 #include "volume/occupancy.h"
@@ -84,6 +85,10 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
             {"ENV_MARGINAL_UNIT", std::to_string(kEnvironmentMarginalUnit)},
             {"ENV_CONDITIONAL_UNIT", std::to_string(kEnvironmentConditionalUnit)},
         };
+        if (countingNonFinite()) {
+            d.emplace_back("COUNT_NONFINITE", "1");
+            d.emplace_back("NONFINITE_BINDING", std::to_string(kNonFiniteBinding));
+        }
         for (const gl::UniformSlot& u : uniformSlots()) d.emplace_back(u.name, std::to_string(u.location));
         for (const gl::UniformBlockDesc& b : uniformBlocks()) d.emplace_back(b.name, gl::glslBlockDeclaration(b));
         return d;

@@ -5,6 +5,7 @@
 #include "emitters/emitter_uniforms.h"
 #include "gi/method.h"
 #include "gl/dispatch.h"
+#include "scene/scene_lighting.h"
 
 namespace gis {
 
@@ -15,10 +16,16 @@ const ParamTable<EmitterLightSettings>& emitterLightParams() {
     static const ParamTable<S> table = ParamTable<S>()
         .choice(&S::mode, "mode", "Emitters",
                 "lights: emissive triangles are lights of the direct pass (ReSTIR) and the GI volume holds no "
-                "emission; gi: they reach the image only through the GI method; off: only the visible emission",
-                {"lights", "gi", "off"}, ParamUpdate::Rebuild)
+                "emission; gi: they reach the image only through the GI method; off: only the visible emission; "
+                "auto: lights when the emission is bright enough to light the scene (as --lighting auto judges), "
+                "else off",
+                {"lights", "gi", "off", "auto"}, ParamUpdate::Rebuild)
         .integer(&S::candidates, "candidates", "Candidates", "initial candidates per pixel (M), drawn by power", 1, 64,
                  ParamUpdate::Live)
+        .integer(&S::bsdfCandidates, "bsdf-candidates", "BSDF candidates",
+                 "initial candidates per pixel along directions drawn from the BRDF, a ray each (0 = none): they "
+                 "keep mirrors and glossy metals, and surfaces close to an emitter, from spiking",
+                 0, 8, ParamUpdate::Live)
         .boolean(&S::temporal, "temporal", "Temporal reuse", "reuse the last frame's reprojected reservoir",
                  ParamUpdate::Live)
         .integer(&S::spatial, "spatial", "Spatial neighbours", "neighbours reused per pixel (k; 0 = no spatial reuse)", 0,
@@ -59,7 +66,11 @@ bool sceneHasEmitters(const Scene& scene) {
 }
 
 bool emittersAreLights(const Scene& scene, const RenderSettings& settings) {
-    return EmitterMode(emitterLightSettings(settings).mode) == EmitterMode::Lights && sceneHasEmitters(scene);
+    switch (EmitterMode(emitterLightSettings(settings).mode)) {
+        case EmitterMode::Lights: return sceneHasEmitters(scene);
+        case EmitterMode::Auto: return emissionLightsScene(scene);
+        default: return false;
+    }
 }
 
 namespace {
@@ -128,6 +139,7 @@ void EmitterLightPass::bindCommon(GLuint p, const Frame& frame, const EmitterLig
     glProgramUniform2ui(p, UE_FRAME, frames_, frame.settings.seed);
     emitters::RestirBlock reuse;
     reuse.candidates = s.candidates;
+    reuse.bsdfCandidates = s.bsdfCandidates;
     reuse.temporal = s.temporal ? 1 : 0;
     reuse.spatial = s.spatial;
     reuse.unbiased = s.unbiased ? 1 : 0;
@@ -135,6 +147,7 @@ void EmitterLightPass::bindCommon(GLuint p, const Frame& frame, const EmitterLig
     reuse.maxM = float(s.maxHistory * s.candidates);
     reuse.radius = s.radius;
     reuse.framesAveraged = float(accumulated_);
+    reuse.prevCameraPos = glm::vec4(previousCameraPos_, 0.0f);
     reuse_.set(reuse);
 }
 
@@ -171,6 +184,7 @@ void EmitterLightPass::execute(Frame& frame) {
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
     previousViewProj_ = frame.camera.viewProj;
+    previousCameraPos_ = frame.camera.position;
     historyValid_ = true;
     ++frames_;
     accumulated_ = target_ > 0 ? accumulated_ + 1 : 0;

@@ -4,9 +4,10 @@
 // proportion to power, resampled against the unshadowed contribution f * L * G; one visibility
 // ray for the survivor; temporal reuse of the reprojected reservoir (disocclusion rejection, an M
 // cap); spatial reuse of k neighbours with similar depth and normal; then the surviving sample is
-// shaded with a visibility ray. The biased mode normalises by the summed M; the unbiased one
-// counts only the reservoirs whose domain can produce the chosen sample (1/Z, Bitterli's
-// algorithm 6, with visibility), at one ray per reused reservoir.
+// shaded with a visibility ray. Reservoirs are combined with bounded MIS weights (generalized RIS,
+// Lin et al. 2022: a balance heuristic in time, pairwise MIS in space); the biased mode weighs
+// other pixels' domains by their unshadowed target, the unbiased one by their target with
+// visibility, at one ray per reused reservoir.
 //
 // The pass writes "emitters.direct" (linear RGB radiance, averaged over frames while the view
 // stands still), which the lighting pass adds. It exists only with `emitters.mode=lights` and a
@@ -24,11 +25,13 @@ enum class EmitterMode {
     Lights = 0,  // direct light by ReSTIR; the GI volume holds no emission (nothing counted twice)
     Gi = 1,      // only through the GI method (voxel emission), as before this module
     Off = 2,     // only the visible emission
+    Auto = 3,    // Lights when the scene's emission is bright enough to light it (emissionLightsScene), else Off
 };
 
 struct EmitterLightSettings {
-    int mode = int(EmitterMode::Lights);  // measured: every method closer to Cycles than with gi (README)
-    int candidates = 8;       // M: initial candidates per pixel
+    int mode = int(EmitterMode::Auto);  // lights measured closer to Cycles than gi (README)
+    int candidates = 8;       // M: initial candidates per pixel, drawn by power
+    int bsdfCandidates = 1;   // initial candidates per pixel along BSDF directions (a ray each)
     bool temporal = true;     // reuse the reprojected reservoir of the last frame
     int spatial = 3;          // k: neighbours reused
     float radius = 16.0f;     // pixels: the spatial neighbourhood
@@ -42,8 +45,10 @@ EmitterLightSettings emitterLightSettings(const RenderSettings& settings);
 
 // True when some draw's material emits (before building any GPU resource).
 bool sceneHasEmitters(const Scene& scene);
-// Emissive triangles are lights here: emitters.mode is `lights` and some draw emits (the direct
-// pass then runs ReSTIR and the voxel methods light their volume with the emitters).
+// Emissive triangles are lights here: some draw emits and emitters.mode is `lights`, or `auto` and
+// the emission is bright enough to light the scene (the judgement --lighting auto makes; below
+// it, emission is a surface detail and ReSTIR would spend its frames for nothing). The direct
+// pass then runs ReSTIR and the voxel methods light their volume with the emitters.
 bool emittersAreLights(const Scene& scene, const RenderSettings& settings);
 
 class EmitterLightPass final : public Pass {
@@ -75,6 +80,7 @@ private:
     gl::Object candidates_, spatial_;
     gl::UniformBuffer<emitters::RestirBlock> reuse_;
     glm::mat4 previousViewProj_{1.0f};
+    glm::vec3 previousCameraPos_{0.0f};
     bool historyValid_ = false, idle_ = false;
     int accumulated_ = 0, target_ = 0;
     uint32_t frames_ = 0;

@@ -21,13 +21,15 @@ inline constexpr gl::UniformSlot kEmitterUniforms[] = {GIS_EMITTER_UNIFORMS(GIS_
 
 // How both ReSTIR stages reuse reservoirs (the emitters.* parameters of this frame).
 #define GIS_RESTIR_BLOCK(M, A) \
-    M(int, candidates)          /* M: candidates drawn per pixel */ \
+    M(int, candidates)          /* M: candidates drawn per pixel by power */ \
+    M(int, bsdfCandidates)      /* candidates drawn per pixel along BSDF directions */ \
     M(int, temporal)            /* 1: reuse the reprojected history */ \
     M(int, spatial)             /* k: neighbours combined */ \
     M(int, unbiased)            /* 1: the 1/Z weights, a visibility ray per reused reservoir */ \
     M(int, historyValid)        /* 0: the first frame, or a change the history cannot survive */ \
     M(float, maxM)              /* the history's M cap */ \
     M(float, radius)            /* of the spatial neighbours' disc, pixels */ \
-    M(float, framesAveraged)    /* still frames already in the running mean */
+    M(float, framesAveraged)    /* still frames already in the running mean */ \
+    M(vec4, prevCameraPos) /* xyz: the camera of the history's frame (its surfaces' view vectors) */
 GIS_UNIFORM_BLOCK(RestirBlock, 1, GIS_RESTIR_BLOCK)
 }  // namespace gis::emitters

@@ -7,16 +7,16 @@
 //   RESTIR_STAGE 1: k neighbours within a radius whose depth and normal are close, combined; the
 //     survivor shaded with a visibility ray and averaged over the frames of a still view.
 //     temporal -> history, accumulation.
-// A reservoir is (sample y = emitter triangle and barycentrics, W, M); combining reservoirs i at
-// pixel q weighs each by p_hat_q(y_i) * W_i * M_i and keeps one with probability proportional to
-// its weight. W = sum of weights / (Z * p_hat_q(y)): biased, Z = sum of M_i; unbiased, Z counts
-// only the M_i whose pixel could have produced y (its p_hat > 0 and y visible from it), the 1/Z
-// weights of Bitterli et al.'s algorithm 6.
+// A reservoir is (sample y = emitter triangle and barycentrics, W, M). Reservoirs are combined by
+// generalized RIS with bounded MIS weights (balance heuristics, see combine()); the target of a
+// domain other than this pixel is unshadowed (biased: contact shadows a little dark) or times
+// the visibility from that domain's surface (unbiased: a ray per reused reservoir).
 #include "common.glsl"
 #include "brdf.glsl"
 #include "gbuffer_layout.glsl"
 #include "random.glsl"
 #include "ray_scene.glsl"
+#include "bsdf_sampling.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -52,7 +52,6 @@ const float MAX_RADIANCE = 3.4028e38;
 const float MIN_NORMAL_DOT = 0.906;
 const float MAX_DEPTH_RATIO = 0.1;
 
-float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 struct Surface {
     vec3 P, N, V;
@@ -153,25 +152,35 @@ bool visible(vec3 P, vec3 N, vec3 target) {
     return !traceRay(origin, d / dist, dist * (1.0 - 1e-4), true, h);
 }
 
-// Could the reservoir at (P, N) have produced y: y lies in front of it, faces it, and (unbiased)
-// is visible from it. Geometry alone decides p_hat > 0 for every BRDF here but a black one.
-bool canProduce(vec3 P, vec3 N, Reservoir y) {
-    EmitterPoint e = emitterPoint(y.triangle, y.b, P);
-    vec3 d = e.position - P;
-    if (e.cosLight <= 0.0 || dot(N, d) <= 0.0) return false;
-    return u_reuse.unbiased == 0 || visible(P, N, e.position);
+// The target function of another pixel's domain (a neighbour, or the history's surface) for the
+// MIS weights: unshadowed, or (unbiased) times the visibility from that surface, so that a domain
+// is weighted 0 where it cannot produce y; its reservoirs keep W = 0 for an occluded sample.
+float domainTarget(Surface d, Reservoir y) {
+    if (y.triangle == NO_SAMPLE) return 0.0;
+    vec3 L;
+    float dist;
+    EmitterPoint e = emitterPoint(y.triangle, y.b, d.P);
+    float p = luminance(contribution(d, e, L, dist));
+    if (p > 0.0 && u_reuse.unbiased != 0 && !visible(d.P, d.N, e.position)) p = 0.0;
+    return p;
 }
 
-// Streaming combination of reservoirs at one pixel.
+// Streaming resampling of reservoirs at one pixel, generalized RIS (Lin et al. 2022): reservoir
+// i enters with weight m_i(y_i) * p_hat_q(y_i) * W_i, where the MIS weights m_i sum to one over the
+// domains for every y; the survivor's W is the sum of weights / p_hat_q(y). The weights below are
+// balance heuristics with confidence M, bounded by one, so a reused sample can never carry more
+// than its own domain's estimate. (The 1/Z weights used before are unbiased too, but a sample that
+// Z credited to fewer reservoirs than its weight came from was amplified by sum M / Z, and the
+// history fed the amplified W back every frame: the divergence on glossy surfaces.)
 struct Combined {
     Reservoir r;
     float weightSum, target;  // target: p_hat_q of the kept sample
 };
 
-void combine(inout Combined c, Reservoir x, float targetHere, inout Rng rng) {
-    float w = targetHere * x.W * x.M;
+void combine(inout Combined c, Reservoir x, float mis, float targetHere, inout Rng rng) {
     c.r.M += x.M;
-    if (!(w > 0.0)) return;
+    float w = mis * targetHere * x.W;
+    if (!(w > 0.0) || !(w < MAX_RADIANCE)) return;
     c.weightSum += w;
     if (nextFloat(rng) * c.weightSum < w) {
         c.r.triangle = x.triangle;
@@ -180,10 +189,16 @@ void combine(inout Combined c, Reservoir x, float targetHere, inout Rng rng) {
     }
 }
 
-// W of the combined reservoir, given Z (the M that count).
-void finish(inout Combined c, float Z) {
-    c.r.W = c.target > 0.0 && Z > 0.0 ? c.weightSum / (Z * c.target) : 0.0;
+// W of the combined reservoir.
+void finish(inout Combined c) {
+    c.r.W = c.target > 0.0 ? c.weightSum / c.target : 0.0;
     if (!(c.r.W < MAX_RADIANCE)) c.r.W = 0.0;
+}
+
+// The balance heuristic of domain a against b for a sample with targets pa, pb there.
+float balance(float Ma, float pa, float Mb, float pb) {
+    float d = Ma * pa + Mb * pb;
+    return d > 0.0 ? Ma * pa / d : 0.0;
 }
 
 // Picks an emissive triangle in proportion to its power and a uniform point on it.
@@ -199,28 +214,89 @@ Reservoir candidate(inout Rng rng) {
 }
 
 #if RESTIR_STAGE == 0
-// Resampled importance sampling of M candidates (Talbot et al. 2005), each weighted
-// p_hat / p with p the per-area density of the power-proportional choice.
+// How many candidates each strategy draws at a pixel: by power, and along BSDF directions. The
+// BSDF's are drawn only where there is a specular lobe: a diffuse surface gains little from them
+// and they cost a ray each.
+struct CandidateCounts {
+    float light, bsdf;
+};
+
+// Streams candidate y (its target p at s, reached along L at distance dist) into c, weighed by
+// the balance heuristic over both strategies (Talbot et al. 2005, resampled importance sampling
+// with several source densities): p / (M_light p_light(y) + M_bsdf p_bsdf(y)), the densities per
+// unit emitter area. Light sampling alone spikes where the BRDF is a narrow lobe (a mirror); the
+// BSDF's density bounds the weight there by about Le times the lobe's albedo.
+void streamCandidate(inout Combined c, Surface s, Reservoir x, CandidateCounts n, float pSpecular, inout Rng rng) {
+    EmitterPoint e = emitterPoint(x.triangle, x.b, s.P);
+    vec3 L;
+    float dist;
+    float p = luminance(contribution(s, e, L, dist));
+    float bsdfDensity = n.bsdf > 0.0 && dist > 0.0 ? bsdfPdf(s.brdf, s.N, s.V, L, pSpecular) * e.cosLight / (dist * dist) : 0.0;
+    float denominator = n.light * e.pdfArea + n.bsdf * bsdfDensity;
+    float w = denominator > 0.0 ? p / denominator : 0.0;
+    if (!(w > 0.0) || !(w < MAX_RADIANCE)) return;
+    c.weightSum += w;
+    if (nextFloat(rng) * c.weightSum < w) {
+        c.r.triangle = x.triangle;
+        c.r.b = x.b;
+        c.target = p;
+    }
+}
+
+// The emitter point a BSDF direction from s meets first, as a candidate (NO_SAMPLE if none).
+Reservoir bsdfCandidate(Surface s, float pSpecular, inout Rng rng) {
+    Reservoir r = emptyReservoir();
+    vec3 L;
+    bool specularLobe;
+    if (!sampleBsdf(s.brdf, s.N, s.N, s.V, pSpecular, rng, L, specularLobe)) return r;
+    Hit h;
+    vec3 origin = offsetRayOrigin(s.P + s.N * (2e-4 * length(u_cameraPos - s.P)), s.N);
+    if (!traceRay(origin, L, 1e30, false, h) || !(u_attributes[h.triangle].uv2MaterialEmitter.w > 0.0)) return r;
+    r.triangle = h.triangle;
+    r.b = h.barycentric;
+    return r;
+}
+
+// Resampled importance sampling of M light candidates (by power) and the BSDF candidates.
 Combined initialCandidates(Surface s, inout Rng rng) {
     Combined c = Combined(emptyReservoir(), 0.0, 0.0);
-    for (int i = 0; i < u_reuse.candidates; ++i) {
-        Reservoir x = candidate(rng);
-        EmitterPoint e = emitterPoint(x.triangle, x.b, s.P);
-        vec3 L;
-        float dist;
-        float p = luminance(contribution(s, e, L, dist));
-        c.r.M += 1.0;
-        float w = e.pdfArea > 0.0 ? p / e.pdfArea : 0.0;
-        if (!(w > 0.0) || !(w < MAX_RADIANCE)) continue;
-        c.weightSum += w;
-        if (nextFloat(rng) * c.weightSum < w) {
-            c.r.triangle = x.triangle;
-            c.r.b = x.b;
-            c.target = p;
-        }
+    bool hasSpecular = s.models.y != SPECULAR_NONE && (any(greaterThan(s.brdf.f0, vec3(0.0))) || s.brdf.f90 > 0.0);
+    float pSpecular = specularChoice(s.brdf, hasSpecular, max(dot(s.N, s.V), MIN_N_DOT_V));
+    CandidateCounts n = CandidateCounts(float(u_reuse.candidates), hasSpecular ? float(u_reuse.bsdfCandidates) : 0.0);
+    for (int i = 0; i < u_reuse.candidates; ++i) streamCandidate(c, s, candidate(rng), n, pSpecular, rng);
+    for (int i = 0; i < int(n.bsdf); ++i) {
+        Reservoir x = bsdfCandidate(s, pSpecular, rng);
+        if (x.triangle != NO_SAMPLE) streamCandidate(c, s, x, n, pSpecular, rng);
     }
-    finish(c, c.r.M);
+    c.r.M = n.light + n.bsdf;
+    finish(c);
     return c;
+}
+
+// Temporal reuse: this frame's candidates c and the history h found at the reprojected pixel, on
+// the surface h was made for (its position and normal; this pixel's material, seen from the last
+// frame's camera). History M is capped so that the current candidates keep a share.
+Combined temporalReuse(Surface s, Combined c, Reservoir h, Surface hs, inout Rng rng) {
+    h.M = min(h.M, u_reuse.maxM);
+    float pcC = c.target, pcH = targetAt(s, h);
+    float phC = c.r.W > 0.0 ? domainTarget(hs, c.r) : 0.0;
+    float phH = h.W > 0.0 && pcH > 0.0 ? targetAt(hs, h) : 0.0;
+    Combined t = Combined(emptyReservoir(), 0.0, 0.0);
+    combine(t, c.r, balance(c.r.M, pcC, h.M, phC), pcC, rng);
+    combine(t, h, balance(h.M, phH, c.r.M, pcH), pcH, rng);
+    finish(t);
+    return t;
+}
+
+// The surface the reservoir at `prev` of the last frame was made for, if it is this one.
+bool historySurface(Surface s, ivec2 prev, out Surface hs) {
+    hs = s;
+    hs.P = imageLoad(i_surfaceIn, prev).xyz;
+    hs.N = imageLoad(i_normalIn, prev).xyz;
+    hs.V = normalize(u_reuse.prevCameraPos.xyz - hs.P);
+    float viewDistance = length(u_cameraPos - s.P);
+    return imageLoad(i_surfaceIn, prev).w > 0.0 && dot(hs.N, s.N) > MIN_NORMAL_DOT &&
+           length(hs.P - s.P) < MAX_DEPTH_RATIO * 0.25 * viewDistance;
 }
 
 void main() {
@@ -237,36 +313,73 @@ void main() {
     // Visibility reuse (Bitterli et al. 4.4): an occluded survivor is worth nothing to reuse.
     if (c.r.W > 0.0 && !visible(s.P, s.N, emitterPoint(c.r.triangle, c.r.b, s.P).position)) c.r.W = 0.0;
 
-    // Temporal reuse at the reprojected pixel, if the surface there is this one.
     if (u_reuse.temporal != 0 && u_reuse.historyValid != 0) {
         vec4 clip = u_prevViewProj * vec4(s.P, 1.0);
         vec2 prevUv = clip.xy / clip.w * 0.5 + 0.5;
         ivec2 prev = ivec2(floor(prevUv * vec2(size)));
-        if (clip.w > 0.0 && all(greaterThanEqual(prev, ivec2(0))) && all(lessThan(prev, size))) {
-            Reservoir h = loadReservoir(prev);
-            vec3 hP = imageLoad(i_surfaceIn, prev).xyz;
-            vec3 hN = imageLoad(i_normalIn, prev).xyz;
-            float viewDistance = length(u_cameraPos - s.P);
-            bool same = h.M > 0.0 && dot(hN, s.N) > MIN_NORMAL_DOT &&
-                        length(hP - s.P) < MAX_DEPTH_RATIO * 0.25 * viewDistance;
-            if (same) {
-                h.M = min(h.M, u_reuse.maxM);
-                Reservoir current = c.r;
-                Combined t = Combined(emptyReservoir(), 0.0, 0.0);
-                combine(t, current, c.target, rng);
-                combine(t, h, targetAt(s, h), rng);
-                float Z = t.r.M;
-                if (u_reuse.unbiased != 0 && t.r.triangle != NO_SAMPLE) {
-                    Z = (canProduce(s.P, s.N, t.r) ? current.M : 0.0) + (canProduce(hP, hN, t.r) ? h.M : 0.0);
-                }
-                finish(t, Z);
-                c = t;
-            }
-        }
+        Surface hs;
+        if (clip.w > 0.0 && all(greaterThanEqual(prev, ivec2(0))) && all(lessThan(prev, size)) &&
+            historySurface(s, prev, hs))
+            c = temporalReuse(s, c, loadReservoir(prev), hs, rng);
     }
     storeReservoir(pixel, c.r, s.P, s.N);
 }
 #else
+// Spatial reuse with pairwise MIS (Bitterli 2022, ch. 9.1.3; Wyman et al. 2023, "A gentle
+// introduction to ReSTIR"): the pixel's own reservoir is the canonical domain c, each neighbour j
+// is weighed against it alone, with confidence M and c's M split evenly over the k pairs. Pair j
+// holds the share (M_j + M_c/k) / sum M of the unit weight, so with equal targets every reservoir
+// weighs M_i / sum M, as the plain confidence-weighted combination does.
+struct Neighbour {
+    ivec2 pixel;
+    Surface s;
+};
+
+bool similarNeighbour(Surface s, ivec2 n, ivec2 size) {
+    vec4 nSurface = imageLoad(i_surfaceIn, n);
+    vec3 nN = imageLoad(i_normalIn, n).xyz;
+    float viewDistance = length(u_cameraPos - s.P);
+    return nSurface.w > 0.0 && dot(nN, s.N) > MIN_NORMAL_DOT &&
+           abs(length(u_cameraPos - nSurface.xyz) - viewDistance) <= MAX_DEPTH_RATIO * viewDistance;
+}
+
+Combined spatialReuse(Surface s, ivec2 pixel, ivec2 size, Reservoir own, inout Rng rng) {
+    Neighbour neighbours[8];
+    int k = 0;
+    float totalM = own.M;
+    for (int i = 0; i < min(u_reuse.spatial, 8); ++i) {
+        vec2 u = nextFloat2(rng);
+        float r = u_reuse.radius * sqrt(u.x), phi = 2.0 * PI * u.y;
+        ivec2 n = pixel + ivec2(round(r * vec2(cos(phi), sin(phi))));
+        if (n == pixel || any(lessThan(n, ivec2(0))) || any(greaterThanEqual(n, size))) continue;
+        if (!similarNeighbour(s, n, size)) continue;
+        neighbours[k].pixel = n;
+        neighbours[k].s = loadSurface(n, size);
+        totalM += imageLoad(i_surfaceIn, n).w;
+        ++k;
+    }
+    Combined c = Combined(emptyReservoir(), 0.0, 0.0);
+    float pcOwn = targetAt(s, own);
+    if (k == 0) {
+        combine(c, own, 1.0, pcOwn, rng);
+        finish(c);
+        return c;
+    }
+    float ownShare = own.M / float(k);
+    float ownMis = 0.0;
+    for (int j = 0; j < k; ++j) {
+        Reservoir x = loadReservoir(neighbours[j].pixel);
+        float pairShare = (x.M + ownShare) / totalM;
+        float pjOwn = own.W > 0.0 && pcOwn > 0.0 ? domainTarget(neighbours[j].s, own) : 0.0;
+        ownMis += pairShare * balance(ownShare, pcOwn, x.M, pjOwn);
+        float pcX = targetAt(s, x), pjX = x.W > 0.0 && pcX > 0.0 ? targetAt(neighbours[j].s, x) : 0.0;
+        combine(c, x, pairShare * balance(x.M, pjX, ownShare, pcX), pcX, rng);
+    }
+    combine(c, own, ownMis, pcOwn, rng);
+    finish(c);
+    return c;
+}
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(i_sampleOut);
@@ -275,45 +388,16 @@ void main() {
     vec3 radiance = vec3(0.0);
     if (s.valid && u_emitterCount > 0) {
         Rng rng = makeRng(uvec2(pixel), 2u * u_frame.x + 1u, u_frame.y);
-        Reservoir own = loadReservoir(pixel);
-        Combined c = Combined(emptyReservoir(), 0.0, 0.0);
-        combine(c, own, targetAt(s, own), rng);
-        // Spatial reuse: k neighbours in a disc, kept only if their surface is like this one.
-        ivec2 neighbours[8];
-        int count = 0;
-        float viewDistance = length(u_cameraPos - s.P);
-        for (int i = 0; i < min(u_reuse.spatial, 8); ++i) {
-            vec2 u = nextFloat2(rng);
-            float r = u_reuse.radius * sqrt(u.x), phi = 2.0 * PI * u.y;
-            ivec2 n = pixel + ivec2(round(r * vec2(cos(phi), sin(phi))));
-            if (n == pixel || any(lessThan(n, ivec2(0))) || any(greaterThanEqual(n, size))) continue;
-            vec4 nSurface = imageLoad(i_surfaceIn, n);
-            vec3 nN = imageLoad(i_normalIn, n).xyz;
-            if (!(nSurface.w > 0.0) || dot(nN, s.N) <= MIN_NORMAL_DOT ||
-                abs(length(u_cameraPos - nSurface.xyz) - viewDistance) > MAX_DEPTH_RATIO * viewDistance)
-                continue;
-            Reservoir x = loadReservoir(n);
-            combine(c, x, targetAt(s, x), rng);
-            neighbours[count++] = n;
-        }
-        bool seen = false;
-        if (c.r.triangle != NO_SAMPLE) seen = visible(s.P, s.N, emitterPoint(c.r.triangle, c.r.b, s.P).position);
-        float Z = c.r.M;
-        if (u_reuse.unbiased != 0 && c.r.triangle != NO_SAMPLE) {
-            Z = seen ? own.M : 0.0;
-            for (int i = 0; i < count; ++i) {
-                vec4 nSurface = imageLoad(i_surfaceIn, neighbours[i]);
-                if (canProduce(nSurface.xyz, imageLoad(i_normalIn, neighbours[i]).xyz, c.r)) Z += nSurface.w;
-            }
-        }
-        finish(c, Z);
-        if (seen && c.r.W > 0.0) {
+        Combined c = spatialReuse(s, pixel, size, loadReservoir(pixel), rng);
+        bool seen = c.r.triangle != NO_SAMPLE && c.r.W > 0.0 &&
+                    visible(s.P, s.N, emitterPoint(c.r.triangle, c.r.b, s.P).position);
+        if (seen) {
             vec3 L;
             float dist;
             radiance = contribution(s, emitterPoint(c.r.triangle, c.r.b, s.P), L, dist) * c.r.W;
+        } else {
+            c.r.W = 0.0;  // kept with W = 0: the visibility reuse of stage 0, for the next frame
         }
-        // An occluded survivor is kept with W = 0 (the visibility reuse of stage 0 for the next frame).
-        if (!seen) c.r.W = 0.0;
         storeReservoir(pixel, c.r, s.P, s.N);
     } else {
         storeReservoir(pixel, emptyReservoir(), s.P, vec3(0.0));

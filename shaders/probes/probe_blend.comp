@@ -25,7 +25,6 @@ shared vec4 s_rays[MAX_RAYS];
 shared vec3 s_dirs[MAX_RAYS];
 shared uint s_change;
 
-float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 // 2 / (n + 2): a mean whose weights grow linearly with the update's number, so the first updates,
 // whose multi-bounce term still comes from probes that had not converged (or from before a light

@@ -225,6 +225,21 @@ TEST(EmitterLights, ModesGiAndOffRunNoPass) {
     EXPECT_EQ(meanAround(img, c.x, c.y, 2), 0.0);
 }
 
+TEST(EmitterLights, AutoRunsOnlyForEmissionThatLights) {
+    // The floor scene's emitter lights it; shrunk to a 1 cm square of the same radiance its
+    // emission is a surface detail (below the floor --lighting auto uses) and auto runs nothing.
+    Scene dim = emitterFloorScene();
+    for (Vertex& v : dim.primitives[1].vertices) v.position = glm::vec3(0, kEmitterHeight, 0) + 0.02f * (v.position - glm::vec3(0, kEmitterHeight, 0));
+    finalizeScene(dim);
+    RenderSettings automatic = restirSettings();
+    setParam(automatic, "emitters.mode", "auto");
+    context();
+    EXPECT_TRUE(hasPass(Renderer(emitterFloorScene(), automatic), "emitters"));
+    EXPECT_FALSE(hasPass(Renderer(dim, automatic), "emitters"));
+    EXPECT_TRUE(hasPass(Renderer(dim, restirSettings()), "emitters")) << "lights forces the pass";
+    EXPECT_EQ(emitterLightSettings(RenderSettings()).mode, int(EmitterMode::Auto)) << "the default";
+}
+
 TEST(EmitterLights, MovingCameraLeavesNoTrail) {
     // The occluders seen from one camera, then a camera moved sideways: the first frame after the
     // move must be as close to the converged image there as a renderer that started there (one
@@ -268,6 +283,30 @@ TEST(EmitterLights, VeryBrightEmitterStaysFinite) {
     ASSERT_TRUE(allFinite(img));
     const auto [rendered, analytic] = floorMeans(scene, s, img, 1e6, glm::vec3(0), 2);
     EXPECT_NEAR(rendered, analytic, 0.02 * analytic);
+}
+
+// The counting guards (GIS_CHECK_FINITE, set for every test): a NaN that reaches a guard (here a
+// sun of NaN irradiance, which no loader lets through) is counted and named with its pass, not
+// hidden as a black pixel.
+TEST(EmitterLights, NanReachingAGuardIsCountedNotHidden) {
+    ASSERT_TRUE(countingNonFinite()) << "ctest sets GIS_CHECK_FINITE=1";
+    context();
+    RenderSettings s = restirSettings(32);
+    s.hdr32 = true;
+    Scene broken = emitterFloorScene();
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -1, 0.2f));
+    sun.intensity = std::nanf("");
+    broken.lights.push_back(sun);
+    Renderer renderer(broken, s);
+    renderer.renderFrame();
+    const std::string report = renderer.nonFiniteReport();
+    std::printf("%s\n", report.c_str());
+    EXPECT_NE(report.find("pass '"), std::string::npos) << "nothing counted";
+    Renderer sane(emitterFloorScene(), s);
+    sane.renderFrame();
+    EXPECT_EQ(sane.nonFiniteReport(), "");
 }
 
 TEST(EmitterLights, HundredThousandEmissiveTrianglesLightTheFloor) {

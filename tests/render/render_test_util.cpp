@@ -83,6 +83,8 @@ ImageF renderHdr(const Scene& scene, RenderSettings settings) {
     Renderer renderer(scene, settings);
     do renderer.renderFrame();
     while (!renderer.converged());  // progressive methods: until every sample is in
+    const std::string nonFinite = renderer.nonFiniteReport();
+    if (!nonFinite.empty()) ADD_FAILURE() << scene.name << " with --gi " << settings.gi << ": " << nonFinite;
     return renderer.readHdr();
 }
 

@@ -10,6 +10,7 @@
 #include "random.glsl"
 #include "ray_scene.glsl"
 #include "environment.glsl"
+#include "bsdf_sampling.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -70,31 +71,9 @@ const float MIN_THROUGHPUT = 1e-7;
 // Russian roulette never keeps a path with probability above this, so paths end eventually.
 const float MAX_SURVIVAL = 0.95;
 
-float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
-
 float powerHeuristic(float a, float b) {
     float a2 = a * a, b2 = b * b;
     return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
-}
-
-// Smith G1 for GGX.
-float smithG1(float NoV, float alpha) {
-    float a2 = alpha * alpha;
-    return 2.0 * NoV / max(NoV + sqrt(a2 + (1.0 - a2) * NoV * NoV), 1e-8);
-}
-
-// Visible-normal sampling of GGX (Heitz 2018), in the local frame where the normal is +Z.
-vec3 sampleGgxVisibleNormal(vec3 v, float alpha, vec2 u) {
-    vec3 vh = normalize(vec3(alpha * v.x, alpha * v.y, v.z));
-    float len2 = vh.x * vh.x + vh.y * vh.y;
-    vec3 t1 = len2 > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(len2) : vec3(1.0, 0.0, 0.0);
-    vec3 t2 = cross(vh, t1);
-    float r = sqrt(u.x), phi = 2.0 * PI * u.y;
-    float p1 = r * cos(phi), p2 = r * sin(phi);
-    float s = 0.5 * (1.0 + vh.z);
-    p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * p2;
-    vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
-    return normalize(vec3(alpha * nh.x, alpha * nh.y, max(nh.z, 1e-6)));
 }
 
 struct SurfacePoint {
@@ -132,47 +111,6 @@ SurfacePoint shade(Hit hit, vec3 rayDir) {
     s.emission = emits ? m.emissive.rgb * emissiveTex : vec3(0.0);
     s.emitterPdfPerArea = a.uv2MaterialEmitter.w;
     return s;
-}
-
-// Probability of choosing the specular lobe when sampling a direction.
-float specularChoice(SurfacePoint s, float NoV) {
-    if (!s.hasSpecular) return 0.0;
-    float diff = luminance(s.brdf.diffuseColor);
-    if (diff <= 0.0) return 1.0;  // a metal: the specular lobe is all there is
-    float spec = luminance(fresnelSchlick(s.brdf.f0, s.brdf.f90, NoV));
-    // Never below 10% either way, so neither lobe's samples become rare enough to spike.
-    return clamp(spec / (spec + diff), 0.1, 0.9);
-}
-
-// Solid-angle density of sampling L (cosine-weighted diffuse + GGX visible normals, mixed).
-float bsdfPdf(SurfacePoint s, vec3 V, vec3 L, float pSpecular) {
-    float NoL = dot(s.normal, L);
-    if (NoL <= 0.0) return 0.0;
-    float pdf = (1.0 - pSpecular) * NoL * INV_PI;
-    if (pSpecular > 0.0) {
-        // The BRDF's own GGX term and geometry (brdf.glsl), so the density matches what is evaluated.
-        BrdfGeometry g = brdfGeometry(s.normal, V, L);
-        float alpha = s.brdf.roughness * s.brdf.roughness;
-        pdf += pSpecular * smithG1(g.NoV, alpha) * distributionGgx(g, alpha) / (4.0 * g.NoV);
-    }
-    return pdf;
-}
-
-bool sampleBsdf(SurfacePoint s, vec3 V, float pSpecular, inout Rng rng, out vec3 L, out bool specularLobe) {
-    vec2 u = nextFloat2(rng);
-    specularLobe = nextFloat(rng) < pSpecular;
-    if (specularLobe) {
-        vec3 t, b;
-        orthonormalBasis(s.normal, t, b);
-        vec3 vLocal = vec3(dot(V, t), dot(V, b), max(dot(V, s.normal), MIN_N_DOT_V));
-        float alpha = s.brdf.roughness * s.brdf.roughness;
-        vec3 h = sampleGgxVisibleNormal(normalize(vLocal), alpha, u);
-        vec3 H = t * h.x + b * h.y + s.normal * h.z;
-        L = reflect(-V, H);
-    } else {
-        L = cosineDirection(s.normal, u);
-    }
-    return dot(L, s.normal) > 0.0 && dot(L, s.geometricNormal) > 0.0;
 }
 
 // Irradiance at P (facing the light) and the direction/distance to a punctual light.
@@ -236,7 +174,7 @@ vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, ino
                 if (m.textures.w >= 0) le *= srgbToLinear(sampleLayer(m.textures.w, triangleUv(a, b)).rgb);
                 float lightPdf = a.uv2MaterialEmitter.w * d2 / abs(cosLight);
                 if (lightPdf > 0.0 && visible(origin, L, dist * (1.0 - 1e-4))) {
-                    float weight = powerHeuristic(lightPdf, bsdfPdf(s, V, L, pSpecular));
+                    float weight = powerHeuristic(lightPdf, bsdfPdf(s.brdf, s.normal, V, L, pSpecular));
                     sum += evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel) * le * NoL *
                            (weight / lightPdf);
                 }
@@ -266,7 +204,7 @@ vec3 environmentLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel
     float NoL = dot(s.normal, L);
     if (!(lightPdf > 0.0) || NoL <= 0.0 || dot(s.geometricNormal, L) <= 0.0) return vec3(0.0);
     if (!visible(offsetRayOrigin(s.position, s.geometricNormal), L, 1e30)) return vec3(0.0);
-    float weight = powerHeuristic(lightPdf, bsdfPdf(s, V, L, pSpecular));
+    float weight = powerHeuristic(lightPdf, bsdfPdf(s.brdf, s.normal, V, L, pSpecular));
     vec3 f = evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel);
     // At the first surface it is split by its own lobes; later ones by the first surface's.
     if (first) diffuseShare = diffuseShareOf(s, V, L, f);
@@ -316,7 +254,7 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
         bool noGlossy = afterDiffuse && u_caustics == 0;
         if (noGlossy) s.hasSpecular = false;
         int specularModel = noGlossy ? SPECULAR_NONE : u_brdfModels.y;
-        float pSpecular = specularChoice(s, NoV);
+        float pSpecular = specularChoice(s.brdf, s.hasSpecular, NoV);
         radiance += throughput * directLight(s, V, pSpecular, specularModel, rng) *
                     (depth == 0 ? vec3(kept(TERM_DIRECT)) : keptIndirect(diffuseShare));
         // The environment lights the first surface as indirect light, as the lighting pass splits it.
@@ -326,9 +264,9 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng) {
 
         vec3 L;
         bool specularLobe;
-        if (!sampleBsdf(s, V, pSpecular, rng, L, specularLobe)) break;
+        if (!sampleBsdf(s.brdf, s.normal, s.geometricNormal, V, pSpecular, rng, L, specularLobe)) break;
         afterDiffuse = afterDiffuse || !specularLobe;
-        float pdf = bsdfPdf(s, V, L, pSpecular);
+        float pdf = bsdfPdf(s.brdf, s.normal, V, L, pSpecular);
         if (!(pdf > 1e-12)) break;
         vec3 f = evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel);
         if (depth == 0) diffuseShare = diffuseShareOf(s, V, L, f);
