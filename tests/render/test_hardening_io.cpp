@@ -541,4 +541,43 @@ TEST(Hardening, BenchPlanRefusesASceneNamedTwice) {
     EXPECT_EQ(countLines(two.out), 4) << two.out;  // a reference and a cell per scene
 }
 
+// --- Third round (issue 37): hostile environment maps, settings files, manifests and viewer outputs.
+
+// A flat-RGBE Radiance file of one grey (1.0) texel repeated.
+std::string greyHdr(const std::string& path, int width, int height) {
+    std::string s = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " + std::to_string(width) + "\n";
+    for (int i = 0; i < width * height; ++i) s += "\x80\x80\x80\x81";
+    spit(path, s);
+    return path;
+}
+
+// A map wider than GL_MAX_TEXTURE_SIZE (16385x1 on llvmpipe) rendered every method with a black sky
+// and exit 0 (glTexStorage2D's GL_INVALID_VALUE went unchecked): refused before upload, naming the limit.
+TEST(Hardening, AMapPastTheTextureSizeLimitIsOneClearError) {
+    gis::test::context();
+    GLint limit = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &limit);
+    const std::string dir = tempDir("hardening_texture_limit");
+    const std::string map = greyHdr(dir + "/wide.hdr", limit + 1, 1);
+    const gis::test::CliResult r = runCli("render --scene builtin:cornell --size 8x8 --environment " + quoted(map) +
+                                          " --out " + quoted(dir + "/out.png"));
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("GL_MAX_TEXTURE_SIZE"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(std::to_string(limit)), std::string::npos) << r.err;
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/out.png"));
+}
+
+// The memory refusal for a map advised lowering "the method's resolution".
+TEST(Hardening, AMapPastTheMemoryBudgetAdvisesASmallerMap) {
+    const std::string dir = tempDir("hardening_map_budget");
+    const std::string map = greyHdr(dir + "/big.hdr", 1024, 512);
+    const gis::test::CliResult r = runCli("render --scene builtin:cornell --size 8x8 --environment " + quoted(map) +
+                                              " --out " + quoted(dir + "/o.png"),
+                                          "GIS_MEMORY_BUDGET_MB=4");
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("use a smaller environment map"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("resolution"), std::string::npos) << r.err;
+}
+
 }  // namespace
