@@ -568,6 +568,24 @@ TEST(Hardening, AMapPastTheTextureSizeLimitIsOneClearError) {
     EXPECT_FALSE(fs::exists(dir + "/out.png"));
 }
 
+// A FIFO given as a map, a settings file or a script's settings line hung the program; /dev/zero
+// as settings was read without end. Each is refused at once, naming the file.
+TEST(Hardening, InputsThatAreNotRegularFilesAreRefusedWithoutBlocking) {
+    const std::string dir = tempDir("hardening_fifo");
+    const std::string fifo = dir + "/fifo";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    spit(dir + "/script.txt", "settings " + fifo + "\nquit\n");
+    const std::string out = " --scene builtin:cornell --size 8x8 --out " + quoted(dir + "/o.png");
+    for (const std::string& args : {"render --environment " + fifo + out, "render --settings " + fifo + out,
+                                    "render --settings /dev/zero" + out, "view --script " + dir + "/script.txt"}) {
+        SCOPED_TRACE(args);
+        const gis::test::CliResult r = runCli(args, "timeout 20");
+        EXPECT_EQ(r.status, 1) << r.err;
+        EXPECT_NE(r.err.find("not a regular file"), std::string::npos) << r.err;
+        EXPECT_EQ(countLines(r.err), 1) << r.err;
+    }
+}
+
 // The memory refusal for a map advised lowering "the method's resolution".
 TEST(Hardening, AMapPastTheMemoryBudgetAdvisesASmallerMap) {
     const std::string dir = tempDir("hardening_map_budget");
@@ -578,6 +596,53 @@ TEST(Hardening, AMapPastTheMemoryBudgetAdvisesASmallerMap) {
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_NE(r.err.find("use a smaller environment map"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("resolution"), std::string::npos) << r.err;
+}
+
+// `--environment ""` silently meant no map.
+TEST(Hardening, AnEmptyEnvironmentNameIsRefused) {
+    const std::string dir = tempDir("hardening_empty_map");
+    for (const std::string& cmd : {"render --scene builtin:cornell --size 8x8 --out " + quoted(dir + "/o.png"),
+                                   std::string("bench --plan --scenes builtin:cornell --methods none")}) {
+        SCOPED_TRACE(cmd);
+        const gis::test::CliResult r = runCli(cmd + " --environment ''");
+        EXPECT_EQ(r.status, 1) << r.err;
+        EXPECT_NE(r.err.find("--environment"), std::string::npos) << r.err;
+        EXPECT_EQ(countLines(r.err), 1) << r.err;
+    }
+}
+
+// A settings integer above INT64_MAX wrapped (18446744073709551615 read as -1: "must be >= 0").
+TEST(Hardening, SettingsIntegersPastInt64AreNamed) {
+    const std::string dir = tempDir("hardening_int64");
+    spit(dir + "/s.json", R"({"gisandbox_view_settings": 1, "camera": {"scene_camera": 18446744073709551615}})");
+    const gis::test::CliResult r = runCli("render --settings " + quoted(dir + "/s.json") + " --size 8x8 --out " + quoted(dir + "/o.png"));
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("18446744073709551615 is too large"), std::string::npos) << r.err;
+}
+
+// The viewer's save-settings and capture overwrote the open scene, the map or the running script
+// (exit 0), and capture took any extension: refused before the window opens, nothing written.
+TEST(Hardening, ViewerOutputsRefuseTheFilesTheViewerHasOpen) {
+    const std::string dir = tempDir("hardening_view_outputs");
+    ASSERT_EQ(runCli("export --scene builtin:cornell --out " + quoted(dir + "/s.gltf")).status, 0);
+    const std::string map = greyHdr(dir + "/sky.hdr", 8, 4), script = dir + "/script.txt";
+    const std::string scene = slurp(dir + "/s.gltf"), sky = slurp(map);
+    for (const std::string& line : {"save-settings " + dir + "/s.gltf", "capture " + dir + "/sky.hdr",
+                                    "save-settings " + script, "capture " + dir + "/shot.txt"}) {
+        SCOPED_TRACE(line);
+        spit(script, line + "\nquit\n");
+        // Under a display, as a user runs it: before the check the window opened and the file was replaced.
+        const gis::test::CliResult r = runCli("view --scene " + quoted(dir + "/s.gltf") + " --environment " + quoted(map) +
+                                                  " --script " + quoted(script),
+                                              "xvfb-run -a");
+        EXPECT_EQ(r.status, 1) << r.err;
+        EXPECT_EQ(countLines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find("script.txt:1"), std::string::npos) << r.err;
+        EXPECT_EQ(slurp(script), line + "\nquit\n");
+    }
+    EXPECT_TRUE(slurp(dir + "/s.gltf") == scene);
+    EXPECT_TRUE(slurp(map) == sky);
+    EXPECT_FALSE(fs::exists(dir + "/shot.txt"));
 }
 
 }  // namespace
