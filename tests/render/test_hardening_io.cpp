@@ -598,6 +598,44 @@ TEST(Hardening, AMapPastTheMemoryBudgetAdvisesASmallerMap) {
     EXPECT_EQ(r.err.find("resolution"), std::string::npos) << r.err;
 }
 
+// Security: a manifest's id was a path before it was checked: `"id": "../../PWNED"` made
+// `bench --cell` create out/cells/../../PWNED.failed. Ids are checked when the manifest is read.
+TEST(Hardening, ManifestIdsAreCheckedWhenRead) {
+    const std::string dir = tempDir("hardening_manifest_id");
+    const gis::test::CliResult plan = runCli("bench --plan --scenes builtin:cornell --methods none --presets low --size 8x8");
+    ASSERT_EQ(plan.status, 0) << plan.err;
+    const std::string id = nlohmann::json::parse(plan.out.substr(0, plan.out.find('\n')))["id"];
+    spit(dir + "/m.jsonl", replaceOnce(plan.out, "\"" + id + "\"", "\"../../PWNED\""));
+    fs::create_directories(dir + "/a/b");
+    const gis::test::CliResult r = runCli("bench --manifest " + quoted(dir + "/m.jsonl") + " --out-dir " +
+                                          quoted(dir + "/a/b/O") + " --cell ../../PWNED");
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("m.jsonl:1"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("'../../PWNED' is not a job id"), std::string::npos) << r.err;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find("PWNED"), std::string::npos) << "wrote " << e.path();
+}
+
+// A map edited after --plan was "settings resolve differently in this build"; a relative map path
+// failed as "cannot read" from another directory. The plan records the map's absolute path and hash.
+TEST(Hardening, BenchJobsKeepTheirMapAndNameItsEdit) {
+    const std::string dir = tempDir("hardening_bench_map");
+    greyHdr(dir + "/sky.hdr", 8, 4);
+    const gis::test::CliResult plan = runCli("bench --plan --scenes builtin:cornell --methods none --presets low --size 8x8 "
+                                             "--reference-spp 2 --environment sky.hdr",
+                                             "cd " + quoted(dir) + " &&");
+    ASSERT_EQ(plan.status, 0) << plan.err;
+    spit(dir + "/m.jsonl", plan.out);
+    const std::string refId = nlohmann::json::parse(plan.out.substr(0, plan.out.find('\n')))["id"];
+    const std::string cell = "bench --manifest " + quoted(dir + "/m.jsonl") + " --out-dir " + quoted(dir + "/O") + " --cell " + refId;
+    const gis::test::CliResult elsewhere = runCli(cell, "cd / &&");
+    EXPECT_EQ(elsewhere.status, 0) << elsewhere.err;
+    greyHdr(dir + "/sky.hdr", 8, 2);
+    const gis::test::CliResult edited = runCli(cell + " --force");
+    EXPECT_EQ(edited.status, 1) << edited.err;
+    EXPECT_NE(edited.err.find("the environment map " + dir + "/sky.hdr changed"), std::string::npos) << edited.err;
+}
+
 // `--environment ""` silently meant no map.
 TEST(Hardening, AnEmptyEnvironmentNameIsRefused) {
     const std::string dir = tempDir("hardening_empty_map");
