@@ -683,4 +683,15 @@ TEST(Hardening, ViewerOutputsRefuseTheFilesTheViewerHasOpen) {
     EXPECT_FALSE(fs::exists(dir + "/shot.txt"));
 }
 
+// Under `ulimit -v` of 300 to 700 MB Mesa's llvmpipe segfaulted inside shader compilation (exit 139,
+// no message) or failed an allocation: a limit below the floor is refused before any GL.
+TEST(Hardening, AnAddressSpaceLimitBelowTheFloorIsOneClearError) {
+    const std::string dir = tempDir("hardening_ulimit_v");
+    const gis::test::CliResult r = runCli("render --scene builtin:cornell --gi vct --size 8x8 --out " + quoted(dir + "/o.png"),
+                                          "ulimit -v 700000;");
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("ulimit -v"), std::string::npos) << r.err;
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+}
+
 }  // namespace
