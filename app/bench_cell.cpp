@@ -80,12 +80,13 @@ RenderSettings resolveChecked(const BenchJob& job, PreparedScene& prepared) {
     now.sceneSha256 = prepared.sha256;
     const RenderSettings settings = jobSettings(job, prepared.base);
     const std::string id = contentId(now, settings);
-    if (id != job.id)
-        throw Error("job " + job.id + " is now " + id + ": " +
-                    (prepared.sha256 != job.sceneSha256 ? "the scene file " + job.scene + " changed"
-                                                        : std::string("its settings resolve differently in this build")) +
-                    " since --plan; plan again");
-    return settings;
+    if (id == job.id) return settings;
+    const std::string why =
+        prepared.sha256 != job.sceneSha256 ? "the scene file " + job.scene + " changed"
+        : !job.environment.empty() && environmentSha256(job.environment) != job.environmentSha256
+            ? "the environment map " + job.environment + " changed"
+            : "its settings resolve differently in this build";
+    throw Error("job " + job.id + " is now " + id + ": " + why + " since --plan; plan again");
 }
 
 void runReference(const BenchJob& job, const SweepDirs& dirs, const GlOpener& openGl) {

@@ -42,7 +42,7 @@ void addBenchOptions(CLI::App& cmd, BenchOptions& o) {
     cmd.add_option("--backend", o.backend, "OpenGL context: auto, egl, osmesa")->capture_default_str();
     addSceneSetupOptions(cmd, o.setup);
     cmd.add_option("--ambient", o.ambient, "Constant ambient radiance: one value or R,G,B")->delimiter(',')->expected(1, 3);
-    cmd.add_option("--environment", o.environment, kEnvironmentHelp);
+    addEnvironmentOption(cmd, o.environment);
     cmd.add_option("--background", o.background, "Environment radiance R,G,B (or one value), overriding the scene's")
         ->delimiter(',')
         ->expected(1, 3);

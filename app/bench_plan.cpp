@@ -193,6 +193,12 @@ RenderSettings jobSettings(const BenchJob& job, const RenderSettings& sceneBase)
     return s;
 }
 
+std::string environmentSha256(const std::string& path) {
+    Sha256 h;
+    h.updateFile(path);
+    return h.hex();
+}
+
 std::string contentId(const BenchJob& job, const RenderSettings& settings) {
     ojson key{{"version", kBenchIdVersion},
               {"kind", job.kind == JobKind::Cell ? "cell" : "reference"},
@@ -210,11 +216,7 @@ std::string contentId(const BenchJob& job, const RenderSettings& settings) {
     // this a cell's --emitters gi and lights results would share one id (and one cache entry).
     if (!job.setup.emitters.empty()) key["emitters"] = job.setup.emitters;
     // The map's bytes, not only its name: an edited file is another environment (and reference).
-    if (!job.environment.empty()) {
-        Sha256 h;
-        h.updateFile(job.environment);
-        key["environment_sha256"] = h.hex();
-    }
+    if (!job.environment.empty()) key["environment_sha256"] = environmentSha256(job.environment);
     if (job.kind == JobKind::Cell) {
         key["frames"] = job.frames;
         key["warmup"] = job.warmup;
@@ -241,7 +243,11 @@ std::vector<BenchJob> planBench(const BenchOptions& o) {
         common.setup.emitters = modes.front();  // the references' (the path tracer reads no mode)
         common.ambient = o.ambient;
         common.background = o.background;
-        common.environment = o.environment;
+        // Absolute: a cell may run from another directory than the plan's.
+        if (!o.environment.empty()) {
+            common.environment = std::filesystem::absolute(o.environment).lexically_normal().string();
+            common.environmentSha256 = environmentSha256(common.environment);
+        }
         common.referenceSpp = o.referenceSpp;
         const PreparedScene prepared = prepareBenchScene(common);  // fails early on a bad scene
         common.sceneSha256 = prepared.sha256;
@@ -293,7 +299,10 @@ ojson jobToJson(const BenchJob& job) {
     if (!job.setup.emitters.empty()) j["emitters"] = job.setup.emitters;
     j["ambient"] = job.ambient;
     j["background"] = job.background;
-    if (!job.environment.empty()) j["environment"] = job.environment;
+    if (!job.environment.empty()) {
+        j["environment"] = job.environment;
+        j["environment_sha256"] = job.environmentSha256;
+    }
     j["reference_spp"] = job.referenceSpp;
     if (job.kind == JobKind::Cell) {
         j["frames"] = job.frames;
@@ -309,6 +318,9 @@ BenchJob jobFromJson(const nlohmann::json& j) {
     BenchJob job;
     try {
         job.id = j.at("id").get<std::string>();
+        // The id names the job's files (cells/ID.json, ID.failed): a path there would write anywhere.
+        if (job.id.size() != kIdHexDigits || job.id.find_first_not_of("0123456789abcdef") != std::string::npos)
+            throw Error("'" + job.id + "' is not a job id (" + std::to_string(kIdHexDigits) + " hexadecimal digits)");
         const std::string kind = j.at("kind").get<std::string>();
         if (kind != "cell" && kind != "reference") throw Error("kind '" + kind + "' is not cell or reference");
         job.kind = kind == "cell" ? JobKind::Cell : JobKind::Reference;
@@ -326,6 +338,7 @@ BenchJob jobFromJson(const nlohmann::json& j) {
         job.ambient = j.at("ambient").get<std::vector<float>>();
         job.background = j.at("background").get<std::vector<float>>();
         job.environment = j.value("environment", std::string());
+        job.environmentSha256 = j.value("environment_sha256", std::string());
         job.referenceSpp = j.at("reference_spp").get<int>();
         if (job.kind == JobKind::Cell) {
             job.preset = j.at("preset").get<std::string>();

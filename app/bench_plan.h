@@ -34,7 +34,8 @@ struct BenchJob {
     std::string size;          // WxH
     SceneSetupOptions setup;
     std::vector<float> ambient, background;   // as given (empty: not given)
-    std::string environment;                  // --environment FILE.hdr (empty: none)
+    std::string environment;                  // --environment FILE.hdr, absolute (empty: none)
+    std::string environmentSha256;            // the map's bytes at --plan: an edit since is named
     int referenceSpp = 0;
     int frames = 0, warmup = 0;               // cells; with flythrough, frames is the path's, warmup 0
     bool flythrough = false;                  // cells: fly the scripted camera path, scored against nothing
@@ -64,6 +65,8 @@ std::string sceneDigest(const std::string& spec, const Scene& loaded);
 // the references a cell is scored against. Not the scene's path or name: a renamed or moved file
 // keeps its ids. Hex, 16 digits (64 bits).
 std::string contentId(const BenchJob& job, const RenderSettings& settings);
+// SHA-256 of a map's bytes, as the id holds it.
+std::string environmentSha256(const std::string& path);
 
 // Validates the selection flags (one message each) and returns the jobs: per scene its references,
 // then its cells; all references come before all cells.

@@ -177,6 +177,14 @@ int renderFlythrough(Renderer& renderer, const Scene& scene, const RenderOptions
 
 }  // namespace
 
+void addEnvironmentOption(CLI::App& cmd, std::string& path) {
+    cmd.add_option("--environment", path,
+                   "Equirectangular Radiance .hdr lighting the scene from afar (every method; not with --background)")
+        ->check([](const std::string& v) {
+            return v.empty() ? std::string("an empty name is no file (leave --environment out for no map)") : std::string();
+        });
+}
+
 void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--scene", o.scene,
                    "glTF file (.gltf/.glb) or builtin:NAME (" + builtinSceneList() + "); required unless "
@@ -206,7 +214,7 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--background", o.background, "Environment radiance R,G,B (or one value), overriding the scene's")
         ->delimiter(',')
         ->expected(1, 3);
-    cmd.add_option("--environment", o.environment, kEnvironmentHelp);
+    addEnvironmentOption(cmd, o.environment);
     cmd.add_option("--preset", o.preset, "Quality preset of the --gi method: low, medium, high (see `gisandbox methods`); without it "
                    "medium, the viewer's default, where the method has one");
     cmd.add_option("--set", o.sets,

@@ -12,10 +12,6 @@ namespace CLI { class App; }
 
 namespace gis {
 
-// --environment's help, the same on render, view and bench.
-inline constexpr const char* kEnvironmentHelp =
-    "Equirectangular Radiance .hdr lighting the scene from afar (every method; not with --background)";
-
 struct RenderOptions {
     std::string scene;
     std::string out;
@@ -140,6 +136,8 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o);
 int runView(const ViewOptions& o);
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o);
+// --environment FILE.hdr, as render, bench and view take it: an empty name is refused (it meant no map).
+void addEnvironmentOption(CLI::App& cmd, std::string& path);
 void addInfoOptions(CLI::App& cmd, InfoOptions& o);
 void addShaderDumpOptions(CLI::App& cmd, ShaderDumpOptions& o);
 void addMethodsOptions(CLI::App& cmd, MethodsOptions& o);

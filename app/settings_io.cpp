@@ -1,13 +1,12 @@
 #include "settings_io.h"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "brdf_cpu.h"
 #include "gi/method.h"
 #include "image.h"
 #include "scene/atomic_file.h"
+#include "scene/user_file.h"
 #include "user_json.h"
 
 namespace gis::view {
@@ -388,13 +387,10 @@ void saveViewSettings(const std::string& path, const ViewState& state) {
 }
 
 ViewState loadViewSettings(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw Error(path + ": cannot open settings file");
-    std::stringstream buf;
-    buf << f.rdbuf();
+    const std::string text = readUserFile(path, kMaxUserTextBytes, "settings file");
     json j;
     try {
-        j = parseUserJson(buf.str());
+        j = parseUserJson(text);
     } catch (const json::exception& e) {
         throw Error(path + ": not valid JSON (" + std::string(e.what()) + ")");
     } catch (const Error& e) {

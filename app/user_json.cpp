@@ -1,5 +1,8 @@
 #include "user_json.h"
 
+#include <cstdint>
+#include <limits>
+
 #include "gi/params.h"
 #include "scene/scene.h"
 
@@ -15,6 +18,14 @@ struct StrictDomParser : nlohmann::detail::json_sax_dom_parser<nlohmann::json> {
         if (value == 0.0 && hasNonZeroMantissa(literal))
             throw Error("the number " + literal + " is too small for a double (it would be read as 0)");
         return Base::number_float(value, literal);
+    }
+    // Whole numbers past INT64_MAX are unsigned to nlohmann, and reading one as a signed integer
+    // wrapped (18446744073709551615 was -1, "must be >= 0"); no key of a user's file takes one.
+    bool number_unsigned(std::uint64_t value) {
+        if (value > std::uint64_t(std::numeric_limits<std::int64_t>::max()))
+            throw Error("the number " + std::to_string(value) + " is too large (a whole number is at most " +
+                        std::to_string(std::numeric_limits<std::int64_t>::max()) + ")");
+        return Base::number_unsigned(value);
     }
 };
 

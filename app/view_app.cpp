@@ -411,7 +411,7 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
         ->capture_default_str();
     addSceneSetupOptions(cmd, o.setup);
     cmd.add_option("--script", o.script, "Run timed actions from FILE (see docs/viewer.md)");
-    cmd.add_option("--environment", o.environment, kEnvironmentHelp);
+    addEnvironmentOption(cmd, o.environment);
     cmd.add_option("--screenshot-dir", o.screenshotDir, "Where screenshots (F12) go")->capture_default_str();
     cmd.add_flag("--gl-debug", o.glDebug, "Debug context; print KHR_debug messages");
     cmd.add_flag("-v,--verbose", o.verbose, "Print the backend, GL_RENDERER and GL_VERSION");

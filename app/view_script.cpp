@@ -1,10 +1,11 @@
 #include "view_script.h"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "gi/method.h"
+#include "scene/user_file.h"
+#include "user_json.h"
 #include "view_session.h"
 
 namespace gis::view {
@@ -61,8 +62,12 @@ std::vector<ScriptStep> parseScript(const std::string& text, const std::string& 
                 s.kind = ScriptStep::Screenshot;
             } else if (cmd == "capture") {
                 need(2, "capture PATH.png");
+                // The window is written as PNG whatever the name says: any other name is a mistake.
+                const std::string& p = w[1];
+                if (p.size() < 4 || (p.compare(p.size() - 4, 4, ".png") != 0 && p.compare(p.size() - 4, 4, ".PNG") != 0))
+                    throw Error("capture writes a PNG: '" + p + "' does not end in .png");
                 s.kind = ScriptStep::Capture;
-                s.path = w[1];
+                s.path = p;
             } else if (cmd == "scene") {
                 need(2, "scene PATH|builtin:NAME");
                 s.kind = ScriptStep::OpenScene;
@@ -114,11 +119,7 @@ std::vector<ScriptStep> parseScript(const std::string& text, const std::string& 
 }
 
 std::vector<ScriptStep> loadScript(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw Error(path + ": cannot open script");
-    std::stringstream buf;
-    buf << f.rdbuf();
-    return parseScript(buf.str(), path);
+    return parseScript(readUserFile(path, kMaxUserTextBytes, "script"), path);
 }
 
 namespace {
@@ -173,6 +174,8 @@ void checkScriptInContext(const std::vector<ScriptStep>& steps, ViewState state,
             if (step.kind == ScriptStep::LoadSettings && !scratch.loadSettings(state, step.path))
                 throw Error(scratch.lastError());
             if (step.kind == ScriptStep::Key) applyKeyInContext(state, step.path);
+            if (step.kind == ScriptStep::SaveSettings || step.kind == ScriptStep::Capture)
+                checkNotAnOpenFile(state, step.path, name);
             if (step.kind == ScriptStep::SaveSettings && (scratch.hasScene() || bounds))
                 checkSavedCamera(state, scratch.hasScene() ? scratch.scene().bounds : *bounds, step.path);
             if (step.kind != ScriptStep::Action) continue;

@@ -163,8 +163,17 @@ void checkSavedCamera(const ViewState& state, const Aabb& bounds, const std::str
     }
 }
 
+void checkNotAnOpenFile(const ViewState& state, const std::string& path, const std::string& script) {
+    for (const auto& [what, open] : {std::pair<const char*, const std::string&>{"the open scene", state.scene},
+                                     {"the environment map", state.environment},
+                                     {"the running script", script}})
+        if (!open.empty() && sameFile(path, open))
+            throw Error(path + " is " + what + " (" + open + "): not overwritten; write to another file");
+}
+
 bool ViewSession::saveSettings(const ViewState& state, const std::string& path) {
     try {
+        checkNotAnOpenFile(state, path);
         if (scene_) checkSavedCamera(state, scene_->bounds, path);
         saveViewSettings(path, state);
         return true;

@@ -79,6 +79,10 @@ struct PaneView {
 // its znear is below 1e-6 of the scene's depth (the loaders' checkCameraDepth) is refused, naming
 // `path`, instead of writing a file that `render --settings` and the viewer then refuse.
 void checkSavedCamera(const ViewState& state, const Aabb& bounds, const std::string& path);
+// A viewer output (save-settings, capture) must not replace a file the viewer has open: the state's
+// scene or environment map, or `script` (the running one; empty: none). Same file by any name
+// (sameFile): the check is on the device and inode.
+void checkNotAnOpenFile(const ViewState& state, const std::string& path, const std::string& script = "");
 
 class ViewSession {
 public:
@@ -95,7 +99,8 @@ public:
     // Loads a settings file: its scene, then everything else over it. On failure keeps the
     // previous scene and state, sets lastError() and returns false.
     bool loadSettings(ViewState& state, const std::string& path);
-    // Refuses (false, lastError) a free camera the loader would refuse: checkSavedCamera.
+    // Refuses (false, lastError) a free camera the loader would refuse (checkSavedCamera) and a path
+    // that is an open file (checkNotAnOpenFile).
     bool saveSettings(const ViewState& state, const std::string& path);
     const std::string& lastError() const { return lastError_; }
     void clearError() { lastError_.clear(); }

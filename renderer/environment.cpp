@@ -1,18 +1,18 @@
 #include "environment.h"
 
 #include <algorithm>
-#include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
+#include <limits>
 #include <memory>
+#include <sstream>
 
 #include <stb_image.h>
 
+#include "scene/limits.h"
 #include "scene/scene.h"  // gis::Error
+#include "scene/user_file.h"
 
 namespace gis {
 
@@ -20,54 +20,90 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 
-// Whether the pixel data after the header holds the whole image, following the scanline
-// layout stb_image's reader takes (flat RGBE, or the new-style run-length encoding of Radiance's
-// RGBE format): stb fills missing bytes with zeros and can report success on a truncated file.
-bool pixelDataComplete(const std::vector<unsigned char>& bytes, size_t at, long width, long height) {
+// The largest side a header may declare: stb_image reads no more, and no GPU's textures are larger.
+constexpr long long kMaxMapSide = 1 << 16;
+// A whole file: stb_image takes its length as an int; a map of the largest side is far less.
+constexpr uint64_t kMaxMapFileBytes = uint64_t(1) << 30;
+
+// Why the pixel data after the header cannot be the whole image, following the scanline layout
+// stb_image's reader takes (flat RGBE, or the new-style run-length encoding of Radiance's RGBE
+// format); empty when it can. stb fills missing bytes with zeros and reports success on a truncated
+// file, and a scanline without the run-length marker makes it decode the rest as flat pixels.
+std::string pixelDataProblem(const std::string& bytes, size_t at, long long width, long long height) {
+    const std::string truncated = "is truncated (" + std::to_string(width) + "x" + std::to_string(height) +
+                                  " pixels declared, the file ends first)";
+    auto byte = [&](size_t i) { return (unsigned char)bytes[i]; };
     auto need = [&](size_t n) { return at + n <= bytes.size(); };
-    const bool rle = width >= 8 && width < 32768 && need(4) && bytes[at] == 2 && bytes[at + 1] == 2 &&
-                     !(bytes[at + 2] & 0x80);
-    if (!rle) return bytes.size() - at >= size_t(width) * size_t(height) * 4;
-    for (long row = 0; row < height; ++row) {
-        if (!need(4)) return false;
-        at += 4;  // 2, 2, width high, width low
+    const bool rle = width >= 8 && width < 32768 && need(4) && byte(at) == 2 && byte(at + 1) == 2 && !(byte(at + 2) & 0x80);
+    if (!rle) return bytes.size() - at >= size_t(width) * size_t(height) * 4 ? "" : truncated;
+    for (long long row = 0; row < height; ++row) {
+        if (!need(4)) return truncated;
+        if (byte(at) != 2 || byte(at + 1) != 2 || (long long)(byte(at + 2) << 8 | byte(at + 3)) != width)
+            return "is corrupt: scanline " + std::to_string(row) + " does not start with the run-length marker (2, 2, " +
+                   std::to_string(width) + ") of the first";
+        at += 4;
         for (int channel = 0; channel < 4; ++channel)
-            for (long x = 0; x < width;) {
-                if (!need(1)) return false;
-                int count = bytes[at++];
+            for (long long x = 0; x < width;) {
+                if (!need(1)) return truncated;
+                int count = byte(at++);
                 size_t payload = size_t(count);
                 if (count > 128) count -= 128, payload = 1;
-                if (count == 0 || !need(payload)) return false;
+                if (count == 0 || x + count > width)
+                    return "is corrupt: a run of scanline " + std::to_string(row) + " overflows its width";
+                if (!need(payload)) return truncated;
                 at += payload;
                 x += count;
             }
     }
-    return true;
+    return "";
 }
 
 // Every Radiance file starts "#?" (#?RADIANCE or #?RGBE).
-bool hasRadianceSignature(const std::vector<unsigned char>& bytes) {
-    return bytes.size() >= 2 && bytes[0] == '#' && bytes[1] == '?';
+bool hasRadianceSignature(const std::string& bytes) { return bytes.rfind("#?", 0) == 0; }
+
+// "-?DIGITS" as a number; false when it is no whole number. A value past long long is kept as the
+// largest, which any range check refuses.
+bool wholeNumber(const std::string& text, long long& value) {
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec == std::errc::result_out_of_range) value = std::numeric_limits<long long>::max();
+    return ptr == end && ptr != text.data() && ec != std::errc::invalid_argument;
 }
 
+struct Header {
+    bool complete = false;  // the resolution line was read to its end
+    std::string problem;    // empty: the sizes below are the image's
+    size_t dataStart = 0;
+    long long width = 0, height = 0;
+};
+
 // The header's end and the resolution line ("-Y H +X W", the only layout stb_image reads).
-bool parseHeader(const std::vector<unsigned char>& bytes, size_t& dataStart, long& width, long& height) {
+Header parseHeader(const std::string& bytes) {
+    Header h;
+    h.problem = "the header has no \"-Y HEIGHT +X WIDTH\" resolution line (truncated, or another layout)";
     size_t at = 0;
-    bool blank = false;
-    while (!blank) {
-        const size_t eol = size_t(std::find(bytes.begin() + long(at), bytes.end(), '\n') - bytes.begin());
-        if (eol >= bytes.size()) return false;
+    for (bool blank = false; !blank;) {
+        const size_t eol = bytes.find('\n', at);
+        if (eol == std::string::npos) return h;
         blank = eol == at;
         at = eol + 1;
     }
-    const size_t eol = size_t(std::find(bytes.begin() + long(at), bytes.end(), '\n') - bytes.begin());
-    if (eol >= bytes.size()) return false;
-    const std::string line(bytes.begin() + long(at), bytes.begin() + long(eol));
-    char y[3] = {}, x[3] = {};
-    if (std::sscanf(line.c_str(), "%2s %ld %2s %ld", y, &height, x, &width) != 4) return false;
-    dataStart = eol + 1;
-    return std::string(y) == "-Y" && std::string(x) == "+X" && width > 0 && height > 0 && width <= (1 << 16) &&
-           height <= (1 << 16);
+    const size_t eol = bytes.find('\n', at);
+    if (eol == std::string::npos) return h;
+    h.complete = true;
+    std::istringstream line(bytes.substr(at, eol - at));
+    std::string y, hText, x, wText, rest;
+    if (!(line >> y >> hText >> x >> wText) || (line >> rest) || y != "-Y" || x != "+X" ||
+        !wholeNumber(hText, h.height) || !wholeNumber(wText, h.width))
+        return h;
+    if (h.width < 1 || h.height < 1 || h.width > kMaxMapSide || h.height > kMaxMapSide) {
+        h.problem = "the resolution line's size " + wText + "x" + hText + " is out of range (each side in [1, " +
+                    std::to_string(kMaxMapSide) + "])";
+        return h;
+    }
+    h.problem.clear();
+    h.dataStart = eol + 1;
+    return h;
 }
 
 float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
@@ -82,39 +118,36 @@ float wedgeSolidAngle(int y, int width, int height) {
 }  // namespace
 
 std::optional<glm::ivec2> environmentMapSize(const std::string& path) {
-    // A header is a few lines; its resolution line ends it.
-    constexpr size_t kHeaderBytes = 64 * 1024;
-    std::ifstream in(path, std::ios::binary);
-    std::vector<unsigned char> bytes(kHeaderBytes);
-    in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
-    bytes.resize(size_t(in.gcount()));
-    size_t dataStart = 0;
-    long width = 0, height = 0;
-    if (!hasRadianceSignature(bytes) || !parseHeader(bytes, dataStart, width, height))
-        return std::nullopt;
-    return glm::ivec2(int(width), int(height));
+    // The whole header, however long, and no more: the pixels may be hundreds of megabytes.
+    try {
+        const std::string bytes = readUserFile(path, kMaxMapFileBytes, "environment map", [](const std::string& b) {
+            return !hasRadianceSignature(b) || parseHeader(b).complete;
+        });
+        const Header h = parseHeader(bytes);
+        if (!hasRadianceSignature(bytes) || !h.problem.empty()) return std::nullopt;
+        return glm::ivec2(int(h.width), int(h.height));
+    } catch (const Error&) {
+        return std::nullopt;  // loadEnvironmentMap says why
+    }
 }
 
 EnvironmentMap loadEnvironmentMap(const std::string& path) {
+    return decodeEnvironmentMap(readUserFile(path, kMaxMapFileBytes, "environment map"), path);
+}
+
+EnvironmentMap decodeEnvironmentMap(const std::string& bytes, const std::string& path) {
     const std::string what = "environment map '" + path + "'";
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw Error(what + " does not exist");
-    if (!std::filesystem::is_regular_file(path, ec)) throw Error(what + " is not a file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(what + ": cannot read (" + std::strerror(errno) + ")");
-    const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (bytes.size() > kMaxMapFileBytes) throw Error(what + " is too large");
     if (!hasRadianceSignature(bytes))
         throw Error(what + " is not a Radiance .hdr file (no #?RADIANCE or #?RGBE header)");
-    size_t dataStart = 0;
-    long headerW = 0, headerH = 0;
-    if (!parseHeader(bytes, dataStart, headerW, headerH))
-        throw Error(what + ": the header has no \"-Y HEIGHT +X WIDTH\" resolution line (truncated, or another layout)");
-    if (!pixelDataComplete(bytes, dataStart, headerW, headerH))
-        throw Error(what + " is truncated (" + std::to_string(headerW) + "x" + std::to_string(headerH) +
-                    " pixels declared, the file ends first)");
+    const Header header = parseHeader(bytes);
+    if (!header.problem.empty()) throw Error(what + ": " + header.problem);
+    const std::string problem = pixelDataProblem(bytes, header.dataStart, header.width, header.height);
+    if (!problem.empty()) throw Error(what + " " + problem);
     int w = 0, h = 0, channels = 0;
     std::unique_ptr<float, void (*)(void*)> pixels(
-        stbi_loadf_from_memory(bytes.data(), int(std::min<size_t>(bytes.size(), 1u << 30)), &w, &h, &channels, 3),
+        stbi_loadf_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()), int(bytes.size()), &w, &h,
+                               &channels, 3),
         &stbi_image_free);
     if (!pixels) throw Error(what + ": cannot decode (" + std::string(stbi_failure_reason()) + ")");
     if (w < 1 || h < 1) throw Error(what + " is empty");
@@ -125,9 +158,17 @@ EnvironmentMap loadEnvironmentMap(const std::string& path) {
     map.texels.resize(size_t(w) * size_t(h));
     for (size_t i = 0; i < map.texels.size(); ++i) {
         const glm::vec3 c(pixels.get()[i * 3], pixels.get()[i * 3 + 1], pixels.get()[i * 3 + 2]);
-        if (!std::isfinite(c.r + c.g + c.b) || glm::any(glm::lessThan(c, glm::vec3(0.0f))))
-            throw Error(what + ": texel " + std::to_string(i % size_t(w)) + "," + std::to_string(i / size_t(w)) +
-                        " is not a finite non-negative radiance");
+        const std::string texel = "texel " + std::to_string(i % size_t(w)) + "," + std::to_string(i / size_t(w));
+        // Each channel alone: the sum of three finite texels near the float maximum is inf.
+        if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b) || glm::any(glm::lessThan(c, glm::vec3(0.0f))))
+            throw Error(what + ": " + texel + " is not a finite non-negative radiance");
+        const float peak = std::max({c.r, c.g, c.b});
+        if (peak > kMaxRadiance) {
+            char text[160];
+            std::snprintf(text, sizeof text, " has radiance %g, more than the %g the renderer takes", double(peak),
+                          double(kMaxRadiance));
+            throw Error(what + ": " + texel + text);
+        }
         map.texels[i] = c;
     }
     return map;
@@ -178,18 +219,20 @@ std::array<float, 9> shBasis(glm::vec3 d) {
 
 Sh9 projectSh9(const EnvironmentMap& map) {
     // Each texel's radiance over its solid angle against the basis integrated over the texel:
-    // n x n sub-texels with their exact solid angles, n chosen so the sphere gets at least 256
-    // sample columns (a 1x1 constant map needs it; a large map gets n = 1). Double sums: a 4K map
-    // has 8M terms.
-    const int n = std::clamp(256 / std::max(map.width, 1), 1, 256);
-    const int subW = map.width * n, subH = map.height * n;
+    // nx x ny sub-texels with their exact solid angles, each axis subdivided on its own until the
+    // sphere gets at least 256 sample columns and 128 rows (a 1x1 constant map needs them; a large
+    // map gets one sample a texel). One n for both axes, taken from the width, gave a 1 x 65536 map
+    // 256 x 16.7M samples. Now the samples are at most max(W, 256) x max(H, 128). Double sums: a 4K
+    // map has 8M terms.
+    const int nx = std::clamp(256 / std::max(map.width, 1), 1, 256), ny = std::clamp(128 / std::max(map.height, 1), 1, 128);
+    const int subW = map.width * nx, subH = map.height * ny;
     std::array<glm::dvec3, 9> sum{};
     for (int y = 0; y < subH; ++y) {
         const double dw = wedgeSolidAngle(y, subW, subH);
         for (int x = 0; x < subW; ++x) {
             const glm::vec3 d = equirectToDirection({(float(x) + 0.5f) / float(subW), (float(y) + 0.5f) / float(subH)});
             const std::array<float, 9> b = shBasis(d);
-            const glm::dvec3 l = glm::dvec3(map.at(x / n, y / n)) * dw;
+            const glm::dvec3 l = glm::dvec3(map.at(x / nx, y / ny)) * dw;
             for (int k = 0; k < 9; ++k) sum[size_t(k)] += l * double(b[size_t(k)]);
         }
     }

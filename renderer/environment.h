@@ -22,9 +22,12 @@ struct EnvironmentMap {
     const glm::vec3& at(int x, int y) const { return texels[size_t(y) * size_t(width) + size_t(x)]; }
 };
 
-// Throws gis::Error with one line for a missing, unreadable, truncated or non-Radiance file, or
-// radiance that is negative, NaN or Inf.
+// Throws gis::Error with one line for a missing, unreadable, non-regular, oversized, truncated,
+// corrupt or non-Radiance file, or radiance that is negative, NaN, Inf or more than kMaxRadiance
+// (scene/limits.h).
 EnvironmentMap loadEnvironmentMap(const std::string& path);
+// The same for a file's bytes already in memory (the fuzzer's entry); `name` names it in messages.
+EnvironmentMap decodeEnvironmentMap(const std::string& bytes, const std::string& name);
 // The same radiance from every direction: --background and the default sky as a map.
 EnvironmentMap constantEnvironment(glm::vec3 radiance);
 // A map's width and height from its header alone (the memory budget's estimate, before the map is

@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "gl/dispatch.h"
+#include "memory_budget.h"
+#include "scene/scene.h"  // gis::Error
 #include "uniforms.h"
 
 namespace gis {
@@ -43,6 +45,18 @@ MapTextures mapTextures(int width, int height) {
     return {width, height, sw, sh, std::min(kEnvironmentSpecularLevels, gl::mipLevelsFor(sw, sh))};
 }
 
+// The sampling CDFs are the widest textures of a map: (width + 1) x height and (height + 1) x 1. Past
+// GL_MAX_TEXTURE_SIZE glTextureStorage2D fails with GL_INVALID_VALUE and every method saw a black sky.
+void checkTextureLimit(const EnvironmentMap& map) {
+    GLint limit = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &limit);
+    if (map.width + 1 > limit || map.height + 1 > limit)
+        throw Error("environment map '" + map.name + "' is " + std::to_string(map.width) + "x" +
+                    std::to_string(map.height) + ": this GPU's textures are at most " + std::to_string(limit) +
+                    " texels a side (GL_MAX_TEXTURE_SIZE), and the map's sampling tables need one more than its "
+                    "width and height; use a smaller map");
+}
+
 gl::Texture floatTexture(const gl::MemoryScope& scope, int width, int height, const float* data) {
     gl::Texture t = gl::createTexture2D(scope, GL_R32F, width, height);
     glTextureSubImage2D(t.id(), 0, 0, 0, width, height, GL_RED, GL_FLOAT, data);
@@ -71,6 +85,9 @@ GpuEnvironment::GpuEnvironment(const std::string& path, gl::MemoryLedger& ledger
     }
     // The map itself is needed only here: what the shaders read of it is in the textures and values_.
     const EnvironmentMap map = loadEnvironmentMap(path);
+    // The memory pre-check read the file before this load: an edit in between is caught here.
+    checkEnvironmentMapBudget(map.name, map.width, map.height);
+    checkTextureLimit(map);
     upload(scope, map);
     const Sh9 sh = projectSh9(map);
     values_.width = map.width;

@@ -24,6 +24,9 @@ namespace {
 constexpr GLenum kGpuMemoryCurrentAvailableNvx = 0x9049;  // KiB
 constexpr GLenum kTextureFreeMemoryAti = 0x87FC;          // 4 values, [0] = free KiB
 
+// The estimate's part for an environment map: a refusal it leads advises a smaller map.
+const std::string kEnvironmentMapPart = "environment map textures (radiance, specular chain, sampling CDFs)";
+
 bool hasGlExtension(const char* name) {
     GLint count = 0;
     glGetIntegerv(GL_NUM_EXTENSIONS, &count);
@@ -82,7 +85,7 @@ MemoryEstimate estimateGpuMemory(const Scene& scene, const RenderSettings& s) {
     e.parts.push_back({"environment (split-sum table)", uint64_t(GpuEnvironment::tableBytes())});
     if (!s.environment.empty())
         if (const std::optional<glm::ivec2> size = environmentMapSize(s.environment))
-            e.parts.push_back({"environment map (radiance, specular chain, sampling CDFs)",
+            e.parts.push_back({kEnvironmentMapPart,
                                uint64_t(GpuEnvironment::mapBytes(size->x, size->y))});
     uint64_t vertices = 0, indices = 0, texels = 0;
     for (const Primitive& p : scene.primitives) {
@@ -137,14 +140,24 @@ void checkMemoryBudget(const Scene& scene, const RenderSettings& settings) {
     // The advice follows the largest part: a method's volume does not shrink with --size.
     const uint64_t perPixel = uint64_t(settings.width) * uint64_t(settings.height) * 64;  // G-buffer, HDR, read-back
     const bool sizeBound = e.parts.empty() || e.parts.front().second <= perPixel;
-    const std::string advice = sizeBound ? "use a smaller --size"
-                                         : "lower the settings that size " + e.parts.front().first +
-                                               " (e.g. the method's resolution), or raise the budget";
+    const std::string advice = sizeBound                                      ? "use a smaller --size"
+                               : e.parts.front().first == kEnvironmentMapPart ? "use a smaller environment map, or raise the budget"
+                                                                              : "lower the settings that size " + e.parts.front().first +
+                                                                                    " (e.g. the method's resolution), or raise the budget";
     std::string parts;
     for (size_t i = 0; i < e.parts.size() && i < 2; ++i) parts += (i ? ", " : "") + e.parts[i].first + " " + gib(e.parts[i].second);
     throw Error(std::to_string(settings.width) + "x" + std::to_string(settings.height) + " needs about " +
                 gib(e.total()) + (b.hostMemory ? " of memory (" : " of GPU memory (") + parts + "), more than the " + gib(b.bytes) + " budget: " +
                 b.source + "; " + advice);
+}
+
+void checkEnvironmentMapBudget(const std::string& name, int width, int height) {
+    const uint64_t need = uint64_t(GpuEnvironment::mapBytes(width, height));
+    const MemoryBudget b = gpuMemoryBudget();
+    if (need > b.bytes)
+        throw Error("environment map '" + name + "' is " + std::to_string(width) + "x" + std::to_string(height) + ": its " +
+                    kEnvironmentMapPart + " need about " + gib(need) + ", more than the " + gib(b.bytes) + " budget: " +
+                    b.source + "; use a smaller environment map");
 }
 
 }  // namespace gis

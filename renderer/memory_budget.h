@@ -36,5 +36,8 @@ MemoryBudget gpuMemoryBudget();
 
 // Throws gis::Error naming the estimate, its largest parts and the budget when it does not fit.
 void checkMemoryBudget(const Scene& scene, const RenderSettings& settings);
+// The same for a width x height environment map's textures alone, once the map is loaded: the file
+// may have changed since checkMemoryBudget read its header. Needs a current GL context.
+void checkEnvironmentMapBudget(const std::string& name, int width, int height);
 
 }  // namespace gis

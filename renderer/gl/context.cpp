@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include <sys/resource.h>
+
 #include "gl/gl.h"
 #include "scene/scene.h"
 
@@ -67,7 +69,24 @@ void finishContext(GlContext& ctx, const ContextOptions& options) {
 
 }  // namespace
 
+namespace {
+// The address space a GL context needs: under `ulimit -v` of 300 to 700 MB Mesa's llvmpipe segfaulted
+// inside shader compilation (LLVM's JIT; vct and sdf at 700 MB) or failed an allocation, with no
+// message; every method rendered at 1 GiB. A GPU driver maps more, not less.
+constexpr rlim_t kMinAddressSpaceBytes = rlim_t(1) << 30;
+
+void checkAddressSpaceLimit() {
+    struct rlimit limit {};
+    if (::getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY || limit.rlim_cur >= kMinAddressSpaceBytes)
+        return;
+    throw Error("the address-space limit (ulimit -v) is " + std::to_string(limit.rlim_cur >> 20) +
+                " MiB: OpenGL needs at least " + std::to_string(kMinAddressSpaceBytes >> 20) +
+                " MiB (software GL compiles shaders with LLVM and crashed below it); raise the limit");
+}
+}  // namespace
+
 std::unique_ptr<GlContext> createContext(const ContextOptions& options) {
+    checkAddressSpaceLimit();
     std::unique_ptr<GlContext> ctx;
     Backend b = options.backend;
     if (b == Backend::Auto && options.window) b = Backend::Glfw;

@@ -107,6 +107,13 @@ Texture makeTexture(GLenum target, GLenum format, int w, int h, int d, int level
 }  // namespace
 
 Texture createTexture2D(const MemoryScope& scope, GLenum format, int width, int height, int levels) {
+    // Past the driver's limit glTextureStorage2D fails with GL_INVALID_VALUE, which the out-of-memory
+    // check below does not see: the texture would be incomplete and read as black.
+    GLint limit = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &limit);
+    if (width > limit || height > limit)
+        throw Error("a " + std::to_string(width) + "x" + std::to_string(height) + " texture for " + scope.owner +
+                    " is larger than this GPU's " + std::to_string(limit) + " texels a side (GL_MAX_TEXTURE_SIZE)");
     Texture t = makeTexture(GL_TEXTURE_2D, format, width, height, 1, levels);
     glTextureStorage2D(t.id(), levels, format, width, height);
     checkOutOfMemory("allocating a " + std::to_string(width) + "x" + std::to_string(height) + " texture for " +

@@ -31,6 +31,7 @@
 #include <stb_image.h>
 #include <tiny_gltf.h>
 
+#include "scene/limits.h"
 #include "scene/scene.h"
 #include "scene/scene_internal.h"
 
@@ -66,6 +67,11 @@ bool ignorableExtension(const std::string& e) {
 }
 
 std::string str(uint64_t v) { return std::to_string(v); }
+std::string num(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", v);
+    return text;
+}
 
 std::string quoted(const std::string& name) {
     return name.empty() ? std::string() : " ('" + oneLine(name, 60) + "')";
@@ -1126,8 +1132,13 @@ void Loader::convertMaterials() {
         if (!src.emissiveFactor.empty()) {
             if (src.emissiveFactor.size() != 3) fail(where + ": emissiveFactor must have 3 numbers");
             for (int c = 0; c < 3; ++c) {
-                if (!finiteNumber(src.emissiveFactor[size_t(c)])) fail(where + ": emissiveFactor is not finite");
-                emissive[c] = static_cast<float>(src.emissiveFactor[size_t(c)]);
+                const double f = src.emissiveFactor[size_t(c)];
+                if (!finiteNumber(f)) fail(where + ": emissiveFactor is not finite");
+                // The spec's range is [0, 1] (a brighter emitter uses KHR_materials_emissive_strength);
+                // a negative factor emitted negative radiance. Above 1 is taken as many files do, up to
+                // the radiance limit below.
+                if (f < 0.0) fail(where + ": emissiveFactor " + num(f) + " is outside [0, 1]");
+                emissive[c] = static_cast<float>(f);
             }
         }
         float strength = 1.0f;
@@ -1138,9 +1149,12 @@ void Loader::convertMaterials() {
                 fail(where + ": emissiveStrength must be a non-negative number");
             strength = static_cast<float>(v.GetNumberAsDouble());
         }
+        // In double: the product of two floats' worth of numbers must not overflow before the check.
+        const double radiance = double(std::max({emissive.x, emissive.y, emissive.z})) * double(strength);
+        if (radiance > double(kMaxRadiance))
+            fail(where + ": emissive radiance " + num(radiance) + " (emissiveFactor x emissiveStrength) is more than the " +
+                 num(double(kMaxRadiance)) + " the renderer takes");
         m.emissive = emissive * strength;
-        if (!std::isfinite(m.emissive.x) || !std::isfinite(m.emissive.y) || !std::isfinite(m.emissive.z))
-            fail(where + ": emissive radiance overflows");
 
         auto sp = src.extensions.find("KHR_materials_specular");
         if (sp != src.extensions.end() && sp->second.IsObject() && sp->second.Has("specularFactor")) {

@@ -2,14 +2,19 @@
 // SH9 irradiance against brute-force integration, and importance sampling against uniform
 // sampling (same mean, lower variance).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <random>
 
 #include "cli_util.h"
 #include "environment.h"
+#include "scene/limits.h"
 #include "scene/scene.h"
 
 namespace gis::test {
@@ -26,6 +31,36 @@ std::string loadError(const std::string& path) {
     }
     return "";
 }
+
+// Radiance files written byte by byte: a header, then either flat RGBE or new-style run-length
+// scanlines (2, 2, width; each channel as literal runs of up to 128 bytes).
+std::string hdrHeader(int width, int height, const std::string& extra = "") {
+    return "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n" + extra + "\n-Y " + std::to_string(height) + " +X " +
+           std::to_string(width) + "\n";
+}
+std::string flatHdr(int width, int height, const unsigned char rgbe[4], const std::string& extra = "") {
+    std::string s = hdrHeader(width, height, extra);
+    for (int i = 0; i < width * height; ++i) s.append(reinterpret_cast<const char*>(rgbe), 4);
+    return s;
+}
+std::string rleHdr(int width, int height, const unsigned char rgbe[4]) {
+    std::string s = hdrHeader(width, height);
+    for (int y = 0; y < height; ++y) {
+        s += {char(2), char(2), char(width >> 8), char(width & 255)};
+        for (int c = 0; c < 4; ++c)
+            for (int x = 0; x < width; x += 128) {
+                const int n = std::min(128, width - x);
+                s += char(n);
+                s.append(size_t(n), char(rgbe[c]));
+            }
+    }
+    return s;
+}
+std::string writeFile(const std::string& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+}
+const unsigned char kGrey[4] = {128, 128, 128, 129};  // 0.5 x 2^1 = 1.0
 
 // E(n) by summing every texel (the map is piecewise constant, so this is its exact irradiance up to
 // the cosine's variation inside a texel).
@@ -155,6 +190,99 @@ TEST(Environment, ImportanceSamplingSameMeanLowerVariance) {
     EXPECT_NEAR(mu, mi, 4.0 * sigma);
     EXPECT_NEAR(mi, truth, 4.0 * std::sqrt(vi / count) + 1e-3 * truth);
     EXPECT_LT(vi, 0.25 * vu);
+}
+
+// A scanline whose marker is 1, 1 instead of 2, 2 (same length): stb_image falls back to flat
+// pixels from there and decoded stale bytes, a grey map turned magenta with exit 0.
+TEST(Environment, ACorruptRunLengthScanlineIsRefused) {
+    const std::string dir = tempDir("environment_rle");
+    std::string bytes = rleHdr(16, 4, kGrey);
+    const std::string good = writeFile(dir + "/good.hdr", bytes);
+    for (const glm::vec3& t : loadEnvironmentMap(good).texels) EXPECT_EQ(t, glm::vec3(1.0f));
+    const size_t second = hdrHeader(16, 4).size() + (bytes.size() - hdrHeader(16, 4).size()) / 4;
+    ASSERT_EQ(bytes[second], 2);
+    bytes[second] = bytes[second + 1] = 1;
+    const std::string why = loadError(writeFile(dir + "/bad.hdr", bytes));
+    EXPECT_NE(why.find("scanline 1"), std::string::npos) << why;
+    EXPECT_EQ(why.find('\n'), std::string::npos) << why;
+}
+
+// Sizes the parser cannot take say so (they said the resolution line was missing).
+TEST(Environment, ResolutionOutOfRangeSaysWhatIsWrong) {
+    const std::string dir = tempDir("environment_size");
+    for (const char* size : {"-Y 100000 +X 100000", "-Y 0 +X 4", "-Y -3 +X 4", "-Y 4 +X 99999999999999999999"}) {
+        SCOPED_TRACE(size);
+        const std::string why = loadError(writeFile(dir + "/s.hdr", "#?RADIANCE\n\n" + std::string(size) + "\n"));
+        EXPECT_NE(why.find("out of range"), std::string::npos) << why;
+        EXPECT_EQ(why.find("no \"-Y"), std::string::npos) << why;
+    }
+}
+
+// The memory pre-check's size comes from the whole header, however long (it read 64 KiB).
+TEST(Environment, SizeOfAMapWithALongHeader) {
+    const std::string dir = tempDir("environment_long_header");
+    const std::string comment = "# " + std::string(100000, 'x') + "\n";
+    const std::string path = writeFile(dir + "/long.hdr", flatHdr(4, 2, kGrey, comment));
+    EXPECT_TRUE(loadError(path).empty()) << loadError(path);
+    const std::optional<glm::ivec2> size = environmentMapSize(path);
+    ASSERT_TRUE(size.has_value());
+    EXPECT_EQ(*size, glm::ivec2(4, 2));
+}
+
+// A 1 x 4096 map took seconds (1x16384: 41 s, 1x65536 hung): the projection sampled 256 columns in
+// every one of its rows. Its work is bounded by the map's texels now, and E = pi L still holds.
+TEST(Environment, ShProjectionOfANarrowMapIsQuickAndRight) {
+    EnvironmentMap map;
+    map.width = 1;
+    map.height = 4096;
+    map.texels.assign(size_t(map.height), glm::vec3(0.5f));
+    const auto t0 = std::chrono::steady_clock::now();
+    const Sh9 sh = projectSh9(map);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_LT(seconds, 1.0);
+    for (glm::vec3 n : {glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), glm::normalize(glm::vec3(1, -2, 3))})
+        EXPECT_NEAR(shIrradiance(sh, n).g, kPi * 0.5, 1e-3 * kPi);
+}
+
+// RGBE exponent 255 (about 1.7e38) loaded, and the SH projection and the sampling CDF overflowed
+// to inf (black pixels, exit 0): texels past kMaxRadiance are refused; at the limit both are finite.
+TEST(Environment, TexelsPastTheRadianceLimitAreRefused) {
+    const std::string dir = tempDir("environment_huge");
+    const unsigned char huge[4] = {200, 200, 200, 255};
+    const std::string why = loadError(writeFile(dir + "/huge.hdr", flatHdr(4, 2, huge)));
+    EXPECT_NE(why.find("texel 0,0"), std::string::npos) << why;
+    EXPECT_NE(why.find("1e+18"), std::string::npos) << why;
+    EnvironmentMap map;
+    map.width = 8;
+    map.height = 4;
+    map.texels.assign(32, glm::vec3(kMaxRadiance));
+    for (const glm::vec3& c : projectSh9(map)) EXPECT_TRUE(std::isfinite(c.r + c.g + c.b));
+    const EnvironmentSampler sampler(map);
+    EXPECT_TRUE(std::isfinite(sampler.marginalCdf().back()));
+    EXPECT_TRUE(std::isfinite(sampler.pdf(glm::vec3(0, 1, 0))));
+}
+
+// A FIFO blocked the loader (opening it waits for a writer) and a sparse file of gigabytes beginning
+// "#?" (the issue's was 6 GB; 2 GiB is past the limit too) was read whole before any check: both
+// are refused before a byte is read.
+TEST(Environment, FifoAndHugeFilesAreRefusedBeforeReading) {
+    const std::string dir = tempDir("environment_fifo");
+    const std::string fifo = dir + "/fifo.hdr";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    // Both readers: the memory pre-check's size and the load.
+    auto result = std::async(std::launch::async, [&] { return environmentMapSize(fifo) ? "" : loadError(fifo); });
+    if (result.wait_for(std::chrono::seconds(10)) != std::future_status::ready) {
+        std::ofstream unblock(fifo);
+        ADD_FAILURE() << "loading a FIFO blocked";
+    }
+    const std::string why = result.get();
+    EXPECT_NE(why.find("is not a regular file"), std::string::npos) << why;
+    const std::string sparse = writeFile(dir + "/sparse.hdr", "#?RADIANCE\n");
+    ASSERT_EQ(::truncate(sparse.c_str(), off_t(2) << 30), 0);
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string big = loadError(sparse);
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
+    EXPECT_NE(big.find("too large"), std::string::npos) << big;
 }
 
 }  // namespace

@@ -541,4 +541,157 @@ TEST(Hardening, BenchPlanRefusesASceneNamedTwice) {
     EXPECT_EQ(countLines(two.out), 4) << two.out;  // a reference and a cell per scene
 }
 
+// --- Third round (issue 37): hostile environment maps, settings files, manifests and viewer outputs.
+
+// A flat-RGBE Radiance file of one grey (1.0) texel repeated.
+std::string greyHdr(const std::string& path, int width, int height) {
+    std::string s = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " + std::to_string(width) + "\n";
+    for (int i = 0; i < width * height; ++i) s += "\x80\x80\x80\x81";
+    spit(path, s);
+    return path;
+}
+
+// A map wider than GL_MAX_TEXTURE_SIZE (16385x1 on llvmpipe) rendered every method with a black sky
+// and exit 0 (glTexStorage2D's GL_INVALID_VALUE went unchecked): refused before upload, naming the limit.
+TEST(Hardening, AMapPastTheTextureSizeLimitIsOneClearError) {
+    gis::test::context();
+    GLint limit = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &limit);
+    const std::string dir = tempDir("hardening_texture_limit");
+    const std::string map = greyHdr(dir + "/wide.hdr", limit + 1, 1);
+    const gis::test::CliResult r = runCli("render --scene builtin:cornell --size 8x8 --environment " + quoted(map) +
+                                          " --out " + quoted(dir + "/out.png"));
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("GL_MAX_TEXTURE_SIZE"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(std::to_string(limit)), std::string::npos) << r.err;
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/out.png"));
+}
+
+// A FIFO given as a map, a settings file or a script's settings line hung the program; /dev/zero
+// as settings was read without end. Each is refused at once, naming the file.
+TEST(Hardening, InputsThatAreNotRegularFilesAreRefusedWithoutBlocking) {
+    const std::string dir = tempDir("hardening_fifo");
+    const std::string fifo = dir + "/fifo";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    spit(dir + "/script.txt", "settings " + fifo + "\nquit\n");
+    const std::string out = " --scene builtin:cornell --size 8x8 --out " + quoted(dir + "/o.png");
+    for (const std::string& args : {"render --environment " + fifo + out, "render --settings " + fifo + out,
+                                    "render --settings /dev/zero" + out, "view --script " + dir + "/script.txt"}) {
+        SCOPED_TRACE(args);
+        const gis::test::CliResult r = runCli(args, "timeout 20");
+        EXPECT_EQ(r.status, 1) << r.err;
+        EXPECT_NE(r.err.find("not a regular file"), std::string::npos) << r.err;
+        EXPECT_EQ(countLines(r.err), 1) << r.err;
+    }
+}
+
+// The memory refusal for a map advised lowering "the method's resolution".
+TEST(Hardening, AMapPastTheMemoryBudgetAdvisesASmallerMap) {
+    const std::string dir = tempDir("hardening_map_budget");
+    const std::string map = greyHdr(dir + "/big.hdr", 1024, 512);
+    const gis::test::CliResult r = runCli("render --scene builtin:cornell --size 8x8 --environment " + quoted(map) +
+                                              " --out " + quoted(dir + "/o.png"),
+                                          "GIS_MEMORY_BUDGET_MB=4");
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("use a smaller environment map"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("resolution"), std::string::npos) << r.err;
+}
+
+// Security: a manifest's id was a path before it was checked: `"id": "../../PWNED"` made
+// `bench --cell` create out/cells/../../PWNED.failed. Ids are checked when the manifest is read.
+TEST(Hardening, ManifestIdsAreCheckedWhenRead) {
+    const std::string dir = tempDir("hardening_manifest_id");
+    const gis::test::CliResult plan = runCli("bench --plan --scenes builtin:cornell --methods none --presets low --size 8x8");
+    ASSERT_EQ(plan.status, 0) << plan.err;
+    const std::string id = nlohmann::json::parse(plan.out.substr(0, plan.out.find('\n')))["id"];
+    spit(dir + "/m.jsonl", replaceOnce(plan.out, "\"" + id + "\"", "\"../../PWNED\""));
+    fs::create_directories(dir + "/a/b");
+    const gis::test::CliResult r = runCli("bench --manifest " + quoted(dir + "/m.jsonl") + " --out-dir " +
+                                          quoted(dir + "/a/b/O") + " --cell ../../PWNED");
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("m.jsonl:1"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("'../../PWNED' is not a job id"), std::string::npos) << r.err;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find("PWNED"), std::string::npos) << "wrote " << e.path();
+}
+
+// A map edited after --plan was "settings resolve differently in this build"; a relative map path
+// failed as "cannot read" from another directory. The plan records the map's absolute path and hash.
+TEST(Hardening, BenchJobsKeepTheirMapAndNameItsEdit) {
+    const std::string dir = tempDir("hardening_bench_map");
+    greyHdr(dir + "/sky.hdr", 8, 4);
+    const gis::test::CliResult plan = runCli("bench --plan --scenes builtin:cornell --methods none --presets low --size 8x8 "
+                                             "--reference-spp 2 --environment sky.hdr",
+                                             "cd " + quoted(dir) + " &&");
+    ASSERT_EQ(plan.status, 0) << plan.err;
+    spit(dir + "/m.jsonl", plan.out);
+    const std::string refId = nlohmann::json::parse(plan.out.substr(0, plan.out.find('\n')))["id"];
+    const std::string cell = "bench --manifest " + quoted(dir + "/m.jsonl") + " --out-dir " + quoted(dir + "/O") + " --cell " + refId;
+    const gis::test::CliResult elsewhere = runCli(cell, "cd / &&");
+    EXPECT_EQ(elsewhere.status, 0) << elsewhere.err;
+    greyHdr(dir + "/sky.hdr", 8, 2);
+    const gis::test::CliResult edited = runCli(cell + " --force");
+    EXPECT_EQ(edited.status, 1) << edited.err;
+    EXPECT_NE(edited.err.find("the environment map " + dir + "/sky.hdr changed"), std::string::npos) << edited.err;
+}
+
+// `--environment ""` silently meant no map.
+TEST(Hardening, AnEmptyEnvironmentNameIsRefused) {
+    const std::string dir = tempDir("hardening_empty_map");
+    for (const std::string& cmd : {"render --scene builtin:cornell --size 8x8 --out " + quoted(dir + "/o.png"),
+                                   std::string("bench --plan --scenes builtin:cornell --methods none")}) {
+        SCOPED_TRACE(cmd);
+        const gis::test::CliResult r = runCli(cmd + " --environment ''");
+        EXPECT_EQ(r.status, 1) << r.err;
+        EXPECT_NE(r.err.find("--environment"), std::string::npos) << r.err;
+        EXPECT_EQ(countLines(r.err), 1) << r.err;
+    }
+}
+
+// A settings integer above INT64_MAX wrapped (18446744073709551615 read as -1: "must be >= 0").
+TEST(Hardening, SettingsIntegersPastInt64AreNamed) {
+    const std::string dir = tempDir("hardening_int64");
+    spit(dir + "/s.json", R"({"gisandbox_view_settings": 1, "camera": {"scene_camera": 18446744073709551615}})");
+    const gis::test::CliResult r = runCli("render --settings " + quoted(dir + "/s.json") + " --size 8x8 --out " + quoted(dir + "/o.png"));
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("18446744073709551615 is too large"), std::string::npos) << r.err;
+}
+
+// The viewer's save-settings and capture overwrote the open scene, the map or the running script
+// (exit 0), and capture took any extension: refused before the window opens, nothing written.
+TEST(Hardening, ViewerOutputsRefuseTheFilesTheViewerHasOpen) {
+    const std::string dir = tempDir("hardening_view_outputs");
+    ASSERT_EQ(runCli("export --scene builtin:cornell --out " + quoted(dir + "/s.gltf")).status, 0);
+    const std::string map = greyHdr(dir + "/sky.hdr", 8, 4), script = dir + "/script.txt";
+    const std::string scene = slurp(dir + "/s.gltf"), sky = slurp(map);
+    for (const std::string& line : {"save-settings " + dir + "/s.gltf", "capture " + dir + "/sky.hdr",
+                                    "save-settings " + script, "capture " + dir + "/shot.txt"}) {
+        SCOPED_TRACE(line);
+        spit(script, line + "\nquit\n");
+        // Under a display, as a user runs it: before the check the window opened and the file was replaced.
+        const gis::test::CliResult r = runCli("view --scene " + quoted(dir + "/s.gltf") + " --environment " + quoted(map) +
+                                                  " --script " + quoted(script),
+                                              "xvfb-run -a");
+        EXPECT_EQ(r.status, 1) << r.err;
+        EXPECT_EQ(countLines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find("script.txt:1"), std::string::npos) << r.err;
+        EXPECT_EQ(slurp(script), line + "\nquit\n");
+    }
+    EXPECT_TRUE(slurp(dir + "/s.gltf") == scene);
+    EXPECT_TRUE(slurp(map) == sky);
+    EXPECT_FALSE(fs::exists(dir + "/shot.txt"));
+}
+
+// Under `ulimit -v` of 300 to 700 MB Mesa's llvmpipe segfaulted inside shader compilation (exit 139,
+// no message) or failed an allocation: a limit below the floor is refused before any GL.
+TEST(Hardening, AnAddressSpaceLimitBelowTheFloorIsOneClearError) {
+    const std::string dir = tempDir("hardening_ulimit_v");
+    const gis::test::CliResult r = runCli("render --scene builtin:cornell --gi vct --size 8x8 --out " + quoted(dir + "/o.png"),
+                                          "ulimit -v 700000;");
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("ulimit -v"), std::string::npos) << r.err;
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+}
+
 }  // namespace

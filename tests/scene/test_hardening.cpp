@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "scene/limits.h"
 #include "test_util.h"
 
 using namespace gistest;
@@ -229,4 +230,40 @@ TEST(Hardening, TinyZnearRefusedOrWarnedRelativeToSceneDepth) {
             EXPECT_NE(err.find("the depth buffer cannot resolve that"), std::string::npos) << err;
         }
     }
+}
+
+namespace {
+// A one-triangle scene whose material 0, 'glow', has `material` merged into it.
+gis::Scene loadGlow(const nlohmann::json& material) {
+    GltfBuilder b;
+    const int pos = b.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    nlohmann::json m = {{"name", "glow"}};
+    m.update(material);
+    b.j["materials"] = {m};
+    b.j["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+    b.addMeshNode(b.addMesh({{"attributes", {{"POSITION", pos}}}, {"material", 0}}));
+    return b.load();
+}
+}  // namespace
+
+// glTF's emissiveFactor is in [0, 1]: a negative one gave negative radiance (-14.8 in the EXR).
+TEST(Hardening, NegativeEmissiveFactorRefusedNamingTheMaterial) {
+    const std::string err = errorOf([&] { loadGlow({{"emissiveFactor", {1.0, -0.5, 0.0}}}); });
+    EXPECT_NE(err.find("material 0 ('glow'): emissiveFactor -0.5 is outside [0, 1]"), std::string::npos) << err;
+    EXPECT_EQ(errorOf([&] { loadGlow({{"emissiveFactor", {1.0, 0.5, 0.0}}}); }), "");
+}
+
+// An emissive radiance past the renderer's radiance limit (3e38 speckled the direct term black):
+// refused, whether it comes from the factor or KHR_materials_emissive_strength; the limit loads.
+TEST(Hardening, EmissiveRadiancePastTheLimitRefused) {
+    const nlohmann::json strong = {{"emissiveFactor", {1.0, 1.0, 1.0}},
+                                   {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 3e38}}}}}};
+    std::string err = errorOf([&] { loadGlow(strong); });
+    EXPECT_NE(err.find("material 0 ('glow'): emissive radiance 3e+38"), std::string::npos) << err;
+    EXPECT_NE(err.find("1e+18"), std::string::npos) << err;
+    nlohmann::json atLimit = strong;
+    atLimit["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = double(gis::kMaxRadiance);
+    EXPECT_EQ(errorOf([&] { loadGlow(atLimit); }), "");
+    err = errorOf([&] { loadGlow({{"emissiveFactor", {3e38, 0.0, 0.0}}}); });
+    EXPECT_NE(err.find("material 0 ('glow')"), std::string::npos) << err;
 }
