@@ -26,13 +26,14 @@ struct Hit {
     vec2 barycentric;
 };
 
-// Slab test; returns the entry distance or a miss (> tMax).
+// Slab test; returns the entry distance (>= 0) or -1 for a miss. (A miss was once a large finite
+// distance, which a ray with a larger tMax took for a hit: such a ray visited every node.)
 float intersectAabb(vec3 lo, vec3 hi, vec3 origin, vec3 invDir, float tMax) {
     vec3 t0 = (lo - origin) * invDir, t1 = (hi - origin) * invDir;
     vec3 tmin = min(t0, t1), tmax = max(t0, t1);
     float enter = max(max(tmin.x, tmin.y), max(tmin.z, 0.0));
     float exit = min(min(tmax.x, tmax.y), min(tmax.z, tMax));
-    return enter <= exit ? enter : 1e38;
+    return enter <= exit ? enter : -1.0;
 }
 
 // Moller-Trumbore 1997. Returns t (or -1) and barycentrics of p1, p2. frontFace: the ray meets
@@ -70,7 +71,7 @@ bool traceRay(vec3 origin, vec3 dir, float tMax, bool anyHit, bool cullBackFaces
     bool found = false;
     uint stack[BVH_STACK_SIZE];
     int sp = 0;
-    if (intersectAabb(u_nodes[0].boundsMin, u_nodes[0].boundsMax, origin, invDir, tMax) > tMax) return false;
+    if (intersectAabb(u_nodes[0].boundsMin, u_nodes[0].boundsMax, origin, invDir, tMax) < 0.0) return false;
     stack[sp++] = 0u;
     while (sp > 0) {
         BvhNode node = u_nodes[stack[--sp]];
@@ -96,12 +97,13 @@ bool traceRay(vec3 origin, vec3 dir, float tMax, bool anyHit, bool cullBackFaces
         float dr = intersectAabb(u_nodes[right].boundsMin, u_nodes[right].boundsMax, origin, invDir, hit.t);
         if (sp + 2 > BVH_STACK_SIZE) break;
         // Push the farther child first so the nearer one is visited next.
-        if (dl <= hit.t && dr <= hit.t) {
+        bool hitLeft = dl >= 0.0 && dl <= hit.t, hitRight = dr >= 0.0 && dr <= hit.t;
+        if (hitLeft && hitRight) {
             stack[sp++] = dl < dr ? right : left;
             stack[sp++] = dl < dr ? left : right;
-        } else if (dl <= hit.t) {
+        } else if (hitLeft) {
             stack[sp++] = left;
-        } else if (dr <= hit.t) {
+        } else if (hitRight) {
             stack[sp++] = right;
         }
     }
