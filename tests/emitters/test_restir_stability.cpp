@@ -123,6 +123,7 @@ TEST(RestirStability, DamagedHelmetAfter24FramesIsTheImageAfter8) {
     Camera camera = lookAtCamera(glm::vec3(0, 0, 3.2f), glm::vec3(0), 40.0f);
     scene.cameras.insert(scene.cameras.begin(), camera);
     RenderSettings s = directOnly(256);
+    s.view = "final";  // the image a user sees: the sky's radiance 1 and the emitters' direct light
     s.background = glm::vec3(1.0f);
     setParam(s, "emitters.accumulate", "24");
     context();
