@@ -17,7 +17,7 @@ struct SceneSetupOptions {
     std::string camera;                     // "" (the file's first, else auto), N or "auto"
     std::vector<float> cameraPos, lookAt;
     float fov = 40.0f;
-    std::string emitters;                   // "" (emitters.mode's default), lights, gi or off
+    std::string emitters;                   // "" (emitters.mode's default, auto), auto, lights, gi or off
 };
 
 void addSceneSetupOptions(CLI::App& cmd, SceneSetupOptions& o);
