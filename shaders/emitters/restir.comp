@@ -9,8 +9,9 @@
 //     temporal -> history, accumulation.
 // A reservoir is (sample y = emitter triangle and barycentrics, W, M). Reservoirs are combined by
 // generalized RIS with bounded MIS weights (balance heuristics, see combine()); the target of a
-// domain other than this pixel is unshadowed (biased: contact shadows a little dark) or times
-// the visibility from that domain's surface (unbiased: a ray per reused reservoir).
+// domain other than this pixel is unshadowed (biased: darker wherever neighbours see the emitters
+// differently, README) or times the visibility from that domain's surface (unbiased: a ray per
+// reused reservoir).
 #include "common.glsl"
 #include "brdf.glsl"
 #include "gbuffer_layout.glsl"
@@ -51,7 +52,6 @@ const float MAX_RADIANCE = 3.4028e38;
 // Reuse only surfaces this close: normals within ~25 degrees, depth within 10% (Bitterli et al. 5.3).
 const float MIN_NORMAL_DOT = 0.906;
 const float MAX_DEPTH_RATIO = 0.1;
-
 
 struct Surface {
     vec3 P, N, V;
@@ -177,9 +177,8 @@ struct Combined {
     float weightSum, target;  // target: p_hat_q of the kept sample
 };
 
-void combine(inout Combined c, Reservoir x, float mis, float targetHere, inout Rng rng) {
-    c.r.M += x.M;
-    float w = mis * targetHere * x.W;
+// Adds sample x with resampling weight w (and its target here) to c, kept with probability w / sum.
+void stream(inout Combined c, Reservoir x, float w, float targetHere, inout Rng rng) {
     if (!(w > 0.0) || !(w < MAX_RADIANCE)) return;
     c.weightSum += w;
     if (nextFloat(rng) * c.weightSum < w) {
@@ -187,6 +186,11 @@ void combine(inout Combined c, Reservoir x, float mis, float targetHere, inout R
         c.r.b = x.b;
         c.target = targetHere;
     }
+}
+
+void combine(inout Combined c, Reservoir x, float mis, float targetHere, inout Rng rng) {
+    c.r.M += x.M;
+    stream(c, x, mis * targetHere * x.W, targetHere, rng);
 }
 
 // W of the combined reservoir.
@@ -233,14 +237,7 @@ void streamCandidate(inout Combined c, Surface s, Reservoir x, CandidateCounts n
     float p = luminance(contribution(s, e, L, dist));
     float bsdfDensity = n.bsdf > 0.0 && dist > 0.0 ? bsdfPdf(s.brdf, s.N, s.V, L, pSpecular) * e.cosLight / (dist * dist) : 0.0;
     float denominator = n.light * e.pdfArea + n.bsdf * bsdfDensity;
-    float w = denominator > 0.0 ? p / denominator : 0.0;
-    if (!(w > 0.0) || !(w < MAX_RADIANCE)) return;
-    c.weightSum += w;
-    if (nextFloat(rng) * c.weightSum < w) {
-        c.r.triangle = x.triangle;
-        c.r.b = x.b;
-        c.target = p;
-    }
+    stream(c, x, denominator > 0.0 ? p / denominator : 0.0, p, rng);
 }
 
 // The emitter point a BSDF direction from s meets first, as a candidate (NO_SAMPLE if none).
@@ -335,7 +332,7 @@ struct Neighbour {
     Surface s;
 };
 
-bool similarNeighbour(Surface s, ivec2 n, ivec2 size) {
+bool similarNeighbour(Surface s, ivec2 n) {
     vec4 nSurface = imageLoad(i_surfaceIn, n);
     vec3 nN = imageLoad(i_normalIn, n).xyz;
     float viewDistance = length(u_cameraPos - s.P);
@@ -352,7 +349,7 @@ Combined spatialReuse(Surface s, ivec2 pixel, ivec2 size, Reservoir own, inout R
         float r = u_reuse.radius * sqrt(u.x), phi = 2.0 * PI * u.y;
         ivec2 n = pixel + ivec2(round(r * vec2(cos(phi), sin(phi))));
         if (n == pixel || any(lessThan(n, ivec2(0))) || any(greaterThanEqual(n, size))) continue;
-        if (!similarNeighbour(s, n, size)) continue;
+        if (!similarNeighbour(s, n)) continue;
         neighbours[k].pixel = n;
         neighbours[k].s = loadSurface(n, size);
         totalM += imageLoad(i_surfaceIn, n).w;

@@ -49,29 +49,18 @@ RenderSettings directOnly(int size) {
     return r;
 }
 
-double meanRgb(const ImageF& img, const std::vector<bool>& skip = {}) {
-    double sum = 0;
-    for (size_t i = 0; i < img.rgba.size(); ++i)
-        if (i % 4 != 3 && (skip.empty() || !skip[i / 4])) sum += img.rgba[i];
-    return sum / double(img.rgba.size() / 4 * 3);
-}
-
 // The pixels where the mirror shows the emitter itself (direct light above a quarter of its
 // radiance in either image), grown by one pixel: the emitter's edge again, which the rasterizer
 // samples at the pixel's centre and the path tracer over its area, as for the emitter's own pixels.
 std::vector<bool> reflectedEmitter(const ImageF& a, const ImageF& b) {
-    std::vector<bool> bright(size_t(a.width) * a.height), grown(bright.size());
+    std::vector<bool> bright(size_t(a.width) * a.height);
     for (size_t i = 0; i < bright.size(); ++i)
         for (int c = 0; c < 3; ++c) bright[i] = bright[i] || std::max(a.rgba[i * 4 + c], b.rgba[i * 4 + c]) > 0.25f * kEmitterRadiance;
-    for (int y = 0; y < a.height; ++y)
-        for (int x = 0; x < a.width; ++x)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int u = x + dx, v = y + dy;
-                    if (u >= 0 && v >= 0 && u < a.width && v < a.height && bright[size_t(v) * a.width + u])
-                        grown[size_t(y) * a.width + x] = true;
-                }
-    return grown;
+    return grownByOnePixel(bright, a.width, a.height);
+}
+
+double meanRgb(const ImageF& img) {
+    return meanRgbExcept(img, std::vector<bool>(size_t(img.width) * img.height, false));
 }
 
 float maxRgb(const ImageF& img) {
@@ -105,7 +94,7 @@ TEST(RestirStability, MirrorsStayBoundedAndUnbiasedAtEveryScale) {
         const ImageF small = downsample(img, 2);
         const std::vector<bool> skip = reflectedEmitter(small, reference);
         EXPECT_LT(std::count(skip.begin(), skip.end(), true), int(skip.size()) / 50) << "scale " << scale;
-        const double mean = meanRgb(small, skip), truth = meanRgb(reference, skip);
+        const double mean = meanRgbExcept(small, skip), truth = meanRgbExcept(reference, skip);
         std::printf("x%g: mean %.5f (path tracer %.5f, %+.2f%%), brightest pixel %.3f\n", scale, mean, truth,
                     100.0 * (mean / truth - 1.0), maxRgb(img));
         EXPECT_LE(maxRgb(img), kEmitterRadiance) << "scale " << scale;

@@ -98,12 +98,20 @@ std::vector<bool> emitterPixels(const Scene& scene, RenderSettings settings) {
     for (int y = 0; y < emission.height; ++y)
         for (int x = 0; x < emission.width; ++x) {
             const float* p = emission.at(x, y);
-            if (p[0] + p[1] + p[2] <= 0.0f) continue;
-            for (int j = std::max(0, y - 1); j <= std::min(emission.height - 1, y + 1); ++j)
-                for (int i = std::max(0, x - 1); i <= std::min(emission.width - 1, x + 1); ++i)
-                    seen[size_t(j) * emission.width + i] = true;
+            seen[size_t(y) * emission.width + x] = p[0] + p[1] + p[2] > 0.0f;
         }
-    return seen;
+    return grownByOnePixel(seen, emission.width, emission.height);
+}
+
+std::vector<bool> grownByOnePixel(const std::vector<bool>& mask, int width, int height) {
+    std::vector<bool> grown(mask.size(), false);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            if (!mask[size_t(y) * width + x]) continue;
+            for (int j = std::max(0, y - 1); j <= std::min(height - 1, y + 1); ++j)
+                for (int i = std::max(0, x - 1); i <= std::min(width - 1, x + 1); ++i) grown[size_t(j) * width + i] = true;
+        }
+    return grown;
 }
 
 double meanRgbExcept(const ImageF& img, const std::vector<bool>& skip) {

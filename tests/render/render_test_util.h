@@ -66,6 +66,8 @@ bool allFinite(const ImageF& img);
 // antialiased edges included), grown by one pixel for a path tracer's whole-pixel footprint: what an
 // energy comparison leaves out, since an emitter's own radiance is the same in every method.
 std::vector<bool> emitterPixels(const Scene& scene, RenderSettings settings);
+// The mask (width x height, row-major) with every set pixel's 8 neighbours set too.
+std::vector<bool> grownByOnePixel(const std::vector<bool>& mask, int width, int height);
 // Mean of R, G, B over the pixels not in `skip`, divided by all of the image's pixels.
 double meanRgbExcept(const ImageF& img, const std::vector<bool>& skip);
 // The mean over the interior pixels that see `region` (castPixels' ids) of channel c, or of R, G, B
