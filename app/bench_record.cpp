@@ -7,7 +7,7 @@
 #include "content_hash.h"
 #include "image.h"
 #include "scene/atomic_file.h"
-#include "scene/scene.h"  // gis::Error
+#include "error.h"
 
 namespace gis {
 

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <vector>
 
-#include "scene/scene.h"  // gis::Error
+#include "error.h"
 
 namespace gis {
 

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "gi/method.h"
 #include "scene/scene_lighting.h"
 
 namespace gis {

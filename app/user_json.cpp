@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "gi/params.h"
+#include "param_table.h"
 #include "scene/scene.h"
 
 namespace gis {

@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "gi/method.h"
 #include "metrics.h"
 #include "renderer.h"
 #include "scene/scene.h"

@@ -10,7 +10,8 @@
 
 #include <glm/glm.hpp>
 
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 
 namespace gis {
 

@@ -1,6 +1,7 @@
 #include "debug_view.h"
 
-#include "services/scene_services.h"
+#include "gl/bind.h"
+#include "uniforms.h"
 
 namespace gis {
 
@@ -25,14 +26,12 @@ void ChannelDisplay::draw(DisplayChannel channel, GLuint source, GLuint depth, c
     const GLuint p = program_.id();
     glUseProgram(p);
     glBindVertexArray(vao_.id());
-    const GLuint textures[2] = {source, depth ? depth : source};
-    glBindTextures(0, 2, textures);
-    glBindSamplers(0, 2, nullptr);
-    glProgramUniform1i(p, 0, int(channel));
-    glProgramUniformMatrix4fv(p, 1, 1, GL_FALSE, &cam.invViewProj[0][0]);
-    glProgramUniform3fv(p, 2, 1, &cam.position[0]);
-    glProgramUniform1f(p, 3, maxDistance);
-    glProgramUniform1i(p, 4, depth ? 1 : 0);
+    gl::bindTextures({{T_DISPLAY_SOURCE, source}, {T_DISPLAY_DEPTH, depth ? depth : source}});
+    glProgramUniform1i(p, U_DISPLAY_CHANNEL, int(channel));
+    glProgramUniformMatrix4fv(p, U_DISPLAY_INV_VIEW_PROJ, 1, GL_FALSE, &cam.invViewProj[0][0]);
+    glProgramUniform3fv(p, U_DISPLAY_CAMERA_POS, 1, &cam.position[0]);
+    glProgramUniform1f(p, U_DISPLAY_MAX_DISTANCE, maxDistance);
+    glProgramUniform1i(p, U_DISPLAY_HAS_DEPTH, depth ? 1 : 0);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
@@ -52,7 +51,7 @@ float farthestCorner(const Aabb& b, const glm::vec3& eye) {
 
 void drawChannel(DisplayChannel channel, GLuint source, const Frame& frame, GLuint target) {
     const GLuint depth = frame.has(resource::kGbufferDepth) ? frame.texture(resource::kGbufferDepth) : 0;
-    frame.services.channelDisplay().draw(channel, source, depth, frame.camera,
+    frame.channelDisplay->draw(channel, source, depth, frame.camera,
                                          farthestCorner(frame.scene.cpu.bounds, frame.camera.position), target,
                                          frame.settings.width, frame.settings.height);
 }

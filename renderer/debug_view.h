@@ -3,7 +3,8 @@
 // (shaders/view_debug.frag). Passes use it for the debug views they offer.
 #pragma once
 
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 
 namespace gis {
 

@@ -11,7 +11,7 @@
 #include <stb_image.h>
 
 #include "scene/limits.h"
-#include "scene/scene.h"  // gis::Error
+#include "error.h"
 #include "scene/user_file.h"
 
 namespace gis {

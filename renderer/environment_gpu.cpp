@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "gl/dispatch.h"
-#include "memory_budget.h"
-#include "scene/scene.h"  // gis::Error
+#include "gl/gpu_budget.h"
+#include "error.h"
 #include "uniforms.h"
 
 namespace gis {
@@ -64,6 +64,17 @@ gl::Texture floatTexture(const gl::MemoryScope& scope, int width, int height, co
     return t;
 }
 
+// The map's textures alone against the budget, once the map is loaded: the file may have changed
+// since checkMemoryBudget read its header.
+void checkMapBudget(const std::string& name, int width, int height) {
+    const uint64_t need = uint64_t(GpuEnvironment::mapBytes(width, height));
+    const MemoryBudget b = gpuMemoryBudget();
+    if (need > b.bytes)
+        throw Error("environment map '" + name + "' is " + std::to_string(width) + "x" + std::to_string(height) + ": its " +
+                    GpuEnvironment::kMemoryPart + " need about " + bytesText(need) + ", more than the " + bytesText(b.bytes) +
+                    " budget: " + b.source + "; use a smaller environment map");
+}
+
 }  // namespace
 
 std::vector<ProgramDesc> GpuEnvironment::programs() { return {kPrefilterProgram, kBrdfTableProgram}; }
@@ -86,7 +97,7 @@ GpuEnvironment::GpuEnvironment(const std::string& path, gl::MemoryLedger& ledger
     // The map itself is needed only here: what the shaders read of it is in the textures and values_.
     const EnvironmentMap map = loadEnvironmentMap(path);
     // The memory pre-check read the file before this load: an edit in between is caught here.
-    checkEnvironmentMapBudget(map.name, map.width, map.height);
+    checkMapBudget(map.name, map.width, map.height);
     checkTextureLimit(map);
     upload(scope, map);
     const Sh9 sh = projectSh9(map);

@@ -68,6 +68,8 @@ public:
     // GPU bytes a width x height map's textures take (the memory budget's estimate, before loading),
     // and the split-sum table every environment holds.
     static int64_t mapBytes(int width, int height);
+    // The memory estimate's part for an environment map: a refusal it leads advises a smaller map.
+    static constexpr const char* kMemoryPart = "environment map textures (radiance, specular chain, sampling CDFs)";
     static int64_t tableBytes();
 
 private:

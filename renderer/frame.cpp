@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "services/scene_services.h"
+#include "environment_gpu.h"
 
 namespace gis {
 
@@ -15,7 +15,7 @@ void Frame::checkDeclared(const std::string& name, bool write) const {
                 "', which its " + (write ? "outputs()" : "inputs()") + " do not declare");
 }
 
-void Frame::bindEnvironment() const { services.environment->bind(background()); }
+void Frame::bindEnvironment() const { environment->bind(background()); }
 
 void Frame::put(const std::string& name, const gl::Texture& t) {
     checkDeclared(name, true);

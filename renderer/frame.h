@@ -56,8 +56,10 @@ public:
     std::vector<std::pair<std::string, std::unique_ptr<gl::GpuTimer>>> steps;  // first use order
 };
 
-struct SceneServices;
+class ChannelDisplay;
+class GpuEnvironment;
 class Pass;
+struct SceneServices;
 
 // What the passes share during one frame: settings, the scene, the camera and named resources
 // (renderer/frame_resources.h). The executing pass may read only what its inputs() or outputs()
@@ -70,6 +72,8 @@ struct Frame {
     std::map<std::string, FrameResource> resources;
     uint64_t index = 0;                 // frames rendered before this one
     StepTimers* steps = nullptr;        // the executing pass's step timers
+    GpuEnvironment* environment = nullptr;  // bindEnvironment()'s; the renderer owns it
+    ChannelDisplay* channelDisplay = nullptr;  // debug views draw channels with it (renderer/debug_view.h)
     const Pass* pass = nullptr;         // the executing pass (none: the renderer itself)
     void put(const std::string& name, const gl::Texture& texture);
     void put(const std::string& name, const gl::Buffer& buffer);

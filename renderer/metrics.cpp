@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "scene/scene.h"  // gis::Error
+#include "error.h"
 
 namespace gis {
 

@@ -2,7 +2,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "gi/method.h"
+#include "error.h"
 
 namespace gis {
 
@@ -38,29 +38,6 @@ void checkEnvironmentChoice(bool background, const std::string& environment, boo
         throw Error("background and environment both set the radiance of rays that leave the scene: give one of them");
     if (ambient && !environment.empty())
         throw Error("--ambient has no effect with --environment (the map lights what the ambient would): drop one");
-}
-
-void setParam(RenderSettings& s, const std::string& fullKey, const std::string& text) {
-    // An alias flag (--spp, --ao-radius) sets every row that declares it.
-    bool any = false;
-    for (const GiMethod& m : giMethods())
-        for (const ParamDesc& d : m.params)
-            if (fullKey == m.name + "." + d.key || (!d.alias.empty() && fullKey == d.alias)) {
-                s.params[m.name + "." + d.key] = parseParamValue(m.name, d, text);
-                any = true;
-            }
-    for (const ParamGroup& g : paramGroups())
-        for (const ParamDesc& d : g.params)
-            if (fullKey == g.name + "." + d.key) {
-                s.params[fullKey] = parseParamValue(g.name, d, text);
-                any = true;
-            }
-    if (!any) findParam(fullKey);  // throws the message naming the method's keys
-}
-
-ParamValue getParam(const RenderSettings& s, const std::string& fullKey) {
-    auto it = s.params.find(fullKey);
-    return it != s.params.end() ? it->second : findParam(fullKey).defaultValue;
 }
 
 CameraMatrices cameraMatrices(const Scene& scene, int cameraIndex, float aspect) {

@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "gi/params.h"
+#include "param_table.h"
 #include "scene/scene.h"
 
 namespace gis {
@@ -56,11 +56,6 @@ struct RenderSettings {
 // viewer's `background` with `environment`) is one error, the same for every caller; and a map is
 // the baseline's ambient, so an ambient given beside it (`ambient`) would be ignored: refused too.
 void checkEnvironmentChoice(bool background, const std::string& environment, bool ambient = false);
-
-// Parses and validates "method.key" = text against the registry and stores it in s.params.
-void setParam(RenderSettings& s, const std::string& fullKey, const std::string& text);
-// The value of "method.key" in s: what s.params holds, else the row's default.
-ParamValue getParam(const RenderSettings& s, const std::string& fullKey);
 
 struct CameraMatrices {
     glm::mat4 view{1.0f}, proj{1.0f}, viewProj{1.0f}, invViewProj{1.0f};

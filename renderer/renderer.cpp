@@ -6,6 +6,7 @@
 
 #include "debug_view.h"
 #include "emitters/emitter_lights.h"
+#include "environment_gpu.h"
 #include "gi/method.h"
 #include "memory_budget.h"
 #include "passes/gbuffer_pass.h"
@@ -82,7 +83,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     camera_ = cameraMatrices(scene, settings_.camera, float(settings_.width) / float(settings_.height));
     gpuScene_ = std::make_unique<GpuScene>(scene, ledger_);
     services_ = std::make_unique<SceneServices>(*gpuScene_, ledger_);
-    services_->environment = std::make_unique<GpuEnvironment>(settings_.environment, ledger_);
+    environment_ = std::make_unique<GpuEnvironment>(settings_.environment, ledger_);
     const GiMethod& method = giMethod(settings_.gi);
     const int w = settings_.width, h = settings_.height;
     const bool deferred = method.pipeline == MethodPipeline::Deferred;
@@ -91,7 +92,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     if (deferred || gbufferView) passes_.push_back(std::make_unique<GBufferPass>(scene, w, h, ledger_));
     // Emissive triangles as lights of the direct pass: only when there are any (no cost otherwise).
     if (deferred && emittersAreLights(scene, settings_) && services_->rays().emitterCount > 0)
-        passes_.push_back(std::make_unique<EmitterLightPass>(*services_, settings_, ledger_));
+        passes_.push_back(std::make_unique<EmitterLightPass>(services_->rays(), settings_, ledger_));
     MethodBuild build{scene, settings_, *services_, ledger_, passes_};
     method.addPasses(build);
 
@@ -191,6 +192,7 @@ void Renderer::keepOutputs(Pass& pass, Frame& frame) const {
 
 void Renderer::renderFrame() {
     Frame frame{settings_, *gpuScene_, *services_, camera_, {}, frameIndex_};
+    frame.environment = environment_.get();
     std::set<std::string> reproduced;  // outputs a pass wrote anew this frame
     skipped_.assign(passes_.size(), false);
     for (size_t k = 0; k < passes_.size(); ++k) {
@@ -251,6 +253,8 @@ void Renderer::drawDebugView(Frame& frame) {
     for (const auto& pass : passes_)
         for (const DebugViewDesc& v : pass->debugViews())
             if (v.name == settings_.view) {
+                if (!channelDisplay_) channelDisplay_ = std::make_unique<ChannelDisplay>();
+                frame.channelDisplay = channelDisplay_.get();
                 frame.pass = pass.get();  // its view reads only what the pass declared
                 pass->drawDebugView(v.name, frame, debugTarget_.id());
                 frame.pass = nullptr;

@@ -18,6 +18,9 @@
 
 namespace gis {
 
+class ChannelDisplay;
+class GpuEnvironment;
+
 class Renderer {
 public:
     // Needs a current GL 4.5 context. Throws gis::Error on bad settings or GL failure.
@@ -72,6 +75,8 @@ private:
     gl::MemoryLedger ledger_;
     std::unique_ptr<GpuScene> gpuScene_;
     std::unique_ptr<SceneServices> services_;
+    std::unique_ptr<GpuEnvironment> environment_;      // the radiance of rays that leave the scene
+    std::unique_ptr<ChannelDisplay> channelDisplay_;   // built for the first debug view
     std::vector<std::unique_ptr<Pass>> passes_;
     CameraMatrices camera_;
     GLuint hdr_ = 0, ldr_ = 0;

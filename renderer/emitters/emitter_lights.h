@@ -15,8 +15,9 @@
 #pragma once
 
 #include "emitters/emitter_uniforms.h"
-#include "renderer.h"
-#include "services/scene_services.h"
+#include "frame.h"
+#include "gl/shader.h"
+#include "ray_scene.h"
 
 namespace gis {
 
@@ -53,7 +54,7 @@ bool emittersAreLights(const Scene& scene, const RenderSettings& settings);
 
 class EmitterLightPass final : public Pass {
 public:
-    EmitterLightPass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger);
+    EmitterLightPass(RayScene& rays, const RenderSettings& settings, gl::MemoryLedger& ledger);
     const char* name() const override { return "emitters"; }
     std::vector<std::string> inputs() const override;
     std::vector<std::string> outputs() const override { return {resource::kEmittersDirect}; }
@@ -74,6 +75,7 @@ private:
         gl::Texture sample, surface, normal;  // restir.comp's layout
     };
     void bindCommon(GLuint program, const Frame& frame, const EmitterLightSettings& s);
+    static void bindReservoirs(const Reservoirs& in, const Reservoirs& out);
     RayScene& rays_;
     Reservoirs temporal_, history_;
     gl::Texture accumulation_;

@@ -7,7 +7,7 @@
 #include <sys/resource.h>
 
 #include "gl/gl.h"
-#include "scene/scene.h"
+#include "error.h"
 
 namespace gis {
 

@@ -9,7 +9,7 @@
 
 #include "gl/context.h"
 #include "gl/gl.h"
-#include "scene/scene.h"
+#include "error.h"
 
 namespace gis {
 namespace {

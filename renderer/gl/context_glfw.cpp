@@ -6,7 +6,7 @@
 #include <string>
 
 #include "gl/context.h"
-#include "scene/scene.h"
+#include "error.h"
 
 namespace gis {
 namespace {

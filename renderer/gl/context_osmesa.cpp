@@ -4,7 +4,7 @@
 #include <GL/osmesa.h>
 
 #include "gl/context.h"
-#include "scene/scene.h"
+#include "error.h"
 
 namespace gis {
 namespace {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <string>
 
-#include "scene/scene.h"  // gis::Error
+#include "error.h"
 
 namespace gis::gl {
 

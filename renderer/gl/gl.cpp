@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "scene/scene.h"
+#include "error.h"
 
 namespace gis::gl {
 

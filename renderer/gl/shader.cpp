@@ -5,7 +5,7 @@
 #include <set>
 #include <sstream>
 
-#include "scene/scene.h"
+#include "error.h"
 
 namespace gis {
 

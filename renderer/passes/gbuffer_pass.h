@@ -8,7 +8,8 @@
 
 #include <map>
 
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 
 namespace gis {
 

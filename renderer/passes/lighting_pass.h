@@ -21,7 +21,8 @@
 #include <map>
 #include <set>
 
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 
 namespace gis {
 

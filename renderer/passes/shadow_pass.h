@@ -8,7 +8,8 @@
 #include <glm/glm.hpp>
 
 #include "lights.h"
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 
 namespace gis {
 

@@ -3,19 +3,14 @@
 #pragma once
 
 #include <cstdint>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
-namespace gis {
+#include "error.h"
 
-// Every recoverable problem with input (files, parameters) is reported as this: the message is
-// one line that names the problem and where it is. The CLI prints it and exits non-zero.
-struct Error : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+namespace gis {
 
 struct Aabb {
     glm::vec3 min{1e30f};

@@ -8,7 +8,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "scene.h"  // gis::Error
+#include "error.h"
 
 namespace gis {
 

@@ -7,11 +7,6 @@ RayScene& SceneServices::rays() {
     return *rays_;
 }
 
-ChannelDisplay& SceneServices::channelDisplay() {
-    if (!channelDisplay_) channelDisplay_ = std::make_unique<ChannelDisplay>();
-    return *channelDisplay_;
-}
-
 SceneVolume& SceneServices::volume(const VolumeRequest& request) {
     for (const auto& v : volumes_)
         if (v->request() == request) return *v;

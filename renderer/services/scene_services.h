@@ -6,8 +6,6 @@
 
 #include <memory>
 
-#include "debug_view.h"
-#include "environment_gpu.h"
 #include "gpu_scene.h"
 #include "ray_scene.h"
 #include "volume/scene_volume.h"
@@ -30,16 +28,10 @@ struct SceneServices {
     void invalidate(Changes changes);
     // The scene's lights were edited: every service that holds them uploads them again.
     void lightsChanged();
-    // The program debug views draw frame textures with (renderer/debug_view.h).
-    ChannelDisplay& channelDisplay();
-    // The radiance of rays that leave the scene (renderer/environment_gpu.h): set by the renderer
-    // when it is built, as the map loads then and a bad file is an error before any frame.
-    std::unique_ptr<GpuEnvironment> environment;
 
 private:
     std::unique_ptr<RayScene> rays_;
     std::vector<std::unique_ptr<SceneVolume>> volumes_;
-    std::unique_ptr<ChannelDisplay> channelDisplay_;
 };
 
 }  // namespace gis

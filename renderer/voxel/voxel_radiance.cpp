@@ -4,6 +4,7 @@
 
 #include "emitters/emitter_lights.h"
 #include "lights.h"
+#include "services/scene_services.h"
 #include "gl/dispatch.h"
 #include "voxel/voxel_uniforms.h"
 

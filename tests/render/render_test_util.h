@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "gi/method.h"
 #include "gl/context.h"
 #include "image.h"
 #include "renderer.h"

@@ -3,7 +3,8 @@
 // accumulated progressively; its image is the AO itself. The truth SSAO is scored against.
 #pragma once
 
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 #include "services/scene_services.h"
 
 namespace gis {

@@ -16,7 +16,8 @@
 #include "gi/hddagi/hddagi_uniforms.h"
 #include "probes/probe_field.h"
 #include "probes/screen_gather.h"
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 #include "volume/scene_volume.h"
 
 namespace gis {

@@ -4,7 +4,8 @@
 // only add samples; a camera, light or BRDF change starts over.
 #pragma once
 
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 #include "services/scene_services.h"
 
 namespace gis {

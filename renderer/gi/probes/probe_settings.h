@@ -3,7 +3,7 @@
 // the initialisers below.
 #pragma once
 
-#include "gi/params.h"
+#include "param_table.h"
 #include "probes/probe_field.h"
 
 namespace gis {

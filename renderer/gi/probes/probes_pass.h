@@ -13,7 +13,8 @@
 #include "probes/probe_math.h"
 #include "probes/screen_gather.h"
 #include "gi/probes/probe_settings.h"
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 #include "volume/scene_volume.h"
 
 namespace gis {

@@ -22,7 +22,8 @@
 #include "gi/sdf/sdf_gi_uniforms.h"
 #include "gi/sdf/sdf_settings.h"
 #include "probes/probe_field.h"
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 #include "sdf/sdf_uniforms.h"
 #include "volume/scene_volume.h"
 

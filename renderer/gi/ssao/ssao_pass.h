@@ -3,7 +3,8 @@
 // the lighting pass multiplies into the ambient term only (never direct light).
 #pragma once
 
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 #include "uniforms.h"
 
 namespace gis {

@@ -12,7 +12,8 @@
 #include <memory>
 
 #include "gi/vct/vct_settings.h"
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 #include "volume/scene_volume.h"
 #include "voxel/voxel_uniforms.h"
 

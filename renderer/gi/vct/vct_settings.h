@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "gi/params.h"
+#include "param_table.h"
 #include "scene/scene_lighting.h"  // kMaxFeedbackBounces
 #include "voxel/voxelizer.h"
 

@@ -16,7 +16,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/scene.h"  // gis::Error
+#include "error.h"
 
 namespace gis {
 
@@ -63,6 +63,15 @@ void checkParamValue(const std::string& method, const ParamDesc& desc, const Par
 std::string formatParamValue(const ParamDesc& desc, const ParamValue& value);
 std::string describeParamRange(const ParamDesc& desc);  // "[1, 256]", "hardware|geometry|off", "true|false"
 const char* paramTypeName(ParamType type);
+
+// A parameter table of a frame module every method shares (the emitter lights,
+// renderer/emitters/): keys GROUP.KEY, set with --set, stored in RenderSettings::params, listed by
+// `gisandbox methods` and validated exactly as a method's rows, but no --gi name.
+struct ParamGroup {
+    std::string name;                       // the key prefix: "emitters"
+    std::string summary;                    // one line for `gisandbox methods`
+    std::vector<ParamDesc> params;
+};
 
 // "method.key" -> value, for every parameter that is not at its default.
 using ParamValues = std::map<std::string, ParamValue>;

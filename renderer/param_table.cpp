@@ -1,4 +1,4 @@
-#include "gi/params.h"
+#include "param_table.h"
 
 #include <cctype>
 #include <cmath>
