@@ -9,16 +9,15 @@
 
 #include <glm/glm.hpp>
 
+#include "gl/storage_struct.h"
 #include "scene/scene.h"
 
 namespace gis {
 
-struct BvhNode {             // std430 layout, mirrors shaders/bvh.glsl
-    glm::vec3 boundsMin;
-    uint32_t leftOrFirst;    // interior: index of the left child (right = left + 1); leaf: first triangle
-    glm::vec3 boundsMax;
-    uint32_t triangleCount;  // 0 = interior node
-};
+// A node as shaders/bvh.glsl reads it. leftOrFirst: interior, the index of the left child (right =
+// left + 1); leaf, its first triangle. triangleCount: 0 for an interior node.
+#define GIS_BVH_NODE(M) M(vec3, boundsMin) M(uint, leftOrFirst) M(vec3, boundsMax) M(uint, triangleCount)
+GIS_STORAGE_STRUCT(BvhNode, GIS_BVH_NODE)
 
 struct TraceTriangle {       // world space; one per scene triangle, in leaf order
     glm::vec3 p0, p1, p2;

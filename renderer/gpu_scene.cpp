@@ -1,5 +1,6 @@
 #include "gpu_scene.h"
 
+#include "gl/bind.h"
 #include "uniforms.h"
 
 namespace gis {
@@ -97,10 +98,12 @@ GpuScene::GpuScene(const Scene& scene, gl::MemoryLedger& ledger) : cpu(scene) {
 }
 
 void GpuScene::bindMaterial(const GpuMaterial& m) const {
-    const GLuint units[5] = {m.baseColor, m.metallicRoughness, m.normal, m.emissive, m.occlusion};
-    glBindTextures(0, 5, units);
-    const GLuint samplers[5] = {sampler.id(), sampler.id(), sampler.id(), sampler.id(), sampler.id()};
-    glBindSamplers(0, 5, samplers);
+    gl::bindTextures({{T_MATERIAL_BASE_COLOR, m.baseColor},
+                      {T_MATERIAL_METALLIC_ROUGHNESS, m.metallicRoughness},
+                      {T_MATERIAL_NORMAL, m.normal},
+                      {T_MATERIAL_EMISSIVE, m.emissive},
+                      {T_MATERIAL_OCCLUSION, m.occlusion}},
+                     sampler.id());
 }
 
 void GpuScene::setDrawUniforms(GLuint program, const GpuDraw& draw) const {

@@ -7,20 +7,23 @@
 
 #include <glm/glm.hpp>
 
+#include "gl/storage_struct.h"
 #include "scene/scene.h"
 
 namespace gis {
 
 constexpr int kLightDirectional = 0, kLightPoint = 1, kLightSpot = 2;
 
-struct GpuLight {  // std430 and std140 alike (vec4s and a mat4), mirrors shaders/lights.glsl
-    glm::vec4 positionType;    // xyz world position, w = type
-    glm::vec4 directionRange;  // xyz unit direction the light travels, w = range (0: infinite)
-    glm::vec4 radiance;        // rgb colour * intensity
-    glm::vec4 cone;            // cos(outer), cos(inner), shadow layer (-1: none), unused
-    glm::vec4 shadowParams;    // filled by the shadow pass
-    glm::mat4 shadowMatrix;    // filled by the shadow pass
-};
+// One light as shaders/lights.glsl reads it, from a storage buffer or a uniform block (vec4s and a
+// mat4 lay out alike in std430 and std140). positionType: xyz world position, w = type;
+// directionRange: xyz unit direction the light travels, w = range (0: infinite); radiance: rgb
+// colour * intensity (W/sr for point and spot, W/m^2 for directional); cone: cos(outer),
+// cos(inner), shadow layer (-1: none), unused. Filled by the shadow pass: shadowParams (texel world
+// size = x + y * distance; z = near, w = far for a point light) and shadowMatrix (world to shadow
+// clip, directional and spot).
+#define GIS_GPU_LIGHT(M) \
+    M(vec4, positionType) M(vec4, directionRange) M(vec4, radiance) M(vec4, cone) M(vec4, shadowParams) M(mat4, shadowMatrix)
+GIS_STORAGE_STRUCT(GpuLight, GIS_GPU_LIGHT)
 
 // Lights the lighting pass reads as a uniform block (lights.glsl's LIGHTS_UNIFORM_BLOCK_CAPACITY):
 // 100 x 160 bytes fits the 16 KiB every GL 4.5 driver must allow a block. The light buffer holds at

@@ -13,30 +13,6 @@ namespace gis {
 
 namespace {
 
-// std430 layouts, mirroring shaders/pathtrace.comp and shaders/bvh.glsl.
-struct GpuTraceTriangle {
-    glm::vec4 p0, p1, p2;
-};
-struct GpuTriangleAttributes {
-    glm::vec4 n0, n1, n2;
-    glm::vec4 t0, t1, t2;
-    glm::vec4 c0, c1, c2;
-    glm::vec4 uv01;
-    glm::vec4 uv2MaterialEmitter;
-};
-struct GpuRayMaterial {
-    glm::vec4 baseColor;
-    glm::vec4 emissive;
-    glm::vec4 params;
-    glm::vec4 params2;
-    glm::ivec4 textures;
-};
-struct GpuEmitter {
-    uint32_t triangle;
-    float cdf;
-    float pad0, pad1;
-};
-
 // Path-traced textures share one array, so every image is resampled to one size: the largest
 // image's, capped here (no ray differentials are tracked, so finer texels would only alias).
 constexpr int kMaxTextureSize = 1024;
@@ -83,10 +59,10 @@ RayScene::RayScene(const GpuScene& gpuScene, gl::MemoryLedger& ledger, const std
 
     // Materials (the GpuScene's list, which ends with the default material).
     auto layerOf = [&](int image) { return image >= 0 && image < int(scene.images.size()) ? image : -1; };
-    std::vector<GpuRayMaterial> materialData;
+    std::vector<rays::RayMaterial> materialData;
     for (const GpuMaterial& gm : gpuScene.materials) {
         const Material& m = gm.params;
-        GpuRayMaterial g{};
+        rays::RayMaterial g{};
         g.baseColor = m.baseColorFactor;
         g.emissive = glm::vec4(m.emissive, m.doubleSided ? 1.0f : 0.0f);
         g.params = glm::vec4(m.metallicFactor, m.roughnessFactor, m.specularFactor,
@@ -98,8 +74,8 @@ RayScene::RayScene(const GpuScene& gpuScene, gl::MemoryLedger& ledger, const std
     }
 
     // Triangles in BVH leaf order, with their shading attributes; emitters weighted by power.
-    std::vector<GpuTraceTriangle> tris;
-    std::vector<GpuTriangleAttributes> attrs;
+    std::vector<rays::TraceTriangle> tris;
+    std::vector<rays::TriangleAttributes> attrs;
     std::vector<double> power;
     std::vector<uint32_t> emitterTriangles;
     tris.reserve(bvh.triangles.size());
@@ -117,7 +93,7 @@ RayScene::RayScene(const GpuScene& gpuScene, gl::MemoryLedger& ledger, const std
         for (int k = 0; k < 3; ++k) v[k] = &prim.vertices[prim.indices[t.primitiveTriangle * 3 + corner[k]]];
         const glm::vec3 corners[3] = {t.p0, t.p1, t.p2};
         tris.push_back({glm::vec4(corners[0], 0.0f), glm::vec4(corners[corner[1]], 0.0f), glm::vec4(corners[corner[2]], 0.0f)});
-        GpuTriangleAttributes a{};
+        rays::TriangleAttributes a{};
         glm::vec4* normals[3] = {&a.n0, &a.n1, &a.n2};
         glm::vec4* tangents[3] = {&a.t0, &a.t1, &a.t2};
         glm::vec4* colors[3] = {&a.c0, &a.c1, &a.c2};
@@ -141,7 +117,7 @@ RayScene::RayScene(const GpuScene& gpuScene, gl::MemoryLedger& ledger, const std
     }
     double totalPower = 0.0;
     for (double p : power) totalPower += p;
-    std::vector<GpuEmitter> emitterData;
+    std::vector<rays::Emitter> emitterData;
     double running = 0.0;
     for (size_t i = 0; i < power.size(); ++i) {
         running += power[i] / totalPower;
@@ -154,10 +130,10 @@ RayScene::RayScene(const GpuScene& gpuScene, gl::MemoryLedger& ledger, const std
 
     updateLights(scene);
     nodes = gl::createStorageBuffer(scope, int64_t(bvh.nodes.size() * sizeof(BvhNode)), bvh.nodes.data());
-    triangles = gl::createStorageBuffer(scope, int64_t(tris.size() * sizeof(GpuTraceTriangle)), tris.data());
-    attributes = gl::createStorageBuffer(scope, int64_t(attrs.size() * sizeof(GpuTriangleAttributes)), attrs.data());
-    materials = gl::createStorageBuffer(scope, int64_t(materialData.size() * sizeof(GpuRayMaterial)), materialData.data());
-    emitters = gl::createStorageBuffer(scope, int64_t(emitterData.size() * sizeof(GpuEmitter)), emitterData.data());
+    triangles = gl::createStorageBuffer(scope, int64_t(tris.size() * sizeof(rays::TraceTriangle)), tris.data());
+    attributes = gl::createStorageBuffer(scope, int64_t(attrs.size() * sizeof(rays::TriangleAttributes)), attrs.data());
+    materials = gl::createStorageBuffer(scope, int64_t(materialData.size() * sizeof(rays::RayMaterial)), materialData.data());
+    emitters = gl::createStorageBuffer(scope, int64_t(emitterData.size() * sizeof(rays::Emitter)), emitterData.data());
 }
 
 void RayScene::updateLights(const Scene& scene) {
@@ -167,11 +143,11 @@ void RayScene::updateLights(const Scene& scene) {
 
 void RayScene::bind(GLuint textureUnit) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightsBinding, lights.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, nodes.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, triangles.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, attributes.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, materials.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, emitters.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBvhNodesBinding, nodes.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBvhTrianglesBinding, triangles.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRayAttributesBinding, attributes.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRayMaterialsBinding, materials.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRayEmittersBinding, emitters.id());
     const GLuint tex = textures.id(), smp = sampler.id();
     glBindTextures(textureUnit, 1, &tex);
     glBindSamplers(textureUnit, 1, &smp);

@@ -1,6 +1,8 @@
 // What C++ and GLSL share, each from the one C++ declaration of it, emitted as #defines before
-// every shader's source (gl/shader.h, preprocessShader): the limits and sizes below and every
-// module's uniform-location table (gl/uniform_table.h) and uniform block (gl/uniform_block.h).
+// every shader's source (gl/shader.h, preprocessShader): the limits and sizes below and every frame
+// module's uniform-location and binding tables (gl/uniform_table.h), uniform blocks
+// (gl/uniform_block.h) and storage-buffer structs (gl/storage_struct.h); each GI method's own
+// tables come from its registry entry (GiMethod::shaderTables).
 // GLSL writes none of these numbers itself, so `gisandbox shaders --dump` and the glslangValidator
 // test compile every program against them.
 #include <string>
@@ -8,12 +10,11 @@
 #include "emitters/emitter_uniforms.h"
 #include "environment_gpu.h"
 #include "probes/probe_uniforms.h"
-#include "gi/hddagi/hddagi_uniforms.h"
-#include "gi/sdf/sdf_gi_uniforms.h"
 #include "gl/gl.h"
 #include "gl/shader.h"
 #include "lights.h"
 #include "nonfinite_counter.h"
+#include "ray_scene.h"
 #include "sdf/sdf_uniforms.h"
 #include "uniforms.h"
 #include "volume/occupancy.h"
@@ -28,8 +29,8 @@ std::string glslFloat(float v) {
     return s.find('.') == std::string::npos ? s + ".0" : s;
 }
 
-template <size_t N>
-void addTable(std::vector<gl::UniformSlot>& all, const gl::UniformSlot (&table)[N]) {
+template <class Slot, size_t N>
+void addTable(std::vector<Slot>& all, const Slot (&table)[N]) {
     all.insert(all.end(), table, table + N);
 }
 }  // namespace
@@ -41,29 +42,47 @@ const std::vector<gl::UniformSlot>& uniformSlots() {
         addTable(v, voxel::kVoxelUniforms);
         addTable(v, emitters::kEmitterUniforms);
         addTable(v, sdf::kSdfUniforms);
-        addTable(v, sdfgi::kSdfGiUniforms);
         addTable(v, probes::kProbeUniforms);
-        addTable(v, hddagi::kHddagiUniforms);
+        for (const ShaderTables& t : methodShaderTables()) v.insert(v.end(), t.uniforms.begin(), t.uniforms.end());
+        return v;
+    }();
+    return all;
+}
+
+const std::vector<gl::BindingSlot>& bindingSlots() {
+    static const std::vector<gl::BindingSlot> all = [] {
+        std::vector<gl::BindingSlot> v;
+        addTable(v, kBindings);
+        addTable(v, emitters::kEmitterBindings);
+        for (const ShaderTables& t : methodShaderTables()) v.insert(v.end(), t.bindings.begin(), t.bindings.end());
         return v;
     }();
     return all;
 }
 
 const std::vector<gl::UniformBlockDesc>& uniformBlocks() {
-    static const std::vector<gl::UniformBlockDesc> all = {
-        emitters::RestirBlock::desc(),
-        voxel::ConeTraceBlock::desc(),
-        voxel::VctDebugBlock::desc(),
-        sdf::SdfMarchBlock::desc(),
-        sdfgi::SdfDebugBlock::desc(),
-        sdfgi::SdfTraceBlock::desc(),
-        sdfgi::SdfTemporalBlock::desc(),
-        probes::ProbeUpdateBlock::desc(),
-        probes::ProbeGatherBlock::desc(),
-        hddagi::HddagiSliceBlock::desc(),
-        SsaoBlock::desc(),
-        SsaoTemporalBlock::desc(),
-        EnvironmentBlock::desc(),
+    static const std::vector<gl::UniformBlockDesc> all = [] {
+        std::vector<gl::UniformBlockDesc> v{
+            emitters::RestirBlock::desc(),
+            voxel::ConeTraceBlock::desc(),
+            voxel::VctDebugBlock::desc(),
+            sdf::SdfMarchBlock::desc(),
+            probes::ProbeUpdateBlock::desc(),
+            probes::ProbeGatherBlock::desc(),
+            SsaoBlock::desc(),
+            SsaoTemporalBlock::desc(),
+            EnvironmentBlock::desc(),
+        };
+        for (const ShaderTables& t : methodShaderTables()) v.insert(v.end(), t.blocks.begin(), t.blocks.end());
+        return v;
+    }();
+    return all;
+}
+
+const std::vector<gl::StorageStructDesc>& storageStructs() {
+    static const std::vector<gl::StorageStructDesc> all = {
+        GpuLight::desc(),           BvhNode::desc(),     rays::TraceTriangle::desc(), rays::TriangleAttributes::desc(),
+        rays::RayMaterial::desc(),  rays::Emitter::desc(),
     };
     return all;
 }
@@ -75,6 +94,11 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
             {"SDF_MAX_CASCADES", std::to_string(kMaxCascades)},
             {"MAX_AO_KERNEL", std::to_string(kSsaoMaxKernel)},
             {"LIGHTS_BINDING", std::to_string(kLightsBinding)},
+            {"BVH_NODES_BINDING", std::to_string(kBvhNodesBinding)},
+            {"BVH_TRIANGLES_BINDING", std::to_string(kBvhTrianglesBinding)},
+            {"RAY_ATTRIBUTES_BINDING", std::to_string(kRayAttributesBinding)},
+            {"RAY_MATERIALS_BINDING", std::to_string(kRayMaterialsBinding)},
+            {"RAY_EMITTERS_BINDING", std::to_string(kRayEmittersBinding)},
             {"OCC_BLOCK", std::to_string(kOccupancyBlock)},
             {"OCC_REGION", std::to_string(kOccupancyRegion)},
             {"OCC_BLOCKS_BINDING", std::to_string(kOccupancyBlocksBinding)},
@@ -90,7 +114,10 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
             d.emplace_back("NONFINITE_BINDING", std::to_string(kNonFiniteBinding));
         }
         for (const gl::UniformSlot& u : uniformSlots()) d.emplace_back(u.name, std::to_string(u.location));
+        for (const gl::BindingSlot& b : bindingSlots()) d.emplace_back(b.name, std::to_string(b.point));
         for (const gl::UniformBlockDesc& b : uniformBlocks()) d.emplace_back(b.name, gl::glslBlockDeclaration(b));
+        for (const gl::StorageStructDesc& s : storageStructs())
+            d.emplace_back(std::string("STRUCT_") + s.name, gl::glslStructDeclaration(s));
         return d;
     }();
     return defines;

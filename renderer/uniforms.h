@@ -55,10 +55,50 @@ constexpr int kSsaoMaxKernel = 256;
     X(U_ENV_ROUGHNESS, 560, 1) /* the GGX roughness of the level being filtered */ \
     /* tonemap pass */ \
     X(U_EXPOSURE, 30, 1) \
-    X(U_TONEMAPPER, 31, 1)
+    X(U_TONEMAPPER, 31, 1) \
+    /* debug displays (view_debug.frag) */ \
+    X(U_DISPLAY_CHANNEL, 570, 1) \
+    X(U_DISPLAY_INV_VIEW_PROJ, 571, 1) \
+    X(U_DISPLAY_CAMERA_POS, 572, 1) \
+    X(U_DISPLAY_MAX_DISTANCE, 573, 1) \
+    X(U_DISPLAY_HAS_DEPTH, 574, 1) /* 0: no G-buffer, every pixel is shown */
 
 enum UniformLocation : int { GIS_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kUniforms[] = {GIS_UNIFORMS(GIS_UNIFORM_SLOT)};
+
+// Texture and image units of the same passes (gl/uniform_table.h's binding rows).
+#define GIS_BINDINGS(X) \
+    /* G-buffer draws: the material's textures (material.glsl) */ \
+    X(T_MATERIAL_BASE_COLOR, 0) \
+    X(T_MATERIAL_METALLIC_ROUGHNESS, 1) \
+    X(T_MATERIAL_NORMAL, 2) \
+    X(T_MATERIAL_EMISSIVE, 3) \
+    X(T_MATERIAL_OCCLUSION, 4) \
+    /* the G-buffer's emission resolve (emission_resolve.comp) */ \
+    X(T_EMISSION_SAMPLES, 0) \
+    X(I_EMISSION, 0) \
+    /* lighting pass (lighting.frag): the G-buffer, shadow maps and what methods and emitters output */ \
+    X(T_LIGHTING_DEPTH, 0) \
+    X(T_LIGHTING_BASE_COLOR, 1) \
+    X(T_LIGHTING_NORMAL, 2) \
+    X(T_LIGHTING_MATERIAL, 3) \
+    X(T_LIGHTING_EMISSIVE, 4) \
+    X(T_LIGHTING_SHADOW_MAPS, 5) \
+    X(T_LIGHTING_SHADOW_CUBES, 6) \
+    X(T_LIGHTING_AO, 7) \
+    X(T_LIGHTING_INDIRECT_DIFFUSE, 8) \
+    X(T_LIGHTING_INDIRECT_SPECULAR, 9) \
+    X(T_LIGHTING_EMITTERS_DIRECT, 10) \
+    /* tonemap pass and debug displays */ \
+    X(T_TONEMAP_RADIANCE, 0) \
+    X(T_DISPLAY_SOURCE, 0) \
+    X(T_DISPLAY_DEPTH, 1) \
+    /* the BRDF probe (brdf_probe.comp, the BRDF tests) */ \
+    X(B_BRDF_PROBE_POINTS, 0) \
+    X(B_BRDF_PROBE_RESULTS, 1)
+
+enum BindingPoint : int { GIS_BINDINGS(GIS_BINDING_ENUM) };
+inline constexpr gl::BindingSlot kBindings[] = {GIS_BINDINGS(GIS_BINDING_SLOT)};
 
 // Screen-space AO's samples (ssao.frag's hemisphere kernel and gtao.frag's slices).
 #define GIS_SSAO_BLOCK(M, A) \

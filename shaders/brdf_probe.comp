@@ -10,9 +10,9 @@ struct ProbePoint {
     vec4 n, v, l;            // xyz: unit normal, direction to the viewer, direction to the light
 };
 
-layout(std430, binding = 0) readonly buffer Points { ProbePoint b_points[]; };
+layout(std430, binding = B_BRDF_PROBE_POINTS) readonly buffer Points { ProbePoint b_points[]; };
 // Two per point: f(l, v) (evaluateBrdf), then f * cos (evaluateBrdfCosine); w unused.
-layout(std430, binding = 1) writeonly buffer Results { vec4 b_results[]; };
+layout(std430, binding = B_BRDF_PROBE_RESULTS) writeonly buffer Results { vec4 b_results[]; };
 
 layout(location = 0) uniform uint u_count;
 

@@ -6,19 +6,12 @@
 // visits; this short stack is simpler and faster on llvmpipe and GPUs alike.
 #define BVH_STACK_SIZE 64
 
-struct BvhNode {
-    vec3 boundsMin;
-    uint leftOrFirst;
-    vec3 boundsMax;
-    uint triangleCount;
-};
+// The structs and binding points are declared in renderer/bvh.h and renderer/ray_scene.h.
+STRUCT_BvhNode
+STRUCT_TraceTriangle
 
-struct TraceTriangle {   // world-space corners (w unused); same order as the attribute buffer
-    vec4 p0, p1, p2;
-};
-
-layout(std430, binding = 1) readonly buffer BvhNodes { BvhNode u_nodes[]; };
-layout(std430, binding = 2) readonly buffer BvhTriangles { TraceTriangle u_triangles[]; };
+layout(std430, binding = BVH_NODES_BINDING) readonly buffer BvhNodes { BvhNode u_nodes[]; };
+layout(std430, binding = BVH_TRIANGLES_BINDING) readonly buffer BvhTriangles { TraceTriangle u_triangles[]; };
 
 struct Hit {
     float t;

@@ -4,8 +4,8 @@
 #include "common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2DMS s_samples;
-layout(rgba16f, binding = 0) uniform image2D i_emission;
+layout(binding = T_EMISSION_SAMPLES) uniform sampler2DMS s_samples;
+layout(rgba16f, binding = I_EMISSION) uniform image2D i_emission;
 layout(location = U_EMISSION_PASS) uniform ivec2 u_pass;  // this draw's index, the draws
 
 void main() {

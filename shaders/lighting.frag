@@ -10,17 +10,17 @@
 #include "environment.glsl"
 #include "environment_brdf.glsl"
 
-layout(binding = 0) uniform sampler2D s_depth;
-layout(binding = 1) uniform sampler2D s_gbufBaseColor;
-layout(binding = 2) uniform sampler2D s_gbufNormal;
-layout(binding = 3) uniform sampler2D s_gbufMaterial;
-layout(binding = 4) uniform sampler2D s_gbufEmissive;
-layout(binding = 5) uniform sampler2DArrayShadow s_shadowMaps;
-layout(binding = 6) uniform sampler2DArrayShadow s_shadowCubes;  // cube faces, 6 layers per cube
-layout(binding = 7) uniform sampler2D s_ao;   // r = occlusion of the ambient term ("ao"), or a 1x1 one
-layout(binding = 8) uniform sampler2D s_indirectDiffuse;   // "indirect.diffuse" (or the 1x1 one)
-layout(binding = 9) uniform sampler2D s_indirectSpecular;  // "indirect.specular" (or the 1x1 one)
-layout(binding = 10) uniform sampler2D s_emitterDirect;    // "emitters.direct" (or the 1x1 one)
+layout(binding = T_LIGHTING_DEPTH) uniform sampler2D s_depth;
+layout(binding = T_LIGHTING_BASE_COLOR) uniform sampler2D s_gbufBaseColor;
+layout(binding = T_LIGHTING_NORMAL) uniform sampler2D s_gbufNormal;
+layout(binding = T_LIGHTING_MATERIAL) uniform sampler2D s_gbufMaterial;
+layout(binding = T_LIGHTING_EMISSIVE) uniform sampler2D s_gbufEmissive;
+layout(binding = T_LIGHTING_SHADOW_MAPS) uniform sampler2DArrayShadow s_shadowMaps;
+layout(binding = T_LIGHTING_SHADOW_CUBES) uniform sampler2DArrayShadow s_shadowCubes;  // cube faces, 6 layers per cube
+layout(binding = T_LIGHTING_AO) uniform sampler2D s_ao;   // r = occlusion of the ambient term ("ao"), or a 1x1 one
+layout(binding = T_LIGHTING_INDIRECT_DIFFUSE) uniform sampler2D s_indirectDiffuse;   // "indirect.diffuse" (or the 1x1 one)
+layout(binding = T_LIGHTING_INDIRECT_SPECULAR) uniform sampler2D s_indirectSpecular;  // "indirect.specular" (or the 1x1 one)
+layout(binding = T_LIGHTING_EMITTERS_DIRECT) uniform sampler2D s_emitterDirect;    // "emitters.direct" (or the 1x1 one)
 
 layout(location = U_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = U_CAMERA_POS) uniform vec3 u_cameraPos;

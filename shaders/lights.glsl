@@ -3,14 +3,8 @@
 #define LIGHT_POINT 1
 #define LIGHT_SPOT 2
 
-struct GpuLight {
-    vec4 positionType;    // xyz world position, w = type
-    vec4 directionRange;  // xyz direction the light travels (unit), w = range (0: infinite)
-    vec4 radiance;        // rgb colour * intensity (W/sr for point/spot, W/m^2 for directional)
-    vec4 cone;            // cos(outer), cos(inner), shadow layer (-1: none), unused
-    vec4 shadowParams;    // texel world size = x + y * distance; z = near, w = far (point)
-    mat4 shadowMatrix;    // world -> shadow clip (directional, spot)
-};
+// struct GpuLight: its members and what they hold are declared in renderer/lights.h.
+STRUCT_GpuLight
 
 // The same buffer either way. The lighting pass reads it as a uniform block when the scene's lights
 // fit (measured: that pass 35-40% faster on llvmpipe than with the storage buffer, same image);

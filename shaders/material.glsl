@@ -1,10 +1,10 @@
 // glTF metallic-roughness material inputs, sampled at a surface point.
 
-layout(binding = 0) uniform sampler2D s_baseColor;
-layout(binding = 1) uniform sampler2D s_metallicRoughness;   // G = roughness, B = metallic (glTF)
-layout(binding = 2) uniform sampler2D s_normal;
-layout(binding = 3) uniform sampler2D s_emissive;
-layout(binding = 4) uniform sampler2D s_occlusion;           // R = occlusion (glTF)
+layout(binding = T_MATERIAL_BASE_COLOR) uniform sampler2D s_baseColor;
+layout(binding = T_MATERIAL_METALLIC_ROUGHNESS) uniform sampler2D s_metallicRoughness;   // G = roughness, B = metallic (glTF)
+layout(binding = T_MATERIAL_NORMAL) uniform sampler2D s_normal;
+layout(binding = T_MATERIAL_EMISSIVE) uniform sampler2D s_emissive;
+layout(binding = T_MATERIAL_OCCLUSION) uniform sampler2D s_occlusion;           // R = occlusion (glTF)
 
 layout(location = U_BASE_COLOR_FACTOR) uniform vec4 u_baseColorFactor;
 layout(location = U_METALLIC) uniform float u_metallic;

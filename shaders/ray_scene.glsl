@@ -5,31 +5,14 @@
 #include "bvh.glsl"
 #include "sampling.glsl"
 
-struct TriangleAttributes {
-    vec4 n0, n1, n2;          // shading normals
-    vec4 t0, t1, t2;          // tangents, w = bitangent sign
-    vec4 c0, c1, c2;          // vertex colours
-    vec4 uv01;                // uv0, uv1
-    vec4 uv2MaterialEmitter;  // uv2, material index, emitter selection pdf / triangle area (0: not an emitter)
-};
+// The structs (what each member holds) and binding points are declared in renderer/ray_scene.h.
+STRUCT_TriangleAttributes
+STRUCT_RayMaterial
+STRUCT_Emitter
 
-struct RayMaterial {
-    vec4 baseColor;
-    vec4 emissive;            // rgb radiance, w = double sided
-    vec4 params;              // metallic, roughness, specular factor, alpha cutoff (< 0: opaque)
-    vec4 params2;             // normal scale, unused
-    ivec4 textures;           // texture-array layers: base colour, metallic-roughness, normal, emissive (-1: none)
-};
-
-struct Emitter {
-    uint triangle;
-    float cdf;                // inclusive running sum of selection probabilities
-    float pad0, pad1;
-};
-
-layout(std430, binding = 3) readonly buffer Attributes { TriangleAttributes u_attributes[]; };
-layout(std430, binding = 4) readonly buffer Materials { RayMaterial u_materials[]; };
-layout(std430, binding = 5) readonly buffer Emitters { Emitter u_emitters[]; };
+layout(std430, binding = RAY_ATTRIBUTES_BINDING) readonly buffer Attributes { TriangleAttributes u_attributes[]; };
+layout(std430, binding = RAY_MATERIALS_BINDING) readonly buffer Materials { RayMaterial u_materials[]; };
+layout(std430, binding = RAY_EMITTERS_BINDING) readonly buffer Emitters { Emitter u_emitters[]; };
 // The texture array's unit: 0 unless the including shader needs unit 0 for its own (RayScene::bind).
 #ifndef RAY_SCENE_TEXTURE_UNIT
 #define RAY_SCENE_TEXTURE_UNIT 0

@@ -1,7 +1,7 @@
 // Exposure, tone mapping and sRGB encoding: linear radiance -> display 8-bit.
 #include "common.glsl"
 
-layout(binding = 0) uniform sampler2D s_radiance;
+layout(binding = T_TONEMAP_RADIANCE) uniform sampler2D s_radiance;
 layout(location = U_EXPOSURE) uniform float u_exposureScale;   // 2^EV
 layout(location = U_TONEMAPPER) uniform int u_tonemapper;      // 0 ACES fitted, 1 linear clamp
 

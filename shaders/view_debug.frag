@@ -10,13 +10,13 @@
 #define CHANNEL_EMISSIVE 4
 #define CHANNEL_GREY 5
 
-layout(binding = 0) uniform sampler2D s_source;
-layout(binding = 1) uniform sampler2D s_depth;
-layout(location = 0) uniform int u_channel;
-layout(location = 1) uniform mat4 u_invViewProj;
-layout(location = 2) uniform vec3 u_cameraPos;
-layout(location = 3) uniform float u_maxDistance;
-layout(location = 4) uniform int u_hasDepth;  // 0: no G-buffer, every pixel is shown
+layout(binding = T_DISPLAY_SOURCE) uniform sampler2D s_source;
+layout(binding = T_DISPLAY_DEPTH) uniform sampler2D s_depth;
+layout(location = U_DISPLAY_CHANNEL) uniform int u_channel;
+layout(location = U_DISPLAY_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
+layout(location = U_DISPLAY_CAMERA_POS) uniform vec3 u_cameraPos;
+layout(location = U_DISPLAY_MAX_DISTANCE) uniform float u_maxDistance;
+layout(location = U_DISPLAY_HAS_DEPTH) uniform int u_hasDepth;  // 0: no G-buffer, every pixel is shown
 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "emitters/emitter_uniforms.h"
-#include "gi/method.h"
+#include "gl/bind.h"
 #include "gl/dispatch.h"
 #include "scene/scene_lighting.h"
 
@@ -94,8 +94,8 @@ uint64_t EmitterLightPass::targetBytes(int width, int height) {
     return perPixel * uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0));
 }
 
-EmitterLightPass::EmitterLightPass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger)
-    : rays_(services.rays()), reuse_(gl::MemoryScope{&ledger, name()}) {
+EmitterLightPass::EmitterLightPass(RayScene& rays, const RenderSettings& settings, gl::MemoryLedger& ledger)
+    : rays_(rays), reuse_(gl::MemoryScope{&ledger, name()}) {
     const gl::MemoryScope scope{&ledger, name()};
     const int w = settings.width, h = settings.height;
     static_assert(kReservoirSets == 2, "temporal_ and history_");
@@ -126,10 +126,10 @@ void EmitterLightPass::invalidate(Changes c) {
 void EmitterLightPass::bindCommon(GLuint p, const Frame& frame, const EmitterLightSettings& s) {
     glUseProgram(p);
     rays_.bind();
-    const GLuint gbuffer[4] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferBaseColor),
-                               frame.texture(resource::kGbufferNormal), frame.texture(resource::kGbufferMaterial)};
-    glBindTextures(1, 4, gbuffer);
-    glBindSamplers(1, 4, nullptr);
+    gl::bindTextures({{emitters::TE_DEPTH, frame.texture(resource::kGbufferDepth)},
+                      {emitters::TE_BASE_COLOR, frame.texture(resource::kGbufferBaseColor)},
+                      {emitters::TE_NORMAL, frame.texture(resource::kGbufferNormal)},
+                      {emitters::TE_MATERIAL, frame.texture(resource::kGbufferMaterial)}});
     glProgramUniformMatrix4fv(p, UE_VIEW_PROJ, 1, GL_FALSE, &frame.camera.viewProj[0][0]);
     glProgramUniformMatrix4fv(p, UE_PREV_VIEW_PROJ, 1, GL_FALSE, &previousViewProj_[0][0]);
     glProgramUniformMatrix4fv(p, UE_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
@@ -151,6 +151,12 @@ void EmitterLightPass::bindCommon(GLuint p, const Frame& frame, const EmitterLig
     reuse_.set(reuse);
 }
 
+void EmitterLightPass::bindReservoirs(const Reservoirs& in, const Reservoirs& out) {
+    using namespace emitters;
+    gl::bindImages({{IE_SAMPLE_IN, in.sample.id()}, {IE_SURFACE_IN, in.surface.id()}, {IE_NORMAL_IN, in.normal.id()},
+                    {IE_SAMPLE_OUT, out.sample.id()}, {IE_SURFACE_OUT, out.surface.id()}, {IE_NORMAL_OUT, out.normal.id()}});
+}
+
 void EmitterLightPass::execute(Frame& frame) {
     const EmitterLightSettings s = emitterLightSettings(frame.settings);
     if (s.accumulate != target_) {
@@ -166,9 +172,7 @@ void EmitterLightPass::execute(Frame& frame) {
         // Candidates, their visibility, and the temporal reuse: history -> temporal.
         auto step = frame.step("candidates");
         bindCommon(candidates_.id(), frame, s);
-        const GLuint images[6] = {history_.sample.id(), history_.surface.id(), history_.normal.id(),
-                                  temporal_.sample.id(), temporal_.surface.id(), temporal_.normal.id()};
-        glBindImageTextures(0, 6, images);
+        bindReservoirs(history_, temporal_);
         gl::dispatchCompute(groupsX, groupsY, 1, "emitters candidates");
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
@@ -176,10 +180,8 @@ void EmitterLightPass::execute(Frame& frame) {
         // Spatial reuse and shading: temporal -> history (the next frame's), and the average.
         auto step = frame.step("spatial");
         bindCommon(spatial_.id(), frame, s);
-        const GLuint images[7] = {temporal_.sample.id(), temporal_.surface.id(), temporal_.normal.id(),
-                                  history_.sample.id(),  history_.surface.id(),  history_.normal.id(),
-                                  accumulation_.id()};
-        glBindImageTextures(0, 7, images);
+        bindReservoirs(temporal_, history_);
+        gl::bindImages({{emitters::IE_ACCUMULATION, accumulation_.id()}});
         gl::dispatchCompute(groupsX, groupsY, 1, "emitters spatial");
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }

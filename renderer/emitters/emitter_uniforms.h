@@ -19,6 +19,24 @@ namespace gis::emitters {
 enum EmitterUniform : int { GIS_EMITTER_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kEmitterUniforms[] = {GIS_EMITTER_UNIFORMS(GIS_UNIFORM_SLOT)};
 
+// restir.comp's units: the G-buffer's textures (unit 0 is the ray scene's texture array) and the
+// reservoirs read (IN) and written (OUT) by a stage, and the still view's running mean.
+#define GIS_EMITTER_BINDINGS(X) \
+    X(TE_DEPTH, 1) \
+    X(TE_BASE_COLOR, 2) \
+    X(TE_NORMAL, 3) \
+    X(TE_MATERIAL, 4) \
+    X(IE_SAMPLE_IN, 0) \
+    X(IE_SURFACE_IN, 1) \
+    X(IE_NORMAL_IN, 2) \
+    X(IE_SAMPLE_OUT, 3) \
+    X(IE_SURFACE_OUT, 4) \
+    X(IE_NORMAL_OUT, 5) \
+    X(IE_ACCUMULATION, 6)
+
+enum EmitterBinding : int { GIS_EMITTER_BINDINGS(GIS_BINDING_ENUM) };
+inline constexpr gl::BindingSlot kEmitterBindings[] = {GIS_EMITTER_BINDINGS(GIS_BINDING_SLOT)};
+
 // How both ReSTIR stages reuse reservoirs (the emitters.* parameters of this frame).
 #define GIS_RESTIR_BLOCK(M, A) \
     M(int, candidates)          /* M: candidates drawn per pixel by power */ \

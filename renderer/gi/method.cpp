@@ -16,6 +16,12 @@ void registerGiMethod(GiMethod method) {
     methodRegistry().push_back(std::move(method));
 }
 
+std::vector<ShaderTables> methodShaderTables() {
+    std::vector<ShaderTables> tables;
+    for (const GiMethod& m : giMethods()) tables.push_back(m.shaderTables);
+    return tables;
+}
+
 const GiMethod* findGiMethod(const std::string& name) {
     for (const GiMethod& m : giMethods())
         if (m.name == name) return &m;
@@ -150,6 +156,29 @@ void checkViewOfMethod(const std::string& gi, const std::string& view) {
     const GiMethod* owner = dot == std::string::npos ? nullptr : findGiMethod(view.substr(0, dot));
     if (owner && owner != &method)
         throw Error("view '" + view + "' is a view of --gi " + owner->name + ", not produced by --gi " + gi);
+}
+
+void setParam(RenderSettings& s, const std::string& fullKey, const std::string& text) {
+    // An alias flag (--spp, --ao-radius) sets every row that declares it.
+    bool any = false;
+    for (const GiMethod& m : giMethods())
+        for (const ParamDesc& d : m.params)
+            if (fullKey == m.name + "." + d.key || (!d.alias.empty() && fullKey == d.alias)) {
+                s.params[m.name + "." + d.key] = parseParamValue(m.name, d, text);
+                any = true;
+            }
+    for (const ParamGroup& g : paramGroups())
+        for (const ParamDesc& d : g.params)
+            if (fullKey == g.name + "." + d.key) {
+                s.params[fullKey] = parseParamValue(g.name, d, text);
+                any = true;
+            }
+    if (!any) findParam(fullKey);  // throws the message naming the method's keys
+}
+
+ParamValue getParam(const RenderSettings& s, const std::string& fullKey) {
+    auto it = s.params.find(fullKey);
+    return it != s.params.end() ? it->second : findParam(fullKey).defaultValue;
 }
 
 }  // namespace gis

@@ -9,7 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 
 namespace gis {
 
@@ -78,6 +79,8 @@ struct GiMethod {
     // checked with the ranges by checkParams: before anything is built and whenever a value is set.
     // Throws gis::Error naming the key. Optional.
     std::function<void(const ParamValues&)> checkSettings;
+    // Its own uniform rows, binding points and blocks, emitted into every shader (gl/shader.h).
+    ShaderTables shaderTables;
 
     const ParamDesc* param(const std::string& key) const;
     const GiPreset& preset(const std::string& name) const;  // throws for an unknown name
@@ -99,14 +102,6 @@ const std::vector<std::string>& presetNames();       // low, medium, high
 // Applies `preset` of `method` to s: sets s.gi and the preset's values (as overrides).
 void applyPreset(RenderSettings& s, const std::string& method, const std::string& preset);
 
-// A parameter table of a frame module every method shares (the emitter lights,
-// renderer/emitters/): keys GROUP.KEY, set with --set, stored in RenderSettings::params, listed by
-// `gisandbox methods` and validated exactly as a method's rows, but no --gi name.
-struct ParamGroup {
-    std::string name;                       // the key prefix: "emitters"
-    std::string summary;                    // one line for `gisandbox methods`
-    std::vector<ParamDesc> params;
-};
 // Every shared table, in registry order (renderer/gi/methods.cpp).
 const std::vector<ParamGroup>& paramGroups();
 // True when `fullKey` belongs to a shared table, not to a method.
@@ -117,6 +112,10 @@ const ParamDesc& findParam(const std::string& fullKey, std::string* methodOut = 
 // Validates every value in s.params against its row (one message format), then each method's
 // checkSettings for the methods the values name.
 void checkParams(const ParamValues& values);
+// Parses and validates "method.key" = text against the registry and stores it in s.params.
+void setParam(RenderSettings& s, const std::string& fullKey, const std::string& text);
+// The value of "method.key" in s: what s.params holds, else the row's default.
+ParamValue getParam(const RenderSettings& s, const std::string& fullKey);
 
 // Throws when `view` (a --view / pane display name) is one that --gi `gi` cannot produce, told
 // by the view's name alone (no GL): a method's own view ("sdf.slice") of another method, or a

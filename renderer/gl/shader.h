@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gl/gl.h"
+#include "gl/storage_struct.h"
 #include "gl/uniform_block.h"
 #include "gl/uniform_table.h"
 
@@ -43,6 +44,26 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines();
 const std::vector<gl::UniformSlot>& uniformSlots();
 // Every module's uniform blocks (what sharedShaderDefines emits of them, each as its declaration).
 const std::vector<gl::UniformBlockDesc>& uniformBlocks();
+// What a module shares with GLSL beyond the frame's own tables (renderer/shader_constants.cpp):
+// its uniform rows, binding points and uniform blocks. A GI method brings its own in its registry
+// entry, so adding one touches only its folders and the registry's line.
+struct ShaderTables {
+    std::vector<gl::UniformSlot> uniforms;
+    std::vector<gl::BindingSlot> bindings;
+    std::vector<gl::UniformBlockDesc> blocks;
+};
+template <class Slot, size_t N>
+std::vector<Slot> tableRows(const Slot (&table)[N]) {
+    return {table, table + N};
+}
+// Every registered GI method's tables, in registry order (defined by the registry,
+// renderer/gi/method.cpp). Emitted once, when the first shader is built: a method registered later
+// (a test's) brings none.
+std::vector<ShaderTables> methodShaderTables();
+// Every module's binding points (texture and image units, buffer bindings; emitted as #defines).
+const std::vector<gl::BindingSlot>& bindingSlots();
+// Every storage-buffer struct (gl/storage_struct.h; emitted as STRUCT_NAME, its declaration).
+const std::vector<gl::StorageStructDesc>& storageStructs();
 // Rewrites "0:LINE(COL): msg" (Mesa) and "0(LINE) : msg" (NVIDIA) into "shaders/file:LINE: msg".
 std::string mapShaderLog(const std::string& log, const PreprocessedShader& shader);
 

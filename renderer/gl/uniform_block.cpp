@@ -1,4 +1,5 @@
 #include "gl/uniform_block.h"
+#include "gl/storage_struct.h"
 
 namespace gis::gl {
 
@@ -10,6 +11,12 @@ std::string glslBlockDeclaration(const UniformBlockDesc& block) {
         s += ";";
     }
     return s + " }";
+}
+
+std::string glslStructDeclaration(const StorageStructDesc& st) {
+    std::string s = std::string("struct ") + st.name + " {";
+    for (const UniformBlockDesc::Member& m : st.members) s += std::string(" ") + m.type + " " + m.name + ";";
+    return s + " };";
 }
 
 }  // namespace gis::gl

@@ -17,3 +17,17 @@ struct UniformSlot {
 
 #define GIS_UNIFORM_ENUM(name, location, count) name = location,
 #define GIS_UNIFORM_SLOT(name, location, count) {#name, location, count},
+
+// Binding points (texture and image units, storage-buffer bindings) are declared the same way:
+// rows X(NAME, POINT) in a module's table, emitted as `#define NAME POINT`, so GLSL writes
+// `layout(binding = NAME)` and C++ binds at NAME and neither writes the number. A point may repeat
+// across tables (units of different kinds, programs that never run together); a name may not.
+namespace gis::gl {
+struct BindingSlot {
+    const char* name;
+    int point;
+};
+}  // namespace gis::gl
+
+#define GIS_BINDING_ENUM(name, point) name = point,
+#define GIS_BINDING_SLOT(name, point) {#name, point},

@@ -127,9 +127,9 @@ void GBufferPass::antialiasEmission(const Frame& frame) {
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         glUseProgram(resolve);
         glProgramUniform2i(resolve, U_EMISSION_PASS, k, kEmissionDraws);
-        glBindTextureUnit(0, multisampleEmissive_.id());
+        glBindTextureUnit(T_EMISSION_SAMPLES, multisampleEmissive_.id());
         glBindSampler(0, 0);
-        glBindImageTexture(0, emissive_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+        glBindImageTexture(I_EMISSION, emissive_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
         gl::dispatchCompute(gl::groupsFor(w, kResolveGroup), gl::groupsFor(h, kResolveGroup), 1, "G-buffer emission resolve");
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "lights.h"
+#include "gl/bind.h"
 #include "uniforms.h"
 
 namespace gis {
@@ -197,19 +198,17 @@ void LightingPass::draw(const Frame& frame, GLuint p, GLuint fbo, float maxRadia
     glDisable(GL_DEPTH_TEST);
     glUseProgram(p);
     glBindVertexArray(vao_.id());
-    const GLuint textures[11] = {frame.texture(resource::kGbufferDepth),
-                                 frame.texture(resource::kGbufferBaseColor),
-                                 frame.texture(resource::kGbufferNormal),
-                                 frame.texture(resource::kGbufferMaterial),
-                                 frame.texture(resource::kGbufferEmissive),
-                                 frame.texture(resource::kShadowMaps),
-                                 frame.texture(resource::kShadowCubes),
-                                 hasAo_ ? frame.texture(resource::kAo) : unit_.id(),
-                                 hasDiffuse_ ? frame.texture(resource::kIndirectDiffuse) : unit_.id(),
-                                 hasSpecular_ ? frame.texture(resource::kIndirectSpecular) : unit_.id(),
-                                 hasEmitters_ ? frame.texture(resource::kEmittersDirect) : unit_.id()};
-    glBindTextures(0, 11, textures);
-    glBindSamplers(0, 11, nullptr);
+    gl::bindTextures({{T_LIGHTING_DEPTH, frame.texture(resource::kGbufferDepth)},
+                      {T_LIGHTING_BASE_COLOR, frame.texture(resource::kGbufferBaseColor)},
+                      {T_LIGHTING_NORMAL, frame.texture(resource::kGbufferNormal)},
+                      {T_LIGHTING_MATERIAL, frame.texture(resource::kGbufferMaterial)},
+                      {T_LIGHTING_EMISSIVE, frame.texture(resource::kGbufferEmissive)},
+                      {T_LIGHTING_SHADOW_MAPS, frame.texture(resource::kShadowMaps)},
+                      {T_LIGHTING_SHADOW_CUBES, frame.texture(resource::kShadowCubes)},
+                      {T_LIGHTING_AO, hasAo_ ? frame.texture(resource::kAo) : unit_.id()},
+                      {T_LIGHTING_INDIRECT_DIFFUSE, hasDiffuse_ ? frame.texture(resource::kIndirectDiffuse) : unit_.id()},
+                      {T_LIGHTING_INDIRECT_SPECULAR, hasSpecular_ ? frame.texture(resource::kIndirectSpecular) : unit_.id()},
+                      {T_LIGHTING_EMITTERS_DIRECT, hasEmitters_ ? frame.texture(resource::kEmittersDirect) : unit_.id()}});
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightsBinding, frame.buffer(resource::kLights));
     glBindBufferBase(GL_UNIFORM_BUFFER, kLightsBinding, frame.buffer(resource::kLights));
     glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
@@ -241,9 +240,7 @@ void TonemapPass::execute(Frame& frame) {
     glDisable(GL_DEPTH_TEST);
     glUseProgram(p);
     glBindVertexArray(vao_.id());
-    const GLuint radiance = frame.texture(resource::kRadiance);
-    glBindTextures(0, 1, &radiance);
-    glBindSamplers(0, 1, nullptr);
+    gl::bindTextures({{T_TONEMAP_RADIANCE, frame.texture(resource::kRadiance)}});
     glProgramUniform1f(p, U_EXPOSURE, std::exp2(frame.settings.exposureEV));
     glProgramUniform1i(p, U_TONEMAPPER, int(frame.settings.tonemap));
     glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -42,7 +42,7 @@ int probeIndexNear(const ProbeGrid& g, const glm::vec3& p) {
 
 ProbeGrid fitProbeGrid(const Aabb& bounds, float spacing) {
     if (!(spacing > 0.0f) || !std::isfinite(spacing))
-        throw Error("probes.spacing: " + std::to_string(spacing) + " gives no probe grid (it must be > 0)");
+        throw Error("probe spacing " + std::to_string(spacing) + " gives no probe grid (it must be > 0)");
     ProbeGrid g;
     if (bounds.empty()) return g;  // no geometry: one probe at the origin sees the sky
     const glm::vec3 extent = bounds.extent();
@@ -60,7 +60,7 @@ ProbeGrid fitProbeGrid(const Aabb& bounds, float spacing) {
         const double n = std::max(1.0, std::ceil(double(extent[a]) / double(cell) - 1e-4));
         total *= n;
         if (total > double(kMaxProbes))
-            throw Error("probes.spacing: " + std::to_string(spacing) + " would place more than " +
+            throw Error("probe spacing " + std::to_string(spacing) + " would place more than " +
                         std::to_string(kMaxProbes) + " probes; raise the spacing");
         g.counts[a] = int(n);
         g.step[a] = extent[a] > 0.0f ? extent[a] / float(n) : cell;

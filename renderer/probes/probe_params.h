@@ -1,12 +1,56 @@
 // The probe field's parameter rows and the FieldSettings they make, declared once for every method
-// that owns a field and names its members as FieldSettings does (probes, hddagi): the same keys,
-// ranges and help under each method's prefix, so the two cannot drift apart.
+// that owns a field: the same keys, ranges and help under each method's name and the key prefix it
+// chooses, so the methods cannot drift apart.
 #pragma once
 
-#include "gi/params.h"
+#include <string>
+
+#include "param_table.h"
 #include "probes/probe_field.h"
 
 namespace gis::probes {
+
+// What a grid's spacing is a fraction of: the scene's largest extent (one grid over the scene),
+// or each cascade's extent (a grid per cascade, SDFGI's layout).
+enum class SpacingOf { Scene, Cascade };
+
+// The members of a method's settings S that hold the grid's rebuild parameters; `storage` may be
+// null for a method that stores every probe one way.
+template <class S>
+struct GridMembers {
+    float S::*spacing;
+    int S::*rays;
+    int S::*rayBudget;
+    int S::*storage = nullptr;
+};
+
+// The rows that size the field (rebuild): PREFIXspacing, PREFIXrays, PREFIXray-budget and, when the
+// method has one, PREFIXstorage.
+template <class S>
+void addGridRows(ParamTable<S>& t, const std::string& prefix, SpacingOf of, GridMembers<S> m) {
+    using U = ParamUpdate;
+    if (of == SpacingOf::Scene)
+        t.real(m.spacing, prefix + "spacing", "Probe spacing",
+               "probe cell as a fraction of the scene's largest extent (>= 1: one probe)", 0.02, 4.0, U::Rebuild);
+    else
+        t.real(m.spacing, prefix + "spacing", "Probe spacing", "probe cell as a fraction of each cascade's extent", 0.02,
+               1.0, U::Rebuild);
+    t.integer(m.rays, prefix + "rays", "Rays per probe", "rays each probe traces per update", 8, 512, U::Rebuild)
+        .integer(m.rayBudget, prefix + "ray-budget", "Probe ray budget",
+                 "probe rays per frame, spent on the due probes most urgent first (visible, least updated, most "
+                 "changed); 0 = every due probe each frame",
+                 0, 1 << 26, U::Rebuild);
+    if (m.storage)
+        t.choice(m.storage, prefix + "storage", "Storage",
+                 "sh1 = SH L1 (64 B), sh2 = SH L2 (144 B), octahedral = 6x6 irradiance map (576 B); plus 1568 B "
+                 "of distance moments and 32 B of state per probe",
+                 {"sh1", "sh2", "octahedral"}, U::Rebuild);
+}
+
+// "METHOD.PREFIXkey": the full key of one of the rows above, for messages.
+inline std::string gridKey(const std::string& method, const std::string& prefix, const std::string& key) {
+    return method + "." + prefix + key;
+}
 
 // The rows a field reads live each frame: visibility, feedback, hysteresis, convergence.
 template <class S>

@@ -21,21 +21,22 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = 1) uniform sampler2D s_depth;
-layout(binding = 2) uniform sampler2D s_gbufBaseColor;
-layout(binding = 3) uniform sampler2D s_gbufNormal;
-layout(binding = 4) uniform sampler2D s_gbufMaterial;
+layout(binding = TE_DEPTH) uniform sampler2D s_depth;
+layout(binding = TE_BASE_COLOR) uniform sampler2D s_gbufBaseColor;
+layout(binding = TE_NORMAL) uniform sampler2D s_gbufNormal;
+layout(binding = TE_MATERIAL) uniform sampler2D s_gbufMaterial;
 
 // Reservoir images: sample = (emitter triangle + 1 (0: none), barycentrics of p1 and p2, W);
-// surface = (world position, M); normal = (shading normal, 0). Inputs 0-2, outputs 3-5.
-layout(binding = 0, rgba32f) uniform readonly image2D i_sampleIn;
-layout(binding = 1, rgba32f) uniform readonly image2D i_surfaceIn;
-layout(binding = 2, rgba16f) uniform readonly image2D i_normalIn;
-layout(binding = 3, rgba32f) uniform writeonly image2D i_sampleOut;
-layout(binding = 4, rgba32f) uniform writeonly image2D i_surfaceOut;
-layout(binding = 5, rgba16f) uniform writeonly image2D i_normalOut;
+// surface = (world position, M); normal = (shading normal, 0). A stage reads the IN images and
+// writes the OUT ones (renderer/emitters/emitter_uniforms.h).
+layout(binding = IE_SAMPLE_IN, rgba32f) uniform readonly image2D i_sampleIn;
+layout(binding = IE_SURFACE_IN, rgba32f) uniform readonly image2D i_surfaceIn;
+layout(binding = IE_NORMAL_IN, rgba16f) uniform readonly image2D i_normalIn;
+layout(binding = IE_SAMPLE_OUT, rgba32f) uniform writeonly image2D i_sampleOut;
+layout(binding = IE_SURFACE_OUT, rgba32f) uniform writeonly image2D i_surfaceOut;
+layout(binding = IE_NORMAL_OUT, rgba16f) uniform writeonly image2D i_normalOut;
 #if RESTIR_STAGE == 1
-layout(binding = 6, rgba32f) uniform image2D i_accumulation;  // running mean over still frames
+layout(binding = IE_ACCUMULATION, rgba32f) uniform image2D i_accumulation;  // running mean over still frames
 #endif
 
 layout(location = UE_VIEW_PROJ) uniform mat4 u_viewProj;

@@ -19,6 +19,7 @@
 #include "gl/shader.h"
 #include "render_test_util.h"
 #include "renderer.h"
+#include "uniforms.h"
 
 namespace gis::test {
 namespace {
@@ -96,8 +97,8 @@ public:
         gl::Buffer out = gl::createBuffer(scope, count * 2 * 4 * int64_t(sizeof(float)), nullptr);
         glUseProgram(program_.id());
         glProgramUniform1ui(program_.id(), 0, GLuint(count));
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, B_BRDF_PROBE_POINTS, in.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, B_BRDF_PROBE_RESULTS, out.id());
         const int64_t groups = (count + 63) / 64;
         const GLuint groupsX = GLuint(std::min<int64_t>(groups, 1024));
         const GLuint groupsY = GLuint((groups + groupsX - 1) / groupsX);

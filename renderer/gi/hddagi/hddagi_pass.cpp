@@ -167,16 +167,18 @@ GiMethod hddagiMethod() {
     m.summary = "HDDAGI: probes traced by hierarchical DDA through voxel occupancy (no distance field), cascades "
                 "that scroll, gathered at half resolution";
     m.params = hddagiParams().rows;
+    m.shaderTables.uniforms = tableRows(hddagi::kHddagiUniforms);
+    m.shaderTables.blocks = {hddagi::HddagiSliceBlock::desc()};
     m.presets = {
         {"low", "32^3, probes every 1/3 with 64 rays, SH L1",
          {{"hddagi.resolution", {32.0}},
-          {"hddagi.probe-spacing", {0.34}},
+          {"hddagi.spacing", {0.34}},
           {"hddagi.rays", {64.0}},
           {"hddagi.storage", choiceValue("sh1")}}},
         {"medium", "64^3, probes every 1/5 with 128 rays, SH L2, gathered at half resolution", {}},
         {"high", "128^3, probes every 1/6 with 256 rays, octahedral maps, gathered at full resolution",
          {{"hddagi.resolution", {128.0}},
-          {"hddagi.probe-spacing", {0.167}},
+          {"hddagi.spacing", {0.167}},
           {"hddagi.rays", {256.0}},
           {"hddagi.storage", choiceValue("octahedral")},
           {"hddagi.half-res", {0.0}}}},

@@ -20,17 +20,9 @@ const ParamTable<HddagiSettings>& hddagiParams() {
                  0, kMaxCascades, U::Rebuild)
         .real(&S::cascadeExtent, "cascade-extent", "Finest cascade extent",
               "world units: a scene cube up to this edge gets one volume; each doubling beyond it one more cascade",
-              1e-6, 1e9, U::Rebuild)
-        .real(&S::probeSpacing, "probe-spacing", "Probe spacing", "probe cell as a fraction of each cascade's extent",
-              0.02, 1.0, U::Rebuild)
-        .integer(&S::rays, "rays", "Rays per probe", "rays each probe traces per update (HDDA through the occupancy)",
-                 8, 512, U::Rebuild)
-        .integer(&S::rayBudget, "ray-budget", "Ray budget",
-                 "probe rays per frame, spent on the due probes most urgent first; 0 = every due probe each frame", 0,
-                 1 << 26, U::Rebuild)
-        .choice(&S::storage, "storage", "Storage", "probe irradiance as SH L1, SH L2 or a 6x6 octahedral map",
-                {"sh1", "sh2", "octahedral"}, U::Rebuild)
-        .boolean(&S::halfResolution, "half-res", "Half resolution",
+              1e-6, 1e9, U::Rebuild);
+        probes::addGridRows(t, "", probes::SpacingOf::Cascade, {&S::probeSpacing, &S::rays, &S::rayBudget, &S::storage});
+        t.boolean(&S::halfResolution, "half-res", "Half resolution",
                  "gather the probes at every 2x2 block's first pixel and upsample (pixels on an edge gather their own)",
                  U::Rebuild);
         probes::addLiveFieldRows(t);
@@ -59,7 +51,7 @@ probes::FieldSettings HddagiSettings::field() const {
 probes::GatherSettings HddagiSettings::gather() const { return {normalBias, intensity, visibility}; }
 
 void checkHddagiSettings(const HddagiSettings& s) {
-    probes::checkFieldSettings(s.field(), "hddagi.ray-budget", "hddagi.rays");
+    probes::checkFieldSettings(s.field(), probes::gridKey("hddagi", "", "ray-budget"), probes::gridKey("hddagi", "", "rays"));
     const int r = s.resolution;
     if ((r & (r - 1)) != 0) throw Error("hddagi.resolution: " + std::to_string(r) + " must be a power of two in [16, 256]");
 }

@@ -1,10 +1,10 @@
 // HDDAGI's parameters: one row each in hddagiParams() (names that scripts and other checks use:
-// hddagi.resolution, hddagi.cascades, hddagi.probe-spacing, hddagi.rays, hddagi.half-res), defaults
+// hddagi.resolution, hddagi.cascades, hddagi.spacing, hddagi.rays, hddagi.half-res), defaults
 // in the initialisers below. Where SDF GI has the same setting the default is the same, except the
 // probe spacing (renderer/gi/hddagi/README.md says why).
 #pragma once
 
-#include "gi/params.h"
+#include "param_table.h"
 #include "probes/probe_field.h"
 #include "probes/screen_gather.h"
 
@@ -14,7 +14,7 @@ struct HddagiSettings {
     int resolution = 64;         // hddagi.resolution: voxels per cascade edge, a power of two (rebuild)
     int cascades = 0;            // hddagi.cascades: 0 = from the scene's extent, else 1..4 (rebuild)
     float cascadeExtent = 8.0f;  // hddagi.cascade-extent: the finest cascade's largest edge, world units (rebuild)
-    float probeSpacing = 0.2f;   // hddagi.probe-spacing: probe cell as a fraction of each cascade's extent (rebuild)
+    float probeSpacing = 0.2f;   // hddagi.spacing: probe cell as a fraction of each cascade's extent (rebuild)
     int rays = 128;              // hddagi.rays: rays per probe per update (rebuild)
     int rayBudget = 0;           // hddagi.ray-budget: probe rays per frame, 0 = every due probe (rebuild)
     int storage = 1;             // hddagi.storage: sh1 | sh2 | octahedral (rebuild)

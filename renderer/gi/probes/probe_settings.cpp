@@ -11,18 +11,8 @@ const ParamTable<ProbeSettings>& probeParams() {
     using U = ParamUpdate;
     static const ParamTable<S> table = [] {
         ParamTable<S> t;
-        t.real(&S::spacing, "spacing", "Probe spacing",
-              "cell width as a fraction of the scene's largest extent (>= 1: one probe)", 0.02, 4.0, U::Rebuild)
-        .integer(&S::rays, "rays", "Rays per probe", "rays each probe traces per update", 8, 512, U::Rebuild)
-        .choice(&S::storage, "storage", "Storage",
-                "sh1 = SH L1 (64 B), sh2 = SH L2 (144 B), octahedral = 6x6 irradiance map (576 B); plus 1568 B "
-                "of distance moments and 32 B of state per probe",
-                {"sh1", "sh2", "octahedral"}, U::Rebuild)
-        .integer(&S::rayBudget, "ray-budget", "Ray budget",
-                 "probe rays per frame, spent on the due probes most urgent first (visible, least updated, most "
-                 "changed); 0 = every due probe each frame",
-                 0, 1 << 26, U::Rebuild)
-        .integer(&S::sdfResolution, "sdf-resolution", "SDF resolution",
+        probes::addGridRows(t, "", probes::SpacingOf::Scene, {&S::spacing, &S::rays, &S::rayBudget, &S::storage});
+        t.integer(&S::sdfResolution, "sdf-resolution", "SDF resolution",
                  "voxels and distance-field cells per edge (a power of two)", 8, 256, U::Rebuild)
         .choice(&S::inside, "inside", "Probes inside geometry",
                 "relocate = pushed out along the distance field's gradient (at most 0.45 of a probe step), else off; off = "
@@ -50,7 +40,7 @@ probes::FieldSettings ProbeSettings::field() const {
 }
 
 void checkProbeSettings(const ProbeSettings& s) {
-    probes::checkFieldSettings(s.field(), "probes.ray-budget", "probes.rays");
+    probes::checkFieldSettings(s.field(), probes::gridKey("probes", "", "ray-budget"), probes::gridKey("probes", "", "rays"));
     const int r = s.sdfResolution;
     if (r < 8 || r > 256 || (r & (r - 1)) != 0)
         throw Error("probes.sdf-resolution: " + std::to_string(r) + " must be a power of two in [8, 256]");

@@ -84,7 +84,7 @@ SdfGiPass::SdfGiPass(SceneServices& services, const RenderSettings& settings)
     volume_ = &services.volume(sdfVolumeRequest(built_));
     sceneBounds_ = services.bounds();
     if (built_.probeGather()) {
-        probes::checkFieldSettings(built_.probeField(), "sdf.ray-budget", "sdf.probe-rays");
+        probes::checkFieldSettings(built_.probeField(), "sdf.probe-ray-budget", "sdf.probe-rays");
         field_ = std::make_unique<probes::ProbeField>(
             scope_, *volume_, probes::cascadeProbeGrids(*volume_, sceneBounds_, built_.probeSpacing), built_.probeField());
     }
@@ -335,6 +335,8 @@ GiMethod sdfMethod() {
     m.summary = "SDF GI: jump-flooded distance field, sphere-traced rays shaded from voxel radiance, temporal + "
                 "edge-aware filter";
     m.params = sdfParams().rows;
+    m.shaderTables.uniforms = tableRows(sdfgi::kSdfGiUniforms);
+    m.shaderTables.blocks = {sdfgi::SdfDebugBlock::desc(), sdfgi::SdfTraceBlock::desc(), sdfgi::SdfTemporalBlock::desc()};
     m.presets = {
         {"low", "32^3, one volume, plain JFA, probes every 1/3 with 64 rays, 32 steps",
          {{"sdf.resolution", {32.0}},
@@ -353,7 +355,7 @@ GiMethod sdfMethod() {
         {"realtime",
          "medium's probes within a budget of 8192 rays per frame (64 probes), gathered, mirror rays and occlusion every "
          "4x4 pixels and upsampled",
-         {{"sdf.ray-budget", {8192.0}}, {"sdf.trace-scale", choiceValue("4")}, {"sdf.filter-radius", {0.0}}}},
+         {{"sdf.probe-ray-budget", {8192.0}}, {"sdf.trace-scale", choiceValue("4")}, {"sdf.filter-radius", {0.0}}}},
     };
     m.programs = &SdfGiPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) { return SdfGiPass::estimateMemory(scene, s); };

@@ -1,5 +1,6 @@
 #include "gi/sdf/sdf_settings.h"
 
+#include "probes/probe_params.h"
 #include "volume/scene_volume.h"
 #include "volume/volume_cascades.h"
 
@@ -36,8 +37,9 @@ int maxSdfResolution() {
 const ParamTable<SdfGiSettings>& sdfParams() {
     using S = SdfGiSettings;
     using U = ParamUpdate;
-    static const ParamTable<S> table = ParamTable<S>()
-        .integer(&S::resolution, "resolution", "Resolution",
+    static const ParamTable<S> table = [] {
+        ParamTable<S> t;
+        t.integer(&S::resolution, "resolution", "Resolution",
                  "cells per edge of the voxel grid and the distance field (one more than the largest would exceed "
                  "the " + std::to_string(kVoxelBudgetBytes >> 30) + " GiB a voxel method may hold)",
                  8, maxSdfResolution(), U::Rebuild)
@@ -54,15 +56,9 @@ const ParamTable<SdfGiSettings>& sdfParams() {
         .choice(&S::diffuse, "diffuse", "Diffuse from",
                 "probes = SDFGI: a probe grid per cascade, traced through the field and gathered per pixel; rays = "
                 "cosine rays per traced pixel, accumulated over frames and filtered",
-                {"probes", "rays"}, U::Rebuild)
-        .real(&S::probeSpacing, "probe-spacing", "Probe spacing",
-              "probe cell as a fraction of each cascade's extent (sdf.diffuse=probes)", 0.02, 1.0, U::Rebuild)
-        .integer(&S::probeRays, "probe-rays", "Rays per probe", "rays each probe traces per update", 8, 512,
-                 U::Rebuild)
-        .integer(&S::rayBudget, "ray-budget", "Probe ray budget",
-                 "probe rays per frame, spent on the due probes most urgent first; 0 = every due probe each frame", 0,
-                 1 << 26, U::Rebuild)
-        .choice(&S::traceScale, "trace-scale", "Trace scale",
+                {"probes", "rays"}, U::Rebuild);
+        probes::addGridRows(t, "probe-", probes::SpacingOf::Cascade, {&S::probeSpacing, &S::probeRays, &S::rayBudget});
+        t.choice(&S::traceScale, "trace-scale", "Trace scale",
                 "full-resolution pixels per traced pixel per axis: the probe gather, mirror ray and occlusion (with "
                 "sdf.diffuse=rays the diffuse rays) run for one pixel per block and are filtered back up",
                 {"1", "2", "4"}, U::Rebuild)
@@ -92,6 +88,8 @@ const ParamTable<SdfGiSettings>& sdfParams() {
         .real(&S::slicePosition, "slice-position", "Slice position", "where along the axis, 0..1", 0.0, 1.0, U::Live)
         .integer(&S::sliceCascade, "slice-cascade", "Slice cascade", "which cascade sdf.slice shows (0 = the finest)", 0,
                  kMaxCascades - 1, U::Live);
+        return t;
+    }();
     return table;
 }
 

@@ -1,8 +1,8 @@
 // SDF GI's parameters: one row each in sdfParams() (names that scripts and other checks use:
-// sdf.resolution, sdf.jfa, sdf.diffuse, sdf.rays, sdf.ray-budget), defaults in the initialisers below.
+// sdf.resolution, sdf.jfa, sdf.diffuse, sdf.rays, sdf.probe-ray-budget), defaults in the initialisers below.
 #pragma once
 
-#include "gi/params.h"
+#include "param_table.h"
 #include "probes/probe_field.h"
 #include "sdf/distance_field.h"
 
@@ -17,7 +17,7 @@ struct SdfGiSettings {
     int diffuse = 0;            // sdf.diffuse: probes (SDFGI's gather) | rays (per pixel) (rebuild)
     float probeSpacing = 0.25f; // sdf.probe-spacing: probe cell as a fraction of each cascade's extent (rebuild)
     int probeRays = 128;        // sdf.probe-rays: rays per probe per update (rebuild)
-    int rayBudget = 0;          // sdf.ray-budget: probe rays per frame, 0 = every due probe (rebuild)
+    int rayBudget = 0;          // sdf.probe-ray-budget: probe rays per frame, 0 = every due probe (rebuild)
     int traceScale = 1;         // sdf.trace-scale: 1 | 2 | 4 full-resolution pixels per traced pixel per axis, the
                                 // choice's index (1: half resolution) (rebuild)
     int rays = 4;               // sdf.rays: cosine-distributed diffuse rays per traced pixel per frame (live)

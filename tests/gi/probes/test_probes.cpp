@@ -79,7 +79,7 @@ TEST(ProbeMath, GridIsFittedToTheBoundsAndDegenerateGridsSaySo) {
         fitProbeGrid(box, 0.001f);
         FAIL() << "a grid of 8e9 probes was accepted";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("probes.spacing"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("probe spacing"), std::string::npos) << e.what();
     }
     EXPECT_THROW(fitProbeGrid(box, 0.0f), Error);
     EXPECT_THROW(fitProbeGrid(box, std::nanf("")), Error);

@@ -302,7 +302,7 @@ TEST(SdfGi, CascadesFollowTheCameraAndRebuildOnlyWhatMoved) {
 }
 
 // SDFGI: a probe grid per cascade. The probes move with their cascade (a cascade that moved has a
-// moved grid, the others keep theirs), every frame's probe rays stay within sdf.ray-budget (counted
+// moved grid, the others keep theirs), every frame's probe rays stay within sdf.probe-ray-budget (counted
 // on the GPU), and the gathered light is there.
 TEST(SdfGi, ProbesFollowTheirCascadesWithinTheRayBudget) {
     context();
