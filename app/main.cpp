@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <new>
 
-#include "commands.h"
+#include "cli/commands.h"
 #include "scene/atomic_file.h"
 #include "scene/scene.h"
 #include "scene/scene_lighting.h"

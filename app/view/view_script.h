@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "view_state.h"
+#include "cli/view_state.h"
 
 namespace gis::view {
 

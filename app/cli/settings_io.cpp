@@ -1,4 +1,4 @@
-#include "settings_io.h"
+#include "cli/settings_io.h"
 
 #include <cmath>
 
@@ -7,7 +7,7 @@
 #include "image.h"
 #include "scene/atomic_file.h"
 #include "scene/user_file.h"
-#include "user_json.h"
+#include "cli/user_json.h"
 
 namespace gis::view {
 

@@ -1,4 +1,4 @@
-#include "commands.h"
+#include "cli/commands.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -15,16 +15,16 @@
 #include <cerrno>
 #include <cstring>
 
-#include "bench_flythrough.h"
+#include "cli/flythrough.h"
 #include "bvh.h"
 #include "camera_path.h"
-#include "progress.h"
+#include "cli/progress.h"
 #include "gi/method.h"
 #include "gl/shader.h"
 #include "image.h"
 #include "scene/atomic_file.h"
-#include "settings_io.h"
-#include "view_state.h"
+#include "cli/settings_io.h"
+#include "cli/view_state.h"
 
 namespace gis {
 

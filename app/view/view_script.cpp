@@ -1,12 +1,12 @@
-#include "view_script.h"
+#include "view/view_script.h"
 
 #include <cmath>
 #include <sstream>
 
 #include "gi/method.h"
 #include "scene/user_file.h"
-#include "user_json.h"
-#include "view_session.h"
+#include "cli/user_json.h"
+#include "view/view_session.h"
 
 namespace gis::view {
 

@@ -16,12 +16,12 @@
 #include <utility>
 #include <vector>
 
-#include "commands.h"
+#include "cli/commands.h"
 #include "image.h"
-#include "panel.h"
-#include "settings_io.h"
-#include "view_script.h"
-#include "view_session.h"
+#include "view/panel.h"
+#include "cli/settings_io.h"
+#include "view/view_script.h"
+#include "view/view_session.h"
 
 namespace gis {
 

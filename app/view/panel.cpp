@@ -1,4 +1,4 @@
-#include "panel.h"
+#include "view/panel.h"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "commands.h"
+#include "cli/commands.h"
 #include "image.h"
 #include "metrics.h"
 #include "scene/atomic_file.h"

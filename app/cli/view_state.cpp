@@ -1,4 +1,4 @@
-#include "view_state.h"
+#include "cli/view_state.h"
 
 #include <algorithm>
 #include <cmath>
