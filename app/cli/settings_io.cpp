@@ -7,6 +7,7 @@
 #include "image.h"
 #include "scene/atomic_file.h"
 #include "scene/user_file.h"
+#include "cli/panel_action.h"
 #include "cli/user_json.h"
 
 namespace gis::view {

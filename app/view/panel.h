@@ -6,7 +6,7 @@
 #include <string>
 
 #include "view/view_session.h"
-#include "cli/view_state.h"
+#include "cli/panel_action.h"
 
 namespace gis::view {
 

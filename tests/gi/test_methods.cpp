@@ -18,6 +18,7 @@
 #include "gi/method.h"
 #include "gl/shader.h"
 #include "render_test_util.h"
+#include "cli/panel_action.h"
 #include "cli/settings_io.h"
 #include "view/view_session.h"
 #include "cli/view_state.h"

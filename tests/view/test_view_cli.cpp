@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "cli_util.h"
+#include "cli/panel_action.h"
 #include "cli/settings_io.h"
 #include "view/view_session.h"
 #include "view_test_util.h"
