@@ -64,10 +64,12 @@ void addDiffOptions(CLI::App& cmd, DiffOptions& o) {
     cmd.add_flag("--json", o.json, "Print JSON instead of a table");
 }
 
-int runDiff(const DiffOptions& o) {
-    // Everything that can be checked before reading pixels is checked first, so a bad flag never
-    // costs a comparison and a failure never leaves a heatmap behind (writePng is atomic too).
-    const ErrorMetric metric = parseErrorMetric(o.metric);
+namespace {
+
+// Everything that can be checked before reading pixels is checked first, so a bad flag never
+// costs a comparison and a failure never leaves a heatmap behind (writePng is atomic too).
+void checkDiffOptions(const DiffOptions& o) {
+    parseErrorMetric(o.metric);
     if (o.tonemap != "auto" && o.tonemap != "aces" && o.tonemap != "linear")
         throw Error("--tonemap '" + o.tonemap + "' must be aces, linear or auto");
     if (!std::isfinite(o.exposure) || std::abs(o.exposure) > 64.0f) throw Error("--exposure must be in [-64, 64] EV");
@@ -93,101 +95,112 @@ int runDiff(const DiffOptions& o) {
         if (!o.heatmap.empty() && !input.empty() && sameFile(o.heatmap, input))
             throw Error("--heatmap '" + o.heatmap + "' is the " + what + " '" + input +
                         "': it would be overwritten; choose another path");
+}
 
-    ImageF test = loadLinear(o.test);
-    ImageF reference = loadLinear(o.reference);
-    MetricOptions options;
+// The display transform the metrics compare under. A tone-mapped PNG against linear radiance:
+// the errors would measure the tone curve, not the render (FLIP 0.49 where the two EXRs give
+// 0.24). The EXR takes the display transform a PNG of it gets from `render` (aces unless
+// --tonemap says otherwise), 8-bit, and the pair is compared as two PNGs.
+struct DiffDisplay {
+    std::string tonemap;   // its name
+    float exposureEV = 0.0f;
+};
+
+DiffDisplay diffDisplay(const DiffOptions& o, ImageF& test, ImageF& reference) {
     const bool testPng = hasExtension(o.test, ".png"), referencePng = hasExtension(o.reference, ".png");
-    std::string tonemapName = o.tonemap == "auto" ? (testPng || referencePng ? "linear" : "aces") : o.tonemap;
-    float exposure = o.exposure;
-    if (testPng != referencePng) {
-        // A tone-mapped PNG against linear radiance: the errors would measure the tone curve, not
-        // the render (FLIP 0.49 where the two EXRs give 0.24). The EXR takes the display transform
-        // a PNG of it gets from `render` (aces unless --tonemap says otherwise), 8-bit, and the pair
-        // is compared as two PNGs.
-        DisplaySettings toPng;
-        const std::string curve = o.tonemap == "auto" ? "aces" : o.tonemap;
-        toPng.tonemap = parseTonemapper(curve);
-        toPng.exposureEV = o.exposure;
-        ImageF& linear = testPng ? reference : test;
-        linear = decodeSrgbImage(toLdrImage(linear, toPng));
-        std::fprintf(stderr,
-                     "gisandbox: warning: %s is a tone-mapped PNG and %s a linear EXR: the EXR is tone-mapped "
-                     "(%s, %s EV) and quantized as a PNG before comparing; compare two EXRs for radiance errors\n",
-                     (testPng ? o.test : o.reference).c_str(), (testPng ? o.reference : o.test).c_str(),
-                     curve.c_str(), formatMetric(o.exposure, 4).c_str());
-        tonemapName = "linear";
-        exposure = 0.0f;
-    }
-    options.display.tonemap = parseTonemapper(tonemapName);
-    options.display.exposureEV = exposure;
-    options.pixelsPerDegree = o.ppd;
-    if (!o.mask.empty()) {
-        const ImageU8 mask = readPng(o.mask);
-        if (mask.width != reference.width || mask.height != reference.height)
-            throw Error("mask '" + o.mask + "' is " + std::to_string(mask.width) + "x" + std::to_string(mask.height) +
-                        " but the reference is " + std::to_string(reference.width) + "x" +
-                        std::to_string(reference.height));
-        options.ignore.resize(size_t(mask.width) * mask.height);
-        for (size_t p = 0; p < options.ignore.size(); ++p) options.ignore[p] = mask.rgba[p * 4] >= 128 ? 1 : 0;
-    }
-    try {
-        validateImagePair(test, reference, options.ignore);
-    } catch (const Error& e) {
-        throw Error(std::string(e.what()) + " (test '" + o.test + "', reference '" + o.reference + "')");
-    }
+    if (testPng == referencePng) return {o.tonemap == "auto" ? (testPng ? "linear" : "aces") : o.tonemap, o.exposure};
+    DisplaySettings toPng;
+    const std::string curve = o.tonemap == "auto" ? "aces" : o.tonemap;
+    toPng.tonemap = parseTonemapper(curve);
+    toPng.exposureEV = o.exposure;
+    ImageF& linear = testPng ? reference : test;
+    linear = decodeSrgbImage(toLdrImage(linear, toPng));
+    std::fprintf(stderr,
+                 "gisandbox: warning: %s is a tone-mapped PNG and %s a linear EXR: the EXR is tone-mapped "
+                 "(%s, %s EV) and quantized as a PNG before comparing; compare two EXRs for radiance errors\n",
+                 (testPng ? o.test : o.reference).c_str(), (testPng ? o.reference : o.test).c_str(),
+                 curve.c_str(), formatMetric(o.exposure, 4).c_str());
+    return {"linear", 0.0f};
+}
 
-    ComparisonMaps maps;
-    const ImageMetrics m = compareImages(test, reference, options, &maps);
+// --mask's pixels to leave out (red >= 128), one flag per pixel of the reference.
+std::vector<uint8_t> readMask(const std::string& path, const ImageF& reference) {
+    const ImageU8 mask = readPng(path);
+    if (mask.width != reference.width || mask.height != reference.height)
+        throw Error("mask '" + path + "' is " + std::to_string(mask.width) + "x" + std::to_string(mask.height) +
+                    " but the reference is " + std::to_string(reference.width) + "x" +
+                    std::to_string(reference.height));
+    std::vector<uint8_t> ignore(size_t(mask.width) * mask.height);
+    for (size_t p = 0; p < ignore.size(); ++p) ignore[p] = mask.rgba[p * 4] >= 128 ? 1 : 0;
+    return ignore;
+}
 
+// Writes --heatmap; returns the error at the top of its colour ramp.
+double writeDiffHeatmap(const DiffOptions& o, ErrorMetric metric, ComparisonMaps& maps, const ImageF& test,
+                        const ImageF& reference, const MetricOptions& options) {
+    const ErrorMap map = metric == ErrorMetric::Flip   ? std::move(maps.flip)
+                         : metric == ErrorMetric::Ssim ? std::move(maps.ssimError)
+                                                       : errorMap(test, reference, metric, options);
     double heatmapMax = o.heatmapMax;
-    if (!o.heatmap.empty()) {
-        const ErrorMap map = metric == ErrorMetric::Flip   ? std::move(maps.flip)
-                             : metric == ErrorMetric::Ssim ? std::move(maps.ssimError)
-                                                           : errorMap(test, reference, metric, options);
-        if (heatmapMax == 0.0) {
-            if (metric == ErrorMetric::Flip || metric == ErrorMetric::Ssim) {
-                heatmapMax = 1.0;
-            } else {
-                for (size_t p = 0; p < map.values.size(); ++p)
-                    if (options.ignore.empty() || !options.ignore[p]) heatmapMax = std::max(heatmapMax, double(map.values[p]));
-                if (!(heatmapMax > 0.0)) heatmapMax = 1.0;  // no error at all: any scale draws it black
-            }
+    if (heatmapMax == 0.0) {
+        if (metric == ErrorMetric::Flip || metric == ErrorMetric::Ssim) {
+            heatmapMax = 1.0;
+        } else {
+            for (size_t p = 0; p < map.values.size(); ++p)
+                if (options.ignore.empty() || !options.ignore[p]) heatmapMax = std::max(heatmapMax, double(map.values[p]));
+            if (!(heatmapMax > 0.0)) heatmapMax = 1.0;  // no error at all: any scale draws it black
         }
-        writeHeatmap(o.heatmap, map, float(heatmapMax), o.colorBar, options.ignore);
     }
+    writeHeatmap(o.heatmap, map, float(heatmapMax), o.colorBar, options.ignore);
+    return heatmapMax;
+}
 
-    if (o.json) {
-        // Infinite PSNR (identical images) is written as null: JSON has no infinity.
-        nlohmann::ordered_json j;
-        j["test"] = o.test;
-        j["reference"] = o.reference;
-        j["width"] = reference.width;
-        j["height"] = reference.height;
-        j["pixels"] = m.pixels;
-        j["tonemap"] = tonemapName;
-        j["exposure_ev"] = exposure;
-        j["rmse"] = m.rmse;
-        j["relmse"] = m.relMse;
-        j["relmse_epsilon"] = options.relMseEpsilon;
-        j["psnr_linear_db"] = std::isfinite(m.psnrLinear) ? nlohmann::ordered_json(m.psnrLinear) : nullptr;
-        j["psnr_linear_peak"] = options.psnrPeak;
-        j["psnr_srgb_db"] = std::isfinite(m.psnrSrgb) ? nlohmann::ordered_json(m.psnrSrgb) : nullptr;
-        j["ssim"] = m.ssim;
-        j["flip"] = m.flip;
-        j["pixels_per_degree"] = o.ppd;
-        if (!o.heatmap.empty())
-            j["heatmap"] = {{"path", o.heatmap}, {"metric", errorMetricName(metric)}, {"max", heatmapMax}};
-        std::printf("%s\n", j.dump(2).c_str());
-        return 0;
-    }
-    std::printf("test        %s (%dx%d)\n", o.test.c_str(), test.width, test.height);
-    std::printf("reference   %s (%dx%d)\n", o.reference.c_str(), reference.width, reference.height);
+// What a comparison found, as the table and the JSON report it.
+struct DiffResult {
+    const ImageF& test;
+    const ImageF& reference;
+    const MetricOptions& options;
+    const DiffDisplay& display;
+    ImageMetrics m;
+    ErrorMetric metric;
+    double heatmapMax;
+};
+
+void printDiffJson(const DiffOptions& o, const DiffResult& r) {
+    const ImageMetrics& m = r.m;
+    // Infinite PSNR (identical images) is written as null: JSON has no infinity.
+    nlohmann::ordered_json j;
+    j["test"] = o.test;
+    j["reference"] = o.reference;
+    j["width"] = r.reference.width;
+    j["height"] = r.reference.height;
+    j["pixels"] = m.pixels;
+    j["tonemap"] = r.display.tonemap;
+    j["exposure_ev"] = r.display.exposureEV;
+    j["rmse"] = m.rmse;
+    j["relmse"] = m.relMse;
+    j["relmse_epsilon"] = r.options.relMseEpsilon;
+    j["psnr_linear_db"] = std::isfinite(m.psnrLinear) ? nlohmann::ordered_json(m.psnrLinear) : nullptr;
+    j["psnr_linear_peak"] = r.options.psnrPeak;
+    j["psnr_srgb_db"] = std::isfinite(m.psnrSrgb) ? nlohmann::ordered_json(m.psnrSrgb) : nullptr;
+    j["ssim"] = m.ssim;
+    j["flip"] = m.flip;
+    j["pixels_per_degree"] = o.ppd;
+    if (!o.heatmap.empty())
+        j["heatmap"] = {{"path", o.heatmap}, {"metric", errorMetricName(r.metric)}, {"max", r.heatmapMax}};
+    std::printf("%s\n", j.dump(2).c_str());
+}
+
+void printDiffTable(const DiffOptions& o, const DiffResult& r) {
+    const ImageMetrics& m = r.m;
+    const MetricOptions& options = r.options;
+    std::printf("test        %s (%dx%d)\n", o.test.c_str(), r.test.width, r.test.height);
+    std::printf("reference   %s (%dx%d)\n", o.reference.c_str(), r.reference.width, r.reference.height);
     std::printf("pixels      %lld compared", static_cast<long long>(m.pixels));
     if (!options.ignore.empty())
         std::printf(" (%lld masked)", static_cast<long long>(int64_t(options.ignore.size()) - m.pixels));
-    std::printf("\ndisplay     %s, exposure %s EV (PSNR sRGB, SSIM, FLIP)\n\n", tonemapName.c_str(),
-                formatMetric(exposure, 4).c_str());
+    std::printf("\ndisplay     %s, exposure %s EV (PSNR sRGB, SSIM, FLIP)\n\n", r.display.tonemap.c_str(),
+                formatMetric(r.display.exposureEV, 4).c_str());
     std::printf("%-12s %12s\n", "metric", "value");
     std::printf("%-12s %12s\n", "RMSE", formatMetric(m.rmse).c_str());
     std::printf("%-12s %12s   eps %s\n", "relMSE", formatMetric(m.relMse).c_str(),
@@ -198,8 +211,35 @@ int runDiff(const DiffOptions& o) {
     std::printf("%-12s %12s\n", "SSIM", formatMetric(m.ssim).c_str());
     std::printf("%-12s %12s   %s pixels/degree\n", "FLIP", formatMetric(m.flip).c_str(), formatMetric(o.ppd).c_str());
     if (!o.heatmap.empty())
-        std::printf("\nwrote %s (%s, 0 .. %s)\n", o.heatmap.c_str(), errorMetricName(metric),
-                    formatMetric(heatmapMax, 4).c_str());
+        std::printf("\nwrote %s (%s, 0 .. %s)\n", o.heatmap.c_str(), errorMetricName(r.metric),
+                    formatMetric(r.heatmapMax, 4).c_str());
+}
+
+}  // namespace
+
+int runDiff(const DiffOptions& o) {
+    checkDiffOptions(o);
+    const ErrorMetric metric = parseErrorMetric(o.metric);
+    ImageF test = loadLinear(o.test);
+    ImageF reference = loadLinear(o.reference);
+    const DiffDisplay display = diffDisplay(o, test, reference);
+    MetricOptions options;
+    options.display.tonemap = parseTonemapper(display.tonemap);
+    options.display.exposureEV = display.exposureEV;
+    options.pixelsPerDegree = o.ppd;
+    if (!o.mask.empty()) options.ignore = readMask(o.mask, reference);
+    try {
+        validateImagePair(test, reference, options.ignore);
+    } catch (const Error& e) {
+        throw Error(std::string(e.what()) + " (test '" + o.test + "', reference '" + o.reference + "')");
+    }
+    ComparisonMaps maps;
+    const ImageMetrics m = compareImages(test, reference, options, &maps);
+    const double heatmapMax =
+        o.heatmap.empty() ? o.heatmapMax : writeDiffHeatmap(o, metric, maps, test, reference, options);
+    const DiffResult result{test, reference, options, display, m, metric, heatmapMax};
+    if (o.json) printDiffJson(o, result);
+    else printDiffTable(o, result);
     return 0;
 }
 

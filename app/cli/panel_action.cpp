@@ -566,115 +566,66 @@ PanelAction parsePanelAction(const std::vector<std::string>& w) {
 
 // --- Action constructors.
 
-PanelAction PanelAction::method(int pane, std::string gi) {
+PanelAction PanelAction::of(Kind kind) {
     PanelAction a;
-    a.kind = SetMethod;
-    a.index = pane;
-    a.text = std::move(gi);
+    a.kind = kind;
     return a;
 }
-PanelAction PanelAction::preset(int pane, std::string name) {
-    PanelAction a;
-    a.kind = SetPreset;
-    a.index = pane;
-    a.text = std::move(name);
+PanelAction PanelAction::withIndex(Kind kind, int index) {
+    PanelAction a = of(kind);
+    a.index = index;
     return a;
 }
-PanelAction PanelAction::diffuse(int pane, std::string name) {
-    PanelAction a;
-    a.kind = SetDiffuse;
-    a.index = pane;
-    a.text = std::move(name);
+PanelAction PanelAction::withText(Kind kind, std::string text) {
+    PanelAction a = of(kind);
+    a.text = std::move(text);
     return a;
 }
-PanelAction PanelAction::specular(int pane, std::string name) {
-    PanelAction a;
-    a.kind = SetSpecular;
-    a.index = pane;
-    a.text = std::move(name);
+PanelAction PanelAction::withValue(Kind kind, float value) {
+    PanelAction a = of(kind);
+    a.value = value;
     return a;
 }
-PanelAction PanelAction::display(int pane, PaneDisplay d) {
-    PanelAction a;
-    a.kind = SetDisplay;
-    a.index = pane;
-    a.text = paneDisplayName(d);
+PanelAction PanelAction::withFlag(Kind kind, bool flag) {
+    PanelAction a = of(kind);
+    a.flag = flag;
     return a;
 }
-PanelAction PanelAction::display(int pane, std::string name) {
-    PanelAction a;
-    a.kind = SetDisplay;
-    a.index = pane;
-    a.text = std::move(name);
+PanelAction PanelAction::withVec(Kind kind, glm::vec3 vec) {
+    PanelAction a = of(kind);
+    a.vec = vec;
     return a;
 }
+PanelAction PanelAction::paneText(Kind kind, int pane, std::string text) {
+    PanelAction a = withText(kind, std::move(text));
+    a.index = pane;
+    return a;
+}
+
+PanelAction PanelAction::method(int pane, std::string gi) { return paneText(SetMethod, pane, std::move(gi)); }
+PanelAction PanelAction::preset(int pane, std::string name) { return paneText(SetPreset, pane, std::move(name)); }
+PanelAction PanelAction::diffuse(int pane, std::string name) { return paneText(SetDiffuse, pane, std::move(name)); }
+PanelAction PanelAction::specular(int pane, std::string name) { return paneText(SetSpecular, pane, std::move(name)); }
+PanelAction PanelAction::display(int pane, PaneDisplay d) { return paneText(SetDisplay, pane, paneDisplayName(d)); }
+PanelAction PanelAction::display(int pane, std::string name) { return paneText(SetDisplay, pane, std::move(name)); }
 PanelAction PanelAction::param(int pane, std::string fullKey, std::string value) {
-    PanelAction a;
-    a.kind = SetParam;
-    a.index = pane;
-    a.text = std::move(fullKey);
+    PanelAction a = paneText(SetParam, pane, std::move(fullKey));
     a.valueText = std::move(value);
     return a;
 }
 PanelAction PanelAction::directOnly(int pane, bool on) {
-    PanelAction a;
-    a.kind = SetDirectOnly;
+    PanelAction a = withFlag(SetDirectOnly, on);
     a.index = pane;
-    a.flag = on;
     return a;
 }
-PanelAction PanelAction::viewMode(ViewMode m) {
-    PanelAction a;
-    a.kind = SetMode;
-    a.text = viewModeName(m);
-    return a;
-}
-PanelAction PanelAction::dividerAt(float fraction) {
-    PanelAction a;
-    a.kind = SetDivider;
-    a.value = fraction;
-    return a;
-}
-PanelAction PanelAction::exposure(float ev) {
-    PanelAction a;
-    a.kind = SetExposure;
-    a.value = ev;
-    return a;
-}
-PanelAction PanelAction::tonemapper(std::string name) {
-    PanelAction a;
-    a.kind = SetTonemap;
-    a.text = std::move(name);
-    return a;
-}
-PanelAction PanelAction::orbit(float dyaw, float dpitch) {
-    PanelAction a;
-    a.kind = OrbitCamera;
-    a.vec = glm::vec3(dyaw, dpitch, 0.0f);
-    return a;
-}
-PanelAction PanelAction::pan(float dx, float dy) {
-    PanelAction a;
-    a.kind = PanCamera;
-    a.vec = glm::vec3(dx, dy, 0.0f);
-    return a;
-}
-PanelAction PanelAction::zoom(float factor) {
-    PanelAction a;
-    a.kind = ZoomCamera;
-    a.value = factor;
-    return a;
-}
-PanelAction PanelAction::move(glm::vec3 local) {
-    PanelAction a;
-    a.kind = MoveCamera;
-    a.vec = local;
-    return a;
-}
-PanelAction PanelAction::look(float dyaw, float dpitch) {
-    PanelAction a;
-    a.kind = LookCamera;
-    a.vec = glm::vec3(dyaw, dpitch, 0.0f);
-    return a;
-}
+PanelAction PanelAction::viewMode(ViewMode m) { return withText(SetMode, viewModeName(m)); }
+PanelAction PanelAction::dividerAt(float fraction) { return withValue(SetDivider, fraction); }
+PanelAction PanelAction::exposure(float ev) { return withValue(SetExposure, ev); }
+PanelAction PanelAction::tonemapper(std::string name) { return withText(SetTonemap, std::move(name)); }
+PanelAction PanelAction::orbit(float dyaw, float dpitch) { return withVec(OrbitCamera, glm::vec3(dyaw, dpitch, 0.0f)); }
+PanelAction PanelAction::pan(float dx, float dy) { return withVec(PanCamera, glm::vec3(dx, dy, 0.0f)); }
+PanelAction PanelAction::zoom(float factor) { return withValue(ZoomCamera, factor); }
+PanelAction PanelAction::move(glm::vec3 local) { return withVec(MoveCamera, local); }
+PanelAction PanelAction::look(float dyaw, float dpitch) { return withVec(LookCamera, glm::vec3(dyaw, dpitch, 0.0f)); }
+
 }  // namespace gis::view

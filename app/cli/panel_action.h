@@ -74,6 +74,15 @@ struct PanelAction {
     glm::vec3 vec{0.0f};
     glm::vec4 vec4{0.0f};
 
+    // An action of `kind` with the one field it reads set.
+    static PanelAction of(Kind kind);
+    static PanelAction withIndex(Kind kind, int index);
+    static PanelAction withText(Kind kind, std::string text);
+    static PanelAction withValue(Kind kind, float value);
+    static PanelAction withFlag(Kind kind, bool flag);
+    static PanelAction withVec(Kind kind, glm::vec3 vec);
+    static PanelAction paneText(Kind kind, int pane, std::string text);
+
     static PanelAction method(int pane, std::string gi);
     static PanelAction preset(int pane, std::string name);
     static PanelAction diffuse(int pane, std::string name);
