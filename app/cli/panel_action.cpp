@@ -471,6 +471,7 @@ using Applier = void (*)(ViewState&, const PanelAction&);
 
 struct ActionRow {
     PanelAction::Kind kind;
+    PanelAction::Edits edits;
     const char* words;
     const char* usage;
     Reader read;
@@ -478,7 +479,8 @@ struct ActionRow {
 };
 
 const ActionRow kActions[] = {
-#define GIS_PANEL_ACTION_ROW(kind, words, usage, read, apply) {PanelAction::kind, words, usage, read, apply},
+#define GIS_PANEL_ACTION_ROW(kind, edits, words, usage, read, apply) \
+    {PanelAction::kind, PanelAction::Edits::edits, words, usage, read, apply},
     GIS_PANEL_ACTIONS(GIS_PANEL_ACTION_ROW)
 #undef GIS_PANEL_ACTION_ROW
 };
@@ -534,6 +536,8 @@ ParamValue parsePaneParam(const PanelAction& a) {
     checkParamValue(method, d, v);
     return v;
 }
+
+PanelAction::Edits actionEdits(PanelAction::Kind kind) { return kActions[kind].edits; }
 
 void applyPanelAction(ViewState& state, const PanelAction& a) {
     ViewState s = state;  // all or nothing: a throw leaves `state` as it was

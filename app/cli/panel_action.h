@@ -13,58 +13,60 @@
 namespace gis::view {
 
 // Every action, declared once; this table makes the enum, the script parser and the applier.
-// Columns: the kind; the words that name it on a script line ('#': any word, the light's index;
-// 'a|b': either word); its usage, the help a wrong line prints (docs/viewer.md lists them too); how
-// its arguments are read (panel_action.cpp); how it changes the state. A line takes the first row
-// whose words it starts with.
-#define GIS_PANEL_ACTIONS(X)                                                                                    \
-    X(SetMethod, "method", "method PANE NAME (gisandbox methods)", readPaneText, applyMethod)                    \
-    X(SetPreset, "preset", "preset PANE low|medium|high", readPaneText, applyPreset)                             \
-    X(SetDiffuse, "diffuse", "diffuse PANE NAME", readPaneText, applyDiffuse)                                    \
-    X(SetSpecular, "specular", "specular PANE NAME", readPaneText, applySpecular)                                \
-    X(SetDisplay, "display", "display PANE lit|heatmap|depth|normal|basecolor|material|emissive|ao|VIEW",       \
-      readPaneText, applyDisplay)                                                                                \
-    X(SetDirectOnly, "direct-only", "direct-only PANE on|off", readPaneFlag, applyDirectOnly)                    \
-    X(SetParam, "set", "set PANE METHOD.KEY VALUE", readParam, applyParam)                                       \
-    X(ResetParams, "reset-params", "reset-params PANE", readIndex, applyResetParams)                              \
-    X(SetMode, "mode", "mode single|split|grid", readText, applyMode)                                            \
-    X(SetDivider, "divider", "divider FRACTION", readNumber, applyDivider)                                       \
-    X(SetExposure, "exposure", "exposure EV", readNumber, applyExposure)                                         \
-    X(SetTonemap, "tonemap", "tonemap aces|linear", readText, applyTonemap)                                      \
-    X(SetAmbient, "ambient", "ambient V | ambient R G B", readAmbient, applyAmbient)                             \
-    X(SetShadows, "shadows", "shadows on|off", readFlag, applyShadows)                                           \
-    X(SetBackground, "background", "background R G B | background off", readBackground, applyBackground)        \
-    X(SetEnvironment, "environment", "environment FILE.hdr | environment off", readEnvironment, applyEnvironment) \
-    X(SetMaxBounces, "max-bounces", "max-bounces N", readNumber, applyMaxBounces)                                \
-    X(SetRenderScale, "render-scale", "render-scale S", readNumber, applyRenderScale)                            \
-    X(SetHeatmapMetric, "metric", "metric flip|rmse|relmse|ssim", readText, applyHeatmapMetric)                  \
-    X(SetReferenceSpp, "reference-spp", "reference-spp N", readNumber, applyReferenceSpp)                        \
-    X(SetCameraMode, "camera mode", "camera mode orbit|fly", readText, applyCameraMode)                          \
-    X(OrbitCamera, "camera orbit", "camera orbit DYAW DPITCH (degrees)", readTurn, applyOrbit)                   \
-    X(PanCamera, "camera pan", "camera pan DX DY (fractions of the orbit distance)", readPair, applyPan)         \
-    X(ZoomCamera, "camera zoom", "camera zoom FACTOR", readNumber, applyZoom)                                    \
-    X(MoveCamera, "camera move", "camera move RIGHT UP FORWARD (scene units)", readVec3, applyMove)              \
-    X(LookCamera, "camera look", "camera look DYAW DPITCH (degrees)", readTurn, applyLook)                       \
-    X(ResetCamera, "camera reset", "camera reset", readNothing, applyResetCamera)                                \
-    X(AddLight, "light add", "light add point|spot|directional", readText, applyAddLight)                        \
-    X(RemoveLight, "light remove", "light remove I", readIndex, applyRemoveLight)                                 \
-    X(SetLightEnabled, "light # on|off", "light I on|off", readLightSwitch, applyLightEnabled)                   \
-    X(SetLightIntensity, "light # intensity", "light I intensity V", readLightNumber, applyLightIntensity)        \
-    X(SetLightColor, "light # color", "light I color R G B", readLightVec3, applyLightColor)                      \
-    X(SetLightPosition, "light # position", "light I position X Y Z", readLightVec3, applyLightPosition)         \
-    X(SetLightDirection, "light # direction", "light I direction X Y Z", readLightVec3, applyLightDirection)     \
-    X(ResetLights, "lights reset", "lights reset", readNothing, applyResetLights)                                \
-    X(SetPlotPane, "plot pane", "plot pane P", readIndex, applyPlotPane)                                          \
-    X(SetPlotMaterial, "plot material", "plot material R G B METALLIC ROUGHNESS SPECULAR", readPlotMaterial,     \
-      applyPlotMaterial)                                                                                         \
-    X(SetPlotViewAngle, "plot view-angle", "plot view-angle DEGREES", readDegrees, applyPlotViewAngle)           \
-    X(SetPlotLog, "plot log", "plot log on|off", readFlag, applyPlotLog)                                         \
-    X(SwapSides, "swap", "swap (panes 0 and 1 trade places: the split's A/B)", readNothing, applySwapSides)
+// Columns: the kind; what it edits (the pane or the light `index` names, else the view); the
+// words that name it on a script line ('#': any word, the light's index; 'a|b': either word);
+// its usage, the help a wrong line prints (docs/viewer.md lists them too); how its arguments
+// are read (panel_action.cpp); how it changes the state. A line takes the first row whose
+// words it starts with.
+#define GIS_PANEL_ACTIONS(X)                                                                                            \
+    X(SetMethod, Pane, "method", "method PANE NAME (gisandbox methods)", readPaneText, applyMethod)                     \
+    X(SetPreset, Pane, "preset", "preset PANE low|medium|high", readPaneText, applyPreset)                              \
+    X(SetDiffuse, Pane, "diffuse", "diffuse PANE NAME", readPaneText, applyDiffuse)                                     \
+    X(SetSpecular, Pane, "specular", "specular PANE NAME", readPaneText, applySpecular)                                 \
+    X(SetDisplay, Pane, "display", "display PANE lit|heatmap|depth|normal|basecolor|material|emissive|ao|VIEW",         \
+      readPaneText, applyDisplay)                                                                                       \
+    X(SetDirectOnly, Pane, "direct-only", "direct-only PANE on|off", readPaneFlag, applyDirectOnly)                     \
+    X(SetParam, Pane, "set", "set PANE METHOD.KEY VALUE", readParam, applyParam)                                        \
+    X(ResetParams, Pane, "reset-params", "reset-params PANE", readIndex, applyResetParams)                              \
+    X(SetMode, View, "mode", "mode single|split|grid", readText, applyMode)                                             \
+    X(SetDivider, View, "divider", "divider FRACTION", readNumber, applyDivider)                                        \
+    X(SetExposure, View, "exposure", "exposure EV", readNumber, applyExposure)                                          \
+    X(SetTonemap, View, "tonemap", "tonemap aces|linear", readText, applyTonemap)                                       \
+    X(SetAmbient, View, "ambient", "ambient V | ambient R G B", readAmbient, applyAmbient)                              \
+    X(SetShadows, View, "shadows", "shadows on|off", readFlag, applyShadows)                                            \
+    X(SetBackground, View, "background", "background R G B | background off", readBackground, applyBackground)          \
+    X(SetEnvironment, View, "environment", "environment FILE.hdr | environment off", readEnvironment, applyEnvironment) \
+    X(SetMaxBounces, View, "max-bounces", "max-bounces N", readNumber, applyMaxBounces)                                 \
+    X(SetRenderScale, View, "render-scale", "render-scale S", readNumber, applyRenderScale)                             \
+    X(SetHeatmapMetric, View, "metric", "metric flip|rmse|relmse|ssim", readText, applyHeatmapMetric)                   \
+    X(SetReferenceSpp, View, "reference-spp", "reference-spp N", readNumber, applyReferenceSpp)                         \
+    X(SetCameraMode, View, "camera mode", "camera mode orbit|fly", readText, applyCameraMode)                           \
+    X(OrbitCamera, View, "camera orbit", "camera orbit DYAW DPITCH (degrees)", readTurn, applyOrbit)                    \
+    X(PanCamera, View, "camera pan", "camera pan DX DY (fractions of the orbit distance)", readPair, applyPan)          \
+    X(ZoomCamera, View, "camera zoom", "camera zoom FACTOR", readNumber, applyZoom)                                     \
+    X(MoveCamera, View, "camera move", "camera move RIGHT UP FORWARD (scene units)", readVec3, applyMove)               \
+    X(LookCamera, View, "camera look", "camera look DYAW DPITCH (degrees)", readTurn, applyLook)                        \
+    X(ResetCamera, View, "camera reset", "camera reset", readNothing, applyResetCamera)                                 \
+    X(AddLight, View, "light add", "light add point|spot|directional", readText, applyAddLight)                         \
+    X(RemoveLight, Light, "light remove", "light remove I", readIndex, applyRemoveLight)                                \
+    X(SetLightEnabled, Light, "light # on|off", "light I on|off", readLightSwitch, applyLightEnabled)                   \
+    X(SetLightIntensity, Light, "light # intensity", "light I intensity V", readLightNumber, applyLightIntensity)       \
+    X(SetLightColor, Light, "light # color", "light I color R G B", readLightVec3, applyLightColor)                     \
+    X(SetLightPosition, Light, "light # position", "light I position X Y Z", readLightVec3, applyLightPosition)         \
+    X(SetLightDirection, Light, "light # direction", "light I direction X Y Z", readLightVec3, applyLightDirection)     \
+    X(ResetLights, View, "lights reset", "lights reset", readNothing, applyResetLights)                                 \
+    X(SetPlotPane, View, "plot pane", "plot pane P", readIndex, applyPlotPane)                                          \
+    X(SetPlotMaterial, View, "plot material", "plot material R G B METALLIC ROUGHNESS SPECULAR", readPlotMaterial,      \
+      applyPlotMaterial)                                                                                                \
+    X(SetPlotViewAngle, View, "plot view-angle", "plot view-angle DEGREES", readDegrees, applyPlotViewAngle)            \
+    X(SetPlotLog, View, "plot log", "plot log on|off", readFlag, applyPlotLog)                                          \
+    X(SwapSides, View, "swap", "swap (panes 0 and 1 trade places: the split's A/B)", readNothing, applySwapSides)
 
 struct PanelAction {
-#define GIS_PANEL_ACTION_KIND(kind, words, usage, read, apply) kind,
+#define GIS_PANEL_ACTION_KIND(kind, edits, words, usage, read, apply) kind,
     enum Kind { GIS_PANEL_ACTIONS(GIS_PANEL_ACTION_KIND) };
 #undef GIS_PANEL_ACTION_KIND
+    enum class Edits { Pane, Light, View };  // the table's second column
     Kind kind = SetMethod;
     int index = 0;            // pane or light
     std::string text;
@@ -101,6 +103,9 @@ struct PanelAction {
     static PanelAction move(glm::vec3 local);                 // fly: right, up, forward, scene units
     static PanelAction look(float dyaw, float dpitch);        // fly: turn in place
 };
+
+// What an action of `kind` edits: a script's lines are checked against the view they will find by it.
+PanelAction::Edits actionEdits(PanelAction::Kind kind);
 
 // A SetParam's pane, key and value on their own (the row's range), without the pane's other values.
 ParamValue parsePaneParam(const PanelAction& action);

@@ -30,9 +30,7 @@ double parseNumber(const std::string& w) {
 // on the scene's lights and are checked in context.
 void checkActionAlone(const PanelAction& a) {
     const PanelAction::Kind k = a.kind;
-    const bool dependsOnScene = k == PanelAction::SetLightEnabled || k == PanelAction::SetLightIntensity ||
-                                k == PanelAction::SetLightColor || k == PanelAction::SetLightPosition ||
-                                k == PanelAction::SetLightDirection || k == PanelAction::RemoveLight;
+    const bool dependsOnScene = actionEdits(k) == PanelAction::Edits::Light;
     // A parameter's value alone: whether the method takes it with the pane's other values is for
     // checkScriptInContext (vct.debug-level 2 after vct.debug-channel occupancy).
     if (k == PanelAction::SetParam) parsePaneParam(a);
@@ -133,15 +131,9 @@ std::vector<ScriptStep> loadScript(const std::string& path) {
 }
 
 namespace {
-bool editsPane(PanelAction::Kind k) {
-    return k == PanelAction::SetMethod || k == PanelAction::SetPreset || k == PanelAction::SetDiffuse ||
-           k == PanelAction::SetSpecular || k == PanelAction::SetDisplay || k == PanelAction::SetDirectOnly ||
-           k == PanelAction::SetParam || k == PanelAction::ResetParams;
-}
-
 // What an action needs of the state it is applied to, beyond applyPanelAction's own checks.
 void checkActionInContext(const ViewState& s, const PanelAction& a) {
-    if (!editsPane(a.kind)) return;
+    if (actionEdits(a.kind) != PanelAction::Edits::Pane) return;
     const int shown = paneCount(s.mode);
     if (a.index >= shown && a.index < kMaxPanes)
         throw Error("pane " + std::to_string(a.index) + " is not shown in " + viewModeName(s.mode) + " mode (panes 0.." +
