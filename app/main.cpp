@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <new>
 
-#include "commands.h"
+#include "cli/commands.h"
 #include "scene/atomic_file.h"
 #include "scene/scene.h"
 #include "scene/scene_lighting.h"
@@ -32,6 +32,20 @@ std::string extrasMessage(const CLI::App& app, int argc, char** argv) {
         if (a.rfind("--", 0) == 0 && hint.empty()) hint = gis::didYouMean(a.substr(0, a.find('=')), flags);
     if (!hint.empty()) hint = " (" + hint.substr(0, hint.size() - 1) + ")";
     return "unexpected argument" + std::string(typed.size() == 1 ? "" : "s") + ": " + list + hint;
+}
+
+std::string parseErrorMessage(CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
+    std::string what = dynamic_cast<const CLI::ExtrasError*>(&e) ? extrasMessage(app, argc, argv) : e.what();
+    // A word where a command belongs: name it and the commands there are.
+    bool known = false;
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+        known = known || (argc > 1 && sub->get_name() == argv[1]);
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (argc > 1 && argv[1][0] != '-' && !known)
+        what = std::string("unknown command '") + argv[1] + "' (expected " + names + ")";
+    return what;
 }
 
 }  // namespace
@@ -87,17 +101,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::string what = dynamic_cast<const CLI::ExtrasError*>(&e) ? extrasMessage(app, argc, argv) : e.what();
-        // A word where a command belongs: name it and the commands there are.
-        bool known = false;
-        std::string names;
-        for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
-            known = known || (argc > 1 && sub->get_name() == argv[1]);
-            names += (names.empty() ? "" : ", ") + sub->get_name();
-        }
-        if (argc > 1 && argv[1][0] != '-' && !known)
-            what = std::string("unknown command '") + argv[1] + "' (expected " + names + ")";
-        std::fprintf(stderr, "gisandbox: error: %s (see --help)\n", what.c_str());
+        std::fprintf(stderr, "gisandbox: error: %s (see --help)\n", parseErrorMessage(app, e, argc, argv).c_str());
         return 1;
     }
     try {

@@ -14,13 +14,14 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cli_util.h"
-#include "commands.h"
+#include "cli/commands.h"
 #include "gi/method.h"
 #include "gl/shader.h"
 #include "render_test_util.h"
-#include "settings_io.h"
-#include "view_session.h"
-#include "view_state.h"
+#include "cli/panel_action.h"
+#include "cli/settings_io.h"
+#include "view/view_session.h"
+#include "cli/view_state.h"
 #include "lights.h"
 #include "uniforms.h"
 

@@ -11,7 +11,7 @@
 #include <set>
 #include <sstream>
 
-#include "bench_row.h"
+#include "bench/bench_row.h"
 #include "cli_util.h"
 
 namespace gis::test {

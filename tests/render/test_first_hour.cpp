@@ -5,8 +5,8 @@
 
 #include <sstream>
 
-#include "bench_merge.h"
-#include "bench_row.h"
+#include "bench/bench_merge.h"
+#include "bench/bench_row.h"
 #include "cli_util.h"
 #include "image.h"
 

@@ -22,9 +22,9 @@
 #include "image.h"
 #include "scene/atomic_file.h"
 #include "scene/scene.h"
-#include "settings_io.h"
-#include "view_script.h"
-#include "view_state.h"
+#include "cli/settings_io.h"
+#include "view/view_script.h"
+#include "cli/view_state.h"
 
 namespace {
 

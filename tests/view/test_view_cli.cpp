@@ -8,8 +8,9 @@
 #include <fstream>
 
 #include "cli_util.h"
-#include "settings_io.h"
-#include "view_session.h"
+#include "cli/panel_action.h"
+#include "cli/settings_io.h"
+#include "view/view_session.h"
 #include "view_test_util.h"
 
 namespace gis::test {

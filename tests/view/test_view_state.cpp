@@ -10,10 +10,10 @@
 #include "brdf_cpu.h"
 #include "cli_util.h"
 #include "gi/method.h"
-#include "settings_io.h"
-#include "view_script.h"
-#include "view_session.h"
-#include "view_state.h"
+#include "cli/settings_io.h"
+#include "view/view_script.h"
+#include "view/view_session.h"
+#include "cli/view_state.h"
 
 namespace gis::test {
 namespace {

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Builds the libFuzzer target of the viewer's text inputs (fuzz_view_inputs.cpp) with clang++:
-# the target and the parsers it drives (app/settings_io.cpp, app/view_script.cpp,
-# app/view_state.cpp) are compiled here with ASan + UBSan and coverage; the rest of the program
+# the target and the parsers it drives (app/cli/settings_io.cpp, app/view/view_script.cpp,
+# app/cli/panel_action.cpp, app/cli/view_state.cpp) are compiled here with ASan + UBSan and coverage; the rest of the program
 # (method registry, renderer) is linked from an existing GCC build's static libraries,
 # uninstrumented. Usage: tests/view/fuzz/build_fuzzer.sh BUILD_DIR OUT_BINARY (e.g. build build/fuzz-view/fuzz_view_inputs)
 # Run:   OUT_BINARY -dict=tests/view/fuzz/view.dict CORPUS_DIR tests/view/fuzz/seeds
@@ -13,7 +13,7 @@ cxx=${CLANGXX:-clang++}
 san="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 inc="-I$root/app -I$root/renderer -I$build/glad/include -isystem /usr/include/stb"
 objs=""
-for src in tests/view/fuzz/fuzz_view_inputs.cpp app/settings_io.cpp app/view_script.cpp app/view_state.cpp; do
+for src in tests/view/fuzz/fuzz_view_inputs.cpp app/cli/settings_io.cpp app/view/view_script.cpp app/cli/panel_action.cpp app/cli/view_state.cpp; do
   obj="$out.$(basename "$src" .cpp).o"
   $cxx -std=c++17 -O1 -g $san -fsanitize=fuzzer-no-link $inc -c "$root/$src" -o "$obj"
   objs="$objs $obj"

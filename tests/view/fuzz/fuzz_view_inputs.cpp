@@ -13,8 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene.h"
-#include "settings_io.h"
-#include "view_script.h"
+#include "cli/settings_io.h"
+#include "view/view_script.h"
 
 namespace {
 

@@ -1,17 +1,17 @@
-#include "bench_cell.h"
+#include "bench/bench_cell.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 
-#include "bench_flythrough.h"
-#include "bench_record.h"
-#include "bench_row.h"
+#include "cli/flythrough.h"
+#include "bench/bench_record.h"
+#include "bench/bench_row.h"
 #include "gi/method.h"
 #include "image.h"
 #include "metrics.h"
-#include "progress.h"
+#include "cli/progress.h"
 
 namespace gis {
 

@@ -1,4 +1,4 @@
-#include "panel.h"
+#include "view/panel.h"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -108,12 +108,8 @@ void paramTableControls(PanelContext& ctx, int pane, const ParamTableView& table
 
 void paramControls(PanelContext& ctx, int pane) {
     for (const ParamTableView& table : paneParamTables(ctx.state.panes[pane])) paramTableControls(ctx, pane, table);
-    if (!ctx.state.panes[pane].params.empty() && ImGui::Button("Reset to preset")) {
-        PanelAction a;
-        a.kind = PanelAction::ResetParams;
-        a.index = pane;
-        act(ctx, a);
-    }
+    if (!ctx.state.panes[pane].params.empty() && ImGui::Button("Reset to preset"))
+        act(ctx, PanelAction::withIndex(PanelAction::ResetParams, pane));
 }
 
 void paneControls(PanelContext& ctx, int i) {
@@ -151,6 +147,12 @@ void paneControls(PanelContext& ctx, int i) {
     ImGui::PopID();
 }
 
+// An action on light `index`.
+PanelAction ofLight(int index, PanelAction a) {
+    a.index = index;
+    return a;
+}
+
 void lightControls(PanelContext& ctx) {
     ViewState& s = ctx.state;
     static const char* const types[] = {"directional", "point", "spot"};
@@ -158,77 +160,41 @@ void lightControls(PanelContext& ctx) {
         const LightState l = s.lights[i];
         ImGui::PushID(1000 + i);
         bool on = l.enabled;
-        if (ImGui::Checkbox("##on", &on)) {
-            PanelAction a;
-            a.kind = PanelAction::SetLightEnabled;
-            a.index = i;
-            a.flag = on;
-            act(ctx, a);
-        }
+        if (ImGui::Checkbox("##on", &on))
+            act(ctx, ofLight(i, PanelAction::withFlag(PanelAction::SetLightEnabled, on)));
         ImGui::SameLine();
         const std::string title = std::to_string(i) + ": " + types[int(l.light.type)] + " " + l.light.name;
         if (ImGui::TreeNode("light", "%s", title.c_str())) {
             float intensity = l.light.intensity;
-            if (ImGui::DragFloat("Intensity", &intensity, 0.01f * std::max(intensity, 0.1f), 0.0f, 1e6f, "%.3f")) {
-                PanelAction a;
-                a.kind = PanelAction::SetLightIntensity;
-                a.index = i;
-                a.value = std::max(intensity, 0.0f);
-                act(ctx, a);
-            }
+            if (ImGui::DragFloat("Intensity", &intensity, 0.01f * std::max(intensity, 0.1f), 0.0f, 1e6f, "%.3f"))
+                act(ctx, ofLight(i, PanelAction::withValue(PanelAction::SetLightIntensity, std::max(intensity, 0.0f))));
             glm::vec3 color = l.light.color;
-            if (ImGui::ColorEdit3("Colour", &color[0], ImGuiColorEditFlags_Float)) {
-                PanelAction a;
-                a.kind = PanelAction::SetLightColor;
-                a.index = i;
-                a.vec = glm::max(color, glm::vec3(0.0f));
-                act(ctx, a);
-            }
+            if (ImGui::ColorEdit3("Colour", &color[0], ImGuiColorEditFlags_Float))
+                act(ctx, ofLight(i, PanelAction::withVec(PanelAction::SetLightColor, glm::max(color, glm::vec3(0.0f)))));
             if (l.light.type != LightType::Directional) {
                 glm::vec3 pos = l.light.position;
-                if (ImGui::DragFloat3("Position", &pos[0], 0.01f * std::max(ctx.state.camera.speed, 1e-3f))) {
-                    PanelAction a;
-                    a.kind = PanelAction::SetLightPosition;
-                    a.index = i;
-                    a.vec = pos;
-                    act(ctx, a);
-                }
+                if (ImGui::DragFloat3("Position", &pos[0], 0.01f * std::max(ctx.state.camera.speed, 1e-3f)))
+                    act(ctx, ofLight(i, PanelAction::withVec(PanelAction::SetLightPosition, pos)));
             }
             if (l.light.type != LightType::Point) {
                 glm::vec3 dir = l.light.direction;
-                if (ImGui::DragFloat3("Direction", &dir[0], 0.01f, -1.0f, 1.0f) && glm::length(dir) > 1e-4f) {
-                    PanelAction a;
-                    a.kind = PanelAction::SetLightDirection;
-                    a.index = i;
-                    a.vec = dir;
-                    act(ctx, a);
-                }
+                if (ImGui::DragFloat3("Direction", &dir[0], 0.01f, -1.0f, 1.0f) && glm::length(dir) > 1e-4f)
+                    act(ctx, ofLight(i, PanelAction::withVec(PanelAction::SetLightDirection, dir)));
             }
-            if (ImGui::Button("Remove")) {
-                PanelAction a;
-                a.kind = PanelAction::RemoveLight;
-                a.index = i;
-                act(ctx, a);
-            }
+            if (ImGui::Button("Remove"))
+                act(ctx, PanelAction::withIndex(PanelAction::RemoveLight, i));
             ImGui::TreePop();
         }
         ImGui::PopID();
     }
     for (const char* type : {"point", "spot", "directional"}) {
         const std::string label = std::string("Add ") + type;
-        if (ImGui::Button(label.c_str())) {
-            PanelAction a;
-            a.kind = PanelAction::AddLight;
-            a.text = type;
-            act(ctx, a);
-        }
+        if (ImGui::Button(label.c_str()))
+            act(ctx, PanelAction::withText(PanelAction::AddLight, type));
         ImGui::SameLine();
     }
-    if (ImGui::Button("Reset")) {
-        PanelAction a;
-        a.kind = PanelAction::ResetLights;
-        act(ctx, a);
-    }
+    if (ImGui::Button("Reset"))
+        act(ctx, PanelAction::of(PanelAction::ResetLights));
     if (s.lightsEdited) ImGui::TextDisabled("edited: saved in settings files");
 }
 
@@ -297,12 +263,8 @@ void lobePlot(PanelContext& ctx) {
     ViewState& s = ctx.state;
     if (s.mode != ViewMode::Single) {
         int pane = std::min(s.plotPane, paneCount(s.mode) - 1);
-        if (ImGui::SliderInt("Pane", &pane, 0, paneCount(s.mode) - 1)) {
-            PanelAction a;
-            a.kind = PanelAction::SetPlotPane;
-            a.index = pane;
-            act(ctx, a);
-        }
+        if (ImGui::SliderInt("Pane", &pane, 0, paneCount(s.mode) - 1))
+            act(ctx, PanelAction::withIndex(PanelAction::SetPlotPane, pane));
     }
     const int pane = s.mode == ViewMode::Single ? 0 : std::min(s.plotPane, paneCount(s.mode) - 1);
     const PaneState& p = s.panes[pane];
@@ -320,19 +282,11 @@ void lobePlot(PanelContext& ctx) {
         act(ctx, a);
     }
     float view = s.plotViewAngle * kDegrees;
-    if (ImGui::SliderFloat("View angle", &view, 0.0f, 89.0f, "%.0f deg")) {
-        PanelAction a;
-        a.kind = PanelAction::SetPlotViewAngle;
-        a.value = view / kDegrees;
-        act(ctx, a);
-    }
+    if (ImGui::SliderFloat("View angle", &view, 0.0f, 89.0f, "%.0f deg"))
+        act(ctx, PanelAction::withValue(PanelAction::SetPlotViewAngle, view / kDegrees));
     bool logScale = s.plotLog;
-    if (ImGui::Checkbox("Log scale (3 decades)", &logScale)) {
-        PanelAction a;
-        a.kind = PanelAction::SetPlotLog;
-        a.flag = logScale;
-        act(ctx, a);
-    }
+    if (ImGui::Checkbox("Log scale (3 decades)", &logScale))
+        act(ctx, PanelAction::withFlag(PanelAction::SetPlotLog, logScale));
 
     const CpuSurfaceBrdf surface = makeCpuSurfaceBrdf(s.plotBaseColor, s.plotMetallic, s.plotRoughness, s.plotSpecular);
     const std::vector<LobeSample> lobe = brdfLobe(surface, s.plotViewAngle, p.diffuse, p.specular);
@@ -387,15 +341,9 @@ void act(PanelContext& ctx, const PanelAction& action) {
     }
 }
 
-void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
-    ViewState& s = ctx.state;
-    ImGui::SetNextWindowPos(ImVec2(x, y));
-    ImGui::SetNextWindowSize(ImVec2(width, height));
-    ImGui::Begin("gisandbox", nullptr,
-                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
-                     ImGuiWindowFlags_NoSavedSettings);
-    ImGui::PushItemWidth(-130.0f);
+namespace {
 
+void messageLines(PanelContext& ctx) {
     if (!ctx.session.lastError().empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 110, 100, 255));
         ImGui::TextWrapped("%s", ctx.session.lastError().c_str());
@@ -403,151 +351,139 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
         if (ImGui::SmallButton("Dismiss")) ctx.session.clearError();
     }
     if (!ctx.message.empty()) ImGui::TextWrapped("%s", ctx.message.c_str());
+}
 
-    if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) {
-        const Scene& scene = ctx.session.scene();
-        // Wrapped, and the path's tail when it is long: a deep path must not push the counts off the panel.
-        const std::string shown = s.scene.size() > 48 ? "..." + s.scene.substr(s.scene.size() - 45) : s.scene;
-        ImGui::TextWrapped("%s: %zu triangles, %zu lights", shown.c_str(), scene.triangleCount(), scene.lights.size());
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", s.scene.c_str());
-        ImGui::InputText("##scene", &ctx.scenePath);
-        ImGui::SameLine();
-        if (ImGui::Button("Open")) {
-            if (ctx.session.openScene(s, ctx.scenePath)) ctx.message = "opened " + ctx.scenePath;
-        }
-        ImGui::TextDisabled("or drop a .gltf/.glb on the window");
+void sceneControls(PanelContext& ctx) {
+    const ViewState& s = ctx.state;
+    const Scene& scene = ctx.session.scene();
+    // Wrapped, and the path's tail when it is long: a deep path must not push the counts off the panel.
+    const std::string shown = s.scene.size() > 48 ? "..." + s.scene.substr(s.scene.size() - 45) : s.scene;
+    ImGui::TextWrapped("%s: %zu triangles, %zu lights", shown.c_str(), scene.triangleCount(), scene.lights.size());
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", s.scene.c_str());
+    ImGui::InputText("##scene", &ctx.scenePath);
+    ImGui::SameLine();
+    if (ImGui::Button("Open")) {
+        if (ctx.session.openScene(ctx.state, ctx.scenePath)) ctx.message = "opened " + ctx.scenePath;
     }
+    ImGui::TextDisabled("or drop a .gltf/.glb on the window");
+}
 
-    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
-        int mode = int(s.mode);
-        bool changed = ImGui::RadioButton("Single", &mode, 0);
-        ImGui::SameLine();
-        changed |= ImGui::RadioButton("Split", &mode, 1);
-        ImGui::SameLine();
-        changed |= ImGui::RadioButton("2x2 grid", &mode, 2);
-        if (changed) act(ctx, PanelAction::viewMode(ViewMode(mode)));
-        if (s.mode == ViewMode::Split) {
-            float divider = s.divider;
-            if (ImGui::SliderFloat("Divider", &divider, 0.02f, 0.98f)) act(ctx, PanelAction::dividerAt(divider));
-        }
-        float scale = s.renderScale;
-        if (ImGui::SliderFloat("Render scale", &scale, 0.125f, 1.0f, "%.3f")) {
-            PanelAction a;
-            a.kind = PanelAction::SetRenderScale;
-            a.value = scale;
-            act(ctx, a);
-        }
-        int cam = int(s.camera.mode);
-        bool camChanged = ImGui::RadioButton("Orbit", &cam, 0);
-        ImGui::SameLine();
-        camChanged |= ImGui::RadioButton("Fly", &cam, 1);
-        if (camChanged) {
-            PanelAction a;
-            a.kind = PanelAction::SetCameraMode;
-            a.text = cam == 0 ? "orbit" : "fly";
-            act(ctx, a);
-        }
-        ImGui::SameLine();
-        if (ImGui::Button("Reset camera")) {
-            PanelAction a;
-            a.kind = PanelAction::ResetCamera;
-            act(ctx, a);
-        }
-        ImGui::TextDisabled(s.camera.mode == CameraMode::Orbit
-                                ? "left drag: orbit, right/middle drag: pan, wheel: zoom"
-                                : "WASD/QE: move (shift: x4), drag: look, wheel: speed");
-        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-        ImGui::TextWrapped("F: orbit/fly, R: reset, 1/2/3: single/split/grid, B: swap the split's sides (A/B), I: pixel inspector, F12: screenshot");
-        ImGui::PopStyleColor();
+void cameraControls(PanelContext& ctx) {
+    const ViewState& s = ctx.state;
+    int cam = int(s.camera.mode);
+    bool camChanged = ImGui::RadioButton("Orbit", &cam, 0);
+    ImGui::SameLine();
+    camChanged |= ImGui::RadioButton("Fly", &cam, 1);
+    if (camChanged) act(ctx, PanelAction::withText(PanelAction::SetCameraMode, cam == 0 ? "orbit" : "fly"));
+    ImGui::SameLine();
+    if (ImGui::Button("Reset camera")) act(ctx, PanelAction::of(PanelAction::ResetCamera));
+    ImGui::TextDisabled(s.camera.mode == CameraMode::Orbit
+                            ? "left drag: orbit, right/middle drag: pan, wheel: zoom"
+                            : "WASD/QE: move (shift: x4), drag: look, wheel: speed");
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+    ImGui::TextWrapped("F: orbit/fly, R: reset, 1/2/3: single/split/grid, B: swap the split's sides (A/B), I: pixel inspector, F12: screenshot");
+    ImGui::PopStyleColor();
+}
+
+void viewControls(PanelContext& ctx) {
+    const ViewState& s = ctx.state;
+    int mode = int(s.mode);
+    bool changed = ImGui::RadioButton("Single", &mode, 0);
+    ImGui::SameLine();
+    changed |= ImGui::RadioButton("Split", &mode, 1);
+    ImGui::SameLine();
+    changed |= ImGui::RadioButton("2x2 grid", &mode, 2);
+    if (changed) act(ctx, PanelAction::viewMode(ViewMode(mode)));
+    if (s.mode == ViewMode::Split) {
+        float divider = s.divider;
+        if (ImGui::SliderFloat("Divider", &divider, 0.02f, 0.98f)) act(ctx, PanelAction::dividerAt(divider));
     }
+    float scale = s.renderScale;
+    if (ImGui::SliderFloat("Render scale", &scale, 0.125f, 1.0f, "%.3f"))
+        act(ctx, PanelAction::withValue(PanelAction::SetRenderScale, scale));
+    cameraControls(ctx);
+}
 
-    for (int i = 0; i < paneCount(s.mode); ++i)
-        if (ImGui::CollapsingHeader(paneTitle(s.mode, i), ImGuiTreeNodeFlags_DefaultOpen)) paneControls(ctx, i);
+// The environment map (render's --environment): the path in the field, applied by Load.
+void environmentControls(PanelContext& ctx) {
+    const ViewState& s = ctx.state;
+    ImGui::TextWrapped("Environment: %s", s.environment.empty() ? "constant (background / scene sky)"
+                                                                : s.environment.c_str());
+    ImGui::InputText("##environment", &ctx.environmentPath);
+    ImGui::SameLine();
+    if (ImGui::Button("Load")) act(ctx, PanelAction::withText(PanelAction::SetEnvironment, ctx.environmentPath));
+    ImGui::SameLine();
+    if (ImGui::Button("Off")) act(ctx, PanelAction::of(PanelAction::SetEnvironment));
+}
+
+// The heatmap's metric and the path tracer's own controls, apart from the methods' bounce
+// parameters (vct.bounces is in its pane).
+void referenceControls(PanelContext& ctx) {
+    const ViewState& s = ctx.state;
+    // Ranges from the reference's parameter rows, the one place they are declared.
+    const ParamDesc& bouncesRow = *methodInRole(MethodRole::Reference).param("bounces");
+    const ParamDesc& sppRow = *methodInRole(MethodRole::Reference).param("spp");
+    combo("Heatmap metric", errorMetricName(s.heatmapMetric), {"flip", "rmse", "relmse", "ssim"},
+          [&](const std::string& n) { act(ctx, PanelAction::withText(PanelAction::SetHeatmapMetric, n)); });
+    ImGui::Separator();
+    ImGui::TextDisabled("Path tracer and reference");
+    int bounces = s.maxBounces;
+    if (ImGui::DragInt("Path tracer bounces", &bounces, 0.2f, int(bouncesRow.min), int(bouncesRow.max)))
+        act(ctx, PanelAction::withValue(PanelAction::SetMaxBounces, float(bounces)));
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("path tracer: %s", bouncesRow.help.c_str());
+    int spp = s.referenceSpp;
+    if (ImGui::InputInt("Reference spp", &spp, 16, 64, ImGuiInputTextFlags_EnterReturnsTrue))
+        act(ctx, PanelAction::withValue(PanelAction::SetReferenceSpp, float(std::clamp(spp, int(sppRow.min), int(sppRow.max)))));
+}
+
+void displayControls(PanelContext& ctx) {
+    const ViewState& s = ctx.state;
+    combo("Tone mapper", s.tonemap == Tonemapper::Aces ? "aces" : "linear", {"aces", "linear"},
+          [&](const std::string& n) { act(ctx, PanelAction::tonemapper(n)); });
+    float ev = s.exposureEV;
+    if (ImGui::SliderFloat("Exposure (EV)", &ev, -10.0f, 10.0f, "%.2f")) act(ctx, PanelAction::exposure(ev));
+    glm::vec3 ambient = s.ambient;
+    if (ImGui::ColorEdit3("Ambient (none)", &ambient[0], ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR))
+        act(ctx, PanelAction::withVec(PanelAction::SetAmbient, glm::max(ambient, glm::vec3(0.0f))));
+    environmentControls(ctx);
+    bool shadows = s.shadows;
+    if (ImGui::Checkbox("Shadows", &shadows)) act(ctx, PanelAction::withFlag(PanelAction::SetShadows, shadows));
+    referenceControls(ctx);
+}
+
+void settingsControls(PanelContext& ctx) {
+    ImGui::InputText("##settings", &ctx.settingsPath);
+    ImGui::SameLine();
+    if (ImGui::Button("Save")) {
+        if (ctx.session.saveSettings(ctx.state, ctx.settingsPath)) ctx.message = "saved " + ctx.settingsPath;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Load")) {
+        if (ctx.session.loadSettings(ctx.state, ctx.settingsPath)) ctx.message = "loaded " + ctx.settingsPath;
+    }
+    if (ImGui::Button("Screenshot (F12)")) ctx.screenshotRequested = true;
+}
+
+}  // namespace
+
+void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
+    ImGui::SetNextWindowPos(ImVec2(x, y));
+    ImGui::SetNextWindowSize(ImVec2(width, height));
+    ImGui::Begin("gisandbox", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                     ImGuiWindowFlags_NoSavedSettings);
+    ImGui::PushItemWidth(-130.0f);
+    messageLines(ctx);
+    if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) sceneControls(ctx);
+    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) viewControls(ctx);
+    for (int i = 0; i < paneCount(ctx.state.mode); ++i)
+        if (ImGui::CollapsingHeader(paneTitle(ctx.state.mode, i), ImGuiTreeNodeFlags_DefaultOpen)) paneControls(ctx, i);
     // Right after the panes it times, so it is on screen at the default 720-pixel height.
     if (ImGui::CollapsingHeader("Timings and memory", ImGuiTreeNodeFlags_DefaultOpen)) timingControls(ctx);
-
-    if (ImGui::CollapsingHeader("Display and lighting", ImGuiTreeNodeFlags_DefaultOpen)) {
-        combo("Tone mapper", s.tonemap == Tonemapper::Aces ? "aces" : "linear", {"aces", "linear"},
-              [&](const std::string& n) { act(ctx, PanelAction::tonemapper(n)); });
-        float ev = s.exposureEV;
-        if (ImGui::SliderFloat("Exposure (EV)", &ev, -10.0f, 10.0f, "%.2f")) act(ctx, PanelAction::exposure(ev));
-        glm::vec3 ambient = s.ambient;
-        if (ImGui::ColorEdit3("Ambient (none)", &ambient[0], ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
-            PanelAction a;
-            a.kind = PanelAction::SetAmbient;
-            a.vec = glm::max(ambient, glm::vec3(0.0f));
-            act(ctx, a);
-        }
-        // The environment map (render's --environment): the path in the field, applied by Load.
-        ImGui::TextWrapped("Environment: %s", s.environment.empty() ? "constant (background / scene sky)"
-                                                                    : s.environment.c_str());
-        ImGui::InputText("##environment", &ctx.environmentPath);
-        ImGui::SameLine();
-        if (ImGui::Button("Load")) {
-            PanelAction a;
-            a.kind = PanelAction::SetEnvironment;
-            a.text = ctx.environmentPath;
-            act(ctx, a);
-        }
-        ImGui::SameLine();
-        if (ImGui::Button("Off")) {
-            PanelAction a;
-            a.kind = PanelAction::SetEnvironment;
-            act(ctx, a);
-        }
-        bool shadows = s.shadows;
-        if (ImGui::Checkbox("Shadows", &shadows)) {
-            PanelAction a;
-            a.kind = PanelAction::SetShadows;
-            a.flag = shadows;
-            act(ctx, a);
-        }
-        // Ranges from the reference's parameter rows, the one place they are declared.
-        const ParamDesc& bouncesRow = *methodInRole(MethodRole::Reference).param("bounces");
-        const ParamDesc& sppRow = *methodInRole(MethodRole::Reference).param("spp");
-        combo("Heatmap metric", errorMetricName(s.heatmapMetric), {"flip", "rmse", "relmse", "ssim"},
-              [&](const std::string& n) {
-                  PanelAction a;
-                  a.kind = PanelAction::SetHeatmapMetric;
-                  a.text = n;
-                  act(ctx, a);
-              });
-        // The path tracer's own controls, apart from the methods' bounce parameters (vct.bounces
-        // is in its pane).
-        ImGui::Separator();
-        ImGui::TextDisabled("Path tracer and reference");
-        int bounces = s.maxBounces;
-        if (ImGui::DragInt("Path tracer bounces", &bounces, 0.2f, int(bouncesRow.min), int(bouncesRow.max))) {
-            PanelAction a;
-            a.kind = PanelAction::SetMaxBounces;
-            a.value = float(bounces);
-            act(ctx, a);
-        }
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("path tracer: %s", bouncesRow.help.c_str());
-        int spp = s.referenceSpp;
-        if (ImGui::InputInt("Reference spp", &spp, 16, 64, ImGuiInputTextFlags_EnterReturnsTrue)) {
-            PanelAction a;
-            a.kind = PanelAction::SetReferenceSpp;
-            a.value = float(std::clamp(spp, int(sppRow.min), int(sppRow.max)));
-            act(ctx, a);
-        }
-    }
-
+    if (ImGui::CollapsingHeader("Display and lighting", ImGuiTreeNodeFlags_DefaultOpen)) displayControls(ctx);
     if (ImGui::CollapsingHeader("Lights")) lightControls(ctx);
     if (ImGui::CollapsingHeader("BRDF lobe")) lobePlot(ctx);
-
-    if (ImGui::CollapsingHeader("Settings and screenshots", ImGuiTreeNodeFlags_DefaultOpen)) {
-        ImGui::InputText("##settings", &ctx.settingsPath);
-        ImGui::SameLine();
-        if (ImGui::Button("Save")) {
-            if (ctx.session.saveSettings(s, ctx.settingsPath)) ctx.message = "saved " + ctx.settingsPath;
-        }
-        ImGui::SameLine();
-        if (ImGui::Button("Load")) {
-            if (ctx.session.loadSettings(s, ctx.settingsPath)) ctx.message = "loaded " + ctx.settingsPath;
-        }
-        if (ImGui::Button("Screenshot (F12)")) ctx.screenshotRequested = true;
-    }
+    if (ImGui::CollapsingHeader("Settings and screenshots", ImGuiTreeNodeFlags_DefaultOpen)) settingsControls(ctx);
     ImGui::PopItemWidth();
     ImGui::End();
 }

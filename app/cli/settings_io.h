@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer.h"
-#include "view_state.h"
+#include "cli/view_state.h"
 
 namespace gis::view {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "bench_cell.h"
-#include "bench_plan.h"
+#include "bench/bench_cell.h"
+#include "bench/bench_plan.h"
 
 namespace gis {
 

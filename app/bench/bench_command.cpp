@@ -14,11 +14,11 @@
 #include <set>
 #include <sstream>
 
-#include "bench_cell.h"
-#include "bench_merge.h"
-#include "bench_plan.h"
+#include "bench/bench_cell.h"
+#include "bench/bench_merge.h"
+#include "bench/bench_plan.h"
 #include "camera_path.h"
-#include "commands.h"
+#include "cli/commands.h"
 #include "scene/atomic_file.h"
 
 namespace gis {

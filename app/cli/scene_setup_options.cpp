@@ -1,4 +1,4 @@
-#include "scene_setup_options.h"
+#include "cli/scene_setup_options.h"
 
 #include <CLI/CLI.hpp>
 

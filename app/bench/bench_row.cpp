@@ -1,4 +1,4 @@
-#include "bench_row.h"
+#include "bench/bench_row.h"
 
 #include <cmath>
 #include <functional>

@@ -1,4 +1,4 @@
-#include "bench_merge.h"
+#include "bench/bench_merge.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -7,8 +7,8 @@
 #include <set>
 #include <sstream>
 
-#include "bench_record.h"
-#include "bench_row.h"
+#include "bench/bench_record.h"
+#include "bench/bench_row.h"
 #include "gi/method.h"
 #include "image.h"
 #include "metrics.h"

@@ -1,10 +1,10 @@
-#include "bench_record.h"
+#include "bench/bench_record.h"
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "content_hash.h"
+#include "cli/content_hash.h"
 #include "image.h"
 #include "scene/atomic_file.h"
 #include "error.h"

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench_plan.h"
+#include "bench/bench_plan.h"
 
 namespace gis {
 

@@ -1,4 +1,4 @@
-#include "user_json.h"
+#include "cli/user_json.h"
 
 #include <cstdint>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "bench_plan.h"
+#include "bench/bench_plan.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,12 +8,12 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "content_hash.h"
+#include "cli/content_hash.h"
 #include "environment.h"
 #include "gi/method.h"
 #include "metrics.h"
-#include "settings_io.h"
-#include "user_json.h"
+#include "cli/settings_io.h"
+#include "cli/user_json.h"
 
 namespace gis {
 

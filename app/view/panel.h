@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "view_session.h"
-#include "view_state.h"
+#include "view/view_session.h"
+#include "cli/panel_action.h"
 
 namespace gis::view {
 

@@ -16,12 +16,12 @@
 #include <utility>
 #include <vector>
 
-#include "commands.h"
+#include "cli/commands.h"
 #include "image.h"
-#include "panel.h"
-#include "settings_io.h"
-#include "view_script.h"
-#include "view_session.h"
+#include "view/panel.h"
+#include "cli/settings_io.h"
+#include "view/view_script.h"
+#include "view/view_session.h"
 
 namespace gis {
 
@@ -101,6 +101,13 @@ private:
     void applyKey(int key, bool fly);
     void takeScreenshot();
     void captureWindow(const std::string& path, int width, int height);
+    void applyEnvironmentFlag();
+    void openStartState(int width, int height);
+    void openWindow(int width, int height);
+    void startImGui();
+    void openDroppedScene();
+    void drawFrame(std::chrono::steady_clock::time_point& last, FrameTimes& times);
+    void drawViewAndPanel(int fbw, int fbh, int ww, int wh, float dt, FrameTimes& times);
 
     ViewOptions options_;
     std::chrono::steady_clock::time_point start_;
@@ -250,28 +257,24 @@ void ViewApp::captureWindow(const std::string& path, int width, int height) {
     std::fflush(stdout);
 }
 
-int ViewApp::run() {
-    int width = 0, height = 0;
-    parseRenderSize(options_.size, width, height);
-    // The scene (CPU only) before the window, so the script is checked against the view it will drive.
+// --environment through the script's own check (one message), before the scene opens (--lighting
+// auto reads it) and again over a settings file's.
+void ViewApp::applyEnvironmentFlag() {
+    if (!options_.given || !options_.given("--environment")) return;
+    applyPanelAction(state_, PanelAction::withText(PanelAction::SetEnvironment, options_.environment));
+}
+
+// The scene (CPU only) before the window, so the script is checked against the view it will drive.
+void ViewApp::openStartState(int width, int height) {
     session_ = std::make_unique<ViewSession>();
     session_->setMotionBudget(kMotionBudgetMs);
     state_.viewWidth = std::max(1, width - int(kPanelWidth));
     state_.viewHeight = height;
     state_.lighting = lightingModeName(parseLightingMode(options_.setup.lighting));
-    // --environment through the script's own check (one message), before the scene opens (--lighting
-    // auto reads it) and again over a settings file's.
-    auto applyEnvironment = [&] {
-        if (!options_.given || !options_.given("--environment")) return;
-        PanelAction a;
-        a.kind = PanelAction::SetEnvironment;
-        a.text = options_.environment;
-        applyPanelAction(state_, a);
-    };
-    applyEnvironment();
+    applyEnvironmentFlag();
     if (!options_.settings.empty()) {
         if (!session_->loadSettings(state_, options_.settings)) throw Error(session_->lastError());
-        applyEnvironment();
+        applyEnvironmentFlag();
         if (options_.given && options_.given("--scene") && !session_->openScene(state_, options_.scene))
             throw Error(session_->lastError());
     } else if (!session_->openScene(state_, options_.scene, cameraRequest(options_.setup))) {
@@ -288,7 +291,9 @@ int ViewApp::run() {
         checkScriptInContext(steps, state_, options_.script, &session_->scene().bounds);
         script_ = ScriptRunner(std::move(steps), options_.script);
     }
+}
 
+void ViewApp::openWindow(int width, int height) {
     ContextOptions co;
     co.backend = Backend::Glfw;
     co.window = true;
@@ -318,8 +323,9 @@ int ViewApp::run() {
     glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
         if (count > 0) static_cast<ViewApp*>(glfwGetWindowUserPointer(w))->droppedPath_ = paths[0];
     });
+}
 
-
+void ViewApp::startImGui() {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the working directory
@@ -327,78 +333,95 @@ int ViewApp::run() {
     if (!ImGui_ImplGlfw_InitForOpenGL(window_, true) || !ImGui_ImplOpenGL3_Init("#version 450"))
         throw Error("cannot initialise the ImGui GLFW/OpenGL3 backends");
     imgui_ = true;
+}
 
+void ViewApp::openDroppedScene() {
+    if (droppedPath_.empty()) return;
+    const std::string path = std::exchange(droppedPath_, std::string());
+    if (session_->openScene(state_, path)) {
+        message_ = "opened " + path;
+        scenePath_ = path;
+    }
+}
+
+// The 3D view, the panel and the overlay into the window's framebuffer (fbw x fbh pixels; ww x wh
+// window coordinates), then the screenshot or capture asked for.
+void ViewApp::drawViewAndPanel(int fbw, int fbh, int ww, int wh, float dt, FrameTimes& times) {
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    // Window coordinates for ImGui and the mouse; framebuffer pixels for GL (HiDPI).
+    const float panelW = std::min(kPanelWidth, 0.5f * float(ww));
+    const float viewW = std::max(1.0f, float(ww) - panelW), viewH = float(wh);
+    const float sx = float(fbw) / float(ww);
+    handleInput(viewW, viewH, dt);
+    const int viewPixelsW = std::max(1, int(std::lround(viewW * sx))), viewPixelsH = fbh;
+    state_.viewWidth = viewPixelsW;
+    state_.viewHeight = viewPixelsH;
+    session_->relight(state_);
+    session_->renderFrame(state_, viewPixelsW, viewPixelsH);
+    // Panel and overlay after the frame: both show the frame on screen (the same "5/16 spp"),
+    // and what the panel changes is rendered from the next frame on.
+    drawViewOverlay(state_, *session_, 0.0f, 0.0f, viewW, viewH);
+    if (inspect_ && !ImGui::GetIO().WantCaptureMouse)
+        drawPixelInspector(state_, *session_, float(lastX_), float(lastY_), viewW, viewH);
+    view::PanelContext panel{state_, *session_, message_, scenePath_, settingsPath_, environmentPath_, ctx_->renderer, times};
+    drawPanel(panel, viewW, 0.0f, float(ww) - viewW, viewH);
+    if (panel.screenshotRequested) screenshot_ = true;
+    ImGui::Render();
+
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fbw, fbh);
+    glDisable(GL_SCISSOR_TEST);
+    glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    session_->drawToFramebuffer(state_, 0, 0, viewPixelsW, viewPixelsH);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+    if (screenshot_) {
+        screenshot_ = false;
+        takeScreenshot();
+    }
+    if (!capturePath_.empty()) captureWindow(std::exchange(capturePath_, std::string()), fbw, fbh);
+}
+
+// One turn of the window's loop (a minimised window only runs the script).
+void ViewApp::drawFrame(std::chrono::steady_clock::time_point& last, FrameTimes& times) {
+    // Nothing moving and nothing accumulating: wait for input instead of spinning.
+    if (!script_.active() && drag_ == Drag::None && state_.camera.mode == CameraMode::Orbit && session_->settled())
+        glfwWaitEventsTimeout(0.1);
+    else
+        glfwPollEvents();
+    int fbw = 0, fbh = 0, ww = 0, wh = 0;
+    glfwGetFramebufferSize(window_, &fbw, &fbh);
+    glfwGetWindowSize(window_, &ww, &wh);
+    if (fbw <= 0 || fbh <= 0 || ww <= 0 || wh <= 0) {  // minimised: nothing to draw into
+        if (script_.active()) script_.frame(*this);
+        glfwWaitEventsTimeout(0.1);
+        return;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    const float dt = std::chrono::duration<float>(now - last).count();
+    last = now;
+    openDroppedScene();
+    if (script_.active()) script_.frame(*this);
+    drawViewAndPanel(fbw, fbh, ww, wh, dt, times);
+    glfwSwapBuffers(window_);
+    // From after the event wait to after the swap, smoothed alike so the parts still add up.
+    const float frameMs = 1000.0f * std::chrono::duration<float>(std::chrono::steady_clock::now() - now).count();
+    times.frameMs = 0.9f * times.frameMs + 0.1f * frameMs;
+    times.gpuMs = 0.9f * times.gpuMs + 0.1f * float(session_->gpuMsCollected());
+}
+
+int ViewApp::run() {
+    int width = 0, height = 0;
+    parseRenderSize(options_.size, width, height);
+    openStartState(width, height);
+    openWindow(width, height);
+    startImGui();
     auto last = std::chrono::steady_clock::now();
     FrameTimes times;
-    while (!quit_ && !glfwWindowShouldClose(window_)) {
-        // Nothing moving and nothing accumulating: wait for input instead of spinning.
-        if (!script_.active() && drag_ == Drag::None && state_.camera.mode == CameraMode::Orbit && session_->settled())
-            glfwWaitEventsTimeout(0.1);
-        else
-            glfwPollEvents();
-        int fbw = 0, fbh = 0, ww = 0, wh = 0;
-        glfwGetFramebufferSize(window_, &fbw, &fbh);
-        glfwGetWindowSize(window_, &ww, &wh);
-        if (fbw <= 0 || fbh <= 0 || ww <= 0 || wh <= 0) {  // minimised: nothing to draw into
-            if (script_.active()) script_.frame(*this);
-            glfwWaitEventsTimeout(0.1);
-            continue;
-        }
-        const auto now = std::chrono::steady_clock::now();
-        const float dt = std::chrono::duration<float>(now - last).count();
-        last = now;
-
-        if (!droppedPath_.empty()) {
-            const std::string path = std::exchange(droppedPath_, std::string());
-            if (session_->openScene(state_, path)) {
-                message_ = "opened " + path;
-                scenePath_ = path;
-            }
-        }
-        if (script_.active()) script_.frame(*this);
-
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui_ImplGlfw_NewFrame();
-        ImGui::NewFrame();
-        // Window coordinates for ImGui and the mouse; framebuffer pixels for GL (HiDPI).
-        const float panelW = std::min(kPanelWidth, 0.5f * float(ww));
-        const float viewW = std::max(1.0f, float(ww) - panelW), viewH = float(wh);
-        const float sx = float(fbw) / float(ww);
-        handleInput(viewW, viewH, dt);
-        const int viewPixelsW = std::max(1, int(std::lround(viewW * sx))), viewPixelsH = fbh;
-        state_.viewWidth = viewPixelsW;
-        state_.viewHeight = viewPixelsH;
-        session_->relight(state_);
-        session_->renderFrame(state_, viewPixelsW, viewPixelsH);
-        // Panel and overlay after the frame: both show the frame on screen (the same "5/16 spp"),
-        // and what the panel changes is rendered from the next frame on.
-        drawViewOverlay(state_, *session_, 0.0f, 0.0f, viewW, viewH);
-        if (inspect_ && !ImGui::GetIO().WantCaptureMouse)
-            drawPixelInspector(state_, *session_, float(lastX_), float(lastY_), viewW, viewH);
-        view::PanelContext panel{state_, *session_, message_, scenePath_, settingsPath_, environmentPath_, ctx_->renderer, times};
-        drawPanel(panel, viewW, 0.0f, float(ww) - viewW, viewH);
-        if (panel.screenshotRequested) screenshot_ = true;
-        ImGui::Render();
-
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        glViewport(0, 0, fbw, fbh);
-        glDisable(GL_SCISSOR_TEST);
-        glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT);
-        session_->drawToFramebuffer(state_, 0, 0, viewPixelsW, viewPixelsH);
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-
-        if (screenshot_) {
-            screenshot_ = false;
-            takeScreenshot();
-        }
-        if (!capturePath_.empty()) captureWindow(std::exchange(capturePath_, std::string()), fbw, fbh);
-        glfwSwapBuffers(window_);
-        // From after the event wait to after the swap, smoothed alike so the parts still add up.
-        const float frameMs = 1000.0f * std::chrono::duration<float>(std::chrono::steady_clock::now() - now).count();
-        times.frameMs = 0.9f * times.frameMs + 0.1f * frameMs;
-        times.gpuMs = 0.9f * times.gpuMs + 0.1f * float(session_->gpuMsCollected());
-    }
+    while (!quit_ && !glfwWindowShouldClose(window_)) drawFrame(last, times);
     return 0;
 }
 

@@ -1,4 +1,4 @@
-#include "commands.h"
+#include "cli/commands.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -15,16 +15,16 @@
 #include <cerrno>
 #include <cstring>
 
-#include "bench_flythrough.h"
+#include "cli/flythrough.h"
 #include "bvh.h"
 #include "camera_path.h"
-#include "progress.h"
+#include "cli/progress.h"
 #include "gi/method.h"
 #include "gl/shader.h"
 #include "image.h"
 #include "scene/atomic_file.h"
-#include "settings_io.h"
-#include "view_state.h"
+#include "cli/settings_io.h"
+#include "cli/view_state.h"
 
 namespace gis {
 
@@ -153,20 +153,21 @@ void applyRenderPreset(RenderSettings& s, const std::string& given) {
     if (has || !given.empty()) applyPreset(s, s.gi, preset);
 }
 
-// With GIS_CHECK_FINITE=1 an image whose shaders replaced a NaN or Inf is a bug's image: not written.
-void refuseNonFinite(const Renderer& renderer) {
+// The frame as --out asks (.exr: linear HDR, else PNG). With GIS_CHECK_FINITE=1 an image whose
+// shaders replaced a NaN or Inf is a bug's image: not written.
+void writeRenderedImage(const Renderer& renderer, const std::string& out) {
     const std::string report = renderer.nonFiniteReport();
     if (!report.empty()) throw Error("GIS_CHECK_FINITE: " + report + "; the image is not written");
+    if (endsWith(out, ".exr")) writeExr(out, renderer.readHdr());
+    else writePng(out, renderer.readLdr());
 }
 
 // `render --flythrough`: the scripted path's frames (renderer/camera_path.h), the last one written;
 // with --timings each frame's GPU and wall ms and the cascades it rebuilt, then the passes' medians
 // over the path (the warm-up frame left out).
-int renderFlythrough(Renderer& renderer, const Scene& scene, const RenderOptions& o, bool exr) {
+int renderFlythrough(Renderer& renderer, const Scene& scene, const RenderOptions& o) {
     const std::vector<FlythroughFrame> frames = flyThrough(renderer, scene.bounds, o.flythrough);
-    refuseNonFinite(renderer);
-    if (exr) writeExr(o.out, renderer.readHdr());
-    else writePng(o.out, renderer.readLdr());
+    writeRenderedImage(renderer, o.out);
     if (o.timings) {
         printFlythrough(frames);
         printTimings(renderer, o.flythrough + 1, 1);
@@ -262,65 +263,94 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     o.given = [&cmd](const std::string& flag) { return cmd.count(flag) > 0; };
 }
 
-int runRender(const RenderOptions& o) {
+namespace {
+
+// What `render` renders: the settings its flags give, or a --settings file's pane with only the
+// flags given explicitly over it.
+struct RenderJob {
+    const RenderOptions& o;
     RenderSettings s;
-    // With --settings the file gives every setting and only flags given explicitly override it.
-    std::optional<view::ViewState> viewSettings;
-    std::string sceneSpec = o.scene;
-    auto use = [&](const char* flag) { return !viewSettings || (o.given && o.given(flag)); };
-    if (!o.settings.empty()) {
-        viewSettings = view::loadViewSettings(o.settings);
-        const int panes = view::paneCount(viewSettings->mode);
-        if (o.pane < 0 || o.pane >= panes)
-            throw Error("--pane " + std::to_string(o.pane) + ": the settings' " + view::viewModeName(viewSettings->mode) +
-                        " view has " + std::to_string(panes) + " pane(s)");
-        const glm::ivec2 size = view::paneRenderSize(*viewSettings, viewSettings->viewWidth, viewSettings->viewHeight);
-        s = view::paneSettings(*viewSettings, o.pane, size);
-        if (!use("--scene")) sceneSpec = viewSettings->scene;
-        if (viewSettings->panes[o.pane].display == view::PaneDisplay::Heatmap && !use("--view"))
-            throw Error("--pane " + std::to_string(o.pane) + " displays the error heatmap, which render does not draw: "
-                        "add --view final and compare with `gisandbox diff`");
-    } else if (o.given && o.given("--pane")) {
-        throw Error("--pane needs --settings");
+    std::optional<view::ViewState> viewSettings;  // --settings
+    std::string sceneSpec;
+
+    bool given(const char* flag) const { return o.given && o.given(flag); }
+    // Whether `flag` sets its setting: always, but over a settings file only when given.
+    bool use(const char* flag) const { return !viewSettings || given(flag); }
+    // The settings file's free camera, unless the command line places the camera.
+    bool fileCamera() const { return viewSettings && viewSettings->camera.free && !use("--camera") && !use("--camera-pos"); }
+};
+
+void readRenderSettingsFile(RenderJob& job) {
+    const RenderOptions& o = job.o;
+    if (o.settings.empty()) {
+        if (job.given("--pane")) throw Error("--pane needs --settings");
+        return;
     }
-    if (sceneSpec.empty()) throw Error("--scene is required (or --settings FILE)");
-    if (use("--size")) parseRenderSize(o.size, s.width, s.height);
-    const bool exr = endsWith(o.out, ".exr");
-    const bool listViews = o.given && o.given("--view") && o.view == "list";
-    if (o.out.empty() && !listViews) throw Error("--out is required");
-    if (!listViews && std::filesystem::is_directory(o.out)) throw Error("--out '" + o.out + "' is a directory");
-    if (!listViews && !exr && !endsWith(o.out, ".png")) throw Error("--out '" + o.out + "' must end in .png or .exr");
+    job.viewSettings = view::loadViewSettings(o.settings);
+    const view::ViewState& file = *job.viewSettings;
+    const int panes = view::paneCount(file.mode);
+    if (o.pane < 0 || o.pane >= panes)
+        throw Error("--pane " + std::to_string(o.pane) + ": the settings' " + view::viewModeName(file.mode) +
+                    " view has " + std::to_string(panes) + " pane(s)");
+    const glm::ivec2 size = view::paneRenderSize(file, file.viewWidth, file.viewHeight);
+    job.s = view::paneSettings(file, o.pane, size);
+    if (!job.use("--scene")) job.sceneSpec = file.scene;
+    if (file.panes[o.pane].display == view::PaneDisplay::Heatmap && !job.use("--view"))
+        throw Error("--pane " + std::to_string(o.pane) + " displays the error heatmap, which render does not draw: "
+                    "add --view final and compare with `gisandbox diff`");
+}
+
+void checkRenderCounts(const RenderOptions& o) {
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
     if (o.timings && (o.warmup < 0 || o.warmup >= o.frames)) throw Error("--warmup must be in [0, --frames)");
     if (o.flythrough < 0 || o.flythrough > 100000)
         throw Error("--flythrough=N must be in [0, 100000] (0: a still camera)");
     if (o.ambient.size() != 1 && o.ambient.size() != 3) throw Error("--ambient takes one value or R,G,B");
-    if (use("--gi")) s.gi = o.gi;
+}
+
+void checkRenderOut(const RenderOptions& o, bool listViews) {
+    if (o.out.empty() && !listViews) throw Error("--out is required");
+    if (!listViews && std::filesystem::is_directory(o.out)) throw Error("--out '" + o.out + "' is a directory");
+    if (!listViews && !endsWith(o.out, ".exr") && !endsWith(o.out, ".png"))
+        throw Error("--out '" + o.out + "' must end in .png or .exr");
+}
+
+glm::vec3 oneOrThree(const std::vector<float>& v) { return v.size() == 3 ? glm::vec3(v[0], v[1], v[2]) : glm::vec3(v[0]); }
+
+// The method, BRDFs, image and lighting flags.
+void applyLookFlags(RenderJob& job) {
+    const RenderOptions& o = job.o;
+    RenderSettings& s = job.s;
+    if (job.use("--gi")) s.gi = o.gi;
     giMethod(s.gi);  // throws for an unknown method
-    if (use("--diffuse")) s.diffuse = parseDiffuse(o.diffuse);
-    if (use("--specular")) s.specular = parseSpecular(o.specular);
-    if (use("--tonemap")) s.tonemap = parseTonemapper(o.tonemap);
-    if (use("--exposure")) s.exposureEV = o.exposure;
-    if (use("--ambient"))
-        s.ambient = o.ambient.size() == 3 ? glm::vec3(o.ambient[0], o.ambient[1], o.ambient[2]) : glm::vec3(o.ambient[0]);
-    if (use("--shadow-size")) s.shadowMapSize = o.shadowSize;
-    if (use("--shadow-cube-size")) s.shadowCubeSize = o.shadowCubeSize;
-    if (use("--no-shadows")) s.shadows = !o.noShadows;
-    if (use("--hdr32")) s.hdr32 = o.hdr32;
+    if (job.use("--diffuse")) s.diffuse = parseDiffuse(o.diffuse);
+    if (job.use("--specular")) s.specular = parseSpecular(o.specular);
+    if (job.use("--tonemap")) s.tonemap = parseTonemapper(o.tonemap);
+    if (job.use("--exposure")) s.exposureEV = o.exposure;
+    if (job.use("--ambient")) s.ambient = oneOrThree(o.ambient);
+    if (job.use("--shadow-size")) s.shadowMapSize = o.shadowSize;
+    if (job.use("--shadow-cube-size")) s.shadowCubeSize = o.shadowCubeSize;
+    if (job.use("--no-shadows")) s.shadows = !o.noShadows;
+    if (job.use("--hdr32")) s.hdr32 = o.hdr32;
     if (!o.background.empty()) {
         if (o.background.size() != 1 && o.background.size() != 3) throw Error("--background takes one value or R,G,B");
-        s.background = o.background.size() == 3 ? glm::vec3(o.background[0], o.background[1], o.background[2])
-                                                : glm::vec3(o.background[0]);
+        s.background = oneOrThree(o.background);
         // The constant ambient stands for the environment's radiance (the default sky sets both),
         // so --background without --ambient reaches none's and ssao's ambient term too.
-        if (!viewSettings && !(o.given && o.given("--ambient"))) s.ambient = *s.background;
+        if (!job.viewSettings && !job.given("--ambient")) s.ambient = *s.background;
     }
-    if (use("--environment")) s.environment = o.environment;
-    checkEnvironmentChoice(false, s.environment, o.given && o.given("--ambient"));
-    if (use("--preset")) applyRenderPreset(s, o.preset);
+    if (job.use("--environment")) s.environment = o.environment;
+    checkEnvironmentChoice(false, s.environment, job.given("--ambient"));
+}
+
+// The preset and the method parameters (--set and the older alias flags), then the view.
+void applyParameterFlags(RenderJob& job) {
+    const RenderOptions& o = job.o;
+    RenderSettings& s = job.s;
+    if (job.use("--preset")) applyRenderPreset(s, o.preset);
     // A shadow-map size given on the command line wins over the preset's.
-    if (o.given && o.given("--shadow-size")) s.shadowMapSize = o.shadowSize;
-    if (o.given && o.given("--shadow-cube-size")) s.shadowCubeSize = o.shadowCubeSize;
+    if (job.given("--shadow-size")) s.shadowMapSize = o.shadowSize;
+    if (job.given("--shadow-cube-size")) s.shadowCubeSize = o.shadowCubeSize;
     for (const auto& [flag, value] : o.aliases)
         if (o.given && o.given(flag)) setAlias(s, flag, value);
     for (const auto& [flag, on] : o.aliasFlags)
@@ -330,47 +360,99 @@ int runRender(const RenderOptions& o) {
         if (eq == std::string::npos) throw Error("--set '" + kv + "' is not METHOD.KEY=VALUE");
         setParam(s, kv.substr(0, eq), kv.substr(eq + 1));
     }
-    if (use("--view")) s.view = o.view;
+    if (job.use("--view")) s.view = o.view;
     // Progressive methods add a few samples per frame so progress can be shown between frames.
     s.samplesPerFrame = 4;
-    if (!listViews) checkWritable(o.out, "--out");
-    // A parameter of another method than the one rendered does nothing: say so.
+}
+
+// A parameter of another method than the one rendered does nothing: say so.
+void warnOtherMethodsParams(const RenderJob& job) {
+    const RenderSettings& s = job.s;
     for (const auto& [key, value] : s.params)
         if (key.rfind(s.gi + ".", 0) != 0 && !isGroupParam(key) &&
-            !(viewSettings && key == roleParamKey(MethodRole::Reference, "bounces")))
+            !(job.viewSettings && key == roleParamKey(MethodRole::Reference, "bounces")))
             std::fprintf(stderr, "gisandbox: warning: %s is a parameter of another method than --gi %s: ignored\n",
                          key.c_str(), s.gi.c_str());
+}
 
-    Scene scene = loadScene(sceneSpec);
+// Lighting, camera and the settings file's light edits, as the view set them up.
+void setUpRenderScene(RenderJob& job, Scene& scene) {
+    const RenderOptions& o = job.o;
+    SceneSetupOptions setup = o.setup;
+    if (job.viewSettings && !job.use("--lighting")) setup.lighting = job.viewSettings->lighting;
+    // With --settings the file's ambient stands: the view applied the same rule when it opened the scene.
+    const bool ambientFixed = job.viewSettings.has_value() || job.given("--ambient") || job.given("--background");
+    const int camera = prepareScene(scene, setup, float(job.s.width) / float(job.s.height), &job.s, ambientFixed);
+    if (job.viewSettings) scene.lights = view::effectiveLights(*job.viewSettings, scene.lights);  // the panel's edits
+    // The glTF loader's depth-range check, for the settings file's own camera.
+    if (job.fileCamera()) {
+        const std::string warning = checkCameraDepth(scene.bounds, job.viewSettings->camera.position,
+                                                     job.viewSettings->camera.znear, o.settings + ": camera");
+        if (!warning.empty()) std::fprintf(stderr, "gisandbox: warning: %s\n", warning.c_str());
+    }
+    if (!job.viewSettings || job.use("--camera") || job.use("--camera-pos")) job.s.camera = camera;
+}
+
+std::unique_ptr<GlContext> renderContext(const RenderOptions& o) {
+    if (parseBackend(o.backend) != Backend::Glfw) return headlessContext(o.backend, o.glDebug, o.verbose);
+    ContextOptions co;
+    co.backend = Backend::Glfw;
+    co.debug = o.glDebug;
+    std::unique_ptr<GlContext> ctx = createContext(co);
+    if (o.verbose)
+        std::fprintf(stderr, "backend: glfw (%s)\nGL_RENDERER: %s\nGL_VERSION: %s\n", ctx->detail.c_str(),
+                     ctx->renderer.c_str(), ctx->version.c_str());
+    return ctx;
+}
+
+// `frames` frames; the wall clock of each with the GPU finished, comparable with other engines'
+// wall-clock figures (Godot's frame time) where GPU timer queries are not.
+std::vector<double> renderFrames(Renderer& renderer, int frames, bool timings) {
+    std::vector<double> wallMs;
+    std::optional<ProgressBar> frameProgress;
+    if (frames > 1) frameProgress.emplace(frames, "", "frames");
+    for (int i = 0; i < frames; ++i) {
+        const auto t0 = std::chrono::steady_clock::now();
+        renderer.renderFrame();
+        if (timings || frameProgress) glFinish();
+        wallMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        if (frameProgress) frameProgress->update(i + 1);
+    }
+    if (frameProgress) frameProgress->finish();
+    return wallMs;
+}
+
+// The references count their samples with --spp, so they render them all whatever --frames
+// says; other progressive methods (probe updates) stop at --frames when it is given.
+void renderRestToConvergence(Renderer& renderer, const RenderJob& job) {
+    if (renderer.converged() || (job.given("--frames") && giMethod(job.s.gi).role == MethodRole::Method)) return;
+    Pass::Progress longest;
+    for (const auto& pass : renderer.passes())
+        if (pass->progress().target > longest.target) longest = pass->progress();
+    ProgressBar progress(longest.target, "", longest.unit);
+    renderToConvergence(renderer, progress);
+}
+
+}  // namespace
+
+int runRender(const RenderOptions& o) {
+    RenderJob job{o, {}, std::nullopt, o.scene};
+    readRenderSettingsFile(job);
+    if (job.sceneSpec.empty()) throw Error("--scene is required (or --settings FILE)");
+    RenderSettings& s = job.s;
+    if (job.use("--size")) parseRenderSize(o.size, s.width, s.height);
+    const bool listViews = job.given("--view") && o.view == "list";
+    checkRenderOut(o, listViews);
+    checkRenderCounts(o);
+    applyLookFlags(job);
+    applyParameterFlags(job);
+    if (!listViews) checkWritable(o.out, "--out");
+    warnOtherMethodsParams(job);
+
+    Scene scene = loadScene(job.sceneSpec);
     printWarnings(scene);
-    {
-        SceneSetupOptions setup = o.setup;
-        if (viewSettings && !use("--lighting")) setup.lighting = viewSettings->lighting;
-        // With --settings the file's ambient stands: the view applied the same rule when it opened the scene.
-        const bool ambientFixed =
-            viewSettings.has_value() || (o.given && (o.given("--ambient") || o.given("--background")));
-        const int camera = prepareScene(scene, setup, float(s.width) / float(s.height), &s, ambientFixed);
-        if (viewSettings) scene.lights = view::effectiveLights(*viewSettings, scene.lights);  // the panel's edits
-        // The glTF loader's depth-range check, for the settings file's own camera.
-        if (viewSettings && viewSettings->camera.free && !use("--camera") && !use("--camera-pos")) {
-            const std::string warning = checkCameraDepth(scene.bounds, viewSettings->camera.position,
-                                                         viewSettings->camera.znear, o.settings + ": camera");
-            if (!warning.empty()) std::fprintf(stderr, "gisandbox: warning: %s\n", warning.c_str());
-        }
-        if (!viewSettings || use("--camera") || use("--camera-pos")) s.camera = camera;
-    }
-    std::unique_ptr<GlContext> ctx;
-    if (parseBackend(o.backend) == Backend::Glfw) {
-        ContextOptions co;
-        co.backend = Backend::Glfw;
-        co.debug = o.glDebug;
-        ctx = createContext(co);
-        if (o.verbose)
-            std::fprintf(stderr, "backend: glfw (%s)\nGL_RENDERER: %s\nGL_VERSION: %s\n", ctx->detail.c_str(),
-                         ctx->renderer.c_str(), ctx->version.c_str());
-    } else {
-        ctx = headlessContext(o.backend, o.glDebug, o.verbose);
-    }
+    setUpRenderScene(job, scene);
+    const std::unique_ptr<GlContext> ctx = renderContext(o);
     if (s.view == "list") {  // what this method's passes can show
         s.view = "final";
         Renderer lister(scene, s);
@@ -378,40 +460,13 @@ int runRender(const RenderOptions& o) {
         return 0;
     }
     Renderer renderer(scene, s);
-    if (viewSettings && viewSettings->camera.free && !use("--camera") && !use("--camera-pos")) {  // the free camera
-        renderer.setCamera(view::viewCameraMatrices(*viewSettings, scene, float(s.width) / float(s.height)));
-    }
+    if (job.fileCamera()) renderer.setCamera(view::viewCameraMatrices(*job.viewSettings, scene, float(s.width) / float(s.height)));
     renderer.setSkipSettled(!o.rerunSettled);
-    if (o.flythrough > 0) return renderFlythrough(renderer, scene, o, exr);
+    if (o.flythrough > 0) return renderFlythrough(renderer, scene, o);
     const int frames = framesToRender(o, s);
-    // Wall-clock per frame with the GPU finished, comparable with other engines' wall-clock figures
-    // (Godot's frame time) where GPU timer queries are not.
-    std::vector<double> wallMs;
-    std::optional<ProgressBar> frameProgress;
-    if (frames > 1) frameProgress.emplace(frames, "", "frames");
-    for (int i = 0; i < frames; ++i) {
-        const auto t0 = std::chrono::steady_clock::now();
-        renderer.renderFrame();
-        if (o.timings || frameProgress) glFinish();
-        wallMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-        if (frameProgress) frameProgress->update(i + 1);
-    }
-    if (frameProgress) frameProgress->finish();
-    // The references count their samples with --spp, so they render them all whatever --frames
-    // says; other progressive methods (probe updates) stop at --frames when it is given.
-    const bool framesGiven = o.given && o.given("--frames");
-    if (!renderer.converged() && (!framesGiven || giMethod(s.gi).role != MethodRole::Method)) {
-        Pass::Progress longest;
-        for (const auto& pass : renderer.passes())
-            if (pass->progress().target > longest.target) longest = pass->progress();
-        ProgressBar progress(longest.target, "", longest.unit);
-        renderToConvergence(renderer, progress);
-    }
-
-    refuseNonFinite(renderer);
-    if (exr) writeExr(o.out, renderer.readHdr());
-    else writePng(o.out, renderer.readLdr());
-
+    const std::vector<double> wallMs = renderFrames(renderer, frames, o.timings);
+    renderRestToConvergence(renderer, job);
+    writeRenderedImage(renderer, o.out);
     if (o.timings) {
         printTimings(renderer, frames, o.warmup);
         std::printf("%-22s %10.3f %10.3f %9s  (wall clock per frame with glFinish, median after warm-up)\n", "wall",

@@ -1,4 +1,4 @@
-#include "settings_io.h"
+#include "cli/settings_io.h"
 
 #include <cmath>
 
@@ -7,7 +7,8 @@
 #include "image.h"
 #include "scene/atomic_file.h"
 #include "scene/user_file.h"
-#include "user_json.h"
+#include "cli/panel_action.h"
+#include "cli/user_json.h"
 
 namespace gis::view {
 
@@ -196,180 +197,183 @@ ojson viewStateToJson(const ViewState& s) {
     return j;
 }
 
+namespace {
+
+// Each reader below sets `key` to what it reads, so an error names it.
+
+void readPane(const json& v, int p, ViewState& s, std::string& key) {
+    const std::string prefix = "panes[" + std::to_string(p) + "]";
+    // The method first: a new method resets the pane's preset and debug view, which the keys
+    // after it (alphabetical, "display" before "gi") set for it.
+    if (v.is_object() && v.contains("gi")) {
+        key = prefix + ".gi";
+        applyPanelAction(s, PanelAction::method(p, text(v["gi"], key)));
+    }
+    for (const auto& [pk, pv] : v.items()) {
+        key = prefix + "." + pk;
+        if (pk == "gi") continue;
+        else if (pk == "preset") applyPanelAction(s, PanelAction::preset(p, text(pv, key)));
+        else if (pk == "diffuse") applyPanelAction(s, PanelAction::diffuse(p, text(pv, key)));
+        else if (pk == "specular") applyPanelAction(s, PanelAction::specular(p, text(pv, key)));
+        else if (pk == "display") applyPanelAction(s, PanelAction::display(p, text(pv, key)));
+        else if (pk == "params") {
+            if (!pv.is_object()) throw Error("must be an object of \"method.key\": value");
+            s.panes[p].params.clear();
+            for (const auto& [name, value] : pv.items()) {
+                key = prefix + ".params." + name;
+                s.panes[p].params[name] = paramFromJson(name, value);
+            }
+        }
+        else if (pk == "direct_only") applyPanelAction(s, PanelAction::directOnly(p, boolean(pv, key)));
+        else throw Error("unknown key");
+    }
+}
+
+void readPanes(const json& v, ViewState& s, std::string& key) {
+    if (!v.is_array() || v.size() > size_t(kMaxPanes)) throw Error("'panes' must be an array of up to 4");
+    for (size_t i = 0; i < v.size(); ++i) readPane(v[i], int(i), s, key);
+}
+
+void checkCamera(const ViewCamera& c) {
+    if (c.sceneCamera < 0) throw Error("camera.scene_camera must be >= 0");
+    if (!(c.distance > 0.0f)) throw Error("camera.distance must be > 0");
+    if (!(c.yfov > 0.0f && c.yfov < 3.13f)) throw Error("camera.yfov must be in (0, 3.13) radians");
+    if (!(c.znear > 0.0f)) throw Error("camera.znear must be > 0");
+    if (c.zfar != 0.0f && !(c.zfar > c.znear)) throw Error("camera.zfar must be 0 (infinite) or > znear");
+    if (std::abs(c.pitch) > 1.5708f) throw Error("camera.pitch must be in [-pi/2, pi/2]");
+}
+
+void readCamera(const json& v, ViewState& s, std::string& key) {
+    if (!v.is_object()) throw Error("must be an object");
+    ViewCamera& c = s.camera;
+    for (const auto& [ck, cv] : v.items()) {
+        key = "camera." + ck;
+        if (ck == "scene_camera") c.sceneCamera = integer(cv, key);
+        else if (ck == "free") c.free = boolean(cv, key);
+        else if (ck == "mode") applyPanelAction(s, PanelAction::withText(PanelAction::SetCameraMode, text(cv, key)));
+        else if (ck == "position") c.position = vec3(cv, key);
+        else if (ck == "yaw") c.yaw = number(cv, key);
+        else if (ck == "pitch") c.pitch = number(cv, key);
+        else if (ck == "distance") c.distance = number(cv, key);
+        else if (ck == "yfov") c.yfov = number(cv, key);
+        else if (ck == "znear") c.znear = number(cv, key);
+        else if (ck == "zfar") c.zfar = number(cv, key);
+        else if (ck == "speed") c.speed = number(cv, key);
+        else throw Error("unknown key");
+    }
+    // Each check names its own key: the loop above leaves `key` at the last one read.
+    key = "camera";
+    checkCamera(c);
+}
+
+void readLights(const json& v, ViewState& s, std::string& key) {
+    if (v.is_null()) {
+        s.lightsEdited = false;
+        return;
+    }
+    if (!v.is_array()) throw Error("must be an array or null");
+    s.lights.clear();
+    for (size_t i = 0; i < v.size(); ++i) {
+        key = "lights[" + std::to_string(i) + "]";
+        LightState l{lightFromJson(v[i]), true};
+        if (v[i].contains("enabled")) l.enabled = boolean(v[i]["enabled"], key + ".enabled");
+        s.lights.push_back(l);
+    }
+    s.lightsEdited = true;
+}
+
+void readBrdfPlot(const json& v, ViewState& s, std::string& key) {
+    if (!v.is_object()) throw Error("must be an object");
+    PanelAction material = PanelAction::withVec(PanelAction::SetPlotMaterial, s.plotBaseColor);
+    material.vec4 = glm::vec4(s.plotMetallic, s.plotRoughness, s.plotSpecular, 0.0f);
+    for (const auto& [pk, pv] : v.items()) {
+        key = "brdf_plot." + pk;
+        if (pk == "pane") {
+            applyPanelAction(s, PanelAction::withIndex(PanelAction::SetPlotPane, integer(pv, key)));
+        } else if (pk == "base_color") material.vec = vec3(pv, key);
+        else if (pk == "metallic") material.vec4.x = number(pv, key);
+        else if (pk == "roughness") material.vec4.y = number(pv, key);
+        else if (pk == "specular") material.vec4.z = number(pv, key);
+        else if (pk == "view_angle") applyPanelAction(s, PanelAction::withValue(PanelAction::SetPlotViewAngle, number(pv, key)));
+        else if (pk == "log") applyPanelAction(s, PanelAction::withFlag(PanelAction::SetPlotLog, boolean(pv, key)));
+        else throw Error("unknown key");
+    }
+    applyPanelAction(s, material);
+}
+
+void readViewSize(const json& v, ViewState& s) {
+    if (!v.is_array() || v.size() != 2) throw Error("'view_size' must be [width, height]");
+    s.viewWidth = integer(v[0], "view_size");
+    s.viewHeight = integer(v[1], "view_size");
+    if (s.viewWidth < 1 || s.viewHeight < 1 || s.viewWidth > 16384 || s.viewHeight > 16384)
+        throw Error("'view_size' is out of range (1..16384)");
+}
+
+PanelAction backgroundAction(const json& v) {
+    if (v.is_null()) return PanelAction::withFlag(PanelAction::SetBackground, false);
+    PanelAction a = PanelAction::withVec(PanelAction::SetBackground, vec3(v, "background"));
+    a.flag = true;
+    return a;
+}
+
+PanelAction environmentAction(const json& v) {
+    if (!v.is_null() && !v.is_string()) throw Error("environment must be a file name or null");
+    return PanelAction::withText(PanelAction::SetEnvironment, v.is_null() ? "" : v.get<std::string>());
+}
+
+// A top-level key whose value is one action's.
+bool applyActionKey(const std::string& k, const json& v, ViewState& s) {
+    PanelAction a;
+    if (k == "mode") a = PanelAction::withText(PanelAction::SetMode, text(v, k));
+    else if (k == "divider") a = PanelAction::dividerAt(number(v, k));
+    else if (k == "tonemap") a = PanelAction::tonemapper(text(v, k));
+    else if (k == "exposure") a = PanelAction::exposure(number(v, k));
+    else if (k == "ambient") a = PanelAction::withVec(PanelAction::SetAmbient, vec3(v, k));
+    else if (k == "shadows") a = PanelAction::withFlag(PanelAction::SetShadows, boolean(v, k));
+    else if (k == "background") a = backgroundAction(v);
+    else if (k == "environment") a = environmentAction(v);
+    else if (k == "max_bounces") a = PanelAction::withValue(PanelAction::SetMaxBounces, number(v, k));
+    else if (k == "render_scale") a = PanelAction::withValue(PanelAction::SetRenderScale, number(v, k));
+    else if (k == "reference_spp") a = PanelAction::withValue(PanelAction::SetReferenceSpp, number(v, k));
+    else if (k == "heatmap_metric") a = PanelAction::withText(PanelAction::SetHeatmapMetric, text(v, k));
+    else return false;
+    applyPanelAction(s, a);
+    return true;
+}
+
+void readKey(const std::string& k, const json& v, ViewState& s, std::string& key) {
+    if (k == "gisandbox_view_settings") {
+        if (integer(v, k) != kSettingsVersion)
+            throw Error("version " + v.dump() + " is not supported (expected " + std::to_string(kSettingsVersion) + ")");
+    } else if (k == "scene") {
+        s.scene = text(v, k);
+    } else if (k == "lighting") {
+        s.lighting = lightingModeName(parseLightingMode(text(v, k)));
+    } else if (k == "view_size") {
+        readViewSize(v, s);
+    } else if (k == "panes") {
+        readPanes(v, s, key);
+    } else if (k == "camera") {
+        readCamera(v, s, key);
+    } else if (k == "lights") {
+        readLights(v, s, key);
+    } else if (k == "brdf_plot") {
+        readBrdfPlot(v, s, key);
+    } else if (!applyActionKey(k, v, s)) {
+        throw Error("unknown key");
+    }
+}
+
+}  // namespace
+
 void viewStateFromJson(const json& j, ViewState& state) {
     if (!j.is_object()) throw Error("settings must be a JSON object");
     ViewState s = state;
     std::string key;
     try {
-        auto apply = [&](PanelAction a) { applyPanelAction(s, a); };
         for (const auto& [k, v] : j.items()) {
             key = k;
-            if (k == "gisandbox_view_settings") {
-                if (integer(v, k) != kSettingsVersion)
-                    throw Error("version " + v.dump() + " is not supported (expected " +
-                                std::to_string(kSettingsVersion) + ")");
-            } else if (k == "scene") {
-                s.scene = text(v, k);
-            } else if (k == "lighting") {
-                s.lighting = lightingModeName(parseLightingMode(text(v, k)));
-            } else if (k == "view_size") {
-                if (!v.is_array() || v.size() != 2) throw Error("'view_size' must be [width, height]");
-                s.viewWidth = integer(v[0], k);
-                s.viewHeight = integer(v[1], k);
-                if (s.viewWidth < 1 || s.viewHeight < 1 || s.viewWidth > 16384 || s.viewHeight > 16384)
-                    throw Error("'view_size' is out of range (1..16384)");
-            } else if (k == "mode") {
-                PanelAction a;
-                a.kind = PanelAction::SetMode;
-                a.text = text(v, k);
-                apply(a);
-            } else if (k == "divider") {
-                apply(PanelAction::dividerAt(number(v, k)));
-            } else if (k == "panes") {
-                if (!v.is_array() || v.size() > size_t(kMaxPanes)) throw Error("'panes' must be an array of up to 4");
-                for (size_t i = 0; i < v.size(); ++i) {
-                    const int p = int(i);
-                    // The method first: a new method resets the pane's preset and debug view, which
-                    // the keys after it (alphabetical, "display" before "gi") set for it.
-                    if (v[i].is_object() && v[i].contains("gi")) {
-                        key = "panes[" + std::to_string(i) + "].gi";
-                        apply(PanelAction::method(p, text(v[i]["gi"], key)));
-                    }
-                    for (const auto& [pk, pv] : v[i].items()) {
-                        key = "panes[" + std::to_string(i) + "]." + pk;
-                        if (pk == "gi") continue;
-                        else if (pk == "preset") apply(PanelAction::preset(p, text(pv, key)));
-                        else if (pk == "diffuse") apply(PanelAction::diffuse(p, text(pv, key)));
-                        else if (pk == "specular") apply(PanelAction::specular(p, text(pv, key)));
-                        else if (pk == "display") apply(PanelAction::display(p, text(pv, key)));
-                        else if (pk == "params") {
-                            if (!pv.is_object()) throw Error("must be an object of \"method.key\": value");
-                            s.panes[i].params.clear();
-                            for (const auto& [name, value] : pv.items()) {
-                                key = "panes[" + std::to_string(i) + "].params." + name;
-                                s.panes[i].params[name] = paramFromJson(name, value);
-                            }
-                        }
-                        else if (pk == "direct_only") apply(PanelAction::directOnly(p, boolean(pv, key)));
-                        else throw Error("unknown key");
-                    }
-                }
-            } else if (k == "tonemap") {
-                apply(PanelAction::tonemapper(text(v, k)));
-            } else if (k == "exposure") {
-                apply(PanelAction::exposure(number(v, k)));
-            } else if (k == "ambient") {
-                PanelAction a;
-                a.kind = PanelAction::SetAmbient;
-                a.vec = vec3(v, k);
-                apply(a);
-            } else if (k == "shadows") {
-                PanelAction a;
-                a.kind = PanelAction::SetShadows;
-                a.flag = boolean(v, k);
-                apply(a);
-            } else if (k == "background") {
-                PanelAction a;
-                a.kind = PanelAction::SetBackground;
-                a.flag = !v.is_null();
-                if (a.flag) a.vec = vec3(v, k);
-                apply(a);
-            } else if (k == "environment") {
-                PanelAction a;
-                a.kind = PanelAction::SetEnvironment;
-                if (!v.is_null()) a.text = v.is_string() ? v.get<std::string>() : throw Error(k + " must be a file name or null");
-                apply(a);
-            } else if (k == "max_bounces" || k == "render_scale" || k == "reference_spp") {
-                PanelAction a;
-                a.kind = k == "max_bounces"    ? PanelAction::SetMaxBounces
-                         : k == "render_scale" ? PanelAction::SetRenderScale
-                                               : PanelAction::SetReferenceSpp;
-                a.value = number(v, k);
-                apply(a);
-            } else if (k == "heatmap_metric") {
-                PanelAction a;
-                a.kind = PanelAction::SetHeatmapMetric;
-                a.text = text(v, k);
-                apply(a);
-            } else if (k == "camera") {
-                if (!v.is_object()) throw Error("must be an object");
-                ViewCamera& c = s.camera;
-                for (const auto& [ck, cv] : v.items()) {
-                    key = "camera." + ck;
-                    if (ck == "scene_camera") c.sceneCamera = integer(cv, key);
-                    else if (ck == "free") c.free = boolean(cv, key);
-                    else if (ck == "mode") {
-                        PanelAction a;
-                        a.kind = PanelAction::SetCameraMode;
-                        a.text = text(cv, key);
-                        apply(a);
-                    } else if (ck == "position") c.position = vec3(cv, key);
-                    else if (ck == "yaw") c.yaw = number(cv, key);
-                    else if (ck == "pitch") c.pitch = number(cv, key);
-                    else if (ck == "distance") c.distance = number(cv, key);
-                    else if (ck == "yfov") c.yfov = number(cv, key);
-                    else if (ck == "znear") c.znear = number(cv, key);
-                    else if (ck == "zfar") c.zfar = number(cv, key);
-                    else if (ck == "speed") c.speed = number(cv, key);
-                    else throw Error("unknown key");
-                }
-                // Each check names its own key: the loop above leaves `key` at the last one read.
-                key = "camera";
-                if (c.sceneCamera < 0) throw Error("camera.scene_camera must be >= 0");
-                if (!(c.distance > 0.0f)) throw Error("camera.distance must be > 0");
-                if (!(c.yfov > 0.0f && c.yfov < 3.13f)) throw Error("camera.yfov must be in (0, 3.13) radians");
-                if (!(c.znear > 0.0f)) throw Error("camera.znear must be > 0");
-                if (c.zfar != 0.0f && !(c.zfar > c.znear)) throw Error("camera.zfar must be 0 (infinite) or > znear");
-                if (std::abs(c.pitch) > 1.5708f) throw Error("camera.pitch must be in [-pi/2, pi/2]");
-            } else if (k == "lights") {
-                if (v.is_null()) {
-                    s.lightsEdited = false;
-                    continue;
-                }
-                if (!v.is_array()) throw Error("must be an array or null");
-                s.lights.clear();
-                for (size_t i = 0; i < v.size(); ++i) {
-                    key = "lights[" + std::to_string(i) + "]";
-                    LightState l{lightFromJson(v[i]), true};
-                    if (v[i].contains("enabled")) l.enabled = boolean(v[i]["enabled"], key + ".enabled");
-                    s.lights.push_back(l);
-                }
-                s.lightsEdited = true;
-            } else if (k == "brdf_plot") {
-                if (!v.is_object()) throw Error("must be an object");
-                glm::vec3 base = s.plotBaseColor;
-                glm::vec4 params(s.plotMetallic, s.plotRoughness, s.plotSpecular, 0.0f);
-                for (const auto& [pk, pv] : v.items()) {
-                    key = "brdf_plot." + pk;
-                    if (pk == "pane") {
-                        PanelAction a;
-                        a.kind = PanelAction::SetPlotPane;
-                        a.index = integer(pv, key);
-                        apply(a);
-                    } else if (pk == "base_color") base = vec3(pv, key);
-                    else if (pk == "metallic") params.x = number(pv, key);
-                    else if (pk == "roughness") params.y = number(pv, key);
-                    else if (pk == "specular") params.z = number(pv, key);
-                    else if (pk == "view_angle") {
-                        PanelAction a;
-                        a.kind = PanelAction::SetPlotViewAngle;
-                        a.value = number(pv, key);
-                        apply(a);
-                    } else if (pk == "log") {
-                        PanelAction a;
-                        a.kind = PanelAction::SetPlotLog;
-                        a.flag = boolean(pv, key);
-                        apply(a);
-                    } else throw Error("unknown key");
-                }
-                PanelAction a;
-                a.kind = PanelAction::SetPlotMaterial;
-                a.vec = base;
-                a.vec4 = params;
-                apply(a);
-            } else {
-                throw Error("unknown key");
-            }
+            readKey(k, v, s, key);
         }
         for (int p = 0; p < kMaxPanes; ++p) {  // once the pane's method is known
             key = "panes[" + std::to_string(p) + "].display";

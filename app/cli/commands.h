@@ -6,7 +6,7 @@
 
 #include "gl/context.h"
 #include "renderer.h"
-#include "scene_setup_options.h"
+#include "cli/scene_setup_options.h"
 
 namespace CLI { class App; }
 

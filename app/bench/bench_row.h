@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench_flythrough.h"
+#include "cli/flythrough.h"
 #include "metrics.h"
 
 namespace gis {

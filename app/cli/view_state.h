@@ -1,6 +1,5 @@
-// The interactive sandbox's state and the only ways to change it. The ImGui panel, keyboard and
-// mouse handling, the input script (--script) and the tests all go through applyPanelAction(), so
-// what the widgets do is testable without a window. No GL here.
+// The interactive sandbox's state: what a settings file holds and `render --settings` renders, so
+// the CLI's. The only ways to change it are its actions (panel_action.h). No GL here.
 #pragma once
 
 #include <array>
@@ -28,6 +27,7 @@ constexpr int kMaxPanes = 4;
 // settings file alike: what is accepted when set is what saves and loads again, and a product of
 // two such values (a light's colour times its intensity) is still finite in float.
 constexpr double kMaxSettingMagnitude = 1e18;
+constexpr float kMaxPitch = 1.5533430f;  // 89 degrees: never straight up or down (lookAt's up vector)
 int paneCount(ViewMode mode);
 
 const char* viewModeName(ViewMode m);
@@ -115,64 +115,11 @@ struct ViewState {
     int viewWidth = 960, viewHeight = 720;  // the 3D view's size in window pixels (for --settings)
 };
 
-// --- Actions: every change to a ViewState. The panel's widgets, the keys, the mouse and script
-// lines build one and call applyPanelAction.
-struct PanelAction {
-    enum Kind {
-        SetMethod, SetPreset, SetDiffuse, SetSpecular, SetDisplay, SetDirectOnly,  // pane, text / flag
-        SetParam, ResetParams,  // pane, text = "method.key", value = its text (`set 0 ssao.samples 32`)
-        SetMode, SetDivider,
-        SetExposure, SetTonemap, SetAmbient, SetShadows, SetBackground, SetEnvironment, SetMaxBounces, SetRenderScale,
-        SetHeatmapMetric, SetReferenceSpp,
-        SetCameraMode, OrbitCamera, PanCamera, ZoomCamera, MoveCamera, LookCamera, ResetCamera,
-        SetLightEnabled, SetLightIntensity, SetLightColor, SetLightPosition, SetLightDirection, AddLight,
-        RemoveLight, ResetLights,
-        SetPlotPane, SetPlotMaterial, SetPlotViewAngle, SetPlotLog,
-        SwapSides,  // A/B: panes 0 and 1 trade places (split mode's left and right)
-    };
-    Kind kind = SetMethod;
-    int index = 0;            // pane or light
-    std::string text;
-    std::string valueText;    // SetParam
-    bool flag = false;
-    float value = 0.0f;
-    glm::vec3 vec{0.0f};
-    glm::vec4 vec4{0.0f};
-
-    static PanelAction method(int pane, std::string gi);
-    static PanelAction preset(int pane, std::string name);
-    static PanelAction diffuse(int pane, std::string name);
-    static PanelAction specular(int pane, std::string name);
-    static PanelAction display(int pane, PaneDisplay d);
-    static PanelAction display(int pane, std::string name);   // a fixed display or a method's view
-    static PanelAction param(int pane, std::string fullKey, std::string value);
-    static PanelAction directOnly(int pane, bool on);
-    static PanelAction viewMode(ViewMode m);
-    static PanelAction dividerAt(float fraction);
-    static PanelAction exposure(float ev);
-    static PanelAction tonemapper(std::string name);
-    static PanelAction orbit(float dyaw, float dpitch);       // radians
-    static PanelAction pan(float dx, float dy);               // in units of the orbit distance
-    static PanelAction zoom(float factor);                    // distance *= factor
-    static PanelAction move(glm::vec3 local);                 // fly: right, up, forward, scene units
-    static PanelAction look(float dyaw, float dpitch);        // fly: turn in place
-};
-
-// A SetParam's pane, key and value on their own (the row's range), without the pane's other values.
-ParamValue parsePaneParam(const PanelAction& action);
-
-// Validates and applies. Throws gis::Error (one line) for unknown names or out-of-range values and
-// leaves `state` unchanged then.
-void applyPanelAction(ViewState& state, const PanelAction& action);
-
+// Throws unless `pane` is one of the kMaxPanes.
+void checkPane(int pane);
 // Throws when pane `pane`'s display is a view its method cannot produce, told without GL
 // (checkViewOfMethod: "sdf.slice" on a vct pane, "indirect.diffuse" on a pathtrace pane).
 void checkPaneDisplay(const ViewState& state, int pane);
-
-// A script line / command in words, e.g. "method 1 pathtrace", "camera orbit 10 0" (degrees),
-// "light 0 intensity 2". Throws gis::Error naming the problem. See docs/viewer.md.
-PanelAction parsePanelAction(const std::vector<std::string>& words);
-std::vector<std::string> splitWords(const std::string& line);
 
 // --- From state to renderer settings.
 

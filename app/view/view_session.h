@@ -29,7 +29,7 @@
 #include "renderer.h"
 #include "image.h"
 #include "renderer.h"
-#include "view_state.h"
+#include "cli/view_state.h"
 
 namespace gis::view {
 

@@ -1,12 +1,12 @@
-#include "view_script.h"
+#include "view/view_script.h"
 
 #include <cmath>
 #include <sstream>
 
 #include "gi/method.h"
 #include "scene/user_file.h"
-#include "user_json.h"
-#include "view_session.h"
+#include "cli/user_json.h"
+#include "view/view_session.h"
 
 namespace gis::view {
 
@@ -25,6 +25,86 @@ double parseNumber(const std::string& w) {
     if (used != w.size() || !std::isfinite(v)) throw Error("'" + w + "' is not a number");
     return v;
 }
+
+// Names and ranges are checked now, so a typo fails before any window opens; light edits depend
+// on the scene's lights and are checked in context.
+void checkActionAlone(const PanelAction& a) {
+    const PanelAction::Kind k = a.kind;
+    const bool dependsOnScene = actionEdits(k) == PanelAction::Edits::Light;
+    // A parameter's value alone: whether the method takes it with the pane's other values is for
+    // checkScriptInContext (vct.debug-level 2 after vct.debug-channel occupancy).
+    if (k == PanelAction::SetParam) parsePaneParam(a);
+    ViewState scratch;
+    if (!dependsOnScene && k != PanelAction::SetParam) applyPanelAction(scratch, a);
+}
+
+// A line's step (its words; the line number is the caller's). Throws gis::Error naming the problem.
+ScriptStep parseStep(const std::vector<std::string>& w) {
+    ScriptStep s;
+    auto need = [&](size_t n, const char* usage) {
+        if (w.size() != n) throw Error(std::string("usage: ") + usage);
+    };
+    const std::string& cmd = w[0];
+    if (cmd == "wait") {
+        need(2, "wait FRAMES");
+        const double n = parseNumber(w[1]);
+        if (n < 0 || n > 1e7 || n != std::floor(n)) throw Error("wait takes a whole number of frames");
+        s.kind = ScriptStep::Wait;
+        s.frames = int(n);
+    } else if (cmd == "sleep") {
+        need(2, "sleep SECONDS");
+        s.kind = ScriptStep::Sleep;
+        s.seconds = parseNumber(w[1]);
+        if (s.seconds < 0 || s.seconds > 3600) throw Error("sleep takes 0 to 3600 seconds");
+    } else if (cmd == "converge") {
+        need(1, "converge");
+        s.kind = ScriptStep::Converge;
+    } else if (cmd == "screenshot") {
+        need(1, "screenshot");
+        s.kind = ScriptStep::Screenshot;
+    } else if (cmd == "capture") {
+        need(2, "capture PATH.png");
+        // The window is written as PNG whatever the name says: any other name is a mistake.
+        const std::string& p = w[1];
+        if (p.size() < 4 || (p.compare(p.size() - 4, 4, ".png") != 0 && p.compare(p.size() - 4, 4, ".PNG") != 0))
+            throw Error("capture writes a PNG: '" + p + "' does not end in .png");
+        s.kind = ScriptStep::Capture;
+        s.path = p;
+    } else if (cmd == "scene") {
+        need(2, "scene PATH|builtin:NAME");
+        s.kind = ScriptStep::OpenScene;
+        s.path = w[1];
+    } else if (cmd == "settings") {
+        need(2, "settings FILE");
+        s.kind = ScriptStep::LoadSettings;
+        s.path = w[1];
+    } else if (cmd == "save-settings") {
+        need(2, "save-settings FILE");
+        s.kind = ScriptStep::SaveSettings;
+        s.path = w[1];
+    } else if (cmd == "resize") {
+        need(3, "resize WIDTH HEIGHT");
+        const double a = parseNumber(w[1]), b = parseNumber(w[2]);
+        if (a < 0 || b < 0 || a > 16384 || b > 16384 || a != std::floor(a) || b != std::floor(b))
+            throw Error("resize takes whole numbers in [0, 16384]");
+        s.kind = ScriptStep::Resize;
+        s.width = int(a);
+        s.height = int(b);
+    } else if (cmd == "key") {
+        need(2, "key NAME");
+        s.kind = ScriptStep::Key;
+        s.path = w[1];
+    } else if (cmd == "quit") {
+        need(1, "quit");
+        s.kind = ScriptStep::Quit;
+    } else {
+        s.kind = ScriptStep::Action;
+        s.action = parsePanelAction(w);
+        checkActionAlone(s.action);
+    }
+    return s;
+}
+
 }  // namespace
 
 std::vector<ScriptStep> parseScript(const std::string& text, const std::string& name) {
@@ -36,84 +116,12 @@ std::vector<ScriptStep> parseScript(const std::string& text, const std::string& 
         ++lineNo;
         const std::vector<std::string> w = splitWords(line);
         if (w.empty()) continue;
-        ScriptStep s;
-        s.line = lineNo;
         try {
-            auto need = [&](size_t n, const char* usage) {
-                if (w.size() != n) throw Error(std::string("usage: ") + usage);
-            };
-            const std::string& cmd = w[0];
-            if (cmd == "wait") {
-                need(2, "wait FRAMES");
-                const double n = parseNumber(w[1]);
-                if (n < 0 || n > 1e7 || n != std::floor(n)) throw Error("wait takes a whole number of frames");
-                s.kind = ScriptStep::Wait;
-                s.frames = int(n);
-            } else if (cmd == "sleep") {
-                need(2, "sleep SECONDS");
-                s.kind = ScriptStep::Sleep;
-                s.seconds = parseNumber(w[1]);
-                if (s.seconds < 0 || s.seconds > 3600) throw Error("sleep takes 0 to 3600 seconds");
-            } else if (cmd == "converge") {
-                need(1, "converge");
-                s.kind = ScriptStep::Converge;
-            } else if (cmd == "screenshot") {
-                need(1, "screenshot");
-                s.kind = ScriptStep::Screenshot;
-            } else if (cmd == "capture") {
-                need(2, "capture PATH.png");
-                // The window is written as PNG whatever the name says: any other name is a mistake.
-                const std::string& p = w[1];
-                if (p.size() < 4 || (p.compare(p.size() - 4, 4, ".png") != 0 && p.compare(p.size() - 4, 4, ".PNG") != 0))
-                    throw Error("capture writes a PNG: '" + p + "' does not end in .png");
-                s.kind = ScriptStep::Capture;
-                s.path = p;
-            } else if (cmd == "scene") {
-                need(2, "scene PATH|builtin:NAME");
-                s.kind = ScriptStep::OpenScene;
-                s.path = w[1];
-            } else if (cmd == "settings") {
-                need(2, "settings FILE");
-                s.kind = ScriptStep::LoadSettings;
-                s.path = w[1];
-            } else if (cmd == "save-settings") {
-                need(2, "save-settings FILE");
-                s.kind = ScriptStep::SaveSettings;
-                s.path = w[1];
-            } else if (cmd == "resize") {
-                need(3, "resize WIDTH HEIGHT");
-                const double a = parseNumber(w[1]), b = parseNumber(w[2]);
-                if (a < 0 || b < 0 || a > 16384 || b > 16384 || a != std::floor(a) || b != std::floor(b))
-                    throw Error("resize takes whole numbers in [0, 16384]");
-                s.kind = ScriptStep::Resize;
-                s.width = int(a);
-                s.height = int(b);
-            } else if (cmd == "key") {
-                need(2, "key NAME");
-                s.kind = ScriptStep::Key;
-                s.path = w[1];
-            } else if (cmd == "quit") {
-                need(1, "quit");
-                s.kind = ScriptStep::Quit;
-            } else {
-                s.kind = ScriptStep::Action;
-                s.action = parsePanelAction(w);
-                // Names and ranges are checked now, so a typo fails before any window opens;
-                // light edits depend on the scene's lights and are checked in context.
-                const PanelAction::Kind k = s.action.kind;
-                const bool dependsOnScene = k == PanelAction::SetLightEnabled || k == PanelAction::SetLightIntensity ||
-                                            k == PanelAction::SetLightColor || k == PanelAction::SetLightPosition ||
-                                            k == PanelAction::SetLightDirection || k == PanelAction::RemoveLight;
-                // A parameter's value alone: whether the method takes it with the pane's other
-                // values is for checkScriptInContext (vct.debug-level 2 after vct.debug-channel occupancy).
-                if (k == PanelAction::SetParam) parsePaneParam(s.action);
-                ViewState scratch;
-                if (!dependsOnScene && k != PanelAction::SetParam) applyPanelAction(scratch, s.action);
-            }
+            steps.push_back(parseStep(w));
         } catch (const Error& e) {
             throw Error(name + ":" + std::to_string(lineNo) + ": " + e.what());
         }
-        steps.push_back(std::move(s));
+        steps.back().line = lineNo;
     }
     return steps;
 }
@@ -123,15 +131,9 @@ std::vector<ScriptStep> loadScript(const std::string& path) {
 }
 
 namespace {
-bool editsPane(PanelAction::Kind k) {
-    return k == PanelAction::SetMethod || k == PanelAction::SetPreset || k == PanelAction::SetDiffuse ||
-           k == PanelAction::SetSpecular || k == PanelAction::SetDisplay || k == PanelAction::SetDirectOnly ||
-           k == PanelAction::SetParam || k == PanelAction::ResetParams;
-}
-
 // What an action needs of the state it is applied to, beyond applyPanelAction's own checks.
 void checkActionInContext(const ViewState& s, const PanelAction& a) {
-    if (!editsPane(a.kind)) return;
+    if (actionEdits(a.kind) != PanelAction::Edits::Pane) return;
     const int shown = paneCount(s.mode);
     if (a.index >= shown && a.index < kMaxPanes)
         throw Error("pane " + std::to_string(a.index) + " is not shown in " + viewModeName(s.mode) + " mode (panes 0.." +

@@ -9,13 +9,13 @@
 //   resize W H          resize the window         quit
 //   key NAME            tap a key (F12 F R 1 2 3 B I W A S D Q E): down and up before the frame reads
 //                       its input, as a press shorter than a frame
-//   anything else       a panel action (view_state.h parsePanelAction), e.g. "method 1 pathtrace"
+//   anything else       a panel action (panel_action.h parsePanelAction), e.g. "method 1 pathtrace"
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "view_state.h"
+#include "cli/panel_action.h"
 
 namespace gis::view {
 

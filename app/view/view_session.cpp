@@ -1,4 +1,4 @@
-#include "view_session.h"
+#include "view/view_session.h"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -12,7 +12,7 @@
 #include "metrics.h"
 #include "plot.h"
 #include "scene/atomic_file.h"
-#include "settings_io.h"
+#include "cli/settings_io.h"
 
 namespace gis::view {
 

@@ -1,4 +1,4 @@
-#include "bench_flythrough.h"
+#include "cli/flythrough.h"
 
 #include <algorithm>
 #include <chrono>

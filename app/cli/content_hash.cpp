@@ -1,4 +1,4 @@
-#include "content_hash.h"
+#include "cli/content_hash.h"
 
 #include <openssl/evp.h>
 
