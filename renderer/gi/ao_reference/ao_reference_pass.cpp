@@ -22,30 +22,18 @@ std::vector<ProgramDesc> AoReferencePass::programs() {
 }
 
 AoReferencePass::AoReferencePass(SceneServices& services, const RenderSettings& s, gl::MemoryLedger& ledger)
-    : rays_(services.rays()),
-      samples_({&ledger, name()}, s.width, s.height, 1, s.samplesPerFrame),
+    : ProgressiveRayPass(services.rays(), s, {&ledger, kName}, programs()[0]),
       params_(aoReferenceParams().read("ao-reference", s.params)) {
     samples_.target = params_.spp;
-    program_ = buildProgram(programs()[0]);
 }
 
 void AoReferencePass::execute(Frame& frame) {
     const AoReferenceSettings now = aoReferenceParams().read("ao-reference", frame.settings.params);
-    if (now.radius != params_.radius || now.spp < samples_.done) samples_.done = 0;
+    const bool restart = now.radius != params_.radius;
     params_ = now;
-    liveChanged_ = false;
-    samples_.target = params_.spp;
-    samples_.perFrame = frame.settings.samplesPerFrame;
-    frame.put(resource::kRadiance, samples_.mean);
-    reused_ = samples_.finished();
-    if (reused_) return;
-    const GLuint p = program_.id();
-    glUseProgram(p);
-    rays_.bind();
-    glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
-    glProgramUniform1ui(p, U_SEED, frame.settings.seed);
-    glProgramUniform1f(p, U_AO_RADIUS, resolveAoRadius(params_.radius, frame.scene.cpu));
-    samples_.runBatch(p);
+    if (!beginFrame(frame, params_.spp, restart)) return;
+    glProgramUniform1f(program(), U_AO_RADIUS, resolveAoRadius(params_.radius, frame.scene.cpu));
+    runBatch();
 }
 
 void AoReferencePass::drawDebugView(const std::string&, const Frame& frame, GLuint target) {
@@ -65,7 +53,8 @@ GiMethod aoReferenceMethod() {
         m.presets.push_back({name, std::to_string(spp) + " rays per pixel", {{"ao-reference.spp", {double(spp)}}}});
     m.programs = &AoReferencePass::programs;
     m.estimateMemory = [](const Scene&, const RenderSettings& s) {
-        return std::vector<std::pair<std::string, uint64_t>>{{"ao-reference accumulation (2 x RGBA32F)", uint64_t(s.width) * uint64_t(s.height) * 32}};
+        return std::vector<std::pair<std::string, uint64_t>>{
+            {"ao-reference accumulation (2 x RGBA32F)", ProgressiveRayPass::accumulationBytes(s)}};
     };
     m.addPasses = [](MethodBuild& b) {
         b.add(std::make_unique<AoReferencePass>(b.services, b.settings, b.ledger));

@@ -3,8 +3,7 @@
 // accumulated progressively; its image is the AO itself. The truth SSAO is scored against.
 #pragma once
 
-#include "frame.h"
-#include "gl/shader.h"
+#include "passes/progressive_ray_pass.h"
 #include "services/scene_services.h"
 
 namespace gis {
@@ -15,35 +14,22 @@ struct AoReferenceSettings {
 };
 const ParamTable<AoReferenceSettings>& aoReferenceParams();
 
-class AoReferencePass final : public Pass {
+class AoReferencePass final : public ProgressiveRayPass {
 public:
+    static constexpr const char* kName = "ao-reference";
     AoReferencePass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger);
-    const char* name() const override { return "ao-reference"; }
-    std::vector<std::string> outputs() const override { return {resource::kRadiance}; }
+    const char* name() const override { return kName; }
     void execute(Frame& frame) override;
-    bool reusedLastFrame() const override { return reused_; }  // finished before the last execute()
-    // Finished, and no live parameter (spp, radius) since, which execute() would compare.
-    bool settled() const override { return samples_.finished() && !liveChanged_; }
-    bool writesImagesOrBuffers() const override { return true; }
     static std::vector<ProgramDesc> programs();
-    Progress progress() const override { return {samples_.done, samples_.target}; }
     // AO depends on geometry and camera only: lights, BRDFs and exposure leave it as it is.
-    void invalidate(Changes c) override {
-        if (c & (ChangeCamera | ChangeGeometry)) samples_.done = 0;
-        if (c & ChangeLiveParams) liveChanged_ = true;
-    }
+    void invalidate(Changes c) override { ProgressiveRayPass::invalidate(c, ChangeCamera | ChangeGeometry); }
     std::vector<DebugViewDesc> debugViews() const override {
         return {{"ao", "the ray-traced ambient occlusion (the image itself), linear"}};
     }
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
 
 private:
-    RayScene& rays_;
-    SampleAccumulator samples_;
     AoReferenceSettings params_;
-    gl::Object program_;
-    bool liveChanged_ = false;
-    bool reused_ = false;
 };
 
 }  // namespace gis

@@ -66,11 +66,9 @@ const ParamTable<PathTraceSettings>& pathTraceParams() {
 std::vector<ProgramDesc> PathTracePass::programs() { return {{"pathtrace", {"gi/pathtrace/pathtrace.comp"}, {}}}; }
 
 PathTracePass::PathTracePass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger)
-    : rays_(services.rays()),
-      samples_({&ledger, name()}, settings.width, settings.height, 1, settings.samplesPerFrame),
+    : ProgressiveRayPass(services.rays(), settings, {&ledger, kName}, programs()[0]),
       params_(pathTraceParams().read("pathtrace", settings.params)), term_(termOf(settings.view)) {
     samples_.target = params_.spp;
-    program_ = buildProgram(programs()[0]);
     const uint32_t zeros[6] = {};
     rayCounts_ = gl::createStorageBuffer({&ledger, name()}, sizeof(zeros), zeros);
 }
@@ -87,34 +85,22 @@ void PathTracePass::execute(Frame& frame) {
     const RenderSettings& s = frame.settings;
     // Live parameters: a new sample count only moves the target; new bounces restart.
     const PathTraceSettings now = pathTraceParams().read("pathtrace", s.params);
-    if (now.bounces != params_.bounces || now.russianRouletteStart != params_.russianRouletteStart ||
-        now.caustics != params_.caustics || now.environmentSampling != params_.environmentSampling)
-        samples_.done = 0;
-    if (now.spp < samples_.done) samples_.done = 0;
+    const bool restart = now.bounces != params_.bounces || now.russianRouletteStart != params_.russianRouletteStart ||
+                         now.caustics != params_.caustics || now.environmentSampling != params_.environmentSampling;
     params_ = now;
-    liveChanged_ = false;
-    samples_.target = params_.spp;
-    samples_.perFrame = s.samplesPerFrame;
-
-    frame.put(resource::kRadiance, samples_.mean);
-    reused_ = samples_.finished();
-    if (reused_) return;  // converged to the requested sample count: nothing changes
-    const GLuint p = program_.id();
-    glUseProgram(p);
-    rays_.bind();
+    if (!beginFrame(frame, params_.spp, restart)) return;  // converged to the requested sample count
+    const GLuint p = program();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RAY_COUNTS_BINDING, rayCounts_.id());
     frame.bindEnvironment();
-    glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));
     glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));
-    glProgramUniform1ui(p, U_SEED, s.seed);
     glProgramUniform1i(p, U_MAX_BOUNCES, params_.bounces);
     glProgramUniform1i(p, U_EMITTER_COUNT, int(rays_.emitterCount));
     glProgramUniform1i(p, U_RR_START, params_.russianRouletteStart);
     glProgramUniform1i(p, U_CAUSTICS, params_.caustics ? 1 : 0);
     glProgramUniform1i(p, U_ENV_SAMPLING, params_.environmentSampling ? 1 : 0);
     glProgramUniform1i(p, U_PT_TERM, term_);
-    samples_.runBatch(p);
+    runBatch();
 }
 
 GiMethod pathtraceMethod() {
@@ -131,7 +117,8 @@ GiMethod pathtraceMethod() {
         m.presets.push_back({name, std::to_string(spp) + " spp", {{"pathtrace.spp", {double(spp)}}}});
     m.programs = &PathTracePass::programs;
     m.estimateMemory = [](const Scene&, const RenderSettings& s) {
-        return std::vector<std::pair<std::string, uint64_t>>{{"pathtrace accumulation (2 x RGBA32F)", uint64_t(s.width) * uint64_t(s.height) * 32}};
+        return std::vector<std::pair<std::string, uint64_t>>{
+            {"pathtrace accumulation (2 x RGBA32F)", ProgressiveRayPass::accumulationBytes(s)}};
     };
     m.addPasses = [](MethodBuild& b) {
         b.add(std::make_unique<PathTracePass>(b.services, b.settings, b.ledger));

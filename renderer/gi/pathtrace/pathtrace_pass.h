@@ -4,8 +4,7 @@
 // only add samples; a camera, light or BRDF change starts over.
 #pragma once
 
-#include "frame.h"
-#include "gl/shader.h"
+#include "passes/progressive_ray_pass.h"
 #include "services/scene_services.h"
 
 namespace gis {
@@ -19,24 +18,16 @@ struct PathTraceSettings {
 };
 const ParamTable<PathTraceSettings>& pathTraceParams();
 
-class PathTracePass final : public Pass {
+class PathTracePass final : public ProgressiveRayPass {
 public:
+    static constexpr const char* kName = "pathtrace";
     PathTracePass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger);
-    const char* name() const override { return "pathtrace"; }
-    std::vector<std::string> outputs() const override { return {resource::kRadiance}; }
+    const char* name() const override { return kName; }
     void execute(Frame& frame) override;
-    bool reusedLastFrame() const override { return reused_; }  // finished before the last execute()
-    // Finished, and no live parameter (spp, bounces) since, which execute() would compare.
-    bool settled() const override { return samples_.finished() && !liveChanged_; }
-    bool writesImagesOrBuffers() const override { return true; }
     static std::vector<ProgramDesc> programs();
 
-    Progress progress() const override { return {samples_.done, samples_.target}; }
     // Camera, lights, scene or BRDFs alter the image; live parameters are compared in execute().
-    void invalidate(Changes c) override {
-        if (c & ~Changes(ChangeLiveParams)) samples_.done = 0;
-        if (c & ChangeLiveParams) liveChanged_ = true;
-    }
+    void invalidate(Changes c) override { ProgressiveRayPass::invalidate(c, ~Changes(ChangeLiveParams)); }
     const Bvh& bvh() const { return rays_.bvh; }
     // The radiance split as the lighting pass's term views split it (direct, emission,
     // indirect.diffuse, indirect.specular) and pathtrace.indirect, the last two's sum: with --view
@@ -46,12 +37,7 @@ public:
     std::optional<RayCounts> raysTraced() const override;
 
 private:
-    RayScene& rays_;
-    SampleAccumulator samples_;
     PathTraceSettings params_;
-    gl::Object program_;
-    bool liveChanged_ = false;
-    bool reused_ = false;
     int term_ = 0;          // pathtrace.comp's u_term: 0 = the whole radiance
     gl::Object readFbo_, drawFbo_;  // the term view's copy into the debug target
     gl::Buffer rayCounts_;  // 3 x (low, high) uint: primary, bounce, shadow rays (pathtrace.comp)

@@ -111,18 +111,6 @@ TEST(Hddagi, TheEmitterOfCornellAreaLightsTheRoom) {
     std::printf("HDDAGI-TABLE psnr cornell-area medium: %.2f dB sRGB\n", compareImages(img.frame, ref.ptFull()).psnrSrgb);
 }
 
-// The leak number every method reports on builtin:leak: the dark (right) half's radiance over the
-// lit (left) half's; the path tracer's is 0.
-TEST(Hddagi, LeakNumberOnTheLeakScene) {
-    for (const char* scene : {"leak", "leak?thickness=0.005"}) {
-        const Images v = render(makeBuiltinScene(scene), base());
-        ASSERT_TRUE(allFinite(v.frame));
-        const double leak = darkOverLitRoom(v.frame);
-        std::printf("HDDAGI-TABLE leak number %s: %.4f\n", scene, leak);
-        EXPECT_LT(leak, 0.15) << scene;
-    }
-}
-
 CameraMatrices cameraAt(const CameraMatrices& base, const glm::vec3& position) {
     CameraMatrices c = base;
     c.view = glm::lookAt(position, position + glm::vec3(0.0f, -0.2f, -1.0f), glm::vec3(0, 1, 0));
@@ -206,43 +194,22 @@ TEST(Hddagi, AScrolledCascadeEqualsAFreshBuildAndAStaticFrameVoxelizesNothing) {
     for (int i = 0; i < volume.cascadeCount(); ++i) EXPECT_EQ(volume.lastUpdate(i), SceneVolume::Update::Cached) << i;
 }
 
-// Extremes: an empty scene, one triangle, the camera outside every cascade, and the Cornell box at
-// x1e-3 and x1e3 (with hddagi.cascade-extent scaled alike): finite, and the scaled boxes give the
-// image at x1 within 2% of the floor's mean (RMSE of the indirect light). Frames are deterministic,
-// so the same 12 frames at each scale compare as well as converged ones, at a fraction of the time.
-TEST(Hddagi, Extremes) {
+// The camera far outside every cascade, looking at the box: every camera ray enters the coarsest
+// cascade from outside, and the box is still lit. (The other extremes are the method contract's,
+// tests/gi/test_method_contract.cpp.)
+TEST(Hddagi, ACameraOutsideEveryCascadeStillSeesTheLitBox) {
     RenderSettings s = base();
     setHddagi(s, "resolution", "32");
-    {
-        Scene empty;
-        finalizeScene(empty);
-        EXPECT_TRUE(allFinite(render(empty, s, 2).frame));
-    }
-    EXPECT_TRUE(allFinite(render(oneTriangleScene(), s, 2).diffuse));
-    {
-        // Far outside the box, looking at it: every camera ray enters the coarsest cascade from outside.
-        Scene outside = makeBuiltinScene("cornell");
-        Camera& c = outside.cameras[0];
-        const glm::vec3 centre = outside.bounds.center();
-        const float extent = glm::length(outside.bounds.extent());
-        c = lookAtCamera(centre + glm::vec3(0.0f, 0.0f, 20.0f * extent), centre, 3.0f);
-        const Images img = render(outside, s, 12);
-        ASSERT_TRUE(allFinite(img.frame));
-        double sum = 0.0;
-        for (size_t i = 0; i < img.frame.rgba.size(); i += 4) sum += img.frame.rgba[i + 1];
-        EXPECT_GT(sum, 0.0);
-    }
-    const GiReference& ref = reference("cornell");
-    const Images unit = render(makeBuiltinScene("cornell"), s, 12);
-    for (float scale : {1e-3f, 1e3f}) {
-        RenderSettings scaled = s;
-        setHddagi(scaled, "cascade-extent", std::to_string(8.0f * scale));
-        const Images v = render(scaledScene(makeBuiltinScene("cornell"), scale), scaled, 12);
-        ASSERT_TRUE(allFinite(v.diffuse));
-        const double rel = interiorRmse(v.diffuse, unit.diffuse, ref.interior()) / ref.regionMean(unit.diffuse, 0);
-        std::printf("HDDAGI-TABLE scale %g: indirect.diffuse RMSE vs x1 = %.4f of the floor's mean\n", scale, rel);
-        EXPECT_LT(rel, 0.02) << "scale " << scale;
-    }
+    Scene outside = makeBuiltinScene("cornell");
+    Camera& c = outside.cameras[0];
+    const glm::vec3 centre = outside.bounds.center();
+    const float extent = glm::length(outside.bounds.extent());
+    c = lookAtCamera(centre + glm::vec3(0.0f, 0.0f, 20.0f * extent), centre, 3.0f);
+    const Images img = render(outside, s, 12);
+    ASSERT_TRUE(allFinite(img.frame));
+    double sum = 0.0;
+    for (size_t i = 0; i < img.frame.rgba.size(); i += 4) sum += img.frame.rgba[i + 1];
+    EXPECT_GT(sum, 0.0);
 }
 
 TEST(Hddagi, DebugViews) {
@@ -272,46 +239,6 @@ TEST(Hddagi, DebugViews) {
     double lit = 0.0;
     for (size_t i = 0; i < spheres.frame.rgba.size(); i += 4) lit += spheres.frame.rgba[i + 1];
     EXPECT_GT(lit, 0.0);
-}
-
-// The estimate asked before anything is allocated covers what the pass holds once built, and is
-// at most the voxelizer's transient sums above it.
-TEST(Hddagi, MemoryEstimateCoversTheLedger) {
-    context();
-    const Scene scene = makeBuiltinScene("cornell");
-    for (const char* res : {"16", "32"}) {
-        RenderSettings s = base();
-        setHddagi(s, "resolution", res);
-        uint64_t estimate = 0;
-        for (const auto& [part, bytes] : giMethod("hddagi").estimateMemory(scene, s)) estimate += bytes;
-        Renderer r(scene, s);
-        r.renderFrame();
-        const auto& owners = r.memory().bytesByOwner;
-        const double held = owners.count("hddagi") ? double(owners.at("hddagi")) : 0.0;
-        const int n = std::stoi(res);
-        std::printf("HDDAGI-TABLE memory %s^3 at %dx%d: estimate %.0f bytes, held %.0f\n", res, kSize, kSize,
-                    double(estimate), held);
-        EXPECT_GE(double(estimate), held);
-        EXPECT_LE(double(estimate), held + double(voxelGridBytes(n)));
-    }
-}
-
-TEST(Hddagi, BadParametersAreOneClearError) {
-    RenderSettings s = base();
-    EXPECT_THROW(setHddagi(s, "rays", "0"), Error);
-    EXPECT_THROW(setHddagi(s, "storage", "best"), Error);
-    for (const auto& [key, value] : {std::pair<const char*, const char*>{"resolution", "48"}, {"ray-budget", "64"}}) {
-        RenderSettings bad = base();
-        setHddagi(bad, key, value);
-        try {
-            context();
-            const Scene cornell = makeBuiltinScene("cornell");
-            Renderer r(cornell, bad);
-            FAIL() << key << " accepted";
-        } catch (const Error& e) {
-            EXPECT_NE(std::string(e.what()).find(std::string("hddagi.") + key), std::string::npos) << e.what();
-        }
-    }
 }
 
 }  // namespace

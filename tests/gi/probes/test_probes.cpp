@@ -10,7 +10,6 @@
 #include "gi/method.h"
 #include "probes/probe_math.h"
 #include "gi/probes/probes_pass.h"
-#include "memory_budget.h"
 #include "metrics.h"
 #include "render_test_util.h"
 #include "../vct/vct_test_util.h"
@@ -246,33 +245,17 @@ TEST(Probe, LightEditRelightsWithoutRevoxelizingOrReflooding) {
     EXPECT_EQ(b.injections, 4);
 }
 
-TEST(Probe, ExtremesStayFinite) {
-    const Scene cornell = makeBuiltinScene("cornell");
-    {  // spacing larger than the scene: one probe
-        RenderSettings s = small();
-        setParam(s, "probes.spacing", "3");
-        ProbeRun run(cornell, s);
-        run.renderer->renderFrame();
-        EXPECT_EQ(run.pass->grid().count(), 1);
-        EXPECT_TRUE(allFinite(run.diffuse()));
-        EXPECT_GT(meanRgb(run.diffuse()), 0.0);
-    }
-    // Scaled by 1e-3 and 1e3: the same indirect light (relative spacing, relative volumes).
+// A spacing larger than the scene: one probe, finite and lit. (The other extremes are the method
+// contract's, tests/gi/test_method_contract.cpp.)
+TEST(Probe, ASpacingLargerThanTheSceneIsOneProbe) {
     RenderSettings s = small();
-    applyPreset(s, "probes", "low");
-    s.ambient = glm::vec3(0.0f);
-    ProbeRun one(cornell, s);
-    one.renderUntilConverged(40);
-    const double reference = meanRgb(one.diffuse());
-    for (float scale : {1e-3f, 1e3f}) {
-        const Scene scaled = scaledScene(cornell, scale);  // the renderer keeps a reference to it
-        ProbeRun run(scaled, s);
-        run.renderUntilConverged(40);
-        const ImageF d = run.diffuse();
-        ASSERT_TRUE(allFinite(d));
-        std::printf("PROBES-TABLE scale %g: mean indirect.diffuse %.5f vs %.5f at x1\n", scale, meanRgb(d), reference);
-        EXPECT_NEAR(meanRgb(d) / reference, 1.0, 0.05) << scale;
-    }
+    setParam(s, "probes.spacing", "3");
+    const Scene cornell = makeBuiltinScene("cornell");  // the renderer keeps a reference to it
+    ProbeRun run(cornell, s);
+    run.renderer->renderFrame();
+    EXPECT_EQ(run.pass->grid().count(), 1);
+    EXPECT_TRUE(allFinite(run.diffuse()));
+    EXPECT_GT(meanRgb(run.diffuse()), 0.0);
 }
 
 // Every probe inside a solid block: with probes.inside=off all are switched off and the image is
@@ -353,30 +336,6 @@ TEST(Probe, AProbeInsideASmallBlockIsRelocatedOrSwitchedOff) {
     }
 }
 
-// The memory budget's estimate for probes is the peak (voxelization sums and the jump flood's two
-// transient images included): never below what the ledger holds once the frame ran, and above it
-// by no more than those transients.
-TEST(Probe, MemoryEstimateCoversTheLedger) {
-    context();
-    const Scene scene = makeBuiltinScene("cornell");
-    for (const char* preset : {"low", "medium", "high"}) {
-        RenderSettings s = small(64);
-        applyPreset(s, "probes", preset);
-        s.gi = "probes";
-        const uint64_t estimate = estimateGpuMemory(scene, s).total();
-        Renderer renderer(scene, s);
-        renderer.renderFrame();
-        const double ledger = double(renderer.memory().total());
-        const ProbeSettings p = probeParams().read("probes", s.params);
-        const double transient = double(distanceFieldBuildBytes(p.sdfResolution) - distanceFieldBytes(p.sdfResolution)) +
-                                 double(voxelGridBytes(p.sdfResolution)) * 44.0 / 60.0;
-        std::printf("PROBES-TABLE memory %s: estimate %.2f MiB, ledger after a frame %.2f MiB\n", preset,
-                    double(estimate) / 1048576.0, ledger / 1048576.0);
-        EXPECT_GE(double(estimate), ledger) << preset;
-        EXPECT_LE(double(estimate), ledger + transient + 64 * 1024) << preset;
-    }
-}
-
 // --- Against the path tracer (the README's "Probe GI" table) ----------------------------------
 
 constexpr int kMeasureSize = 64;
@@ -410,7 +369,8 @@ double leakRatio(const ImageF& indirect) {
 }
 
 // Visibility must cut the light that reaches the dark room through the wall (the path tracer's
-// dark room gets only what passes over the open tops of the rooms).
+// dark room gets only what passes over the open tops of the rooms). The default's bound is the
+// method contract's (tests/gi/test_method_contract.cpp).
 TEST(Probe, ThinWallLeakIsLowerWithVisibility) {
     const Scene s = makeBuiltinScene("leak");
     const ImageF direct = renderHdr(s, measureSettings("none"));
@@ -425,7 +385,6 @@ TEST(Probe, ThinWallLeakIsLowerWithVisibility) {
                     v ? "on " : "off", leak[v]);
     }
     EXPECT_LT(leak[1], leak[0]);
-    EXPECT_LT(leak[1], 0.15);
     // The voxel cone tracer on the same scene, for the side-by-side number (printed only).
     RenderSettings v = measureSettings("vct");
     const ImageF vct = subtract(renderHdr(s, v), direct);
