@@ -14,11 +14,11 @@
 #include "gl/shader.h"
 #include "lights.h"
 #include "nonfinite_counter.h"
-#include "sdf/sdf_uniforms.h"
+#include "volume/sdf_uniforms.h"
 #include "uniforms.h"
 #include "volume/occupancy.h"
 #include "volume/volume_cascades.h"
-#include "voxel/voxel_uniforms.h"
+#include "volume/voxel_uniforms.h"
 
 namespace gis {
 

@@ -1,8 +1,8 @@
 // The scene volume: what every voxel-based GI method reads, built once per renderer for the
 // methods that ask (SceneServices::volume) and composed here only. Per cascade: the voxel grid
-// (occupancy, albedo, normal, emission; renderer/voxel/voxelizer.h), the light its voxels send out
-// (renderer/voxel/voxel_radiance.h) and, when asked for, a layer of the signed distance field
-// jump-flooded from its surface voxels (renderer/sdf/distance_field.h).
+// (occupancy, albedo, normal, emission; renderer/volume/voxelizer.h), the light its voxels send out
+// (renderer/volume/voxel_radiance.h) and, when asked for, a layer of the signed distance field
+// jump-flooded from its surface voxels (renderer/volume/distance_field.h).
 //
 // What is rebuilt and when, for every method alike (invalidate()):
 // - geometry: voxels, field and light;
@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "renderer.h"
-#include "sdf/distance_field.h"
-#include "voxel/voxel_radiance.h"
+#include "volume/distance_field.h"
+#include "volume/voxel_radiance.h"
 #include "volume/occupancy.h"
 #include "volume/volume_cascades.h"
 

@@ -22,7 +22,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/scene.h"
-#include "sdf/distance_field.h"
+#include "volume/distance_field.h"
 #include "volume/volume_fit.h"
 
 namespace gis {

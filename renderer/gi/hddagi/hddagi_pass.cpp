@@ -7,7 +7,7 @@
 #include "gi/method.h"
 #include "gl/dispatch.h"
 #include "services/scene_services.h"
-#include "voxel/voxelizer.h"
+#include "volume/voxelizer.h"
 
 namespace gis {
 

@@ -8,7 +8,7 @@
 #include "gl/dispatch.h"
 #include "probes/probe_uniforms.h"
 #include "services/scene_services.h"
-#include "voxel/voxelizer.h"
+#include "volume/voxelizer.h"
 
 namespace gis {
 

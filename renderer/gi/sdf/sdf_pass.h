@@ -23,7 +23,7 @@
 #include "gi/sdf/sdf_settings.h"
 #include "probes/probe_field.h"
 #include "renderer.h"
-#include "sdf/sdf_uniforms.h"
+#include "volume/sdf_uniforms.h"
 #include "volume/scene_volume.h"
 
 namespace gis {

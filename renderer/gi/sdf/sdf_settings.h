@@ -4,7 +4,7 @@
 
 #include "gi/params.h"
 #include "probes/probe_field.h"
-#include "sdf/distance_field.h"
+#include "volume/distance_field.h"
 
 namespace gis {
 

@@ -7,7 +7,7 @@
 #include "gi/method.h"
 #include "scene/scene_lighting.h"
 #include "services/scene_services.h"
-#include "voxel/voxel_uniforms.h"
+#include "volume/voxel_uniforms.h"
 
 namespace gis {
 

@@ -14,7 +14,7 @@
 #include "gi/vct/vct_settings.h"
 #include "renderer.h"
 #include "volume/scene_volume.h"
-#include "voxel/voxel_uniforms.h"
+#include "volume/voxel_uniforms.h"
 
 namespace gis {
 

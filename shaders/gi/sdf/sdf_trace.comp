@@ -1,5 +1,5 @@
 // SDF GI, per traced pixel: u_rays cosine-distributed rays sphere-traced through the distance field
-// (sdf/sdf_march.glsl); a hit takes the radiance the voxelizer injected there (direct light and
+// (volume/sdf_march.glsl); a hit takes the radiance the voxelizer injected there (direct light and
 // emission, Lambertian, premultiplied by occupancy), a miss the environment. Their mean is this
 // frame's estimate of the cosine-weighted mean incoming radiance (E / pi: the lighting contract's
 // indirect.diffuse) before temporal accumulation and filtering. Also: one mirror ray where the
@@ -11,7 +11,7 @@
 #include "sampling.glsl"
 #include "environment.glsl"
 #include "gi/sdf/sdf_gbuffer.glsl"
-#include "sdf/sdf_march.glsl"
+#include "volume/sdf_march.glsl"
 #include "probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -1,11 +1,11 @@
-#include "voxel/voxel_radiance.h"
+#include "volume/voxel_radiance.h"
 
 #include <cmath>
 
 #include "emitters/emitter_lights.h"
 #include "lights.h"
 #include "gl/dispatch.h"
-#include "voxel/voxel_uniforms.h"
+#include "volume/voxel_uniforms.h"
 
 namespace gis {
 
@@ -50,14 +50,14 @@ int64_t voxelFeedbackBytes(int resolution, bool anisotropic) {
     return voxelRadianceBytes(resolution, anisotropic, 2) + 8 * int64_t(resolution) * resolution * resolution;
 }
 
-const ProgramDesc kInjectProgram{"voxel_inject", {"voxel/inject.comp"}, {}};
+const ProgramDesc kInjectProgram{"voxel_inject", {"volume/inject.comp"}, {}};
 // The same injection that also lights each voxel by the emitters (renderer/emitters), sampled
 // through the ray scene.
-const ProgramDesc kEmitterInjectProgram{"voxel_inject_emitters", {"voxel/inject.comp"}, {{"EMITTER_LIGHT", "1"}}};
-const ProgramDesc kMipProgram{"voxel_mip", {"voxel/voxel_mip.comp"}, {}};
-const ProgramDesc kBounceProgram{"voxel_bounce", {"voxel/bounce.comp"}, {}};
-const ProgramDesc kExteriorProgram{"voxel_exterior", {"voxel/exterior.comp"}, {}};
-const ProgramDesc kExteriorSweepProgram{"voxel_exterior_sweep", {"voxel/exterior.comp"}, {{"SWEEP", "1"}}};
+const ProgramDesc kEmitterInjectProgram{"voxel_inject_emitters", {"volume/inject.comp"}, {{"EMITTER_LIGHT", "1"}}};
+const ProgramDesc kMipProgram{"voxel_mip", {"volume/voxel_mip.comp"}, {}};
+const ProgramDesc kBounceProgram{"voxel_bounce", {"volume/bounce.comp"}, {}};
+const ProgramDesc kExteriorProgram{"voxel_exterior", {"volume/exterior.comp"}, {}};
+const ProgramDesc kExteriorSweepProgram{"voxel_exterior_sweep", {"volume/exterior.comp"}, {{"SWEEP", "1"}}};
 constexpr int kExteriorSeed = 0, kExteriorCull = 2;
 constexpr int kSweepGroup = 8;          // exterior.comp's SWEEP local size
 constexpr GLuint kChangedBinding = 0;    // exterior.comp's Changed

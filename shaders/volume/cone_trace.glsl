@@ -1,4 +1,4 @@
-// Cone tracing through the voxel radiance (renderer/voxel/voxel_radiance.h), for every method that
+// Cone tracing through the voxel radiance (renderer/volume/voxel_radiance.h), for every method that
 // gathers light from the voxels. Positions and distances are in voxel units ([0, resolution]^3).
 // The including shader declares the uniforms below at these bindings by including this file after
 // defining VOXEL_TEXTURE_UNIT (the first of seven consecutive units: isotropic chain, then the six
