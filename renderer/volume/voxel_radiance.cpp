@@ -5,6 +5,7 @@
 #include "emitters/emitter_lights.h"
 #include "lights.h"
 #include "gl/dispatch.h"
+#include "volume/volume_slots.h"
 #include "volume/voxel_uniforms.h"
 
 namespace gis {
@@ -207,7 +208,7 @@ void VoxelRadiance::gatherOnce(const VoxelGrid& grid, const gl::Texture& scratch
     const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), direct_.id()};
     glBindTextures(0, 3, textures);
     glBindSamplers(0, 10, nullptr);
-    bind(3);
+    bind();
     glBindImageTexture(0, scratch.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch3D(n, n, n);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -237,12 +238,12 @@ void VoxelRadiance::feedbackBounce(const VoxelGrid& grid, const ConeSettings& co
     gatherOnce(grid, feedbackScratch_);
 }
 
-void VoxelRadiance::bind(GLuint unit) const {
-    GLuint textures[7];
+void VoxelRadiance::bind() const {
+    GLuint textures[kVolumeRadianceUnits];
     textures[0] = radiance_.id();
     for (int d = 0; d < 6; ++d) textures[1 + d] = anisotropic_ ? directional_[d].id() : radiance_.id();
-    glBindTextures(unit, 7, textures);
-    glBindSamplers(unit, 7, nullptr);
+    glBindTextures(kVolumeRadianceUnit, kVolumeRadianceUnits, textures);
+    glBindSamplers(kVolumeRadianceUnit, kVolumeRadianceUnits, nullptr);
 }
 
 void voxelizeFrame(Frame& frame, Voxelizer& voxelizer, const std::string& prefix) {

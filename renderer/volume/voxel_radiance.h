@@ -65,8 +65,8 @@ public:
     // counterpart of DDGI's recursive irradiance); it cannot diverge for albedo < 1, as each term
     // is the previous one scaled by albedo times the gathered fraction (at most 1).
     void feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones);
-    // Seven consecutive texture units from `unit` (shaders/volume/cone_trace.glsl's layout).
-    void bind(GLuint unit) const;
+    // At kVolumeRadianceUnit and the six units after it (shaders/volume/cone_trace.glsl's layout).
+    void bind() const;
     const gl::Texture& radiance() const { return radiance_; }
     bool anisotropic() const { return anisotropic_; }
     // UV_ANISOTROPIC for shaders/volume/cone_trace.glsl's makeConeTracer (VOXEL_ISOTROPIC ...).

@@ -33,13 +33,6 @@ float maxEmission(const GpuScene& scene) {
 std::string mib(int64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
 }  // namespace
 
-ConservativeMode parseConservativeMode(const std::string& s) {
-    if (s == "hardware") return ConservativeMode::Hardware;
-    if (s == "geometry") return ConservativeMode::Geometry;
-    if (s == "off") return ConservativeMode::Off;
-    throw Error("vct.conservative: unknown mode '" + s + "' (expected hardware, geometry or off)");
-}
-
 const char* conservativeModeName(ConservativeMode m) {
     return m == ConservativeMode::Hardware ? "hardware" : m == ConservativeMode::Geometry ? "geometry" : "off";
 }

@@ -15,7 +15,6 @@
 namespace gis {
 
 enum class ConservativeMode { Hardware, Geometry, Off };
-ConservativeMode parseConservativeMode(const std::string& s);  // hardware, geometry, off
 const char* conservativeModeName(ConservativeMode m);
 
 // GPU bytes the voxel textures of one grid take (albedo, normal, emission, and the transient

@@ -16,9 +16,9 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 2) uniform sampler2D s_gbufMaterial;  // metallic, roughness, occlusion, specular
-layout(binding = 3) uniform sampler3D s_distance;
-layout(binding = 4) uniform sampler3D s_coarse;
-layout(binding = 5) uniform sampler3D s_radiance;      // rgb = radiance x occupancy, a = occupancy; a layer per cascade
+layout(binding = VOLUME_DISTANCE_UNIT) uniform sampler3D s_distance;
+layout(binding = VOLUME_COARSE_UNIT) uniform sampler3D s_coarse;
+layout(binding = VOLUME_RADIANCE_UNIT) uniform sampler3D s_radiance;      // rgb = radiance x occupancy, a = occupancy; a layer per cascade
 layout(rgba16f, binding = 0) uniform writeonly image2D i_diffuse;
 layout(rgba16f, binding = 1) uniform writeonly image2D i_reflection;  // rgb, a = its weight against diffuse
 layout(r16f, binding = 2) uniform writeonly image2D i_ao;
