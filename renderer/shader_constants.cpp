@@ -15,11 +15,12 @@
 #include "lights.h"
 #include "nonfinite_counter.h"
 #include "ray_scene.h"
-#include "sdf/sdf_uniforms.h"
+#include "volume/sdf_uniforms.h"
 #include "uniforms.h"
 #include "volume/occupancy.h"
 #include "volume/volume_cascades.h"
-#include "voxel/voxel_uniforms.h"
+#include "volume/volume_slots.h"
+#include "volume/voxel_uniforms.h"
 
 namespace gis {
 
@@ -103,6 +104,11 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
             {"OCC_REGION", std::to_string(kOccupancyRegion)},
             {"OCC_BLOCKS_BINDING", std::to_string(kOccupancyBlocksBinding)},
             {"OCC_REGIONS_BINDING", std::to_string(kOccupancyRegionsBinding)},
+            {"VOLUME_DISTANCE_UNIT", std::to_string(kVolumeDistanceUnit)},
+            {"VOLUME_COARSE_UNIT", std::to_string(kVolumeCoarseUnit)},
+            {"VOLUME_RADIANCE_UNIT", std::to_string(kVolumeRadianceUnit)},
+            {"VOLUME_ALBEDO_UNIT", std::to_string(kVolumeAlbedoUnit)},
+            {"VOLUME_EMISSION_UNIT", std::to_string(kVolumeEmissionUnit)},
             {"ENV_BRDF_UNIT", std::to_string(kEnvironmentBrdfUnit)},
             {"ENV_RADIANCE_UNIT", std::to_string(kEnvironmentRadianceUnit)},
             {"ENV_SPECULAR_UNIT", std::to_string(kEnvironmentSpecularUnit)},

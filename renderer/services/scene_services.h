@@ -8,12 +8,13 @@
 
 #include "gpu_scene.h"
 #include "ray_scene.h"
-#include "volume/scene_volume.h"
+#include "volume/scene_volumes.h"
 
 namespace gis {
 
 struct SceneServices {
-    SceneServices(const GpuScene& scene, gl::MemoryLedger& ledger) : scene(scene), ledger(ledger) {}
+    SceneServices(const GpuScene& scene, gl::MemoryLedger& ledger)
+        : scene(scene), ledger(ledger), volumes_(scene.cpu.bounds, ledger) {}
     const GpuScene& scene;
     gl::MemoryLedger& ledger;
 
@@ -23,7 +24,7 @@ struct SceneServices {
     const Aabb& bounds() const { return scene.cpu.bounds; }
     // The scene volume as `request` describes it: built on first use; the same request gets the
     // same volume, so methods sharing a renderer share what they can.
-    SceneVolume& volume(const VolumeRequest& request);
+    SceneVolume& volume(const VolumeRequest& request) { return volumes_.get(request); }
     // What changed, for the services that cache anything derived from it (the volumes).
     void invalidate(Changes changes);
     // The scene's lights were edited: every service that holds them uploads them again.
@@ -31,7 +32,7 @@ struct SceneServices {
 
 private:
     std::unique_ptr<RayScene> rays_;
-    std::vector<std::unique_ptr<SceneVolume>> volumes_;
+    SceneVolumes volumes_;
 };
 
 }  // namespace gis

@@ -3,8 +3,8 @@
 #include <string>
 
 #include "gl/dispatch.h"
-#include "voxel/voxel_uniforms.h"
-#include "voxel/voxelizer.h"
+#include "volume/voxel_uniforms.h"
+#include "volume/voxelizer.h"
 
 namespace gis {
 

@@ -10,7 +10,7 @@ namespace {
 auto tied(const VolumeRequest& r) {
     return std::tie(r.method, r.resolution, r.resolutionKey, r.conservative, r.conservativeKey, r.marginVoxels,
                     r.anisotropic, r.cullBackfaces, r.cullUnlitOutsides, r.mips, r.bounces, r.distanceField, r.jfa, r.occupancy,
-                    r.scroll, r.cascades, r.cascadeExtent);
+                    r.scroll, r.feedback, r.cascades, r.cascadeExtent);
 }
 
 // The members of an aggregate, counted as the most values it can be brace-initialised from (C++17
@@ -48,9 +48,17 @@ VolumeFit fitOf(const SdfVolume& v) {
 }
 }  // namespace
 
-std::vector<std::string> withVolumeInputs(std::vector<std::string> own) {
-    for (const char* name : {resource::kLights, resource::kShadowMaps, resource::kShadowCubes}) own.push_back(name);
-    return own;
+std::vector<std::string> SceneVolume::inputs() {
+    return {resource::kLights, resource::kShadowMaps, resource::kShadowCubes};
+}
+
+std::vector<ProgramDesc> SceneVolume::programs(const VolumeRequest& request) {
+    std::vector<ProgramDesc> all = Voxelizer::programs();
+    std::vector<std::vector<ProgramDesc>> parts{VoxelRadiance::programs()};
+    if (request.distanceField) parts.push_back(DistanceField::programs());
+    if (request.occupancy) parts.push_back(OccupancyHierarchy::programs());
+    for (const auto& part : parts) all.insert(all.end(), part.begin(), part.end());
+    return all;
 }
 
 bool VolumeRequest::operator==(const VolumeRequest& o) const { return tied(*this) == tied(o); }
@@ -62,10 +70,14 @@ int64_t sceneVolumeBytes(const VolumeRequest& r, int cascades) {
            (r.occupancy ? occupancyBytes(n, cascades) : 0) + radianceAtlasBytes(n, cascades);
 }
 
+CascadeLayout volumeLayout(const Aabb& bounds, const VolumeRequest& r) {
+    return layoutCascades(bounds, r.resolution, r.cascadeExtent, r.cascades, r.method, r.marginVoxels);
+}
+
 SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::MemoryLedger& ledger)
     : request_(request), scope_{&ledger, request.method} {
     const int n = request.resolution;
-    layout_ = layoutCascades(bounds, n, request.cascadeExtent, request.cascades, request.marginVoxels, request.method);
+    layout_ = volumeLayout(bounds, request);
     const int count = layout_.count;
     // Refuse before allocating anything: the whole volume at once.
     checkVoxelBudget(n, sceneVolumeBytes(request, count), request.resolutionKey);
@@ -93,6 +105,8 @@ SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::M
         for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
             glTextureParameteri(radianceAtlas_.id(), wrap, GL_CLAMP_TO_EDGE);
     }
+    // Two bounces: the sums and the bounce targets, no more.
+    if (request.feedback) feedback_ = std::make_unique<VoxelRadiance>(n, request.anisotropic, 2, scope_, request.cullBackfaces);
 }
 
 void SceneVolume::invalidate(Changes c) {
@@ -205,6 +219,26 @@ const VoxelRadiance& SceneVolume::radiance(int cascade) const { return *cascades
 
 GLuint SceneVolume::radianceTexture() const {
     return layout_.count > 1 ? radianceAtlas_.id() : cascades_[0].radiance->radiance().id();
+}
+
+void SceneVolume::bind() const {
+    glBindSamplers(kVolumeDistanceUnit, kVolumeEmissionUnit + 1 - kVolumeDistanceUnit, nullptr);
+    if (layout_.count > 1) glBindTextureUnit(kVolumeRadianceUnit, radianceAtlas_.id());
+    else tracedRadiance().bind();
+    if (field_) field_->bind(kVolumeDistanceUnit);
+    const GLuint voxels[2] = {grid().albedo.id(), grid().emission.id()};
+    glBindTextures(kVolumeAlbedoUnit, 2, voxels);
+    if (occupancy_) occupancy_->bind();
+}
+
+void SceneVolume::restartFeedback() {
+    if (!feedback_) throw Error("scene volume: " + request_.method + " asked for no feedback");
+    feedback_->restartFeedback(grid(), radiance().radiance());
+}
+
+void SceneVolume::addFeedbackBounce(const ConeSettings& cones) {
+    if (!feedback_) throw Error("scene volume: " + request_.method + " asked for no feedback");
+    feedback_->feedbackBounce(grid(), cones);
 }
 
 const DistanceField& SceneVolume::field() const {

@@ -1,8 +1,11 @@
 // The scene volume: what every voxel-based GI method reads, built once per renderer for the
-// methods that ask (SceneServices::volume) and composed here only. Per cascade: the voxel grid
-// (occupancy, albedo, normal, emission; renderer/voxel/voxelizer.h), the light its voxels send out
-// (renderer/voxel/voxel_radiance.h) and, when asked for, a layer of the signed distance field
-// jump-flooded from its surface voxels (renderer/sdf/distance_field.h).
+// methods that ask (SceneServices::volume) and composed here only. A method states what it needs
+// (VolumeRequest) and the volume does the rest: it declares the frame resources its update reads
+// and the programs it builds, brings itself up to date before the method's own work (VolumePass,
+// volume/volume_pass.h) and binds itself into a method's program at its slots (volume_slots.h).
+// Per cascade: the voxel grid (occupancy, albedo, normal, emission; volume/voxelizer.h), the light
+// its voxels send out (volume/voxel_radiance.h) and, when asked for, a layer of the signed
+// distance field jump-flooded from its surface voxels (volume/distance_field.h).
 //
 // What is rebuilt and when, for every method alike (invalidate()):
 // - geometry: voxels, field and light;
@@ -20,10 +23,11 @@
 #include <vector>
 
 #include "renderer.h"
-#include "sdf/distance_field.h"
-#include "voxel/voxel_radiance.h"
+#include "volume/distance_field.h"
+#include "volume/voxel_radiance.h"
 #include "volume/occupancy.h"
 #include "volume/volume_cascades.h"
+#include "volume/volume_slots.h"
 
 namespace gis {
 
@@ -44,6 +48,9 @@ struct VolumeRequest {
     JfaVariant jfa = JfaVariant::OnePlusJfa;
     bool occupancy = false;           // the occupancy hierarchy (HDDA traversal)
     bool scroll = false;              // a moved cascade voxelizes only the cells it gained
+    // A second light that sums the bounce series over frames (vct.feedback: restartFeedback(),
+    // addFeedbackBounce()); the tracers then read it, while the volume's own stays the injected light.
+    bool feedback = false;
     // Cascades around the camera: `cascades` > 0 a fixed count, 0 from `cascadeExtent`.
     int cascades = 1;
     float cascadeExtent = 1.0f;
@@ -51,13 +58,12 @@ struct VolumeRequest {
     bool operator==(const VolumeRequest& o) const;
 };
 
-// What update() reads from the frame (the lights and their shadow maps, for light injection),
-// added to `own`: the inputs() of a pass that updates a volume.
-std::vector<std::string> withVolumeInputs(std::vector<std::string> own);
-
 // GPU bytes the volume will hold for `request` with `cascades` cascades (the field at its peak
 // while it is built), for the budget check before anything is allocated.
 int64_t sceneVolumeBytes(const VolumeRequest& request, int cascades);
+
+// Where the cascades of the volume `request` describes lie in a scene with `bounds`.
+CascadeLayout volumeLayout(const Aabb& bounds, const VolumeRequest& request);
 
 class SceneVolume {
 public:
@@ -72,12 +78,26 @@ public:
     // bounces gather with (the method's live setting).
     void update(Frame& frame, const ConeSettings& bounceCones = {});
     void invalidate(Changes changes);
+    // What update() reads from the frame: the lights and their shadow maps, for light injection.
+    static std::vector<std::string> inputs();
+    // Every program a volume for `request` may build (a method's programs() lists them first).
+    static std::vector<ProgramDesc> programs(const VolumeRequest& request);
+    // Binds what the request holds into the next programs at the volume's slots (volume_slots.h):
+    // the traced light (tracedRadiance(), or the light's layers with more than one cascade), the
+    // field and its coarse level, cascade 0's albedo and emission, the occupancy buffers.
+    void bind() const;
+    // request.feedback: the feedback light starts over from the injected light, or gains one bounce
+    // gathered with `cones` (the caller binds the environment the cones see when they leave).
+    void restartFeedback();
+    void addFeedbackBounce(const ConeSettings& cones);
 
     const VolumeRequest& request() const { return request_; }
     const CascadeLayout& layout() const { return layout_; }
     int cascadeCount() const { return layout_.count; }
     const VoxelGrid& grid(int cascade = 0) const;
     const VoxelRadiance& radiance(int cascade = 0) const;
+    // The light tracers read with one cascade: the feedback light with request.feedback, else radiance().
+    const VoxelRadiance& tracedRadiance() const { return feedback_ ? *feedback_ : radiance(); }
     // Level 0 of the light: the cascade's own texture with one cascade, else one layer per cascade
     // stacked along z (like the field's layers), so a tracer switches cascade by a coordinate.
     GLuint radianceTexture() const;
@@ -126,6 +146,7 @@ private:
     std::unique_ptr<DistanceField> field_;   // one layer per cascade
     std::unique_ptr<OccupancyHierarchy> occupancy_;
     gl::Texture radianceAtlas_;              // more than one cascade: their light, a layer each
+    std::unique_ptr<VoxelRadiance> feedback_;  // request.feedback: the bounces summed so far
 };
 
 }  // namespace gis

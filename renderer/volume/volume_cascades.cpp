@@ -39,8 +39,8 @@ SdfVolume CascadeLayout::volume(int i, const glm::ivec3& offset) const {
     return {scene.origin + glm::vec3(offset) * cellSize(i), extent(i), scene.resolution};
 }
 
-CascadeLayout layoutCascades(const Aabb& bounds, int resolution, float finestExtent, int requested, float marginVoxels,
-                             const std::string& method) {
+CascadeLayout layoutCascades(const Aabb& bounds, int resolution, float finestExtent, int requested,
+                             const std::string& method, float marginVoxels) {
     CascadeLayout layout;
     layout.scene = fitVolume(bounds, resolution, marginVoxels);
     layout.count = chooseCascadeCount(layout.scene, finestExtent, requested, method);

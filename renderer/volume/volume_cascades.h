@@ -22,7 +22,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/scene.h"
-#include "sdf/distance_field.h"
+#include "volume/distance_field.h"
 #include "volume/volume_fit.h"
 
 namespace gis {
@@ -33,9 +33,9 @@ constexpr int kCascadeSnapDivisor = 8;
 
 // 1 when the scene cube's edge is within `finestExtent`, else 1 + the halvings that bring it
 // there, at most kMaxCascades. `requested` > 0 overrides it (the method's `cascades`). Throws
-// gis::Error naming `method`'s parameter for a request outside [0, kMaxCascades] or an extent that
-// is not positive.
-int chooseCascadeCount(const VolumeFit& sceneCube, float finestExtent, int requested, const std::string& method = "sdf");
+// gis::Error naming the parameter of the requesting `method` ("sdf": "sdf.cascades") for a request
+// outside [0, kMaxCascades] or an extent that is not positive.
+int chooseCascadeCount(const VolumeFit& sceneCube, float finestExtent, int requested, const std::string& method);
 
 struct CascadeLayout {
     VolumeFit scene;   // the scene's fitted cube: the coarsest cascade
@@ -54,11 +54,8 @@ struct CascadeLayout {
 };
 
 // The layout for a scene: its cube (fitted with `marginVoxels` of empty cells, shared with the
-// voxels), and the count from its extent (or `requested`).
+// voxels), and the count from its extent (or `requested`; errors name `method`'s parameters).
 CascadeLayout layoutCascades(const Aabb& bounds, int resolution, float finestExtent, int requested,
-                             float marginVoxels = kVolumeMarginVoxels, const std::string& method = "sdf");
-inline CascadeLayout layoutCascades(const Scene& scene, int resolution, float finestExtent, int requested) {
-    return layoutCascades(scene.bounds, resolution, finestExtent, requested);
-}
+                             const std::string& method, float marginVoxels = kVolumeMarginVoxels);
 
 }  // namespace gis

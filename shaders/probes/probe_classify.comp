@@ -10,7 +10,7 @@
 #ifdef PROBE_TRACER_OCCUPANCY
 #include "volume/hdda.glsl"
 #else
-#include "sdf/sdf_march.glsl"
+#include "volume/sdf_march.glsl"
 layout(binding = 0) uniform sampler3D s_distance;
 #endif
 

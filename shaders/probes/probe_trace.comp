@@ -1,6 +1,6 @@
 // One probe update, step 1: every probe of the batch (u_batch, most urgent first) shoots u_rays
 // rays (a spherical-Fibonacci set under this update's random rotation), sphere-traced through the
-// distance field's cascades (sdf/sdf_march.glsl), or with PROBE_TRACER_OCCUPANCY walked through
+// distance field's cascades (volume/sdf_march.glsl), or with PROBE_TRACER_OCCUPANCY walked through
 // the occupancy hierarchy by HDDA (volume/hdda.glsl), starting in the finest cascade that holds the
 // probe. A hit is shaded from the voxel radiance of the cascade it was found in (direct light and
 // emission as the volume injected them) plus, for multi-bounce, the probes' own irradiance there
@@ -11,7 +11,7 @@
 #ifdef PROBE_TRACER_OCCUPANCY
 #include "volume/hdda.glsl"
 #else
-#include "sdf/sdf_march.glsl"
+#include "volume/sdf_march.glsl"
 #endif
 
 layout(local_size_x = 64) in;

@@ -12,7 +12,7 @@
 
 #include "render_test_util.h"
 #include "volume/occupancy.h"
-#include "voxel/voxelizer.h"
+#include "volume/voxelizer.h"
 
 namespace gis::test {
 namespace {

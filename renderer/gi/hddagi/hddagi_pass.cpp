@@ -7,7 +7,6 @@
 #include "gi/method.h"
 #include "gl/dispatch.h"
 #include "services/scene_services.h"
-#include "voxel/voxelizer.h"
 
 namespace gis {
 
@@ -35,12 +34,18 @@ VolumeRequest volumeRequest(const HddagiSettings& s) {
     r.cascadeExtent = s.cascadeExtent;
     return r;
 }
+
+// The request of valid settings (checkHddagiSettings throws first, naming the parameter).
+VolumeRequest checkedVolumeRequest(const RenderSettings& settings) {
+    const HddagiSettings s = hddagiParams().read("hddagi", settings.params);
+    checkHddagiSettings(s);
+    return volumeRequest(s);
+}
 }  // namespace
 
 std::vector<ProgramDesc> HddagiPass::programs() {
-    std::vector<ProgramDesc> all = Voxelizer::programs();
-    for (const auto& list : {VoxelRadiance::programs(), OccupancyHierarchy::programs(), probes::fieldPrograms(),
-                             probes::ScreenGather::programs()})
+    std::vector<ProgramDesc> all = SceneVolume::programs(volumeRequest(HddagiSettings{}));
+    for (const auto& list : {probes::fieldPrograms(), probes::ScreenGather::programs()})
         all.insert(all.end(), list.begin(), list.end());
     all.push_back(kDebugProgram);
     return all;
@@ -49,7 +54,7 @@ std::vector<ProgramDesc> HddagiPass::programs() {
 std::vector<std::pair<std::string, uint64_t>> HddagiPass::estimateMemory(const Scene& scene, const RenderSettings& settings) {
     const HddagiSettings s = hddagiParams().read("hddagi", settings.params);
     const VolumeRequest request = volumeRequest(s);
-    const CascadeLayout layout = layoutCascades(scene.bounds, s.resolution, s.cascadeExtent, s.cascades);
+    const CascadeLayout layout = volumeLayout(scene.bounds, request);
     const int probes = probes::cascadeProbeCount(scene.bounds, layout, s.probeSpacing);
     return {{"HDDAGI scene volume (" + std::to_string(layout.count) + " cascades: voxels, light, occupancy)",
              uint64_t(sceneVolumeBytes(request, layout.count))},
@@ -60,10 +65,9 @@ std::vector<std::pair<std::string, uint64_t>> HddagiPass::estimateMemory(const S
 }
 
 HddagiPass::HddagiPass(SceneServices& services, const RenderSettings& settings)
-    : built_(hddagiParams().read("hddagi", settings.params)), slice_({&services.ledger, name()}) {
-    checkHddagiSettings(built_);
+    : VolumePass(services.volume(checkedVolumeRequest(settings))), built_(hddagiParams().read("hddagi", settings.params)),
+      slice_({&services.ledger, name()}) {
     const gl::MemoryScope scope{&services.ledger, name()};
-    volume_ = &services.volume(volumeRequest(built_));
     sceneBounds_ = services.bounds();
     field_ = std::make_unique<probes::ProbeField>(
         scope, *volume_, probes::cascadeProbeGrids(*volume_, sceneBounds_, built_.probeSpacing), built_.field());
@@ -83,9 +87,8 @@ void HddagiPass::placeProbes() {
         field_->place(i, probes::cascadeProbeGrid(*volume_, sceneBounds_, built_.probeSpacing, i));
 }
 
-void HddagiPass::execute(Frame& frame) {
+void HddagiPass::run(Frame& frame) {
     const HddagiSettings live = hddagiParams().read("hddagi", frame.settings.params);
-    volume_->update(frame);
     placeProbes();
     field_->update(frame, live.field());
     {
@@ -154,7 +157,7 @@ void HddagiPass::drawDebugView(const std::string& view, const Frame& frame, GLui
     slice.level = live.sliceLevel;
     slice_.set(slice);
     glProgramUniform1i(p, UH_STEPS_MAX, live.stepsMax);
-    volume_->occupancy().bind();
+    volume_->bind();
     glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     const int w = frame.settings.width, h = frame.settings.height;
     gl::dispatchCompute(gl::groupsFor(w, 8), gl::groupsFor(h, 8), 1, "hddagi debug");

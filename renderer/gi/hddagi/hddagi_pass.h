@@ -18,21 +18,19 @@
 #include "probes/screen_gather.h"
 #include "frame.h"
 #include "gl/shader.h"
-#include "volume/scene_volume.h"
+#include "volume/volume_pass.h"
 
 namespace gis {
 
 struct SceneServices;
 
-class HddagiPass final : public Pass {
+class HddagiPass final : public VolumePass {
 public:
     HddagiPass(SceneServices& services, const RenderSettings& settings);
     const char* name() const override { return "hddagi"; }
-    std::vector<std::string> inputs() const override {
-        return withVolumeInputs({resource::kGbufferDepth, resource::kGbufferNormal});
-    }
+    std::vector<std::string> ownInputs() const override { return {resource::kGbufferDepth, resource::kGbufferNormal}; }
     std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse}; }
-    void execute(Frame& frame) override;
+    void run(Frame& frame) override;
     bool settled() const override { return field_->converged() && !changed_; }
     Progress progress() const override { return field_->progress(); }
     void invalidate(Changes c) override;
@@ -45,7 +43,6 @@ public:
     static std::vector<std::pair<std::string, uint64_t>> estimateMemory(const Scene& scene, const RenderSettings& s);
 
     // What tests and the bench look at.
-    const SceneVolume& volume() const { return *volume_; }
     const probes::ProbeField& field() const { return *field_; }
     const HddagiSettings& rebuildSettings() const { return built_; }
 
@@ -53,7 +50,6 @@ private:
     void placeProbes();
     HddagiSettings built_;
     Aabb sceneBounds_;
-    SceneVolume* volume_ = nullptr;   // the renderer's, shared (SceneServices)
     std::unique_ptr<probes::ProbeField> field_;
     std::unique_ptr<probes::ScreenGather> gather_;
     gl::Object debugProgram_;

@@ -8,7 +8,6 @@
 #include "gl/dispatch.h"
 #include "probes/probe_uniforms.h"
 #include "services/scene_services.h"
-#include "voxel/voxelizer.h"
 
 namespace gis {
 
@@ -22,13 +21,6 @@ ParamValue choiceValue(const char* name) {
 }
 }  // namespace
 
-std::vector<ProgramDesc> ProbesPass::programs() {
-    std::vector<ProgramDesc> all = Voxelizer::programs();
-    for (const auto& list : {VoxelRadiance::programs(), DistanceField::programs(), fieldPrograms(), ScreenGather::programs()})
-        all.insert(all.end(), list.begin(), list.end());
-    return all;
-}
-
 namespace {
 // What probes ask of the scene volume: one cube of voxels with their distance field (the rays'
 // sphere tracing) and their direct light and emission (what the rays see).
@@ -40,13 +32,24 @@ VolumeRequest volumeRequest(const ProbeSettings& s) {
     r.distanceField = true;
     return r;
 }
+
+// The request of valid settings (checkProbeSettings throws first, naming the parameter).
+VolumeRequest checkedVolumeRequest(const RenderSettings& settings) {
+    const ProbeSettings s = probeParams().read("probes", settings.params);
+    checkProbeSettings(s);
+    return volumeRequest(s);
+}
 }  // namespace
 
+std::vector<ProgramDesc> ProbesPass::programs() {
+    std::vector<ProgramDesc> all = SceneVolume::programs(volumeRequest(ProbeSettings{}));
+    for (const auto& list : {fieldPrograms(), ScreenGather::programs()}) all.insert(all.end(), list.begin(), list.end());
+    return all;
+}
+
 ProbesPass::ProbesPass(SceneServices& services, const RenderSettings& settings)
-    : built_(probeParams().read("probes", settings.params)) {
-    checkProbeSettings(built_);
+    : VolumePass(services.volume(checkedVolumeRequest(settings))), built_(probeParams().read("probes", settings.params)) {
     const gl::MemoryScope scope{&services.ledger, name()};
-    volume_ = &services.volume(volumeRequest(built_));
     field_ = std::make_unique<ProbeField>(scope, *volume_, std::vector<ProbeGrid>{fitProbeGrid(services.bounds(), built_.spacing)},
                                           built_.field());
     gather_ = std::make_unique<ScreenGather>(scope, settings.width, settings.height, built_.gatherPixels());
@@ -61,9 +64,8 @@ void ProbesPass::invalidate(Changes c) {
 
 Pass::Progress ProbesPass::progress() const { return field_->progress(); }
 
-void ProbesPass::execute(Frame& frame) {
+void ProbesPass::run(Frame& frame) {
     const ProbeSettings live = probeParams().read("probes", frame.settings.params);
-    volume_->update(frame);
     field_->update(frame, live.field());
     {
         auto t = frame.step("shade");

@@ -15,21 +15,19 @@
 #include "gi/probes/probe_settings.h"
 #include "frame.h"
 #include "gl/shader.h"
-#include "volume/scene_volume.h"
+#include "volume/volume_pass.h"
 
 namespace gis {
 
 struct SceneServices;
 
-class ProbesPass final : public Pass {
+class ProbesPass final : public VolumePass {
 public:
     ProbesPass(SceneServices& services, const RenderSettings& settings);
     const char* name() const override { return "probes"; }
-    std::vector<std::string> inputs() const override {
-        return withVolumeInputs({resource::kGbufferDepth, resource::kGbufferNormal});
-    }
+    std::vector<std::string> ownInputs() const override { return {resource::kGbufferDepth, resource::kGbufferNormal}; }
     std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse}; }
-    void execute(Frame& frame) override;
+    void run(Frame& frame) override;
     bool settled() const override { return field_->converged() && !changed_; }
     // Updates as progress, so `render` (and the sandbox's "converge") renders until the probes
     // have converged: done = updates read back, target = the most updates there can be, and both
@@ -54,11 +52,9 @@ public:
     // Probe i's irradiance payload (RGB per SH coefficient or octahedral texel), read back.
     std::vector<glm::vec3> readIrradiance(int probe) const { return field_->readIrradiance(probe); }
     const ProbeSettings& rebuildSettings() const { return built_; }
-    const SceneVolume& volume() const { return *volume_; }
 
 private:
     ProbeSettings built_;
-    SceneVolume* volume_ = nullptr;   // the renderer's, shared (SceneServices)
     std::unique_ptr<probes::ProbeField> field_;
     std::unique_ptr<probes::ScreenGather> gather_;
     bool changed_ = true;             // something arrived through invalidate() since the last execute

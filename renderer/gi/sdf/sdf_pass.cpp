@@ -46,9 +46,8 @@ const ProgramDesc kFilterProgram{"sdf_gi_filter", {"gi/sdf/sdf_filter.comp"}, {}
 const ProgramDesc kDebugProgram{"sdf_gi_debug", {"gi/sdf/sdf_debug.comp"}, {}};
 
 std::vector<ProgramDesc> SdfGiPass::programs() {
-    std::vector<ProgramDesc> all = Voxelizer::programs();
-    for (const auto& list : {VoxelRadiance::programs(), DistanceField::programs(), probes::fieldPrograms()})
-        all.insert(all.end(), list.begin(), list.end());
+    std::vector<ProgramDesc> all = SceneVolume::programs(sdfVolumeRequest(SdfGiSettings{}));
+    for (const ProgramDesc& p : probes::fieldPrograms()) all.push_back(p);
     for (const ProgramDesc* p : {&kTraceProgram, &kTemporalProgram, &kFilterProgram, &kDebugProgram}) all.push_back(*p);
     return all;
 }
@@ -56,9 +55,9 @@ std::vector<ProgramDesc> SdfGiPass::programs() {
 
 std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Scene& scene, const RenderSettings& settings) {
     const SdfGiSettings s = sdfParams().read("sdf", settings.params);
-    const int n = s.resolution, scale = s.tracePixels();
+    const int scale = s.tracePixels();
     const VolumeRequest request = sdfVolumeRequest(s);
-    const CascadeLayout layout = layoutCascades(scene.bounds, n, s.cascadeExtent, s.cascades);
+    const CascadeLayout layout = volumeLayout(scene.bounds, request);
     const int count = layout.count;
     const uint64_t traced = uint64_t(tracedSize(settings.width, scale)) * uint64_t(tracedSize(settings.height, scale));
     const uint64_t full = uint64_t(settings.width) * uint64_t(settings.height);
@@ -79,9 +78,9 @@ std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Sc
 }
 
 SdfGiPass::SdfGiPass(SceneServices& services, const RenderSettings& settings)
-    : built_(sdfParams().read("sdf", settings.params)), scope_{&services.ledger, name()}, march_(scope_), debug_(scope_),
+    : VolumePass(services.volume(sdfVolumeRequest(sdfParams().read("sdf", settings.params)))),
+      built_(sdfParams().read("sdf", settings.params)), scope_{&services.ledger, name()}, march_(scope_), debug_(scope_),
       traceBlock_(scope_), temporalBlock_(scope_) {
-    volume_ = &services.volume(sdfVolumeRequest(built_));
     sceneBounds_ = services.bounds();
     if (built_.probeGather()) {
         probes::checkFieldSettings(built_.probeField(), "sdf.probe-ray-budget", "sdf.probe-rays");
@@ -182,8 +181,7 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     glProgramUniform4fv(p, UG_CASCADES, GLsizei(volumes.size()), &volumes[0][0]);
     glProgramUniform1i(p, UG_CASCADE_COUNT, field.layers());
     glProgramUniform1i(p, UG_RESOLUTION, volume_->layout().resolution());
-    field.bind(3);
-    glBindTextureUnit(5, volume_->radianceTexture());
+    volume_->bind();
     glBindImageTexture(0, raw_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, reflection_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(2, occlusion_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
@@ -230,9 +228,8 @@ void SdfGiPass::filter(const Frame& frame, const SdfGiSettings& s) {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
-void SdfGiPass::execute(Frame& frame) {
+void SdfGiPass::run(Frame& frame) {
     const SdfGiSettings live = sdfParams().read("sdf", frame.settings.params);
-    volume_->update(frame);
     if (field_) {
         placeProbes();
         field_->update(frame, built_.probeField());
@@ -322,7 +319,7 @@ void SdfGiPass::drawDebugView(const std::string& view, const Frame& frame, GLuin
     debug.maxSteps = live.maxSteps;
     debug_.set(debug);
     glBindSamplers(0, 7, nullptr);
-    volume_->field().bind(3);
+    volume_->bind();
     glBindTextureUnit(6, info_.id());
     glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch2D(diffuse_.width, diffuse_.height);

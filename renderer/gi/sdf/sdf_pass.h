@@ -24,24 +24,24 @@
 #include "probes/probe_field.h"
 #include "frame.h"
 #include "gl/shader.h"
-#include "sdf/sdf_uniforms.h"
-#include "volume/scene_volume.h"
+#include "volume/sdf_uniforms.h"
+#include "volume/volume_pass.h"
 
 namespace gis {
 
 struct SceneServices;
 
-class SdfGiPass final : public Pass {
+class SdfGiPass final : public VolumePass {
 public:
     SdfGiPass(SceneServices& services, const RenderSettings& settings);
     const char* name() const override { return "sdf"; }
-    std::vector<std::string> inputs() const override {
-        return withVolumeInputs({resource::kGbufferDepth, resource::kGbufferNormal, resource::kGbufferMaterial});
+    std::vector<std::string> ownInputs() const override {
+        return {resource::kGbufferDepth, resource::kGbufferNormal, resource::kGbufferMaterial};
     }
     std::vector<std::string> outputs() const override {
         return {resource::kIndirectDiffuse, resource::kIndirectSpecular, resource::kAo};
     }
-    void execute(Frame& frame) override;
+    void run(Frame& frame) override;
     bool settled() const override;
     Progress progress() const override;
     std::optional<RayCounts> raysTraced() const override;
@@ -55,7 +55,6 @@ public:
     static std::vector<std::pair<std::string, uint64_t>> estimateMemory(const Scene& scene,
                                                                         const RenderSettings& settings);
 
-    const SceneVolume& volume() const { return *volume_; }
     const DistanceField& field() const { return volume_->field(); }
     const CascadeLayout& layout() const { return volume_->layout(); }
     int cascadeCount() const { return volume_->cascadeCount(); }
@@ -75,7 +74,6 @@ private:
 
     SdfGiSettings built_;
     gl::MemoryScope scope_;
-    SceneVolume* volume_ = nullptr;   // the renderer's, shared (SceneServices)
     Aabb sceneBounds_;
     std::unique_ptr<probes::ProbeField> field_;   // sdf.diffuse=probes: a grid per cascade
     int scale_ = 1;  // full-resolution pixels per traced pixel

@@ -4,7 +4,7 @@
 
 #include "param_table.h"
 #include "probes/probe_field.h"
-#include "sdf/distance_field.h"
+#include "volume/distance_field.h"
 
 namespace gis {
 

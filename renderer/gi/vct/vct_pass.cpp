@@ -7,7 +7,7 @@
 #include "gi/method.h"
 #include "scene/scene_lighting.h"
 #include "services/scene_services.h"
-#include "voxel/voxel_uniforms.h"
+#include "volume/voxel_uniforms.h"
 
 namespace gis {
 
@@ -25,6 +25,20 @@ ParamValue choiceValue(const char* name) {
 }
 
 int tracedSize(int fullSize, int scale) { return (fullSize + scale - 1) / scale; }
+
+// What VCT asks of the scene volume (vctVolumeRequest), with the feedback light when vct.feedback.
+VolumeRequest volumeRequest(const VctSettings& s) {
+    VolumeRequest r = vctVolumeRequest(s);
+    r.feedback = s.feedback;
+    return r;
+}
+
+// The request of valid settings (checkVctSettings throws first, naming the parameter).
+VolumeRequest checkedVolumeRequest(const RenderSettings& settings) {
+    const VctSettings s = vctParams().read("vct", settings.params);
+    checkVctSettings(s);
+    return volumeRequest(s);
+}
 
 // The traced diffuse, specular (RGBA16F) and ao (R16F); above scale 1 two full-resolution
 // histories of three RGBA16F textures each.
@@ -53,33 +67,24 @@ const ProgramDesc kDebugProgram{"vct_debug", {"gi/vct/vct_debug.comp"}, {}};
 const ProgramDesc kUpsampleProgram{"vct_upsample", {"gi/vct/vct_upsample.comp"}, {}};
 
 std::vector<ProgramDesc> VctPass::programs() {
-    std::vector<ProgramDesc> all = Voxelizer::programs();
-    for (const ProgramDesc& p : VoxelRadiance::programs()) all.push_back(p);
+    std::vector<ProgramDesc> all = SceneVolume::programs(volumeRequest(VctSettings{}));
     all.push_back(kDebugProgram);
     all.push_back(kTraceProgram);
     all.push_back(kUpsampleProgram);
     return all;
 }
 
-
 VctPass::VctPass(SceneServices& services, const RenderSettings& settings)
-    : built_(vctParams().read("vct", settings.params)), live_(built_), cones_({&services.ledger, name()}),
-      debug_({&services.ledger, name()}) {
-    checkVctSettings(built_);
+    : VolumePass(services.volume(checkedVolumeRequest(settings))), built_(vctParams().read("vct", settings.params)),
+      live_(built_), cones_({&services.ledger, name()}), debug_({&services.ledger, name()}) {
     // Everything is charged to the pass, so --timings, info and the panel show the method's whole
     // footprint on its row (its README page lists it per texture).
-    volume_ = &services.volume(vctVolumeRequest(built_));
     const gl::MemoryScope trace{&services.ledger, name()};
     const int scale = built_.tracePixels();
     const int tw = tracedSize(settings.width, scale), th = tracedSize(settings.height, scale);
     diffuse_ = gl::createTexture2D(trace, GL_RGBA16F, tw, th);
     specular_ = gl::createTexture2D(trace, GL_RGBA16F, tw, th);
     ao_ = gl::createTexture2D(trace, GL_R16F, tw, th);
-    if (built_.feedback) {
-        const VolumeRequest& r = volume_->request();
-        // Charged to the pass: the scene volume's own light is what it was without feedback.
-        feedback_ = std::make_unique<VoxelRadiance>(r.resolution, r.anisotropic, 2, trace, r.cullBackfaces);
-    }
     traceProgram_ = buildProgram(kTraceProgram);
     debugProgram_ = buildProgram(kDebugProgram);
     if (scale == 1) return;
@@ -112,7 +117,7 @@ void VctPass::trace(const Frame& frame, const VctSettings& s, glm::ivec2 jitter)
     cones.offset = s.offset;
     cones.specular = s.specular ? 1 : 0;
     cones_.set(cones);
-    glProgramUniform1i(p, UV_ANISOTROPIC, tracedRadiance().mipMode());
+    glProgramUniform1i(p, UV_ANISOTROPIC, volume_->tracedRadiance().mipMode());
     glProgramUniform1f(p, UV_INTENSITY, s.intensity);
     glProgramUniform3i(p, UV_TRACE_JITTER, built_.tracePixels(), jitter.x, jitter.y);
     glProgramUniform1f(p, UV_SPECULAR_ROUGHNESS, s.specularRoughness);
@@ -120,7 +125,7 @@ void VctPass::trace(const Frame& frame, const VctSettings& s, glm::ivec2 jitter)
                                frame.texture(resource::kGbufferMaterial)};
     glBindTextures(0, 3, gbuffer);
     glBindSamplers(0, 3, nullptr);
-    tracedRadiance().bind(4);
+    volume_->bind();
     glBindImageTexture(0, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(2, ao_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
@@ -179,43 +184,42 @@ void VctPass::drawDebugView(const std::string& view, const Frame& frame, GLuint 
     debug.sliceAxis = slice ? live.sliceAxis : -1;
     debug.slicePosition = live.slicePosition;
     debug_.set(debug);
-    const GLuint textures[3] = {volume_->grid().albedo.id(), volume_->grid().emission.id(),
-                                tracedRadiance().radiance().id()};
-    glBindTextures(0, 3, textures);
-    glBindSamplers(0, 3, nullptr);
+    volume_->bind();
     glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl::dispatchCompute(gl::groupsFor(frame.settings.width, 8), gl::groupsFor(frame.settings.height, 8), 1, "vct");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 Pass::Progress VctPass::progress() const {
-    if (!feedback_) return {};
+    if (!built_.feedback) return {};
     return {std::min(feedbackUpdates_, feedbackTarget_), feedbackTarget_, "feedback updates"};
 }
 
 bool VctPass::updateFeedback(Frame& frame, const ConeSettings& cones) {
-    const VoxelGrid& grid = volume_->grid();
     if (volume_->lastUpdate(0) != SceneVolume::Update::Cached || feedbackTarget_ == 0) {
         auto t = frame.step("feedback.restart");
-        feedback_->restartFeedback(grid, volume_->radiance().radiance());
+        volume_->restartFeedback();
         feedbackUpdates_ = 0;
         feedbackTarget_ = feedbackBouncesFor(frame.scene.cpu);  // the materials may have changed
     }
     if (feedbackDone()) return false;
     auto t = frame.step("feedback");
     frame.bindEnvironment();
-    feedback_->feedbackBounce(grid, cones);
+    volume_->addFeedbackBounce(cones);
     ++feedbackUpdates_;
     return true;
 }
 
-void VctPass::execute(Frame& frame) {
-    live_ = vctParams().read("vct", frame.settings.params);
-    VctSettings cones = live_;  // further bounces gather with the live cones at the built resolution
+ConeSettings VctPass::bounceCones(const Frame& frame) const {
+    VctSettings cones = vctParams().read("vct", frame.settings.params);
     cones.resolution = built_.resolution;
-    volume_->update(frame, coneSettingsOf(cones));
+    return coneSettingsOf(cones);
+}
+
+void VctPass::run(Frame& frame) {
+    live_ = vctParams().read("vct", frame.settings.params);
     // A new bounce changes every pixel: the reduced-resolution history gathers anew after the last.
-    if (feedback_ && updateFeedback(frame, coneSettingsOf(cones))) framesUnchanged_ = 0;
+    if (built_.feedback && updateFeedback(frame, bounceCones(frame))) framesUnchanged_ = 0;
     const glm::ivec2 jitter = jitterPhase(built_.tracePixels(), framesTraced_++);
     {
         auto t = frame.step("trace");

@@ -14,25 +14,27 @@
 #include "gi/vct/vct_settings.h"
 #include "frame.h"
 #include "gl/shader.h"
-#include "volume/scene_volume.h"
-#include "voxel/voxel_uniforms.h"
+#include "volume/volume_pass.h"
+#include "volume/voxel_uniforms.h"
 
 namespace gis {
 
 struct SceneServices;
 
-class VctPass final : public Pass {
+class VctPass final : public VolumePass {
 public:
     // Rebuild parameters come from settings.params ("vct.*").
     VctPass(SceneServices& services, const RenderSettings& settings);
     const char* name() const override { return "vct"; }
-    std::vector<std::string> inputs() const override {
-        return withVolumeInputs({resource::kGbufferDepth, resource::kGbufferNormal, resource::kGbufferMaterial});
+    std::vector<std::string> ownInputs() const override {
+        return {resource::kGbufferDepth, resource::kGbufferNormal, resource::kGbufferMaterial};
     }
     std::vector<std::string> outputs() const override {
         return {resource::kIndirectDiffuse, resource::kIndirectSpecular};
     }
-    void execute(Frame& frame) override;
+    void run(Frame& frame) override;
+    // Further bounces gather with the live cones at the built resolution.
+    ConeSettings bounceCones(const Frame& frame) const override;
     // The trace runs every frame, so the pass as a whole never reuses its result; the volume's
     // voxelize, inject and mips steps do (they show as cached in --timings).
     bool reusedLastFrame() const override { return false; }
@@ -56,7 +58,6 @@ public:
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     static std::vector<ProgramDesc> programs();
 
-    const SceneVolume& volume() const { return *volume_; }
     const VctSettings& rebuildSettings() const { return built_; }
 
 private:
@@ -65,9 +66,7 @@ private:
     struct History {
         gl::Texture diffuse, specular, geometry;
     };
-    bool feedbackDone() const { return !feedback_ || feedbackUpdates_ >= feedbackTarget_; }
-    // The light the cones read: the feedback volume's with vct.feedback, else the scene volume's.
-    const VoxelRadiance& tracedRadiance() const { return feedback_ ? *feedback_ : volume_->radiance(); }
+    bool feedbackDone() const { return !built_.feedback || feedbackUpdates_ >= feedbackTarget_; }
     // Restarts the feedback from the volume's injected light when that was relit, then adds one
     // bounce unless converged; true when the traced light changed.
     bool updateFeedback(Frame& frame, const ConeSettings& cones);
@@ -75,7 +74,6 @@ private:
     void upsample(const Frame& frame, glm::ivec2 jitter);
     VctSettings built_;    // the rebuild parameters this pass was made with
     VctSettings live_;     // the live parameters of the last frame
-    SceneVolume* volume_ = nullptr;         // the renderer's, shared (SceneServices)
     gl::Texture diffuse_, specular_, ao_;   // what the cones traced: one texel per vct.trace-scale block
     History history_[2];                    // trace scale above 1: written alternately, [current_] last
     int current_ = 0;
@@ -84,9 +82,7 @@ private:
     CameraMatrices lastCamera_;
     int framesUnchanged_ = 0;               // frames executed since the last invalidate()
     uint32_t framesTraced_ = 0;             // picks the jitter phase
-    // vct.feedback: the voxels' light with the bounces summed so far (the scene volume's stays the
-    // injected light, as other methods may read it); one update adds one bounce.
-    std::unique_ptr<VoxelRadiance> feedback_;
+    // vct.feedback (the volume's feedback light, VolumeRequest::feedback): one update adds one bounce.
     int feedbackUpdates_ = 0;   // bounces added since the volume was last lit
     int feedbackTarget_ = 0;    // bounces wanted for the scene's albedo (feedbackBouncesFor)
     gl::Object traceProgram_, upsampleProgram_, debugProgram_;

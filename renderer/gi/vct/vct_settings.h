@@ -7,7 +7,7 @@
 
 #include "param_table.h"
 #include "scene/scene_lighting.h"  // kMaxFeedbackBounces
-#include "voxel/voxelizer.h"
+#include "volume/voxelizer.h"
 
 namespace gis {
 

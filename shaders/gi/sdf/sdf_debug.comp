@@ -9,7 +9,7 @@
 #include "debug_slice.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 3) uniform sampler3D s_distance;
+layout(binding = VOLUME_DISTANCE_UNIT) uniform sampler3D s_distance;
 layout(binding = 6) uniform sampler2D s_info;   // mean steps, first hit normal (traced resolution)
 layout(rgba16f, binding = 0) uniform writeonly image2D i_target;
 

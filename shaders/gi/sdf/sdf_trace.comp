@@ -1,5 +1,5 @@
 // SDF GI, per traced pixel: u_rays cosine-distributed rays sphere-traced through the distance field
-// (sdf/sdf_march.glsl); a hit takes the radiance the voxelizer injected there (direct light and
+// (volume/sdf_march.glsl); a hit takes the radiance the voxelizer injected there (direct light and
 // emission, Lambertian, premultiplied by occupancy), a miss the environment. Their mean is this
 // frame's estimate of the cosine-weighted mean incoming radiance (E / pi: the lighting contract's
 // indirect.diffuse) before temporal accumulation and filtering. Also: one mirror ray where the
@@ -11,14 +11,14 @@
 #include "sampling.glsl"
 #include "environment.glsl"
 #include "gi/sdf/sdf_gbuffer.glsl"
-#include "sdf/sdf_march.glsl"
+#include "volume/sdf_march.glsl"
 #include "probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 2) uniform sampler2D s_gbufMaterial;  // metallic, roughness, occlusion, specular
-layout(binding = 3) uniform sampler3D s_distance;
-layout(binding = 4) uniform sampler3D s_coarse;
-layout(binding = 5) uniform sampler3D s_radiance;      // rgb = radiance x occupancy, a = occupancy; a layer per cascade
+layout(binding = VOLUME_DISTANCE_UNIT) uniform sampler3D s_distance;
+layout(binding = VOLUME_COARSE_UNIT) uniform sampler3D s_coarse;
+layout(binding = VOLUME_RADIANCE_UNIT) uniform sampler3D s_radiance;      // rgb = radiance x occupancy, a = occupancy; a layer per cascade
 layout(rgba16f, binding = 0) uniform writeonly image2D i_diffuse;
 layout(rgba16f, binding = 1) uniform writeonly image2D i_reflection;  // rgb, a = its weight against diffuse
 layout(r16f, binding = 2) uniform writeonly image2D i_ao;

@@ -4,8 +4,7 @@
 // At a trace scale above 1 each texel traces one full-resolution pixel of its block, the one this
 // frame's jitter picks (vct_upsample.comp brings the texels to full resolution).
 #include "common.glsl"
-#define VOXEL_TEXTURE_UNIT 4
-#include "voxel/cone_trace.glsl"
+#include "volume/cone_trace.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler2D s_depth;

@@ -1,4 +1,4 @@
-#include "sdf/distance_field.h"
+#include "volume/distance_field.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "gl/dispatch.h"
 #include "renderer.h"
 #include "scene/scene.h"
-#include "sdf/sdf_uniforms.h"
+#include "volume/sdf_uniforms.h"
 
 namespace gis {
 
@@ -15,7 +15,7 @@ namespace {
 
 using namespace sdf;
 
-constexpr int kGroup = 4;  // local size of every shaders/sdf/*.comp, per axis
+constexpr int kGroup = 4;  // local size of every shaders/volume/*.comp, per axis
 
 GLuint groups(int n) { return GLuint((n + kGroup - 1) / kGroup); }
 
@@ -99,17 +99,17 @@ DistanceField::DistanceField(const SdfVolume& volume, const gl::MemoryScope& sco
     const int c = coarseSize(n);
     coarse_ = gl::createTexture3D(scope, GL_R32F, c, c, c * layers);
     setSampling(coarse_, GL_NEAREST);
-    seedProgram_ = buildProgram({"sdf_seed", {"sdf/jfa_seed.comp"}, {}});
-    stepProgram_ = buildProgram({"sdf_jfa", {"sdf/jfa_step.comp"}, {}});
-    resolveProgram_ = buildProgram({"sdf_resolve", {"sdf/sdf_resolve.comp"}, {}});
-    coarseProgram_ = buildProgram({"sdf_coarse", {"sdf/sdf_coarse.comp"}, {}});
+    seedProgram_ = buildProgram({"sdf_seed", {"volume/jfa_seed.comp"}, {}});
+    stepProgram_ = buildProgram({"sdf_jfa", {"volume/jfa_step.comp"}, {}});
+    resolveProgram_ = buildProgram({"sdf_resolve", {"volume/sdf_resolve.comp"}, {}});
+    coarseProgram_ = buildProgram({"sdf_coarse", {"volume/sdf_coarse.comp"}, {}});
 }
 
 std::vector<ProgramDesc> DistanceField::programs() {
-    return {{"sdf_seed", {"sdf/jfa_seed.comp"}, {}},
-            {"sdf_jfa", {"sdf/jfa_step.comp"}, {}},
-            {"sdf_resolve", {"sdf/sdf_resolve.comp"}, {}},
-            {"sdf_coarse", {"sdf/sdf_coarse.comp"}, {}}};
+    return {{"sdf_seed", {"volume/jfa_seed.comp"}, {}},
+            {"sdf_jfa", {"volume/jfa_step.comp"}, {}},
+            {"sdf_resolve", {"volume/sdf_resolve.comp"}, {}},
+            {"sdf_coarse", {"volume/sdf_coarse.comp"}, {}}};
 }
 
 void DistanceField::setVolume(int layer, const SdfVolume& volume) {

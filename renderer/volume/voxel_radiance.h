@@ -8,8 +8,8 @@
 
 #include "ray_scene.h"
 #include "renderer.h"
-#include "voxel/voxel_uniforms.h"
-#include "voxel/voxelizer.h"
+#include "volume/voxel_uniforms.h"
+#include "volume/voxelizer.h"
 
 namespace gis {
 
@@ -31,7 +31,7 @@ class VoxelRadiance {
 public:
     // cullBackfaces: the directional chains leave out the voxels a cone meets from behind, so a
     // cone never sees the surface it leaves (only with anisotropic). cullUnlitOutsides: inject()
-    // leaves out the surfaces that face air no light reaches (shaders/voxel/exterior.comp).
+    // leaves out the surfaces that face air no light reaches (shaders/volume/exterior.comp).
     VoxelRadiance(int resolution, bool anisotropic, int bounces, const gl::MemoryScope& scope,
                   bool cullBackfaces = false, bool cullUnlitOutsides = false);
     struct Lights {
@@ -65,11 +65,11 @@ public:
     // counterpart of DDGI's recursive irradiance); it cannot diverge for albedo < 1, as each term
     // is the previous one scaled by albedo times the gathered fraction (at most 1).
     void feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones);
-    // Seven consecutive texture units from `unit` (shaders/voxel/cone_trace.glsl's layout).
-    void bind(GLuint unit) const;
+    // At kVolumeRadianceUnit and the six units after it (shaders/volume/cone_trace.glsl's layout).
+    void bind() const;
     const gl::Texture& radiance() const { return radiance_; }
     bool anisotropic() const { return anisotropic_; }
-    // UV_ANISOTROPIC for shaders/voxel/cone_trace.glsl's makeConeTracer (VOXEL_ISOTROPIC ...).
+    // UV_ANISOTROPIC for shaders/volume/cone_trace.glsl's makeConeTracer (VOXEL_ISOTROPIC ...).
     int mipMode() const { return !anisotropic_ ? 0 : cullBackfaces_ ? 2 : 1; }
     int resolution() const { return radiance_.width; }
     static std::vector<ProgramDesc> programs();

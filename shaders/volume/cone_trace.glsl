@@ -1,17 +1,17 @@
-// Cone tracing through the voxel radiance (renderer/voxel/voxel_radiance.h), for every method that
+// Cone tracing through the voxel radiance (renderer/volume/voxel_radiance.h), for every method that
 // gathers light from the voxels. Positions and distances are in voxel units ([0, resolution]^3).
-// The including shader declares the uniforms below at these bindings by including this file after
-// defining VOXEL_TEXTURE_UNIT (the first of seven consecutive units: isotropic chain, then the six
-// directional chains +X -X +Y -Y +Z -Z, which start at half resolution).
+// The light's seven chains are where SceneVolume::bind() puts them (renderer/volume/volume_slots.h):
+// from VOLUME_RADIANCE_UNIT the isotropic chain, then the six directional chains +X -X +Y -Y +Z -Z,
+// which start at half resolution.
 #include "environment.glsl"
 
-layout(binding = VOXEL_TEXTURE_UNIT + 0) uniform sampler3D s_voxelRadiance;
-layout(binding = VOXEL_TEXTURE_UNIT + 1) uniform sampler3D s_voxelPosX;
-layout(binding = VOXEL_TEXTURE_UNIT + 2) uniform sampler3D s_voxelNegX;
-layout(binding = VOXEL_TEXTURE_UNIT + 3) uniform sampler3D s_voxelPosY;
-layout(binding = VOXEL_TEXTURE_UNIT + 4) uniform sampler3D s_voxelNegY;
-layout(binding = VOXEL_TEXTURE_UNIT + 5) uniform sampler3D s_voxelPosZ;
-layout(binding = VOXEL_TEXTURE_UNIT + 6) uniform sampler3D s_voxelNegZ;
+layout(binding = VOLUME_RADIANCE_UNIT + 0) uniform sampler3D s_voxelRadiance;
+layout(binding = VOLUME_RADIANCE_UNIT + 1) uniform sampler3D s_voxelPosX;
+layout(binding = VOLUME_RADIANCE_UNIT + 2) uniform sampler3D s_voxelNegX;
+layout(binding = VOLUME_RADIANCE_UNIT + 3) uniform sampler3D s_voxelPosY;
+layout(binding = VOLUME_RADIANCE_UNIT + 4) uniform sampler3D s_voxelNegY;
+layout(binding = VOLUME_RADIANCE_UNIT + 5) uniform sampler3D s_voxelPosZ;
+layout(binding = VOLUME_RADIANCE_UNIT + 6) uniform sampler3D s_voxelNegZ;
 
 struct ConeTracer {
     float resolution;   // voxels per edge

@@ -1,17 +1,17 @@
-#include "voxel/voxelizer.h"
+#include "volume/voxelizer.h"
 
 #include <algorithm>
 #include <cstdio>
 
 #include "gl/dispatch.h"
-#include "voxel/voxel_uniforms.h"
+#include "volume/voxel_uniforms.h"
 
 namespace gis {
 
 using namespace voxel;
 
 namespace {
-constexpr int kChannels = 11;  // shaders/voxel/voxel_sums.glsl: VOXEL_CHANNELS
+constexpr int kChannels = 11;  // shaders/volume/voxel_sums.glsl: VOXEL_CHANNELS
 
 bool hasExtension(const char* name) {
     GLint n = 0;
@@ -32,13 +32,6 @@ float maxEmission(const GpuScene& scene) {
 
 std::string mib(int64_t bytes) { return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB"; }
 }  // namespace
-
-ConservativeMode parseConservativeMode(const std::string& s) {
-    if (s == "hardware") return ConservativeMode::Hardware;
-    if (s == "geometry") return ConservativeMode::Geometry;
-    if (s == "off") return ConservativeMode::Off;
-    throw Error("vct.conservative: unknown mode '" + s + "' (expected hardware, geometry or off)");
-}
 
 const char* conservativeModeName(ConservativeMode m) {
     return m == ConservativeMode::Hardware ? "hardware" : m == ConservativeMode::Geometry ? "geometry" : "off";
@@ -62,8 +55,8 @@ void checkVoxelBudget(int resolution, int64_t bytes, const std::string& what) {
 
 bool Voxelizer::hardwareConservativeAvailable() { return hasExtension("GL_NV_conservative_raster"); }
 
-const ProgramDesc kVoxelizeProgram{"voxelize", {"scene.vert", "voxel/voxelize.geom", "voxel/voxelize.frag"}, {}};
-const ProgramDesc kResolveProgram{"voxel_resolve", {"voxel/voxel_resolve.comp"}, {}};
+const ProgramDesc kVoxelizeProgram{"voxelize", {"scene.vert", "volume/voxelize.geom", "volume/voxelize.frag"}, {}};
+const ProgramDesc kResolveProgram{"voxel_resolve", {"volume/voxel_resolve.comp"}, {}};
 
 std::vector<ProgramDesc> Voxelizer::programs() { return {kVoxelizeProgram, kResolveProgram}; }
 

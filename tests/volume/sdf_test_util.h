@@ -9,7 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "gl/gl.h"
-#include "sdf/distance_field.h"
+#include "volume/distance_field.h"
 
 namespace gis::test {
 

@@ -1,4 +1,4 @@
-// The sphere tracer (shaders/sdf/sdf_march.glsl) through shaders/sdf/sdf_march_probe.comp: a plane
+// The sphere tracer (shaders/volume/sdf_march.glsl) through shaders/volume/sdf_march_probe.comp: a plane
 // and a sphere at their analytic distances, from head-on to grazing, on exact fields and on fields
 // jump-flooded from voxelized seeds; misses are misses; the cascade hand-over finds planes outside
 // the fine cascades.
@@ -9,7 +9,7 @@
 #include <functional>
 
 #include "render_test_util.h"
-#include "sdf/sdf_uniforms.h"
+#include "volume/sdf_uniforms.h"
 #include "volume/volume_cascades.h"
 #include "sdf_test_util.h"
 
@@ -35,7 +35,7 @@ struct MarchSettings {
 };
 
 std::vector<Hit> march(const DistanceField& field, const std::vector<Ray>& rays, const MarchSettings& m = {}) {
-    static gl::Object program = buildProgram({"sdf_march_probe", {"sdf/sdf_march_probe.comp"}, {}});
+    static gl::Object program = buildProgram({"sdf_march_probe", {"volume/sdf_march_probe.comp"}, {}});
     gl::MemoryLedger ledger;
     const gl::MemoryScope scope{&ledger, "sdf_test"};
     gl::Buffer in = gl::createBuffer(scope, int64_t(rays.size() * sizeof(Ray)), rays.data());

@@ -1,4 +1,4 @@
-#include "voxel/voxel_radiance.h"
+#include "volume/voxel_radiance.h"
 
 #include <cmath>
 
@@ -6,7 +6,8 @@
 #include "lights.h"
 #include "services/scene_services.h"
 #include "gl/dispatch.h"
-#include "voxel/voxel_uniforms.h"
+#include "volume/volume_slots.h"
+#include "volume/voxel_uniforms.h"
 
 namespace gis {
 
@@ -51,14 +52,14 @@ int64_t voxelFeedbackBytes(int resolution, bool anisotropic) {
     return voxelRadianceBytes(resolution, anisotropic, 2) + 8 * int64_t(resolution) * resolution * resolution;
 }
 
-const ProgramDesc kInjectProgram{"voxel_inject", {"voxel/inject.comp"}, {}};
+const ProgramDesc kInjectProgram{"voxel_inject", {"volume/inject.comp"}, {}};
 // The same injection that also lights each voxel by the emitters (renderer/emitters), sampled
 // through the ray scene.
-const ProgramDesc kEmitterInjectProgram{"voxel_inject_emitters", {"voxel/inject.comp"}, {{"EMITTER_LIGHT", "1"}}};
-const ProgramDesc kMipProgram{"voxel_mip", {"voxel/voxel_mip.comp"}, {}};
-const ProgramDesc kBounceProgram{"voxel_bounce", {"voxel/bounce.comp"}, {}};
-const ProgramDesc kExteriorProgram{"voxel_exterior", {"voxel/exterior.comp"}, {}};
-const ProgramDesc kExteriorSweepProgram{"voxel_exterior_sweep", {"voxel/exterior.comp"}, {{"SWEEP", "1"}}};
+const ProgramDesc kEmitterInjectProgram{"voxel_inject_emitters", {"volume/inject.comp"}, {{"EMITTER_LIGHT", "1"}}};
+const ProgramDesc kMipProgram{"voxel_mip", {"volume/voxel_mip.comp"}, {}};
+const ProgramDesc kBounceProgram{"voxel_bounce", {"volume/bounce.comp"}, {}};
+const ProgramDesc kExteriorProgram{"voxel_exterior", {"volume/exterior.comp"}, {}};
+const ProgramDesc kExteriorSweepProgram{"voxel_exterior_sweep", {"volume/exterior.comp"}, {{"SWEEP", "1"}}};
 constexpr int kExteriorSeed = 0, kExteriorCull = 2;
 constexpr int kSweepGroup = 8;          // exterior.comp's SWEEP local size
 constexpr GLuint kChangedBinding = 0;    // exterior.comp's Changed
@@ -208,7 +209,7 @@ void VoxelRadiance::gatherOnce(const VoxelGrid& grid, const gl::Texture& scratch
     const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), direct_.id()};
     glBindTextures(0, 3, textures);
     glBindSamplers(0, 10, nullptr);
-    bind(3);
+    bind();
     glBindImageTexture(0, scratch.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch3D(n, n, n);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -238,12 +239,12 @@ void VoxelRadiance::feedbackBounce(const VoxelGrid& grid, const ConeSettings& co
     gatherOnce(grid, feedbackScratch_);
 }
 
-void VoxelRadiance::bind(GLuint unit) const {
-    GLuint textures[7];
+void VoxelRadiance::bind() const {
+    GLuint textures[kVolumeRadianceUnits];
     textures[0] = radiance_.id();
     for (int d = 0; d < 6; ++d) textures[1 + d] = anisotropic_ ? directional_[d].id() : radiance_.id();
-    glBindTextures(unit, 7, textures);
-    glBindSamplers(unit, 7, nullptr);
+    glBindTextures(kVolumeRadianceUnit, kVolumeRadianceUnits, textures);
+    glBindSamplers(kVolumeRadianceUnit, kVolumeRadianceUnits, nullptr);
 }
 
 void voxelizeFrame(Frame& frame, Voxelizer& voxelizer, const std::string& prefix) {

@@ -9,7 +9,7 @@
 
 #include "gl/gl.h"
 #include "scene/scene.h"
-#include "voxel/voxelizer.h"
+#include "volume/voxelizer.h"
 
 namespace gis::test {
 

@@ -39,7 +39,7 @@ namespace gis::voxel {
 enum VoxelUniform : int { GIS_VOXEL_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kVoxelUniforms[] = {GIS_VOXEL_UNIFORMS(GIS_UNIFORM_SLOT)};
 
-// How cones march the voxel radiance (shaders/voxel/cone_trace.glsl): the bounces' gather and VCT's.
+// How cones march the voxel radiance (shaders/volume/cone_trace.glsl): the bounces' gather and VCT's.
 #define GIS_CONE_TRACE_BLOCK(M, A) \
     M(float, stepFactor)   /* each step's length over the cone's diameter there */ \
     M(float, maxDistance)  /* voxels */ \

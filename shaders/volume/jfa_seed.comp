@@ -1,7 +1,7 @@
 // Jump flood, pass 0: a surface cell is its own nearest seed, every other cell has none.
 // A cell is a surface cell when the occupancy texture's alpha is above one half (the voxelizer's
 // albedo texture carries occupancy there; tests give their own).
-#include "sdf/jfa_common.glsl"
+#include "volume/jfa_common.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0) uniform sampler3D s_occupancy;

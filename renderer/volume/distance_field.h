@@ -1,12 +1,12 @@
-// A signed distance field built on the GPU by 3D jump flooding (shaders/sdf/), from a 3D texture
+// A signed distance field built on the GPU by 3D jump flooding (shaders/volume/), from a 3D texture
 // that marks surface cells. Shared by the SDF GI method (renderer/gi/sdf/) and probe GI, which
-// sphere-trace it with shaders/sdf/sdf_march.glsl.
+// sphere-trace it with shaders/volume/sdf_march.glsl.
 //
 // Steps: seed (every surface cell is its own nearest seed), jfa (passes with jumps N/2 ... 1 over
 // the 26 neighbours plus the cell itself, ping-ponging two R32UI images; the variants add a
 // step-1 pass before, or steps 2 and 1 after, because plain JFA can lose the nearest seed),
 // resolve (distance to the nearest seed's centre in world units, signed by the orientation of that
-// seed's averaged normal - see shaders/sdf/sdf_resolve.comp - into an R32F texture with linear
+// seed's averaged normal - see shaders/volume/sdf_resolve.comp - into an R32F texture with linear
 // filtering) and a coarse level (a lower bound per 4^3 block) for far marching.
 //
 // Takes seeds, not the voxelizer, so it can be tested and reused on any seed set. The field is

@@ -1,7 +1,7 @@
 // One jump-flood pass: each cell keeps the nearest of the seeds held by itself and by its 26
 // neighbours at +-step (Rong & Tan 2006, in 3D). Reads one image and writes the other, so a pass
 // never sees its own partial results.
-#include "sdf/jfa_common.glsl"
+#include "volume/jfa_common.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0, r32ui) uniform readonly uimage3D i_source;

@@ -13,7 +13,7 @@
 // region behind its front faces, bounded by where another surface becomes the nearest. The
 // marcher steps by |distance|, so it traces such regions correctly as unsigned distance.
 // Without normals (u_hasNormals = 0) the field is unsigned.
-#include "sdf/jfa_common.glsl"
+#include "volume/jfa_common.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0, r32ui) uniform readonly uimage3D i_seeds;

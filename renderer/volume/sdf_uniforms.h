@@ -20,7 +20,7 @@ namespace gis::sdf {
 enum SdfUniform : int { GIS_SDF_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kSdfUniforms[] = {GIS_SDF_UNIFORMS(GIS_UNIFORM_SLOT)};
 
-// How sphere tracing marches the field (shaders/sdf/sdf_march.glsl's SdfMarchParams).
+// How sphere tracing marches the field (shaders/volume/sdf_march.glsl's SdfMarchParams).
 #define GIS_SDF_MARCH_BLOCK(M, A) \
     M(float, hitThreshold)  /* cells */ \
     M(float, relaxation)    /* over-relaxed step factor */ \

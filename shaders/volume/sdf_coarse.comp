@@ -10,7 +10,7 @@ layout(binding = 0, r32f) uniform writeonly image3D i_coarse;
 layout(location = US_RESOLUTION) uniform int u_resolution;
 layout(location = US_CELL_SIZE) uniform float u_cellSize;
 layout(location = US_COARSE_FACTOR) uniform int u_factor;
-layout(location = US_LAYER) uniform int u_layer;   // which of the stacked volumes (renderer/sdf/distance_field.h)
+layout(location = US_LAYER) uniform int u_layer;   // which of the stacked volumes (renderer/volume/distance_field.h)
 
 void main() {
     ivec3 c = ivec3(gl_GlobalInvocationID);

@@ -1,6 +1,6 @@
 // Test harness for sdf_march.glsl: marches a list of rays through a field and writes what the
-// marcher returned (tests/sdf/test_march.cpp). Not used by the renderer.
-#include "sdf/sdf_march.glsl"
+// marcher returned (tests/volume/test_march.cpp). Not used by the renderer.
+#include "volume/sdf_march.glsl"
 
 layout(local_size_x = 64) in;
 

@@ -1,4 +1,4 @@
-// Sphere tracing through the distance field (renderer/sdf/): the one marcher the SDF method and
+// Sphere tracing through the distance field (renderer/volume/): the one marcher the SDF method and
 // probe GI share. The includer owns its uniforms and passes the field in, so this file declares
 // nothing global.
 //
@@ -39,7 +39,7 @@ struct SdfMarchParams {
     float relaxation;     // over-relaxation factor in [1, 2): steps of w * distance, undone when too long
     int maxSteps;         // a ray still marching after this many steps is reported as a miss
     float maxDistance;    // world distance along the ray; beyond it, a miss
-    int coarseFactor;     // fine cells per coarse texel (renderer/sdf/distance_field.h)
+    int coarseFactor;     // fine cells per coarse texel (renderer/volume/distance_field.h)
 };
 
 struct SdfHit {

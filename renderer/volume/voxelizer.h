@@ -1,5 +1,5 @@
 // The voxelizer: the scene rasterized into a cubic grid of averaged albedo, normal, emission and
-// occupancy (shaders/voxel/). Triangles are projected along their dominant axis in a geometry
+// occupancy (shaders/volume/). Triangles are projected along their dominant axis in a geometry
 // shader and rasterized conservatively, by GL_NV_conservative_raster (hardware) or by dilating the
 // triangle in the geometry shader (geometry); `off` is plain rasterization, which misses thin and
 // small triangles. The scene volume's (renderer/volume/scene_volume.h) first step.
@@ -15,7 +15,6 @@
 namespace gis {
 
 enum class ConservativeMode { Hardware, Geometry, Off };
-ConservativeMode parseConservativeMode(const std::string& s);  // hardware, geometry, off
 const char* conservativeModeName(ConservativeMode m);
 
 // GPU bytes the voxel textures of one grid take (albedo, normal, emission, and the transient

@@ -8,7 +8,7 @@
 // cross-section, so a small emitter lights the volume as a large one of equal power does.
 #include "common.glsl"
 #include "material.glsl"
-#include "voxel/voxel_sums.glsl"
+#include "volume/voxel_sums.glsl"
 
 in VoxelData {
     vec3 normal;

@@ -1,5 +1,5 @@
 // Voxelization, step 3: the fixed-point sums become averages in the voxel textures.
-#include "voxel/voxel_sums.glsl"
+#include "volume/voxel_sums.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(rgba8, binding = 0) uniform writeonly image3D i_albedo;    // rgb albedo, a occupancy (0 or 1)

@@ -20,7 +20,7 @@ TEST(SdfCascades, OneForSmallScenesSeveralForTheAtrium) {
     for (const char* name : {"cornell", "room", "leak", "atrium"}) {
         const Scene scene = makeBuiltinScene(name);
         for (int n : {32, 64}) {
-            const CascadeLayout l = layoutCascades(scene, n, kExtent, 0);
+            const CascadeLayout l = layoutCascades(scene.bounds, n, kExtent, 0, "sdf");
             std::printf("SDF-TABLE cascades %s at %d^3: %d (scene cube %.3f; finest cascade %.3f, cells of %.4f)\n",
                         name, n, l.count, double(l.scene.size), double(l.extent(0)), double(l.cellSize(0)));
             EXPECT_EQ(l.count, std::string(name) == "atrium" ? 3 : 1) << name << " " << n;
@@ -33,23 +33,29 @@ TEST(SdfCascades, OneForSmallScenesSeveralForTheAtrium) {
 // nothing; capped; sdf.cascades forces it; bad requests are one clear error.
 TEST(SdfCascades, CountFollowsTheExtentCappedAndCanBeForced) {
     const Scene atrium = makeBuiltinScene("atrium");
-    const int unit = layoutCascades(atrium, 64, kExtent, 0).count;
+    const int unit = layoutCascades(atrium.bounds, 64, kExtent, 0, "sdf").count;
     for (float scale : {1e-3f, 1e3f})
-        EXPECT_EQ(layoutCascades(scaledScene(atrium, scale), 64, kExtent * scale, 0).count, unit) << scale;
+        EXPECT_EQ(layoutCascades(scaledScene(atrium, scale).bounds, 64, kExtent * scale, 0, "sdf").count, unit) << scale;
     VolumeFit cube;
     cube.size = 100.0f;
     cube.resolution = 32;
-    EXPECT_EQ(chooseCascadeCount(cube, 100.0f, 0), 1);
-    EXPECT_EQ(chooseCascadeCount(cube, 99.0f, 0), 2);
-    EXPECT_EQ(chooseCascadeCount(cube, 50.0f, 0), 2);
-    EXPECT_EQ(chooseCascadeCount(cube, 1.0f, 0), kMaxCascades);  // capped
-    EXPECT_EQ(chooseCascadeCount(cube, 1.0f, 2), 2);                // sdf.cascades
-    EXPECT_THROW(chooseCascadeCount(cube, 1.0f, kMaxCascades + 1), Error);
-    EXPECT_THROW(chooseCascadeCount(cube, 1.0f, -1), Error);
-    EXPECT_THROW(chooseCascadeCount(cube, 0.0f, 0), Error);
+    EXPECT_EQ(chooseCascadeCount(cube, 100.0f, 0, "sdf"), 1);
+    EXPECT_EQ(chooseCascadeCount(cube, 99.0f, 0, "sdf"), 2);
+    EXPECT_EQ(chooseCascadeCount(cube, 50.0f, 0, "sdf"), 2);
+    EXPECT_EQ(chooseCascadeCount(cube, 1.0f, 0, "sdf"), kMaxCascades);  // capped
+    EXPECT_EQ(chooseCascadeCount(cube, 1.0f, 2, "sdf"), 2);                // sdf.cascades
+    EXPECT_THROW(chooseCascadeCount(cube, 1.0f, kMaxCascades + 1, "sdf"), Error);
+    EXPECT_THROW(chooseCascadeCount(cube, 1.0f, -1, "sdf"), Error);
+    EXPECT_THROW(chooseCascadeCount(cube, 0.0f, 0, "sdf"), Error);
+    try {  // the requesting method's parameter, whichever method asks
+        chooseCascadeCount(cube, 1.0f, -1, "hddagi");
+        ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("hddagi.cascades"), std::string::npos) << e.what();
+    }
     Scene empty;
     finalizeScene(empty);
-    EXPECT_EQ(layoutCascades(empty, 32, kExtent, 0).count, 1);
+    EXPECT_EQ(layoutCascades(empty.bounds, 32, kExtent, 0, "sdf").count, 1);
 }
 
 CascadeLayout testLayout() {

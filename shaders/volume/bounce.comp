@@ -2,8 +2,7 @@
 // diffuse cones around its mean normal and adds albedo * (E / pi) to what injection gave it
 // (direct light and emission, in s_direct).
 #include "common.glsl"
-#define VOXEL_TEXTURE_UNIT 3
-#include "voxel/cone_trace.glsl"
+#include "volume/cone_trace.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0) uniform sampler3D s_albedo;

@@ -1,4 +1,4 @@
-// Jump flooding (renderer/sdf/distance_field.*) against the exact Euclidean distance transform.
+// Jump flooding (renderer/volume/distance_field.*) against the exact Euclidean distance transform.
 #include <gtest/gtest.h>
 
 #include <chrono>

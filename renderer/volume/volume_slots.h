@@ -1,0 +1,18 @@
+// Where the scene volume binds itself into a program (SceneVolume::bind), declared once: the C++
+// bind calls use these, and GLSL declares the volume's samplers with the defines emitted from them
+// (renderer/shader_constants.cpp: VOLUME_DISTANCE_UNIT, ...). Above the units a method uses for its
+// own inputs (0-10) and the environment's (ENV_*_UNIT, 11-15), so no method picks one of them.
+#pragma once
+
+namespace gis {
+
+constexpr int kVolumeDistanceUnit = 16;                   // the distance field, a layer per cascade
+constexpr int kVolumeCoarseUnit = kVolumeDistanceUnit + 1;  // its coarse level (empty-space skipping)
+// The light the volume's tracers read: level 0 (a layer per cascade with more than one), then with
+// one cascade its six directional mips (shaders/volume/cone_trace.glsl): seven units.
+constexpr int kVolumeRadianceUnit = kVolumeCoarseUnit + 1;
+constexpr int kVolumeRadianceUnits = 7;
+constexpr int kVolumeAlbedoUnit = kVolumeRadianceUnit + kVolumeRadianceUnits;  // the voxels' albedo (a = occupancy)
+constexpr int kVolumeEmissionUnit = kVolumeAlbedoUnit + 1;
+
+}  // namespace gis
