@@ -14,7 +14,7 @@ namespace gis {
 
 struct SceneServices {
     SceneServices(const GpuScene& scene, gl::MemoryLedger& ledger)
-        : scene(scene), ledger(ledger), volumes_(scene.cpu.bounds, ledger) {}
+        : scene(scene), ledger(ledger), volumes_(scene.cpu.bounds, ledger, [this]() -> RayScene& { return rays(); }) {}
     const GpuScene& scene;
     gl::MemoryLedger& ledger;
 

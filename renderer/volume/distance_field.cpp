@@ -5,7 +5,8 @@
 #include <optional>
 
 #include "gl/dispatch.h"
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 #include "scene/scene.h"
 #include "volume/sdf_uniforms.h"
 

@@ -74,8 +74,8 @@ CascadeLayout volumeLayout(const Aabb& bounds, const VolumeRequest& r) {
     return layoutCascades(bounds, r.resolution, r.cascadeExtent, r.cascades, r.method, r.marginVoxels);
 }
 
-SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::MemoryLedger& ledger)
-    : request_(request), scope_{&ledger, request.method} {
+SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::MemoryLedger& ledger, RaySceneSource rays)
+    : request_(request), scope_{&ledger, request.method}, rays_(std::move(rays)) {
     const int n = request.resolution;
     layout_ = volumeLayout(bounds, request);
     const int count = layout_.count;
@@ -193,7 +193,7 @@ void SceneVolume::relight(Frame& frame, int i, const ConeSettings& bounceCones) 
     Cascade& c = cascades_[size_t(i)];
     const VoxelGrid& grid = c.voxelizer->grid();
     const std::string prefix = stepPrefix(i);
-    injectFrameLights(frame, grid, *c.radiance, prefix);
+    injectFrameLights(frame, grid, *c.radiance, rays_, prefix);
     ++c.builds.injections;
     // Further bounces gather by cone tracing the mips in voxel space.
     if (request_.mips || request_.bounces > 1) {

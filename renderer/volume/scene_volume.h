@@ -22,7 +22,8 @@
 #include <string>
 #include <vector>
 
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 #include "volume/distance_field.h"
 #include "volume/voxel_radiance.h"
 #include "volume/occupancy.h"
@@ -69,7 +70,7 @@ class SceneVolume {
 public:
     // Refuses (gis::Error naming request.resolutionKey) what exceeds the voxel budget, then
     // allocates; cascades are placed around the camera by the first update().
-    SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::MemoryLedger& ledger);
+    SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::MemoryLedger& ledger, RaySceneSource rays);
     SceneVolume(const SceneVolume&) = delete;
     SceneVolume& operator=(const SceneVolume&) = delete;
 
@@ -140,6 +141,7 @@ private:
     void relight(Frame& frame, int cascade, const ConeSettings& bounceCones);
     VolumeRequest request_;
     gl::MemoryScope scope_;
+    RaySceneSource rays_;
     ConservativeMode mode_;
     CascadeLayout layout_;
     std::vector<Cascade> cascades_;

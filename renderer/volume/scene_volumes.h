@@ -12,13 +12,16 @@ namespace gis {
 class SceneVolumes {
 public:
     // `bounds` is the scene's, read when a volume is built (after an edit, the edited scene's).
-    SceneVolumes(const Aabb& bounds, gl::MemoryLedger& ledger) : bounds_(bounds), ledger_(ledger) {}
+    // `rays`: the scene's ray scene, for volumes lit by the emitters.
+    SceneVolumes(const Aabb& bounds, gl::MemoryLedger& ledger, RaySceneSource rays)
+        : bounds_(bounds), ledger_(ledger), rays_(std::move(rays)) {}
     SceneVolume& get(const VolumeRequest& request);
     void invalidate(Changes changes);
 
 private:
     const Aabb& bounds_;
     gl::MemoryLedger& ledger_;
+    RaySceneSource rays_;
     std::vector<std::unique_ptr<SceneVolume>> volumes_;
 };
 

@@ -4,7 +4,6 @@
 
 #include "emitters/emitter_lights.h"
 #include "lights.h"
-#include "services/scene_services.h"
 #include "gl/dispatch.h"
 #include "volume/volume_slots.h"
 #include "volume/voxel_uniforms.h"
@@ -252,7 +251,8 @@ void voxelizeFrame(Frame& frame, Voxelizer& voxelizer, const std::string& prefix
     voxelizer.voxelize(frame.scene);
 }
 
-void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance, const std::string& prefix) {
+void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance, const RaySceneSource& rays,
+                       const std::string& prefix) {
     VoxelRadiance::Lights lights;
     lights.buffer = frame.buffer(resource::kLights);
     lights.shadowMaps = frame.texture(resource::kShadowMaps);
@@ -264,7 +264,7 @@ void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radia
     const EmitterLightSettings emitters = emitterLightSettings(frame.settings);
     lights.emission = EmitterMode(emitters.mode) == EmitterMode::Gi ? 1.0f : 0.0f;
     if (emittersAreLights(frame.scene.cpu, frame.settings)) {
-        lights.emitters = &frame.services.rays();
+        lights.emitters = &rays();
         lights.emitterSamples = emitters.volumeSamples;
     }
     auto t = frame.step(prefix + "inject");

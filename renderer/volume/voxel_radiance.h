@@ -4,10 +4,13 @@
 // Probe GI and the SDF method shade their ray hits from the same radiance.
 #pragma once
 
+#include <functional>
+
 #include <string>
 
 #include "ray_scene.h"
-#include "renderer.h"
+#include "frame.h"
+#include "gl/shader.h"
 #include "volume/voxel_uniforms.h"
 #include "volume/voxelizer.h"
 
@@ -100,6 +103,9 @@ private:
 // inject the frame's punctual lights (through the shadow pass's maps) and emission, timed as the
 // executing pass's `prefix` + "voxelize" and `prefix` + "inject" steps.
 void voxelizeFrame(Frame& frame, Voxelizer& voxelizer, const std::string& prefix = "");
-void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance, const std::string& prefix = "");
+// Emitters that are lights are sampled from the scene's ray scene, which `rays` builds on first use.
+using RaySceneSource = std::function<RayScene&()>;
+void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radiance, const RaySceneSource& rays,
+                       const std::string& prefix = "");
 
 }  // namespace gis
