@@ -13,8 +13,8 @@
 #include "gi/method.h"
 #include "memory_budget.h"
 #include "render_test_util.h"
-#include "sdf/distance_field.h"
-#include "voxel/voxelizer.h"
+#include "volume/distance_field.h"
+#include "volume/voxelizer.h"
 
 namespace gis::test {
 namespace {
