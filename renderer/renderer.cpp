@@ -8,7 +8,7 @@
 #include "emitters/emitter_lights.h"
 #include "environment_gpu.h"
 #include "gi/method.h"
-#include "memory_budget.h"
+#include "gi/memory_budget.h"
 #include "passes/gbuffer_pass.h"
 #include "passes/lighting_pass.h"
 #include "passes/shadow_pass.h"

@@ -70,7 +70,7 @@ struct GiMethod {
     std::function<void(MethodBuild&)> addPasses;
     std::function<std::vector<ProgramDesc>()> programs;  // every program its passes may build
     // GPU bytes its passes will hold, by part, estimated from the settings before anything is
-    // allocated (renderer/memory_budget.h refuses what cannot fit).
+    // allocated (renderer/gi/memory_budget.h refuses what cannot fit).
     std::function<std::vector<std::pair<std::string, uint64_t>>(const Scene&, const RenderSettings&)> estimateMemory;
     // Frames a static view needs before the image is final (the bench scores after that many);
     // progressive passes report their own progress and are rendered until converged().

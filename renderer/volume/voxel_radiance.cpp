@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "emitters/emitter_lights.h"
+#include "emitter_settings.h"
 #include "lights.h"
 #include "gl/dispatch.h"
 #include "volume/volume_slots.h"

@@ -11,7 +11,7 @@
 #include <map>
 
 #include "gi/method.h"
-#include "memory_budget.h"
+#include "gi/memory_budget.h"
 #include "render_test_util.h"
 #include "volume/distance_field.h"
 #include "volume/voxelizer.h"

@@ -4,7 +4,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "lights.h"
-#include "memory_budget.h"
+#include "gi/memory_budget.h"
 #include "render_test_util.h"
 
 namespace gis::test {
@@ -250,7 +250,7 @@ TEST(Extremes, HugeAndTinyScenesAndBrightLightsStayFinite) {
 namespace gis::test {
 namespace {
 
-// The memory budget's estimate (renderer/memory_budget.cpp) restates the passes' formats; it must
+// The memory budget's estimate (renderer/gi/memory_budget.cpp) restates the passes' formats; it must
 // stay equal to what the ledger counts once they exist, or the refusal guards the wrong number.
 TEST(MemoryBudget, EstimateMatchesTheLedger) {
     context();

@@ -311,7 +311,7 @@ TEST(SdfGi, ProbesFollowTheirCascadesWithinTheRayBudget) {
     s.width = s.height = 48;
     setSdf(s, "resolution", "32");
     setSdf(s, "probe-rays", "32");
-    setSdf(s, "ray-budget", "1024");
+    setSdf(s, "probe-ray-budget", "1024");
     Renderer r(scene, s);
     const SdfGiPass& pass = sdfPass(r);
     ASSERT_NE(pass.probeField(), nullptr);

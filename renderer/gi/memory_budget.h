@@ -1,4 +1,5 @@
-// Refusing renders that cannot fit before anything is allocated. The estimate follows the formats
+// Refusing renders that cannot fit before anything is allocated: the whole frame with its method,
+// beside the registry that knows each method's own estimate. The estimate follows the formats
 // the passes allocate (what the MemoryLedger reports once they exist: `--timings`, `info`); the
 // budget is gl/gpu_budget.h's. Exceeding it is an error whose message carries the estimate.
 #pragma once

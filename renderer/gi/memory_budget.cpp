@@ -1,4 +1,4 @@
-#include "memory_budget.h"
+#include "gi/memory_budget.h"
 
 #include <algorithm>
 #include <cstdio>
