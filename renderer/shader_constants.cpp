@@ -30,21 +30,21 @@ std::string glslFloat(float v) {
     return s.find('.') == std::string::npos ? s + ".0" : s;
 }
 
-template <class Slot, size_t N>
-void addTable(std::vector<Slot>& all, const Slot (&table)[N]) {
-    all.insert(all.end(), table, table + N);
+template <class T>
+void append(std::vector<T>& all, const std::vector<T>& more) {
+    all.insert(all.end(), more.begin(), more.end());
 }
 }  // namespace
 
 const std::vector<gl::UniformSlot>& uniformSlots() {
     static const std::vector<gl::UniformSlot> all = [] {
         std::vector<gl::UniformSlot> v;
-        addTable(v, kUniforms);
-        addTable(v, voxel::kVoxelUniforms);
-        addTable(v, emitters::kEmitterUniforms);
-        addTable(v, sdf::kSdfUniforms);
-        addTable(v, probes::kProbeUniforms);
-        for (const ShaderTables& t : methodShaderTables()) v.insert(v.end(), t.uniforms.begin(), t.uniforms.end());
+        append(v, tableRows(kUniforms));
+        append(v, tableRows(voxel::kVoxelUniforms));
+        append(v, tableRows(emitters::kEmitterUniforms));
+        append(v, tableRows(sdf::kSdfUniforms));
+        append(v, tableRows(probes::kProbeUniforms));
+        for (const ShaderTables& t : methodShaderTables()) append(v, t.uniforms);
         return v;
     }();
     return all;
@@ -53,9 +53,9 @@ const std::vector<gl::UniformSlot>& uniformSlots() {
 const std::vector<gl::BindingSlot>& bindingSlots() {
     static const std::vector<gl::BindingSlot> all = [] {
         std::vector<gl::BindingSlot> v;
-        addTable(v, kBindings);
-        addTable(v, emitters::kEmitterBindings);
-        for (const ShaderTables& t : methodShaderTables()) v.insert(v.end(), t.bindings.begin(), t.bindings.end());
+        append(v, tableRows(kBindings));
+        append(v, tableRows(emitters::kEmitterBindings));
+        for (const ShaderTables& t : methodShaderTables()) append(v, t.bindings);
         return v;
     }();
     return all;
@@ -74,7 +74,7 @@ const std::vector<gl::UniformBlockDesc>& uniformBlocks() {
             SsaoTemporalBlock::desc(),
             EnvironmentBlock::desc(),
         };
-        for (const ShaderTables& t : methodShaderTables()) v.insert(v.end(), t.blocks.begin(), t.blocks.end());
+        for (const ShaderTables& t : methodShaderTables()) append(v, t.blocks);
         return v;
     }();
     return all;
