@@ -511,6 +511,19 @@ double flip(const ImageF& test, const ImageF& reference, double pixelsPerDegree,
     return meanOfMap(flipMapUnchecked(test, reference, pixelsPerDegree), ignore);
 }
 
+double meanRadiance(const ImageF& image, const std::vector<uint8_t>& ignore) {
+    double sum = 0.0;
+    size_t count = 0;
+    const size_t n = size_t(image.width) * image.height;
+    for (size_t p = 0; p < n; ++p) {
+        if (!ignore.empty() && ignore[p]) continue;
+        const float* c = &image.rgba[p * 4];
+        sum += (double(c[0]) + c[1] + c[2]) / 3.0;
+        ++count;
+    }
+    return count ? sum / double(count) : 0.0;
+}
+
 ImageMetrics compareImages(const ImageF& test, const ImageF& reference, const MetricOptions& o,
                            ComparisonMaps* maps) {
     validateImagePair(test, reference, o.ignore);
@@ -531,6 +544,8 @@ ImageMetrics compareImages(const ImageF& test, const ImageF& reference, const Me
         maps->ssimError = std::move(ssimValues);
         maps->flip = std::move(flipValues);
     }
+    m.meanTest = meanRadiance(test, o.ignore);
+    m.meanReference = meanRadiance(reference, o.ignore);
     const size_t n = size_t(test.width) * test.height;
     m.pixels = int64_t(o.ignore.empty() ? n : size_t(std::count(o.ignore.begin(), o.ignore.end(), uint8_t(0))));
     return m;

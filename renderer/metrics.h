@@ -48,6 +48,8 @@ struct ImageMetrics {
     double psnrSrgb = 0.0;     // dB, +inf when identical after tone mapping
     double ssim = 1.0;
     double flip = 0.0;
+    double meanTest = 0.0;       // mean linear radiance (R, G, B) of each image: "the light within N%"
+    double meanReference = 0.0;
     int64_t pixels = 0;        // pixels the means cover (not ignored)
 };
 
@@ -65,6 +67,7 @@ double relativeMse(const ImageF& test, const ImageF& reference, double epsilon =
                    const std::vector<uint8_t>& ignore = {});
 double psnr(const ImageF& test, const ImageF& reference, double peak = 1.0, const std::vector<uint8_t>& ignore = {});
 double psnrFromMse(double mse, double peak);   // +inf for mse == 0
+double meanRadiance(const ImageF& image, const std::vector<uint8_t>& ignore = {});  // of R, G, B
 // Inputs are display values in [0, 1] (sRGB-encoded for the convention above).
 double ssim(const ImageF& test, const ImageF& reference, const std::vector<uint8_t>& ignore = {});
 // Inputs are display-referred linear RGB in [0, 1] (toneMapImage's output); values outside are clamped.

@@ -186,6 +186,8 @@ void printDiffJson(const DiffOptions& o, const DiffResult& r) {
     j["ssim"] = m.ssim;
     j["flip"] = m.flip;
     j["pixels_per_degree"] = o.ppd;
+    j["mean_test"] = m.meanTest;
+    j["mean_reference"] = m.meanReference;
     if (!o.heatmap.empty())
         j["heatmap"] = {{"path", o.heatmap}, {"metric", errorMetricName(r.metric)}, {"max", r.heatmapMax}};
     std::printf("%s\n", j.dump(2).c_str());
@@ -210,6 +212,9 @@ void printDiffTable(const DiffOptions& o, const DiffResult& r) {
     std::printf("%-12s %12s   dB\n", "PSNR sRGB", formatMetric(m.psnrSrgb, 5).c_str());
     std::printf("%-12s %12s\n", "SSIM", formatMetric(m.ssim).c_str());
     std::printf("%-12s %12s   %s pixels/degree\n", "FLIP", formatMetric(m.flip).c_str(), formatMetric(o.ppd).c_str());
+    std::printf("%-12s %12s   test %s, reference %s (linear radiance)\n", "mean ratio",
+                m.meanReference > 0.0 ? formatMetric(m.meanTest / m.meanReference, 4).c_str() : "-",
+                formatMetric(m.meanTest, 4).c_str(), formatMetric(m.meanReference, 4).c_str());
     if (!o.heatmap.empty())
         std::printf("\nwrote %s (%s, 0 .. %s)\n", o.heatmap.c_str(), errorMetricName(r.metric),
                     formatMetric(r.heatmapMax, 4).c_str());

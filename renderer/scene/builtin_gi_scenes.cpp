@@ -4,7 +4,9 @@
 //   room    a closed room with saturated walls and the camera inside: multi-bounce energy;
 //   mirror  the Cornell box with a mirror sphere and a rough metal sphere: specular GI;
 //   atrium  a Sponza-class courtyard (two storeys of arcades, arches, a gallery, cloth banners, a
-//           tiled floor) under sun and sky, from ~15k to over 1M triangles (detail).
+//           tiled floor) under sun and sky, from ~15k to over 1M triangles (detail);
+//   building a 32 m wing with 20 cm walls under sun and sky: a corridor with windows, a hall behind
+//           doorways the sun never reaches, and a room with no opening (the leak at building scale).
 // Every surface that bounds a room is a box (two-sided by construction), so voxelizers, distance
 // fields and the path tracer all see closed geometry.
 #include <cmath>
@@ -263,6 +265,68 @@ Scene makeAtriumScene(const SceneOptions& o) {
                                std::cos(elevation) * std::cos(azimuth));
     s.lights.push_back(sun);
     s.cameras.push_back(lookAt("Courtyard", {-6.0f, 1.7f, 4.5f}, {6.0f, 3.5f, -5.0f}, 60.0f));
+    finalizeScene(s);
+    return s;
+}
+
+// A one-storey wing 32 x 11 m (walls and roof 20 cm) on a 40 x 40 m ground, under sun and sky:
+//   corridor  z in [2.5, 5.5], the whole length, eight windows in its south wall (+z) that the
+//             sun shines through onto the corridor floor;
+//   hall      z in [-5.5, 2.3], x in [-16, 4], behind three doorways in the corridor's inner wall
+//             and deep enough that the sun never reaches it: lit only by what bounces in;
+//   closed    z in [-5.5, 2.3], x in [4.2, 16], walls on every side and no opening: no light
+//             reaches it, so whatever a method shows there leaked through a wall.
+// Cameras: 0 the corridor, 1 the hall, 2 the closed room. The leak number at building scale is
+// the closed room's mean radiance (camera 2) over the corridor's (camera 0); the path tracer's is 0.
+Scene makeBuildingScene(const SceneOptions& o) {
+    checkKeys(o, "building", {});
+    Scene s;
+    s.name = "building";
+    s.background = glm::vec3(0.35f, 0.45f, 0.6f);  // sky radiance, as the atrium's
+    const int plaster = addPrimitive(s, unitCube(addMaterial(s, lambert("Plaster", {0.75f, 0.73f, 0.7f}))));
+    const int floorSlab = addPrimitive(s, unitCube(addMaterial(s, lambert("Floor", {0.45f, 0.4f, 0.35f}))));
+    const int ground = addPrimitive(s, unitCube(addMaterial(s, lambert("Ground", {0.25f, 0.3f, 0.2f}))));
+    const float w = 0.2f, H = 3.0f, X = 16.0f;         // wall thickness, storey, half length
+    const float zs = 5.5f, zi = 2.3f, zn = -5.5f;       // south wall, inner wall, north wall (inner faces)
+    const float xc = 4.0f;                              // the hall's east wall (the closed room beyond)
+    addBox(s, ground, {-20, -w, -20}, {20, 0, 20});
+    addBox(s, floorSlab, {-X, 0, zn}, {X, 0.02f, zs});  // the wing's floor, on the ground slab
+    addBox(s, plaster, {-X - w, H, zn - w}, {X + w, H + w, zs + w});  // roof
+    addBox(s, plaster, {-X - w, 0, zn - w}, {-X, H, zs + w});         // west and east walls
+    addBox(s, plaster, {X, 0, zn - w}, {X + w, H, zs + w});
+    addBox(s, plaster, {-X, 0, zn - w}, {X, H, zn});                   // north wall
+    addBox(s, plaster, {xc, 0, zn}, {xc + w, H, zi});                  // hall | closed room
+    // South wall: a strip under the sills, one over the heads, piers between eight 2 m windows.
+    const float sill = 0.9f, head = 2.4f;
+    addBox(s, plaster, {-X, 0, zs}, {X, sill, zs + w});
+    addBox(s, plaster, {-X, head, zs}, {X, H, zs + w});
+    for (int i = 0; i <= 8; ++i) {
+        const float lo = i == 0 ? -X : -X + 4.0f * float(i) - 1.0f, hi = i == 8 ? X : -X + 4.0f * float(i) + 1.0f;
+        addBox(s, plaster, {lo, sill, zs}, {hi, head, zs + w});
+    }
+    // Inner wall: doorways 1.2 m wide and 2.2 m high at x = -12, -6 and 0; solid along the closed room.
+    const float door = 2.2f, doorways[3] = {-12.0f, -6.0f, 0.0f};
+    float from = -X;
+    for (float x : doorways) {
+        addBox(s, plaster, {from, 0, zi}, {x - 0.6f, H, zi + w});
+        addBox(s, plaster, {x - 0.6f, door, zi}, {x + 0.6f, H, zi + w});
+        from = x + 0.6f;
+    }
+    addBox(s, plaster, {from, 0, zi}, {X, H, zi + w});
+    Light sun;
+    sun.name = "Sun";
+    sun.type = LightType::Directional;
+    sun.intensity = 3.0f;
+    sun.color = glm::vec3(1.0f, 0.95f, 0.85f);
+    // From the south-east, 45 degrees up: through a window head it lands within 2.2 m of the south
+    // wall, short of the inner wall, so no sun enters the hall.
+    const float elevation = 45.0f * kPi / 180.0f, azimuth = 25.0f * kPi / 180.0f;
+    sun.direction = -glm::vec3(std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
+                               std::cos(elevation) * std::cos(azimuth));
+    s.lights.push_back(sun);
+    s.cameras.push_back(lookAt("Corridor", {-14.5f, 1.6f, 3.6f}, {6.0f, 1.1f, 4.4f}, 60.0f));
+    s.cameras.push_back(lookAt("Hall", {-15.0f, 1.7f, -4.8f}, {2.0f, 0.9f, 1.0f}, 60.0f));
+    s.cameras.push_back(lookAt("Closed", {5.0f, 1.7f, -4.8f}, {15.0f, 0.9f, 1.5f}, 60.0f));
     finalizeScene(s);
     return s;
 }

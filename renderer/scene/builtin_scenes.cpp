@@ -201,7 +201,7 @@ Scene makeBrdfGallery() {
 }  // namespace
 
 std::vector<std::string> builtinSceneNames() {
-    return {"cornell", "cornell-area", "brdf-gallery", "leak", "room", "mirror", "atrium"};
+    return {"cornell", "cornell-area", "brdf-gallery", "leak", "room", "mirror", "atrium", "building"};
 }
 
 Scene makeBuiltinScene(const std::string& spec) {
@@ -213,6 +213,7 @@ Scene makeBuiltinScene(const std::string& spec) {
     if (name == "room") return detail::makeRoomScene(options);
     if (name == "mirror") return detail::makeMirrorScene(options);
     if (name == "atrium") return detail::makeAtriumScene(options);
+    if (name == "building") return detail::makeBuildingScene(options);
     if (name == "cornell-area") {
         for (const auto& [key, value] : options)
             if (key != "emitter-size")

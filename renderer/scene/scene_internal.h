@@ -34,5 +34,6 @@ Scene makeLeakScene(const SceneOptions& options);
 Scene makeRoomScene(const SceneOptions& options);
 Scene makeMirrorScene(const SceneOptions& options);
 Scene makeAtriumScene(const SceneOptions& options);
+Scene makeBuildingScene(const SceneOptions& options);
 
 }  // namespace gis::detail
