@@ -118,7 +118,9 @@ void paneControls(PanelContext& ctx, int i) {
     ImGui::PushID(i);
     combo("GI method", p.gi, methodChoices(), [&](const std::string& n) { act(ctx, PanelAction::method(i, n)); });
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", giMethod(p.gi).summary.c_str());
-    combo("Preset", p.preset, presetNames(), [&](const std::string& n) { act(ctx, PanelAction::preset(i, n)); });
+    std::vector<std::string> presets;
+    for (const GiPreset& preset : giMethod(p.gi).presets) presets.push_back(preset.name);
+    combo("Preset", p.preset, presets, [&](const std::string& n) { act(ctx, PanelAction::preset(i, n)); });
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", giMethod(p.gi).preset(p.preset).description.c_str());
     paramControls(ctx, i);
     std::vector<std::string> diffuse, specular;

@@ -610,6 +610,27 @@ TEST(FirstHour, PanesStartDistinctAndAMethodChangeResetsThePreset) {
     EXPECT_EQ(s.panes[1].preset, "high") << "choosing the same method again keeps its preset";
 }
 
+// A script may pick any preset the pane's method has (vct's realtime, ssao's hemisphere ones), as
+// render --preset does; one the method lacks is an error naming the method's presets.
+TEST(FirstHour, AScriptPicksAMethodsOwnPresets) {
+    const Scene scene = makeBuiltinScene("cornell");
+    ViewState s = stateFor(scene);
+    applyPanelAction(s, parsePanelAction(splitWords("method 1 vct")));
+    applyPanelAction(s, parsePanelAction(splitWords("preset 1 realtime")));
+    EXPECT_EQ(s.panes[1].preset, "realtime");
+    EXPECT_EQ(getParam(paneSettings(s, 1, {8, 8}), "vct.trace-scale").text, "4") << "vct/realtime traces every 4x4";
+    applyPanelAction(s, parsePanelAction(splitWords("method 0 ssao")));
+    applyPanelAction(s, parsePanelAction(splitWords("preset 0 hemisphere-high")));
+    EXPECT_EQ(s.panes[0].preset, "hemisphere-high");
+    try {
+        applyPanelAction(s, parsePanelAction(splitWords("preset 1 hemisphere-high")));
+        ADD_FAILURE() << "vct took ssao's preset";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("realtime"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(s.panes[1].preset, "realtime") << "a refused action changes nothing";
+}
+
 TEST(FirstHour, SwapFlipsTheSplitsSides) {
     const Scene scene = makeBuiltinScene("cornell");
     ViewState s = stateFor(scene);
