@@ -31,6 +31,11 @@ std::string extrasMessage(const CLI::App& app, int argc, char** argv) {
     for (const std::string& a : typed)
         if (a.rfind("--", 0) == 0 && hint.empty()) hint = gis::didYouMean(a.substr(0, a.find('=')), flags);
     if (!hint.empty()) hint = " (" + hint.substr(0, hint.size() - 1) + ")";
+    // "--set vct.resolution 64": the value went in as a word of its own.
+    for (int i = 2; i < argc && hint.empty(); ++i)
+        if (std::string(argv[i - 1]) == "--set" && std::string(argv[i]).find('=') == std::string::npos &&
+            i + 1 < argc && std::find(typed.begin(), typed.end(), argv[i + 1]) != typed.end())
+            hint = std::string(" (--set takes METHOD.KEY=VALUE: --set ") + argv[i] + "=" + argv[i + 1] + ")";
     return "unexpected argument" + std::string(typed.size() == 1 ? "" : "s") + ": " + list + hint;
 }
 
@@ -43,8 +48,11 @@ std::string parseErrorMessage(CLI::App& app, const CLI::ParseError& e, int argc,
         known = known || (argc > 1 && sub->get_name() == argv[1]);
         names += (names.empty() ? "" : ", ") + sub->get_name();
     }
+    std::vector<std::string> commands;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) commands.push_back(sub->get_name());
     if (argc > 1 && argv[1][0] != '-' && !known)
-        what = std::string("unknown command '") + argv[1] + "' (expected " + names + ")";
+        what = std::string("unknown command '") + argv[1] + "' (" + gis::didYouMean(argv[1], commands) + "expected " +
+               names + ")";
     return what;
 }
 

@@ -4,6 +4,7 @@ one row per scene and method, the presets side by side in the CSV's order.
 
     python3 scripts/bench-table.py OUT_DIR/bench.csv
 """
+import argparse
 import csv
 import sys
 
@@ -15,16 +16,17 @@ def ms(v):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: bench-table.py BENCH.csv")
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("csv", help="a bench.csv written by gisandbox bench")
+    path = parser.parse_args().csv
     try:
-        with open(sys.argv[1], newline="") as f:
+        with open(path, newline="") as f:
             rows = list(csv.DictReader(f))
     except OSError as e:
-        sys.exit("bench-table.py: %s: %s" % (sys.argv[1], e.strerror))
+        sys.exit("bench-table.py: %s: %s" % (path, e.strerror))
     need = {"scene", "method", "preset", "gpu_ms", "gpu_bytes", "flip", "rmse", "ao_rmse"}
     if not rows or not need <= set(rows[0]):
-        sys.exit("bench-table.py: %s is not a bench.csv (needs columns %s)" % (sys.argv[1], ", ".join(sorted(need))))
+        sys.exit("bench-table.py: %s is not a bench.csv (needs columns %s)" % (path, ", ".join(sorted(need))))
     groups = {}
     for r in rows:
         groups.setdefault((r["scene"], r["method"]), []).append(r)

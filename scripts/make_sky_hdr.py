@@ -10,8 +10,8 @@ is close to the default sky's 0.4. Mapping: +Y up, u = 0.5 looks down -Z, u grow
 
     python3 scripts/make_sky_hdr.py assets/environments/sky_sun.hdr [WIDTH]
 """
+import argparse
 import math
-import sys
 
 SUN_ELEVATION_DEG = 50.0
 SUN_AZIMUTH_DEG = 30.0
@@ -47,8 +47,14 @@ def rgbe(rgb):
 
 
 def main():
-    path = sys.argv[1] if len(sys.argv) > 1 else "assets/environments/sky_sun.hdr"
-    width = int(sys.argv[2]) if len(sys.argv) > 2 else 128
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("path", nargs="?", default="assets/environments/sky_sun.hdr", help="the .hdr to write")
+    parser.add_argument("width", nargs="?", type=int, default=128, help="texels across (the height is half)")
+    args = parser.parse_args()
+    path, width = args.path, args.width
+    if width < 2 or width % 2:
+        parser.error("width must be an even number of at least 2")
     height = width // 2
     e, a = math.radians(SUN_ELEVATION_DEG), math.radians(SUN_AZIMUTH_DEG)
     sun = (math.cos(e) * math.sin(a), math.sin(e), math.cos(e) * math.cos(a))

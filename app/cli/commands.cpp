@@ -228,7 +228,11 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     for (const GiMethod& m : giMethods())
         for (const ParamDesc& d : m.params) {
             if (d.alias.empty() || o.aliases.count(d.alias) || o.aliasFlags.count(d.alias)) continue;
-            const std::string help = "Alias of --set " + m.name + "." + d.key + ": " + d.help;
+            std::string keys;  // every method's row the flag stands for: it sets the rendered method's
+            for (const GiMethod& other : giMethods())
+                for (const ParamDesc& od : other.params)
+                    if (od.alias == d.alias) keys += (keys.empty() ? "" : " or ") + other.name + "." + od.key;
+            const std::string help = "Alias of --set " + keys + " (the rendered method's): " + d.help;
             if (d.type == ParamType::Bool) {
                 o.aliasFlags[d.alias] = false;
                 cmd.add_flag(d.alias, o.aliasFlags[d.alias], help);
@@ -243,7 +247,9 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
         ->capture_default_str();
     cmd.add_flag("--no-shadows", o.noShadows, "Disable shadow maps");
     cmd.add_flag("--hdr32", o.hdr32, "Light into RGBA32F instead of RGBA16F");
-    cmd.add_flag("--timings", o.timings, "Print GPU ms per pass (median after warm-up) over the frames rendered");
+    cmd.add_flag("--timings", o.timings,
+                 "Print GPU ms per pass (median after warm-up) over the frames rendered, every pass executed each "
+                 "frame as bench measures (without --timings a still view re-runs nothing once settled)");
     cmd.add_option("--frames", o.frames,
                    "Frames to render; without it the method's frames to converge (temporal methods), with "
                    "--timings at least 30. Progressive methods (pathtrace) still render all their samples");
@@ -463,6 +469,9 @@ int runRender(const RenderOptions& o) {
     if (job.fileCamera()) renderer.setCamera(view::viewCameraMatrices(*job.viewSettings, scene, float(s.width) / float(s.height)));
     renderer.setSkipSettled(!o.rerunSettled);
     if (o.flythrough > 0) return renderFlythrough(renderer, scene, o);
+    // A still camera settles every pass after a frame or a few, and a settled pass's timer reads 0:
+    // --timings measures the frames as they cost when they run, as bench does.
+    if (o.timings) renderer.setSkipSettled(false);
     const int frames = framesToRender(o, s);
     const std::vector<double> wallMs = renderFrames(renderer, frames, o.timings);
     renderRestToConvergence(renderer, job);
@@ -662,8 +671,9 @@ int runExport(const ExportOptions& o) {
     checkWritable(o.out, "--out");
     const Scene scene = loadScene(o.scene);
     writeGltf(scene, o.out);
-    std::printf("wrote %s (%zu triangles, %zu lights, %zu cameras)\n", o.out.c_str(), scene.triangleCount(),
-                scene.lights.size(), scene.cameras.size());
+    auto count = [](size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+    std::printf("wrote %s (%s, %s, %s)\n", o.out.c_str(), count(scene.triangleCount(), "triangle", "triangles").c_str(),
+                count(scene.lights.size(), "light", "lights").c_str(), count(scene.cameras.size(), "camera", "cameras").c_str());
     if (scene.background != glm::vec3(0.0f))
         std::fprintf(stderr,
                      "gisandbox: warning: glTF has no environment colour: render it under a sky of radiance "

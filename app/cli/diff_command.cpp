@@ -108,6 +108,13 @@ struct DiffDisplay {
 
 DiffDisplay diffDisplay(const DiffOptions& o, ImageF& test, ImageF& reference) {
     const bool testPng = hasExtension(o.test, ".png"), referencePng = hasExtension(o.reference, ".png");
+    if (testPng && referencePng)
+        // Two PNGs are compared as they are: ours are ACES tone-mapped, a Cycles reference's PNG is
+        // clipped linear ("Standard"), so their tone curves differ before any light does.
+        std::fprintf(stderr,
+                     "gisandbox: warning: comparing two PNGs as displayed: each is compared with the tone curve it "
+                     "was written with (gisandbox's PNGs: ACES; the Cycles references': clipped linear); compare the "
+                     "EXRs for radiance errors\n");
     if (testPng == referencePng) return {o.tonemap == "auto" ? (testPng ? "linear" : "aces") : o.tonemap, o.exposure};
     DisplaySettings toPng;
     const std::string curve = o.tonemap == "auto" ? "aces" : o.tonemap;

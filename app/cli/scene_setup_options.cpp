@@ -59,7 +59,8 @@ int prepareScene(Scene& scene, const SceneSetupOptions& o, float aspect, RenderS
     const double emitted = mode == LightingMode::Auto ? meanEmittedRadiance(scene) : 0.0;
     if (applyLighting(scene, mode)) {
         char why[200] = "the scene has no light";
-        if (emitted > 0.0)
+        if (mode == LightingMode::Default) std::snprintf(why, sizeof why, "--lighting default");
+        else if (emitted > 0.0)
             std::snprintf(why, sizeof why,
                           "the scene's emission is a surface detail, not a light (mean emitted radiance %.3g over its "
                           "surfaces, below %g; --emitters lights makes it one)", emitted, kEmitterLightingFloor);
@@ -68,6 +69,13 @@ int prepareScene(Scene& scene, const SceneSetupOptions& o, float aspect, RenderS
                      "(radiance %g); --lighting scene renders without them\n",
                      why, kDefaultSunIrradiance, kDefaultSunElevationDegrees, kDefaultSunAzimuthDegrees, kDefaultSkyRadiance);
         if (settings && !ambientGiven) settings->ambient = glm::vec3(kDefaultSkyRadiance);
+    } else if (mode == LightingMode::Auto && scene.lights.empty() && emitted > 0.0) {
+        // Only emission lights it: say so, since a model whose emission is a detail (labels, screens)
+        // then renders dark where a user expected the default sky.
+        std::fprintf(stderr,
+                     "gisandbox: the scene is lit by its emission alone (mean emitted radiance %.3g over its surfaces, "
+                     "at least %g); --lighting default adds a sun and sky\n",
+                     emitted, kEmitterLightingFloor);
     }
     return resolveCamera(scene, cameraRequest(o), aspect);
 }

@@ -9,18 +9,13 @@
 #include "bench/bench_row.h"
 #include "cli_util.h"
 #include "image.h"
+#include "metrics.h"
 
 namespace gis::test {
 namespace {
 
 const std::string kHelmet = std::string(GIS_SHARED_DIR) + "/assets/gltf/DamagedHelmet/glTF/DamagedHelmet.gltf";
 const std::string kCornellBox = std::string(GIS_SHARED_DIR) + "/assets/reference/scenes/cornell_box/cornell_box.gltf";
-
-double meanRadiance(const ImageF& img) {
-    double sum = 0.0;
-    for (size_t i = 0; i < img.rgba.size(); i += 4) sum += (img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2]) / 3.0;
-    return sum / double(img.rgba.size() / 4);
-}
 
 // The program's messages on stderr ("gisandbox: ..."), not the progress bar a progressive pass
 // (the emitters' ReSTIR accumulation on the helmet's emissive triangles) draws there.
@@ -95,6 +90,17 @@ TEST(FirstHour, HelpListsEveryBuiltinScene) {
         EXPECT_NE(help.out.find(name), std::string::npos) << name;
 }
 
+// A model whose only emission is a detail (ClearCoatTest's white label panels) counts as lit by
+// it under --lighting auto and renders dark: the line says so and names the flag that adds a sky.
+TEST(FirstHour, EmissionOnlySceneSaysItIsLitByItsEmission) {
+    const std::string dir = tempDir("first_hour_clearcoat");
+    const CliResult r = runCli("render --scene " + std::string(GIS_SHARED_DIR) +
+                               "/assets/gltf/ClearCoatTest/ClearCoatTest.gltf --size 16x16 --out " + dir + "/c.png");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("lit by its emission alone"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--lighting default"), std::string::npos) << r.err;
+}
+
 TEST(FirstHour, TyposGetDidYouMean) {
     const std::string dir = tempDir("first_hour_typos");
     struct Case {
@@ -107,6 +113,9 @@ TEST(FirstHour, TyposGetDidYouMean) {
          "did you mean 'resolution'"},
         // In the order typed, with the flag it was meant to be.
         {"render --scene builtin:cornell --gii vct --out " + dir + "/a.png", "--gii vct (did you mean '--gi'?)"},
+        {"rendr --scene builtin:cornell --out " + dir + "/a.png", "did you mean 'render'"},
+        // The value as a word of its own: the form --set takes.
+        {"render --scene builtin:cornell --set vct.resolution 32 --out " + dir + "/a.png", "--set vct.resolution=32"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.args);
