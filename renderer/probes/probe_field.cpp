@@ -54,7 +54,7 @@ std::vector<ProgramDesc> fieldPrograms() {
 }
 
 ProbeGrid cascadeProbeGrid(const SceneVolume& volume, const Aabb& sceneBounds, float spacing, int cascade) {
-    if (cascade == volume.cascadeCount() - 1) return fitProbeGrid(sceneBounds, spacing);
+    if (cascade == volume.cascadeCount() - 1) return fitProbeGrid(sceneBounds, spacing, volume.layout().scene.bounds);
     const SdfVolume v = volume.cascadeVolume(cascade);
     return fitProbeGrid(Aabb{v.origin, v.origin + glm::vec3(v.size)}, spacing);
 }
@@ -66,7 +66,7 @@ std::vector<ProbeGrid> cascadeProbeGrids(const SceneVolume& volume, const Aabb& 
 }
 
 int cascadeProbeCount(const Aabb& sceneBounds, const CascadeLayout& layout, float spacing) {
-    int count = fitProbeGrid(sceneBounds, spacing).count();
+    int count = fitProbeGrid(sceneBounds, spacing, layout.scene.bounds).count();
     const float e = layout.extent(0);
     if (layout.count > 1) count += (layout.count - 1) * fitProbeGrid(Aabb{glm::vec3(0.0f), glm::vec3(e)}, spacing).count();
     return count;
@@ -355,15 +355,16 @@ void ProbeField::update(Frame& frame, const FieldSettings& live) {
             classified = true;
         }
     // A field with no usable probe gives black indirect light everywhere: say so once (a read-back
-    // per classification, i.e. per geometry, light or cascade change, not per frame).
+    // per classification, i.e. per geometry, light or cascade change, not per frame). A solid object's
+    // grid has a layer in the air around it (fitProbeGrid), so no spacing the user picks would
+    // do better: this is a scene with no room for a probe, or probes.inside=off.
     if (classified && !warnedAllOff_) {
         const StateCounts c = stateCounts();
         if (c.active + c.relocated == 0) {
             std::fprintf(stderr,
                          "gisandbox: warning: probes: all %d probes are inside geometry and switched off (%s); the "
-                         "probes' indirect light is black. Change the probe spacing%s\n",
-                         count_, built_.relocate ? "relocate found no way out" : "inside=off",
-                         built_.relocate ? "" : " or relocate them");
+                         "probes' indirect light is black\n",
+                         count_, built_.relocate ? "relocate found no way out" : "inside=off");
             warnedAllOff_ = true;
         }
     }

@@ -58,7 +58,8 @@ int64_t fieldRayBytes(const FieldSettings& s, int probes);
 int batchCapacity(const FieldSettings& s, int probes);
 // One grid per cascade of the volume (SDFGI's layout): cells of `spacing` x the cascade's extent.
 // The coarsest cascade (which never moves) is fitted to the scene's bounds, so no probe sits on its
-// outer walls; a finer one to its cube, so its probes move with it and their counts stay the same.
+// outer walls, with a layer outside each face the volume gives air (fitProbeGrid); a finer one to
+// its cube, so its probes move with it and their counts stay the same.
 ProbeGrid cascadeProbeGrid(const SceneVolume& volume, const Aabb& sceneBounds, float spacing, int cascade);
 std::vector<ProbeGrid> cascadeProbeGrids(const SceneVolume& volume, const Aabb& sceneBounds, float spacing);
 int cascadeProbeCount(const Aabb& sceneBounds, const CascadeLayout& layout, float spacing);

@@ -69,6 +69,22 @@ ProbeGrid fitProbeGrid(const Aabb& bounds, float spacing) {
     return g;
 }
 
+ProbeGrid fitProbeGrid(const Aabb& bounds, float spacing, const Aabb& air) {
+    ProbeGrid g = fitProbeGrid(bounds, spacing);
+    if (bounds.empty() || air.empty()) return g;
+    for (int a = 0; a < 3; ++a) {
+        if (air.min[a] < bounds.min[a]) {
+            g.first[a] -= g.step[a];
+            ++g.counts[a];
+        }
+        if (air.max[a] > bounds.max[a]) ++g.counts[a];
+    }
+    if (int64_t(g.counts.x) * g.counts.y * g.counts.z > kMaxProbes)
+        throw Error("probe spacing " + std::to_string(spacing) + " would place more than " + std::to_string(kMaxProbes) +
+                    " probes with the layers outside the scene; raise the spacing");
+    return g;
+}
+
 glm::vec3 fibonacciDirection(int k, int n) {
     const float golden = 2.39996323f;  // pi (3 - sqrt 5)
     const float z = 1.0f - (2.0f * float(k) + 1.0f) / float(n);

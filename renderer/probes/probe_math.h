@@ -47,6 +47,11 @@ int probeIndexNear(const ProbeGrid& g, const glm::vec3& p);
 // Throws gis::Error with a clear message for a degenerate or oversized grid (non-finite bounds,
 // spacing <= 0, more than kMaxProbes probes). Empty bounds give one probe at the origin.
 ProbeGrid fitProbeGrid(const Aabb& bounds, float spacing);
+// The same grid with one more layer of probes, half a cell outside, on each face of `bounds` that
+// `air` reaches beyond (volume/volume_fit.h: sceneAirBounds): behind such a face the scene is solid,
+// so the fitted grid's outermost probes are inside it and its surfaces are lit from outside. The
+// fitted probes keep their places, and a room (no air) keeps its grid.
+ProbeGrid fitProbeGrid(const Aabb& bounds, float spacing, const Aabb& air);
 
 // Direction k of n spread evenly over the sphere (spherical Fibonacci: the golden-angle spiral
 // of Vogel, equal-area in z).

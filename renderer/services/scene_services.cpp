@@ -7,7 +7,10 @@ RayScene& SceneServices::rays() {
     return *rays_;
 }
 
-void SceneServices::invalidate(Changes changes) { volumes_.invalidate(changes); }
+void SceneServices::invalidate(Changes changes) {
+    if (changes & ChangeGeometry) air_ = sceneAirBounds(scene.cpu);
+    volumes_.invalidate(changes);
+}
 
 void SceneServices::lightsChanged() {
     if (rays_) rays_->updateLights(scene.cpu);

@@ -14,7 +14,8 @@ namespace gis {
 
 struct SceneServices {
     SceneServices(const GpuScene& scene, gl::MemoryLedger& ledger)
-        : scene(scene), ledger(ledger), volumes_(scene.cpu.bounds, ledger, [this]() -> RayScene& { return rays(); }) {}
+        : scene(scene), ledger(ledger), air_(sceneAirBounds(scene.cpu)),
+          volumes_(air_, ledger, [this]() -> RayScene& { return rays(); }) {}
     const GpuScene& scene;
     gl::MemoryLedger& ledger;
 
@@ -22,6 +23,10 @@ struct SceneServices {
     RayScene& rays();
     bool hasRays() const { return rays_ != nullptr; }
     const Aabb& bounds() const { return scene.cpu.bounds; }
+    // The bounds with air outside each face behind which the scene is solid (volume/volume_fit.h:
+    // sceneAirBounds): what the scene volumes are fitted to, so one model gets the space around
+    // it that its sky and bounce light arrive through. Worked out again after a geometry edit.
+    const Aabb& airBounds() const { return air_; }
     // The scene volume as `request` describes it: built on first use; the same request gets the
     // same volume, so methods sharing a renderer share what they can.
     SceneVolume& volume(const VolumeRequest& request) { return volumes_.get(request); }
@@ -32,6 +37,7 @@ struct SceneServices {
 
 private:
     std::unique_ptr<RayScene> rays_;
+    Aabb air_;   // before volumes_, which keep a reference to it
     SceneVolumes volumes_;
 };
 

@@ -54,7 +54,7 @@ std::vector<ProgramDesc> HddagiPass::programs() {
 std::vector<std::pair<std::string, uint64_t>> HddagiPass::estimateMemory(const Scene& scene, const RenderSettings& settings) {
     const HddagiSettings s = hddagiParams().read("hddagi", settings.params);
     const VolumeRequest request = volumeRequest(s);
-    const CascadeLayout layout = volumeLayout(scene.bounds, request);
+    const CascadeLayout layout = volumeLayout(sceneAirBounds(scene), request);  // as SceneServices fits it
     const int probes = probes::cascadeProbeCount(scene.bounds, layout, s.probeSpacing);
     return {{"HDDAGI scene volume (" + std::to_string(layout.count) + " cascades: voxels, light, occupancy)",
              uint64_t(sceneVolumeBytes(request, layout.count))},

@@ -50,8 +50,9 @@ std::vector<ProgramDesc> ProbesPass::programs() {
 ProbesPass::ProbesPass(SceneServices& services, const RenderSettings& settings)
     : VolumePass(services.volume(checkedVolumeRequest(settings))), built_(probeParams().read("probes", settings.params)) {
     const gl::MemoryScope scope{&services.ledger, name()};
-    field_ = std::make_unique<ProbeField>(scope, *volume_, std::vector<ProbeGrid>{fitProbeGrid(services.bounds(), built_.spacing)},
-                                          built_.field());
+    // The volume was fitted to the scene's air (SceneServices::airBounds): the grid gets a layer in it.
+    const ProbeGrid grid = fitProbeGrid(services.bounds(), built_.spacing, services.airBounds());
+    field_ = std::make_unique<ProbeField>(scope, *volume_, std::vector<ProbeGrid>{grid}, built_.field());
     gather_ = std::make_unique<ScreenGather>(scope, settings.width, settings.height, built_.gatherPixels());
 }
 
@@ -104,7 +105,7 @@ GiMethod probesMethod() {
     m.programs = &ProbesPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) {
         const ProbeSettings p = probeParams().read("probes", s.params);
-        const int probes = fitProbeGrid(scene.bounds, p.spacing).count();
+        const int probes = fitProbeGrid(scene.bounds, p.spacing, sceneAirBounds(scene)).count();
         return std::vector<std::pair<std::string, uint64_t>>{
             {"probe voxels and distance field", uint64_t(sceneVolumeBytes(volumeRequest(p), 1))},
             {"probes (irradiance, distance moments, state)", uint64_t(fieldStorageBytes(p.field(), probes))},
