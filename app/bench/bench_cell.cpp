@@ -72,6 +72,25 @@ void measureFlythrough(Renderer& renderer, const Aabb& bounds, int frames, Bench
     row.bytes = renderer.memory().total();
 }
 
+// The mean radiance of the view through the scene's camera `camera`, rendered as the cell's image
+// is: until progressive passes converge, and for the frames a method needs to converge.
+double convergedMean(const Scene& scene, RenderSettings settings, const GiMethod& method, int camera) {
+    settings.camera = camera;
+    Renderer renderer(scene, settings);
+    const int frames = method.framesToConverge ? std::max(1, method.framesToConverge(settings)) : 1;
+    for (int f = 0; f < frames || !renderer.converged(); ++f) renderer.renderFrame();
+    return meanRadiance(renderer.readHdr());
+}
+
+// Scene::leakCameras' leak number: the dark room's mean radiance over the lit room's; -1 for a
+// scene without leak cameras or a lit room that renders black (no number to divide by).
+double leakNumber(const Scene& scene, const RenderSettings& settings, const GiMethod& method) {
+    const Scene::LeakCameras& c = scene.leakCameras;
+    if (c.dark < 0 || c.lit < 0) return -1.0;
+    const double lit = convergedMean(scene, settings, method, c.lit);
+    return lit > 0.0 ? convergedMean(scene, settings, method, c.dark) / lit : -1.0;
+}
+
 // The job as the manifest describes it, made concrete; refuses one whose inputs changed since the
 // plan (its id would be another).
 RenderSettings resolveChecked(const BenchJob& job, PreparedScene& prepared) {
@@ -154,6 +173,7 @@ void runCell(const BenchJob& job, const SweepDirs& dirs, const GlOpener& openGl)
     Renderer renderer(prepared.scene, settings);
     measure(renderer, method, job.frames, job.warmup, row);
     row.error = compareImages(renderer.readHdr(), reference);
+    row.leak = leakNumber(prepared.scene, settings, method);
     if (!aoReference.rgba.empty()) {
         RenderSettings aoView = settings;
         aoView.view = "ao";
@@ -167,6 +187,7 @@ void runCell(const BenchJob& job, const SweepDirs& dirs, const GlOpener& openGl)
                  row.scene.c_str(), row.method.c_str(), row.preset.c_str(), row.ms, row.wallMs,
                  double(row.bytes) / (1 << 20), row.error.flip, row.error.rmse, row.error.ssim,
                  row.aoRmse >= 0.0 ? ("  AO RMSE " + std::to_string(row.aoRmse)).c_str() : "");
+    if (row.leak >= 0.0) std::fprintf(stderr, "%-14s %-10s %-8s leak number %.4f\n", row.scene.c_str(), row.method.c_str(), row.preset.c_str(), row.leak);
     nlohmann::ordered_json body{{"id", job.id}, {"kind", "cell"}, {"machine", machine}, {"row", rowToJson(row)}};
     writeRecord(recordPath(dirs, job), body, {fs::path(png).filename().string()});
 }

@@ -51,6 +51,12 @@ const std::vector<CsvColumn>& csvColumns() {
         {"psnr_srgb", false, scored([](std::ostream& f, const BenchRow& r) { f << formatMetric(r.error.psnrSrgb); })},
         {"ssim", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.ssim; })},
         {"flip", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.flip; })},
+        {"mean_ratio", false, scored([](std::ostream& f, const BenchRow& r) {
+             if (r.error.meanReference > 0.0) f << r.error.meanTest / r.error.meanReference;
+         })},
+        {"leak", false, [](std::ostream& f, const BenchRow& r) {
+             if (r.leak >= 0.0) f << r.leak;
+         }},
         {"ao_rmse", false,
          [](std::ostream& f, const BenchRow& r) { f << (r.aoRmse >= 0.0 ? std::to_string(r.aoRmse) : std::string()); }},
         {"mrays_per_s", true,
@@ -73,7 +79,8 @@ double psnrFromJson(const nlohmann::ordered_json& v) {
 
 nlohmann::ordered_json errorToJson(const ImageMetrics& m) {
     return {{"rmse", m.rmse}, {"relmse", m.relMse}, {"psnr_linear", m.psnrLinear},
-            {"psnr_srgb", m.psnrSrgb}, {"ssim", m.ssim}, {"flip", m.flip}};
+            {"psnr_srgb", m.psnrSrgb}, {"ssim", m.ssim}, {"flip", m.flip},
+            {"mean", m.meanTest}, {"mean_reference", m.meanReference}};
 }
 
 ImageMetrics errorFromJson(const nlohmann::ordered_json& j) {
@@ -84,6 +91,8 @@ ImageMetrics errorFromJson(const nlohmann::ordered_json& j) {
     m.psnrSrgb = psnrFromJson(j.at("psnr_srgb"));
     m.ssim = j.at("ssim").get<double>();
     m.flip = j.at("flip").get<double>();
+    m.meanTest = j.value("mean", 0.0);  // absent in results recorded before the means were
+    m.meanReference = j.value("mean_reference", 0.0);
     return m;
 }
 
@@ -125,6 +134,7 @@ nlohmann::ordered_json rowToJson(const BenchRow& r) {
     for (const auto& [pass, ms] : r.passMs) e["pass_ms"][pass] = ms;
     for (const BenchRow::StepTime& t : r.steps) e["step_ms"][t.step] = {{"frame", t.ms}, {"first", t.firstMs}};
     if (r.aoRmse >= 0.0) e["ao_rmse_vs_raytraced"] = r.aoRmse;
+    if (r.leak >= 0.0) e["leak"] = r.leak;
     if (r.megaRaysPerSecond >= 0.0) e["mrays_per_s"] = r.megaRaysPerSecond;
     if (r.msToConverge) e["gpu_ms_to_converge"] = true;
     return e;
@@ -151,6 +161,7 @@ BenchRow rowFromJson(const nlohmann::ordered_json& j) {
         for (const auto& [step, t] : j.at("step_ms").items())
             r.steps.push_back({step, t.at("frame").get<double>(), t.at("first").get<double>()});
     if (j.contains("ao_rmse_vs_raytraced")) r.aoRmse = j.at("ao_rmse_vs_raytraced").get<double>();
+    if (j.contains("leak")) r.leak = j.at("leak").get<double>();
     if (j.contains("mrays_per_s")) r.megaRaysPerSecond = j.at("mrays_per_s").get<double>();
     return r;
 }

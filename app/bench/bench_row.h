@@ -34,6 +34,7 @@ struct BenchRow {
     int64_t bytes = 0;
     ImageMetrics error;                       // not measured for a fly-through (no reference for its views)
     double aoRmse = -1.0;                     // SSAO only: its AO term against ray-traced AO
+    double leak = -1.0;                       // scenes with leak cameras (Scene::leakCameras); -1: none
     double megaRaysPerSecond = -1.0;          // passes that count their rays (the path tracer); -1: none
     // A fly-through (bench --flythrough): ms and wallMs are its medians, passMs and steps too.
     std::optional<FlythroughStats> flythrough;

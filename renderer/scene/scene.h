@@ -116,6 +116,12 @@ struct Scene {
     std::vector<Light> lights;
     std::vector<Camera> cameras;
     glm::vec3 background{0.0f};     // radiance of the environment (constant colour)
+    // A scene built to measure light leaking through walls names two of its cameras: one inside a
+    // room no light reaches and one in a lit room. Its leak number is the first view's mean
+    // radiance over the second's (bench's `leak` column); the truth is 0. -1: not such a scene.
+    struct LeakCameras {
+        int dark = -1, lit = -1;
+    } leakCameras;
     Aabb bounds;                    // world space, over all draws
     std::vector<std::string> warnings;  // unsupported features, each reported once
 

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# The real-scale tables of the GI method pages (issue #39), in one sitting: each method at its
+# defaults and its `realtime` preset
+#   - against Cycles at 256x256: the atrium courtyard (../shared/assets/reference) and
+#     builtin:building's corridor and hall (assets/reference/building): PSNR (sRGB) and the mean
+#     radiance over the reference's;
+#   - builtin:building's leak number: the closed room's mean over the corridor's (0 in truth);
+#   - against our path tracer at 128x128, single models under the default sun and sky: the mean
+#     radiance over the path tracer's.
+# Writes each method's table between the "scale-table" markers of renderer/gi/METHOD/README.md.
+#
+# Usage (project root, after a build): bash scripts/building-table.sh [BIN (build/gisandbox)]
+# Environment: METHODS (vct,sdf,probes,hddagi), PRESETS (default,realtime; "default" = no preset).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin=${1:-build/gisandbox}
+methods=${METHODS:-vct,sdf,probes,hddagi}
+presets=${PRESETS:-default,realtime}
+shared=../shared/assets
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+render() {  # OUT flags...: renders or exits naming what failed
+  local out=$1; shift
+  timeout 1800 "$bin" render --out "$out" "$@" > "$tmp/log" 2>&1 ||
+    { echo "building-table: render $* failed:" >&2; tail -3 "$tmp/log" >&2; exit 1; }
+}
+compare() {  # TEST REF -> "PSNR / mean ratio"
+  "$bin" diff "$1" "$2" | awk '/^PSNR sRGB/ {p = $3} /^mean ratio/ {m = $3} END {printf "%.1f dB / %.2f", p, m}'
+}
+ratio() { "$bin" diff "$1" "$2" | awk '/^mean ratio/ {printf "%.3f", $3}'; }
+
+atrium=(--scene "$shared/reference/scenes/atrium/atrium.gltf" --background 0.35,0.45,0.6)
+models=("$shared/gltf/BoxTextured/glTF/BoxTextured.gltf" "$shared/gltf/BoxVertexColors/glTF/BoxVertexColors.gltf"
+        "$shared/gltf/DamagedHelmet/glTF/DamagedHelmet.gltf" "$shared/gltf/VulkanSamplesAssets/teapot.gltf"
+        "$shared/gltf/VulkanSamplesAssets/torusknot.gltf")
+for i in "${!models[@]}"; do render "$tmp/model$i-pt.exr" --scene "${models[$i]}" --gi pathtrace --size 128x128; done
+
+gl=$("$bin" render --scene builtin:cornell --size 8x8 --out "$tmp/gl.png" -v 2>&1 | sed -n 's/^GL_RENDERER: //p')
+for m in ${methods//,/ }; do
+  {
+    echo "\`scripts/building-table.sh\`, $(date -u +%Y-%m-%d), ${gl:-unknown GL renderer}. PSNR (sRGB) / mean radiance over"
+    echo "the reference's: Cycles for the atrium and the building (256x256), our path tracer for the single"
+    echo "models (128x128, default sun and sky). Leak: the building's closed room over its corridor (0 in truth)."
+    echo
+    echo "| preset | atrium | building corridor | building hall | leak | BoxTextured | BoxVertexColors | DamagedHelmet | teapot | torusknot |"
+    echo "|---|---|---|---|---|---|---|---|---|---|"
+    for p in ${presets//,/ }; do
+      flags=(--gi "$m"); [ "$p" = default ] || flags+=(--preset "$p")
+      render "$tmp/atrium.exr" "${atrium[@]}" "${flags[@]}" --size 256x256
+      render "$tmp/corridor.exr" --scene builtin:building --camera 0 "${flags[@]}" --size 256x256
+      render "$tmp/hall.exr" --scene builtin:building --camera 1 "${flags[@]}" --size 256x256
+      render "$tmp/closed.exr" --scene builtin:building --camera 2 "${flags[@]}" --size 256x256
+      row="| $p | $(compare "$tmp/atrium.exr" "$shared/reference/refs/atrium/full.exr")"
+      row+=" | $(compare "$tmp/corridor.exr" assets/reference/building/corridor/full.exr)"
+      row+=" | $(compare "$tmp/hall.exr" assets/reference/building/hall/full.exr)"
+      row+=" | $(ratio "$tmp/closed.exr" "$tmp/corridor.exr")"
+      for i in "${!models[@]}"; do
+        render "$tmp/model.exr" --scene "${models[$i]}" "${flags[@]}" --size 128x128
+        row+=" | $(ratio "$tmp/model.exr" "$tmp/model$i-pt.exr")"
+      done
+      echo "$row |"
+    done
+  } > "$tmp/$m.md"
+  python3 - "renderer/gi/$m/README.md" "$tmp/$m.md" <<'PY'
+import sys
+page, table = sys.argv[1], open(sys.argv[2]).read()
+text = open(page).read()
+begin, end = "<!-- scale-table begin -->\n", "<!-- scale-table end -->"
+if begin not in text:
+    text += "\n## At real scale: a building, a courtyard, single models\n\n" + begin + end + "\n"
+head, rest = text.split(begin)
+open(page, "w").write(head + begin + table + end + rest.split(end)[1])
+PY
+  echo "wrote the table into renderer/gi/$m/README.md" >&2
+done
