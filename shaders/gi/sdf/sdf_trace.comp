@@ -49,12 +49,14 @@ SdfMarchParams marchParams() {
 // What a ray along `dir` brings back: the voxel radiance around its hit, or the environment.
 vec3 rayRadiance(SdfHit h, vec3 dir) {
     if (!h.hit) return environmentRadiance(dir);
-    // Half a cell into the surface: the level set runs through the centres of the outermost surface
-    // voxels, so the trilinear lookup mixes them with the voxels behind (occupied, or empty and
-    // divided out below) rather than with the empty ones in front of the surface. The radiance of
-    // the cascade the hit was found in, whose voxels made its field.
+    // Half a cell out of the surface, towards the ray: the level set runs through the centres of the
+    // outermost surface voxels, so the trilinear lookup there mixes them only with the empty voxels
+    // in front (divided out below), never with the voxels behind. Behind a wall thinner than two
+    // cells lies its other face, lit from outside: half a cell in, a ray from a closed room saw half
+    // of its sunlit outside (issue #39, builtin:building's closed room). The radiance of the cascade
+    // the hit was found in, whose voxels made its field.
     SdfVolume vol = sdfCascadeVolume(cascades(), h.cascade);
-    vec3 p = h.position - h.normal * 0.5 * sdfCellSize(vol);
+    vec3 p = h.position + h.normal * 0.5 * sdfCellSize(vol);
     vec4 r = textureLod(s_radiance, sdfLayerCoord(vol, h.cascade, u_cascadeCount, p), 0.0);
     return r.a > 1e-3 ? r.rgb / r.a : vec3(0.0);
 }
