@@ -591,8 +591,8 @@ TEST(SdfGi, ThinWallLeakIsMeasured) {
 // there leaked through its 20 cm walls and roof, thinner than a cell of every cascade but the finest.
 // The leak number is its mean radiance over the sunlit corridor's (camera 0); the path tracer's is
 // 0. Per-pixel rays (sdf.diffuse=rays), this method's own gather: a hit reads the voxel light half a
-// cell towards the ray, never the wall's far face (shaders/gi/sdf/sdf_trace.comp). The probe gather
-// (the default) is the probe field's.
+// cell towards the ray, never the wall's far face, and a slab voxel shows the face the ray meets
+// (shaders/gi/sdf/sdf_trace.comp). The probe gather (the default) is the probe field's.
 TEST(SdfGi, BuildingClosedRoomLeaksLittle) {
     const Scene scene = makeBuiltinScene("building");
     double mean[2] = {0.0, 0.0};
