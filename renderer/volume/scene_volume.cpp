@@ -33,10 +33,10 @@ static_assert(std::is_aggregate_v<VolumeRequest> &&
                   memberCount<VolumeRequest>() == std::tuple_size_v<decltype(tied(std::declval<VolumeRequest>()))>,
               "every member of VolumeRequest belongs in tied()");
 
-// Level 0 of every cascade's light in one RGBA16F texture, when there is more than one.
+// Level 0 of every cascade's light, and its slab voxels' sides, in RGBA16F textures, when there is more than one.
 int64_t radianceAtlasBytes(int resolution, int cascades) {
     const int64_t n = resolution;
-    return cascades > 1 ? 8 * n * n * n * cascades : 0;
+    return cascades > 1 ? 2 * 8 * n * n * n * cascades : 0;  // level 0 and the slabs' sides
 }
 
 VolumeFit fitOf(const SdfVolume& v) {
@@ -104,6 +104,7 @@ SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::M
         glTextureParameteri(radianceAtlas_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
             glTextureParameteri(radianceAtlas_.id(), wrap, GL_CLAMP_TO_EDGE);
+        sidesAtlas_ = gl::createTexture3D(scope_, GL_RGBA16F, n, n, n * count);  // read by texelFetch
     }
     // Two bounces: the sums and the bounce targets, no more.
     if (request.feedback) feedback_ = std::make_unique<VoxelRadiance>(n, request.anisotropic, 2, scope_, request.cullBackfaces);
@@ -210,6 +211,8 @@ void SceneVolume::relight(Frame& frame, int i, const ConeSettings& bounceCones) 
         glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         glCopyImageSubData(c.radiance->radiance().id(), GL_TEXTURE_3D, 0, 0, 0, 0, radianceAtlas_.id(), GL_TEXTURE_3D,
                            0, 0, 0, i * n, n, n, n);
+        glCopyImageSubData(c.radiance->sides().id(), GL_TEXTURE_3D, 0, 0, 0, 0, sidesAtlas_.id(), GL_TEXTURE_3D, 0, 0,
+                           0, i * n, n, n, n);
     }
 }
 
@@ -223,8 +226,12 @@ GLuint SceneVolume::radianceTexture() const {
 
 void SceneVolume::bind() const {
     glBindSamplers(kVolumeDistanceUnit, kVolumeEmissionUnit + 1 - kVolumeDistanceUnit, nullptr);
-    if (layout_.count > 1) glBindTextureUnit(kVolumeRadianceUnit, radianceAtlas_.id());
-    else tracedRadiance().bind();
+    if (layout_.count > 1) {
+        glBindTextureUnit(kVolumeRadianceUnit, radianceAtlas_.id());
+        glBindTextureUnit(kVolumeRadianceUnit + kVolumeRadianceUnits - 1, sidesAtlas_.id());
+    } else {
+        tracedRadiance().bind();
+    }
     if (field_) field_->bind(kVolumeDistanceUnit);
     const GLuint voxels[2] = {grid().albedo.id(), grid().emission.id()};
     glBindTextures(kVolumeAlbedoUnit, 2, voxels);

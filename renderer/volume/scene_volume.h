@@ -148,6 +148,7 @@ private:
     std::unique_ptr<DistanceField> field_;   // one layer per cascade
     std::unique_ptr<OccupancyHierarchy> occupancy_;
     gl::Texture radianceAtlas_;              // more than one cascade: their light, a layer each
+    gl::Texture sidesAtlas_;                 // and their slab voxels' sides (VoxelRadiance::sides)
     std::unique_ptr<VoxelRadiance> feedback_;  // request.feedback: the bounces summed so far
 };
 

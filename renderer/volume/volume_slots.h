@@ -9,9 +9,10 @@ namespace gis {
 constexpr int kVolumeDistanceUnit = 16;                   // the distance field, a layer per cascade
 constexpr int kVolumeCoarseUnit = kVolumeDistanceUnit + 1;  // its coarse level (empty-space skipping)
 // The light the volume's tracers read: level 0 (a layer per cascade with more than one), then with
-// one cascade its six directional mips (shaders/volume/cone_trace.glsl): seven units.
+// one cascade its six directional mips (shaders/volume/cone_trace.glsl), then the slab voxels' sides
+// (VoxelRadiance::sides, a layer per cascade like level 0): eight units.
 constexpr int kVolumeRadianceUnit = kVolumeCoarseUnit + 1;
-constexpr int kVolumeRadianceUnits = 7;
+constexpr int kVolumeRadianceUnits = 8;
 constexpr int kVolumeAlbedoUnit = kVolumeRadianceUnit + kVolumeRadianceUnits;  // the voxels' albedo (a = occupancy)
 constexpr int kVolumeEmissionUnit = kVolumeAlbedoUnit + 1;
 

@@ -40,7 +40,8 @@ int64_t chainTexels(int n) {
 }  // namespace
 
 int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces, bool unlitOutsides) {
-    int64_t bytes = 8 * chainTexels(resolution);
+    // The chain, and the slab voxels' sides (level 0).
+    int64_t bytes = 8 * chainTexels(resolution) + 8 * int64_t(resolution) * resolution * resolution;
     if (unlitOutsides) bytes += int64_t(resolution) * resolution * resolution + 4;
     if (anisotropic) bytes += 6 * 8 * chainTexels(resolution / 2);
     if (bounces > 1) bytes += 8 * int64_t(resolution) * resolution * resolution;
@@ -79,6 +80,9 @@ VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::Mem
     }
     radiance_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n, levelsFor(n));
     setVolumeSampling(radiance_);
+    sides_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n);
+    const GLfloat none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(sides_.id(), 0, GL_RGBA, GL_FLOAT, none);  // a feedback volume's: never injected
     if (anisotropic_)
         for (gl::Texture& t : directional_) {
             t = gl::createTexture3D(scope, GL_RGBA16F, n / 2, n / 2, n / 2, levelsFor(n / 2));
@@ -115,6 +119,7 @@ void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
     if (lights.buffer) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightsBinding, lights.buffer);
     const gl::Texture& target = bounces_ > 1 ? direct_ : radiance_;
     glBindImageTexture(0, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, sides_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch3D(n, n, n);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     if (reach_.id()) cullUnlitOutsides(grid, target, lights.environmentLit);
@@ -168,6 +173,7 @@ void VoxelRadiance::downsample(const gl::Texture& source, int sourceLevel, const
     glProgramUniform1i(p, UV_NORMAL_WEIGHT, !normals ? 0 : cullBackfaces_ ? 2 : 1);
     glBindTextureUnit(0, source.id());
     glBindTextureUnit(1, normals ? normals : source.id());
+    glBindTextureUnit(2, sides_.id());
     glBindImageTexture(0, target.id(), targetLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     const int size = std::max(target.width >> targetLevel, 1);
     dispatch3D(size, size, size);
@@ -176,7 +182,7 @@ void VoxelRadiance::downsample(const gl::Texture& source, int sourceLevel, const
 
 void VoxelRadiance::buildMips(const VoxelGrid& grid) {
     glUseProgram(mipProgram_.id());
-    glBindSamplers(0, 2, nullptr);
+    glBindSamplers(0, 3, nullptr);
     for (int level = 1; level < radiance_.levels; ++level) downsample(radiance_, level - 1, radiance_, level, -1);
     if (!anisotropic_) return;
     for (int d = 0; d < 6; ++d) {
@@ -242,6 +248,7 @@ void VoxelRadiance::bind() const {
     GLuint textures[kVolumeRadianceUnits];
     textures[0] = radiance_.id();
     for (int d = 0; d < 6; ++d) textures[1 + d] = anisotropic_ ? directional_[d].id() : radiance_.id();
+    textures[7] = sides_.id();
     glBindTextures(kVolumeRadianceUnit, kVolumeRadianceUnits, textures);
     glBindSamplers(kVolumeRadianceUnit, kVolumeRadianceUnits, nullptr);
 }

@@ -71,6 +71,9 @@ public:
     // At kVolumeRadianceUnit and the six units after it (shaders/volume/cone_trace.glsl's layout).
     void bind() const;
     const gl::Texture& radiance() const { return radiance_; }
+    // Level 0's slab voxels (walls thinner than a voxel, shaders/volume/inject.comp): rgb half the
+    // difference of their two faces' light, a the slab's axis (1, 2, 3; 0: not a slab).
+    const gl::Texture& sides() const { return sides_; }
     bool anisotropic() const { return anisotropic_; }
     // UV_ANISOTROPIC for shaders/volume/cone_trace.glsl's makeConeTracer (VOXEL_ISOTROPIC ...).
     int mipMode() const { return !anisotropic_ ? 0 : cullBackfaces_ ? 2 : 1; }
@@ -85,7 +88,7 @@ private:
     void gatherOnce(const VoxelGrid& grid, const gl::Texture& scratch);
     void downsample(const gl::Texture& source, int sourceLevel, const gl::Texture& target, int targetLevel, int direction,
                     GLuint normals = 0);
-    gl::Texture radiance_, direct_;
+    gl::Texture radiance_, direct_, sides_;
     gl::Texture feedbackScratch_;  // feedbackBounce()'s target, kept between updates (made on first need)
     gl::Texture directional_[6];
     gl::Object injectProgram_, mipProgram_, bounceProgram_;

@@ -11,7 +11,7 @@ namespace gis {
 using namespace voxel;
 
 namespace {
-constexpr int kChannels = 11;  // shaders/volume/voxel_sums.glsl: VOXEL_CHANNELS
+constexpr int kChannels = 14;  // shaders/volume/voxel_sums.glsl: VOXEL_CHANNELS
 
 bool hasExtension(const char* name) {
     GLint n = 0;

@@ -30,7 +30,7 @@ struct VoxelGrid {
     VolumeFit fit;
     gl::Texture albedo;    // RGBA8: linear albedo, a = occupancy (1 where any surface touched)
     gl::Texture normal;    // RGBA8: mean normal * 0.5 + 0.5 (shorter than 1 where normals disagree)
-    gl::Texture emission;  // RGBA16F: emitted radiance
+    gl::Texture emission;  // RGBA16F: emitted radiance; a: the axis of a slab voxel (1, 2, 3; 0 none, voxel_resolve.comp)
 };
 
 class Voxelizer {

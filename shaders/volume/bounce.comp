@@ -3,6 +3,7 @@
 // (direct light and emission, in s_direct).
 #include "common.glsl"
 #include "volume/cone_trace.glsl"
+#include "volume/voxel_faces.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0) uniform sampler3D s_albedo;
@@ -23,7 +24,7 @@ void main() {
     vec3 meanNormal = texelFetch(s_normal, v, 0).xyz * 2.0 - 1.0;
     float len = length(meanNormal);
     // direct.a 0 on a surface voxel: an unlit outside left out of the volume (exterior.comp).
-    if (albedo.a == 0.0 || len < 0.3 || direct.a == 0.0) {
+    if (albedo.a == 0.0 || len < VOXEL_TWO_SIDED || direct.a == 0.0) {
         imageStore(i_radiance, v, direct);
         return;
     }

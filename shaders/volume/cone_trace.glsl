@@ -2,8 +2,9 @@
 // gathers light from the voxels. Positions and distances are in voxel units ([0, resolution]^3).
 // The light's seven chains are where SceneVolume::bind() puts them (renderer/volume/volume_slots.h):
 // from VOLUME_RADIANCE_UNIT the isotropic chain, then the six directional chains +X -X +Y -Y +Z -Z,
-// which start at half resolution.
+// which start at half resolution, then the slab voxels' sides (volume/voxel_faces.glsl).
 #include "environment.glsl"
+#include "volume/voxel_faces.glsl"
 
 layout(binding = VOLUME_RADIANCE_UNIT + 0) uniform sampler3D s_voxelRadiance;
 layout(binding = VOLUME_RADIANCE_UNIT + 1) uniform sampler3D s_voxelPosX;
@@ -12,6 +13,7 @@ layout(binding = VOLUME_RADIANCE_UNIT + 3) uniform sampler3D s_voxelPosY;
 layout(binding = VOLUME_RADIANCE_UNIT + 4) uniform sampler3D s_voxelNegY;
 layout(binding = VOLUME_RADIANCE_UNIT + 5) uniform sampler3D s_voxelPosZ;
 layout(binding = VOLUME_RADIANCE_UNIT + 6) uniform sampler3D s_voxelNegZ;
+layout(binding = VOLUME_RADIANCE_UNIT + 7) uniform sampler3D s_voxelSides;
 
 struct ConeTracer {
     float resolution;   // voxels per edge
@@ -32,10 +34,17 @@ ConeTracer makeConeTracer(int resolution, float stepFactor, float maxDistance, i
     return ConeTracer(float(resolution), stepFactor, maxDistance, mips != VOXEL_ISOTROPIC, mips != VOXEL_CULL_BACKFACES);
 }
 
+// Level 0 around p as seen travelling dir: the voxel p lies in, if a slab, shows the face dir meets.
+vec4 sampleLevel0(ConeTracer t, vec3 p, vec3 dir) {
+    ivec3 v = clamp(ivec3(floor(p)), ivec3(0), ivec3(int(t.resolution) - 1));
+    return voxelLightSeen(textureLod(s_voxelRadiance, p / t.resolution, 0.0), texelFetch(s_voxelSides, v, 0), dir);
+}
+
 // Radiance and opacity seen through the voxels around p (voxel units) at level lod, travelling dir.
 vec4 sampleVoxels(ConeTracer t, vec3 p, vec3 dir, float lod) {
     vec3 uvw = p / t.resolution;
-    if (!t.anisotropic || lod <= 0.0) return textureLod(s_voxelRadiance, uvw, max(lod, 0.0));
+    if (lod <= 0.0) return sampleLevel0(t, p, dir);
+    if (!t.anisotropic) return textureLod(s_voxelRadiance, uvw, lod);
     // The directional chains start one level up; blend in from the shared finest level.
     float dlod = max(lod - 1.0, 0.0);
     vec3 w = dir * dir;
@@ -51,7 +60,7 @@ vec4 sampleVoxels(ConeTracer t, vec3 p, vec3 dir, float lod) {
     float weight = dot(w, a);
     vec3 radiance = weight > 1e-6 ? (w.x * sx.rgb + w.y * sy.rgb + w.z * sz.rgb) / weight : vec3(0.0);
     vec4 s = vec4(radiance * alpha, alpha);
-    return lod < 1.0 ? mix(textureLod(s_voxelRadiance, uvw, 0.0), s, lod) : s;
+    return lod < 1.0 ? mix(sampleLevel0(t, p, dir), s, lod) : s;
 }
 
 // The fraction of the segment a -> b (a inside [lo, hi]^3) at which it leaves that box.

@@ -10,6 +10,7 @@
 //   CULL:  a surface voxel whose front is air that was not reached leaves the light's level 0
 //          (radiance and occupancy 0); the wall keeps its inside's voxels.
 #include "common.glsl"
+#include "volume/voxel_faces.glsl"
 
 #if SWEEP
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -34,7 +35,7 @@ bool isAir(ivec3 v) { return texelFetch(s_albedo, v, 0).a == 0.0; }
 ivec3 frontOf(ivec3 v) {
     vec3 n = texelFetch(s_normal, v, 0).xyz * 2.0 - 1.0;
     float len = length(n);
-    return len > 0.3 ? v + ivec3(round(n / len)) : v;
+    return len > VOXEL_TWO_SIDED ? v + ivec3(round(n / len)) : v;
 }
 
 #if SWEEP

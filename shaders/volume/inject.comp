@@ -1,8 +1,12 @@
 // Light injection: the radiance each voxel's surface sends out, assuming Lambertian reflection:
 // albedo / pi * (sum over punctual lights of irradiance * shadow-map visibility) + emission.
 // Stored premultiplied by occupancy (rgb = L * a, a = occupancy), ready for averaging into mips.
+// A slab voxel (a wall thinner than a voxel, volume/voxel_faces.glsl) has its two faces lit apart:
+// i_radiance holds their mean, i_sides half their difference, so that a cone or ray meeting the
+// slab from one side sees that face's light alone (voxelLightSeen).
 #include "common.glsl"
 #include "lights.glsl"
+#include "volume/voxel_faces.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0) uniform sampler3D s_albedo;
@@ -11,6 +15,8 @@ layout(binding = 2) uniform sampler3D s_emission;
 layout(binding = 5) uniform sampler2DArrayShadow s_shadowMaps;
 layout(binding = 6) uniform sampler2DArrayShadow s_shadowCubes;  // cube faces, 6 layers per cube
 layout(rgba16f, binding = 0) uniform writeonly image3D i_radiance;
+// Slab voxels: rgb = (L(+axis face) - L(-axis face)) / 2, a = the slab axis (1, 2, 3: x, y, z); 0 elsewhere.
+layout(rgba16f, binding = 1) uniform writeonly image3D i_sides;
 
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_VOXEL_TO_WORLD) uniform mat4 u_voxelToWorld;
@@ -88,23 +94,9 @@ vec3 lightIrradiance(GpuLight light, vec3 P, out vec3 L) {
     return e;
 }
 
-void main() {
-    ivec3 v = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(v, ivec3(u_resolution)))) return;
-    vec4 albedo = texelFetch(s_albedo, v, 0);
-    if (albedo.a == 0.0) {
-        imageStore(i_radiance, v, vec4(0.0));
-        return;
-    }
-    vec3 meanNormal = texelFetch(s_normal, v, 0).xyz * 2.0 - 1.0;
-    float len = length(meanNormal);
-    // Surfaces facing opposite ways in one voxel average to a short normal: light it from every
-    // side at half strength rather than not at all.
-    bool oriented = len > 0.3;
-    vec3 N = oriented ? meanNormal / len : vec3(0.0, 1.0, 0.0);
-    vec3 P = (u_voxelToWorld * vec4(vec3(v) + 0.5, 1.0)).xyz;
-    // Look the shadow up one voxel in front of the surface: the voxel centre may lie behind it.
-    vec3 Ps = P + N * (oriented ? u_voxelSize : 0.0);
+// Irradiance from the punctual lights on a surface at P with normal N (oriented; else lit from
+// every side at half strength), the shadow looked up at Ps.
+vec3 punctualIrradiance(vec3 P, vec3 Ps, vec3 N, bool oriented) {
     vec3 irradiance = vec3(0.0);
     for (int i = 0; i < u_lightCount; ++i) {
         vec3 L;
@@ -115,9 +107,45 @@ void main() {
         if (cosine <= 0.0 || all(equal(e, vec3(0.0)))) continue;
         irradiance += e * cosine * shadowVisibility(u_lights[i], Ps, N, cosine);
     }
+    return irradiance;
+}
+
+void main() {
+    ivec3 v = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(v, ivec3(u_resolution)))) return;
+    vec4 albedo = texelFetch(s_albedo, v, 0);
+    if (albedo.a == 0.0) {
+        imageStore(i_radiance, v, vec4(0.0));
+        imageStore(i_sides, v, vec4(0.0));
+        return;
+    }
+    vec3 meanNormal = texelFetch(s_normal, v, 0).xyz * 2.0 - 1.0;
+    float len = length(meanNormal);
+    vec4 emission = texelFetch(s_emission, v, 0);
+    int slab = voxelSlabAxis(emission);  // the voxelizer's mark, in emission.a
+    // Surfaces facing opposite ways in one voxel average to a short normal: light it from every
+    // side at half strength rather than not at all; a slab's two faces each on its own.
+    bool oriented = len > VOXEL_TWO_SIDED && slab < 0;
+    vec3 N = oriented ? meanNormal / len : vec3(0.0, 1.0, 0.0);
+    vec3 P = (u_voxelToWorld * vec4(vec3(v) + 0.5, 1.0)).xyz;
+    vec3 irradiance, difference = vec3(0.0);
+    if (slab >= 0) {
+        // Each face's shadow one voxel in front of it, on its own side of the wall.
+        vec3 A = vec3(0.0);
+        A[slab] = 1.0;
+        vec3 front = punctualIrradiance(P, P + A * u_voxelSize, A, true);
+        vec3 back = punctualIrradiance(P, P - A * u_voxelSize, -A, true);
+        irradiance = 0.5 * (front + back);
+        difference = 0.5 * (front - back);
+    } else {
+        // Look the shadow up one voxel in front of the surface: the voxel centre may lie behind it.
+        irradiance = punctualIrradiance(P, P + N * (oriented ? u_voxelSize : 0.0), N, oriented);
+    }
 #if EMITTER_LIGHT
     if (u_emitterSamples.x > 0) irradiance += emitterIrradiance(v, P, N, oriented);
 #endif
-    vec3 radiance = albedo.rgb * INV_PI * irradiance + texelFetch(s_emission, v, 0).rgb * u_emissionWeight;
+    vec3 radiance = albedo.rgb * INV_PI * irradiance + emission.rgb * u_emissionWeight;
     imageStore(i_radiance, v, vec4(min(finiteOrZero(radiance), vec3(MAX_HALF_FLOAT)), 1.0));
+    vec3 sides = clamp(finiteOrZero(albedo.rgb * INV_PI * difference), vec3(-MAX_HALF_FLOAT), vec3(MAX_HALF_FLOAT));
+    imageStore(i_sides, v, vec4(sides, float(slab + 1)));
 }

@@ -5,11 +5,16 @@
 // for cones that cross it instead of averaging to half-transparent. The first directional level
 // also weighs each surface voxel by how squarely its mean normal faces the axis (|n.axis|): a
 // plane seen edge-on covers nothing, but its one-voxel-thick voxelization would cover 1/D of every
-// coarse cell beside it, so a bright ceiling would glow into every cone running along it.
+// coarse cell beside it, so a bright ceiling would glow into every cone running along it. A slab
+// voxel (a wall thinner than a voxel, volume/voxel_faces.glsl) shows a cone crossing it along its
+// axis the light of the face the cone meets, not the mean of both faces: a roof lit from above
+// stays dark for the cones of the room below.
+#include "volume/voxel_faces.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0) uniform sampler3D s_source;  // the level below, read with texelFetch
 layout(binding = 1) uniform sampler3D s_normal;  // the voxel grid's mean normals (level 0 only)
+layout(binding = 2) uniform sampler3D s_sides;   // inject.comp's i_sides (level 0 only)
 layout(rgba16f, binding = 0) uniform writeonly image3D i_target;
 layout(location = UV_MIP_LEVEL) uniform int u_sourceLevel;
 layout(location = UV_DIRECTION) uniform int u_direction;  // -1: isotropic
@@ -24,9 +29,18 @@ layout(location = UV_NORMAL_WEIGHT) uniform int u_weightByNormal;  // 0 none, 1 
 vec4 child(ivec3 c, int axis, float travel) {
     vec4 v = texelFetch(s_source, c, u_sourceLevel);
     if (u_weightByNormal == 0) return v;
+    // A slab is a plane facing +-its axis: along that axis a cone meets the face towards it, and
+    // seen edge-on, as any plane, it covers nothing.
+    vec4 sides = texelFetch(s_sides, c, 0);
+    int slab = voxelSlabAxis(sides);
+    if (slab >= 0) {
+        vec3 dir = vec3(0.0);
+        dir[axis] = travel;
+        return slab == axis ? voxelLightSeen(v, sides, dir) : vec4(0.0, 0.0, 0.0, v.a);
+    }
     vec3 n = texelFetch(s_normal, c, 0).xyz * 2.0 - 1.0;
     float len = length(n);
-    if (len <= 0.3) return v;  // opposite faces in one voxel: seen from every side
+    if (len <= VOXEL_TWO_SIDED) return v;  // opposite faces in one voxel: seen from every side
     float cosine = n[axis] / len;
     return v * (u_weightByNormal == 2 ? max(-travel * cosine, 0.0) : abs(cosine));
 }

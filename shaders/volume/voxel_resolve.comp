@@ -1,10 +1,11 @@
 // Voxelization, step 3: the fixed-point sums become averages in the voxel textures.
 #include "volume/voxel_sums.glsl"
+#include "volume/voxel_faces.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(rgba8, binding = 0) uniform writeonly image3D i_albedo;    // rgb albedo, a occupancy (0 or 1)
 layout(rgba8, binding = 1) uniform writeonly image3D i_normal;    // xyz mean normal * 0.5 + 0.5, a occupancy
-layout(rgba16f, binding = 2) uniform writeonly image3D i_emission; // rgb emitted radiance
+layout(rgba16f, binding = 2) uniform writeonly image3D i_emission; // rgb emitted radiance, a slab axis (below)
 
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_EMISSION_SCALE) uniform float u_emissionScale;  // the scale voxelize.frag applied
@@ -12,6 +13,15 @@ layout(location = UV_KEEP_LO) uniform ivec3 u_keepLo;   // a scrolled grid's mov
 layout(location = UV_KEEP_HI) uniform ivec3 u_keepHi;
 
 float sumOf(ivec3 v, int channel) { return float(u_voxelSums[voxelSumIndex(v, u_resolution, channel)]); }
+
+// A voxel whose normals cancel (mean shorter than VOXEL_TWO_SIDED) holds opposite faces: a wall
+// thinner than a voxel, a slab along the axis its faces face most (the largest mean |normal|
+// component), whose two faces inject.comp lights apart. 1, 2, 3 for x, y, z; 0 for any other voxel.
+float slabAxis(ivec3 v, vec3 meanNormal) {
+    if (length(meanNormal) > VOXEL_TWO_SIDED) return 0.0;
+    vec3 a = vec3(sumOf(v, 11), sumOf(v, 12), sumOf(v, 13));
+    return a.x >= a.y && a.x >= a.z ? 1.0 : a.y >= a.z ? 2.0 : 3.0;
+}
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
@@ -36,5 +46,5 @@ void main() {
     vec3 normal = vec3(sumOf(v, 7), sumOf(v, 8), sumOf(v, 9)) * norm * 2.0 - 1.0;
     imageStore(i_albedo, v, vec4(albedo, 1.0));
     imageStore(i_normal, v, vec4(normal * 0.5 + 0.5, 1.0));
-    imageStore(i_emission, v, vec4(min(emission, vec3(MAX_HALF_FLOAT)), 0.0));
+    imageStore(i_emission, v, vec4(min(emission, vec3(MAX_HALF_FLOAT)), slabAxis(v, normal)));
 }

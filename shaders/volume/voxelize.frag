@@ -92,7 +92,8 @@ void main() {
     // that does not emit.
     uint values[VOXEL_CHANNELS] = uint[VOXEL_CHANNELS](
         1u, fixedPoint(base.r), fixedPoint(base.g), fixedPoint(base.b), 0u, 0u, 0u, fixedPoint(n.x * 0.5 + 0.5),
-        fixedPoint(n.y * 0.5 + 0.5), fixedPoint(n.z * 0.5 + 0.5), 0u);
+        fixedPoint(n.y * 0.5 + 0.5), fixedPoint(n.z * 0.5 + 0.5), 0u, fixedPoint(abs(n.x)), fixedPoint(abs(n.y)),
+        fixedPoint(abs(n.z)));
     for (int k = k0; k <= k1; ++k) {
         ivec3 voxel = unswizzleFromAxis(ivec3(ivec2(c), k), g_axis);
         if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(u_resolution)))) continue;

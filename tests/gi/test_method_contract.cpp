@@ -43,7 +43,9 @@ double transientBytes(const std::string& method, const RenderSettings& s) {
     if (method == "sdf") return 8.0 * std::pow(row("resolution"), 3) + double(voxelGridBytes(row("resolution")));
     if (method == "probes") {
         const int n = row("sdf-resolution");
-        return double(distanceFieldBuildBytes(n) - distanceFieldBytes(n)) + double(voxelGridBytes(n)) * 44.0 / 60.0;
+        // The voxelizer's fixed-point sums: the grid less its textures (albedo, normal: 4 bytes a
+        // voxel each; emission 8), which stay.
+        return double(distanceFieldBuildBytes(n) - distanceFieldBytes(n)) + double(voxelGridBytes(n)) - 16.0 * std::pow(n, 3);
     }
     return 0.0;
 }

@@ -12,6 +12,7 @@
 #include "environment.glsl"
 #include "gi/sdf/sdf_gbuffer.glsl"
 #include "volume/sdf_march.glsl"
+#include "volume/voxel_faces.glsl"
 #include "probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -19,6 +20,7 @@ layout(binding = 2) uniform sampler2D s_gbufMaterial;  // metallic, roughness, o
 layout(binding = VOLUME_DISTANCE_UNIT) uniform sampler3D s_distance;
 layout(binding = VOLUME_COARSE_UNIT) uniform sampler3D s_coarse;
 layout(binding = VOLUME_RADIANCE_UNIT) uniform sampler3D s_radiance;      // rgb = radiance x occupancy, a = occupancy; a layer per cascade
+layout(binding = VOLUME_RADIANCE_UNIT + 7) uniform sampler3D s_sides;     // the slab voxels' sides (volume/voxel_faces.glsl), as many layers
 layout(rgba16f, binding = 0) uniform writeonly image2D i_diffuse;
 layout(rgba16f, binding = 1) uniform writeonly image2D i_reflection;  // rgb, a = its weight against diffuse
 layout(r16f, binding = 2) uniform writeonly image2D i_ao;
@@ -49,13 +51,20 @@ SdfMarchParams marchParams() {
 // What a ray along `dir` brings back: the voxel radiance around its hit, or the environment.
 vec3 rayRadiance(SdfHit h, vec3 dir) {
     if (!h.hit) return environmentRadiance(dir);
-    // Half a cell into the surface: the level set runs through the centres of the outermost surface
-    // voxels, so the trilinear lookup mixes them with the voxels behind (occupied, or empty and
-    // divided out below) rather than with the empty ones in front of the surface. The radiance of
-    // the cascade the hit was found in, whose voxels made its field.
+    // Half a cell out of the surface, towards the ray: the level set runs through the centres of the
+    // outermost surface voxels, so the trilinear lookup there mixes them only with the empty voxels
+    // in front (divided out below), never with the voxels behind. Behind a wall thinner than two
+    // cells lies its other face, lit from outside: half a cell in, a ray from a closed room saw half
+    // of its sunlit outside (issue #39, builtin:building's closed room). The radiance of the cascade
+    // the hit was found in, whose voxels made its field. A slab voxel there (a wall thinner than a
+    // cell; the voxel whose centre the hit lies on, a quarter cell in against rounding) shows the
+    // ray the face it meets.
     SdfVolume vol = sdfCascadeVolume(cascades(), h.cascade);
-    vec3 p = h.position - h.normal * 0.5 * sdfCellSize(vol);
+    vec3 p = h.position + h.normal * 0.5 * sdfCellSize(vol);
     vec4 r = textureLod(s_radiance, sdfLayerCoord(vol, h.cascade, u_cascadeCount, p), 0.0);
+    vec3 inside = (h.position - h.normal * 0.25 * sdfCellSize(vol) - vol.origin) / sdfCellSize(vol);
+    ivec3 v = clamp(ivec3(floor(inside)), ivec3(0), ivec3(u_resolution - 1));
+    r = voxelLightSeen(r, texelFetch(s_sides, v + ivec3(0, 0, h.cascade * u_resolution), 0), dir);
     return r.a > 1e-3 ? r.rgb / r.a : vec3(0.0);
 }
 

@@ -587,6 +587,30 @@ TEST(SdfGi, ThinWallLeakIsMeasured) {
     }
 }
 
+// Issue #39 at building scale: builtin:building's closed room (camera 2) has no opening, so any light
+// there leaked through its 20 cm walls and roof, thinner than a cell of every cascade but the finest.
+// The leak number is its mean radiance over the sunlit corridor's (camera 0); the path tracer's is
+// 0. Per-pixel rays (sdf.diffuse=rays), this method's own gather: a hit reads the voxel light half a
+// cell towards the ray, never the wall's far face, and a slab voxel shows the face the ray meets
+// (shaders/gi/sdf/sdf_trace.comp). The probe gather (the default) is the probe field's.
+TEST(SdfGi, BuildingClosedRoomLeaksLittle) {
+    const Scene scene = makeBuiltinScene("building");
+    double mean[2] = {0.0, 0.0};
+    for (int i = 0; i < 2; ++i) {
+        RenderSettings s = base("sdf");
+        s.width = s.height = 64;
+        s.camera = i == 0 ? 0 : 2;
+        setSdf(s, "diffuse", "rays");
+        const SdfImages img = renderSdf(scene, s);
+        ASSERT_TRUE(allFinite(img.frame));
+        mean[i] = meanRadiance(img.frame);
+    }
+    const double leak = mean[1] / mean[0];
+    std::printf("SDF-TABLE building diffuse=rays: closed room / corridor = %.4f (corridor %.4f)\n", leak, mean[0]);
+    EXPECT_GT(mean[0], 0.0);
+    EXPECT_LT(leak, 0.05);
+}
+
 // An open floor under a uniform sky of radiance 1 and no light: every ray misses and reads the
 // sky, so indirect.diffuse is 1 over the floor (the furnace idea for the contract's E / pi).
 TEST(SdfGi, OpenFloorSeesTheSky) {
