@@ -304,12 +304,13 @@ void ProbeField::trace(const Frame& frame, const FieldSettings& s, int batch) {
     setUpdateBlock(s);
     bindTracer();
     // Units 2.. (probe_trace.comp): the radiance, then each cascade's albedo (its own texture each,
-    // for the multi-bounce term; unused units repeat the last cascade's).
+    // for the multi-bounce term; unused units repeat the last cascade's), then the slab voxels' sides.
     constexpr int kUnits = 1 + kMaxGrids;
-    GLuint textures[kUnits] = {volume_->radianceTexture()};
+    GLuint textures[kUnits + 1] = {volume_->radianceTexture()};
     for (int c = 0; c < kMaxGrids; ++c)
         textures[1 + c] = volume_->grid(std::min(c, volume_->cascadeCount() - 1)).albedo.id();
-    glBindTextures(2, kUnits, textures);
+    textures[kUnits] = volume_->sidesTexture();  // read by texelFetch: no sampler
+    glBindTextures(2, kUnits + 1, textures);
     glBindSamplers(0, 2, nullptr);
     GLuint samplers[kUnits];
     std::fill_n(samplers, kUnits, sampler_.id());

@@ -224,6 +224,10 @@ GLuint SceneVolume::radianceTexture() const {
     return layout_.count > 1 ? radianceAtlas_.id() : cascades_[0].radiance->radiance().id();
 }
 
+GLuint SceneVolume::sidesTexture() const {
+    return layout_.count > 1 ? sidesAtlas_.id() : cascades_[0].radiance->sides().id();
+}
+
 void SceneVolume::bind() const {
     glBindSamplers(kVolumeDistanceUnit, kVolumeEmissionUnit + 1 - kVolumeDistanceUnit, nullptr);
     if (layout_.count > 1) {

@@ -102,6 +102,7 @@ public:
     // Level 0 of the light: the cascade's own texture with one cascade, else one layer per cascade
     // stacked along z (like the field's layers), so a tracer switches cascade by a coordinate.
     GLuint radianceTexture() const;
+    GLuint sidesTexture() const;     // its slab voxels' sides (VoxelRadiance::sides), laid out the same
     const DistanceField& field() const;  // throws unless request.distanceField
     bool hasField() const { return field_ != nullptr; }
     const OccupancyHierarchy& occupancy() const;  // throws unless request.occupancy

@@ -8,6 +8,7 @@
 // blend steps, and their count to the change buffer (what a ray budget is checked against).
 #include "probes/probe_common.glsl"
 #include "environment.glsl"
+#include "volume/voxel_faces.glsl"
 #ifdef PROBE_TRACER_OCCUPANCY
 #include "volume/hdda.glsl"
 #else
@@ -28,6 +29,7 @@ layout(binding = 3) uniform sampler3D s_voxelAlbedo0;
 layout(binding = 4) uniform sampler3D s_voxelAlbedo1;
 layout(binding = 5) uniform sampler3D s_voxelAlbedo2;
 layout(binding = 6) uniform sampler3D s_voxelAlbedo3;
+layout(binding = 7) uniform sampler3D s_voxelSides;  // slab voxels' sides, a layer per cascade like the radiance
 
 layout(location = UP_RAYS) uniform int u_rays;
 layout(location = UP_SLOT_OFFSET) uniform int u_slotOffset;  // several dispatches past the work-group limit
@@ -52,6 +54,13 @@ vec3 voxelAlbedo(int cascade, vec3 uvw) {
     }
 }
 
+// The light a ray along `dir` sees of voxel `v` of `cascade` whose level-0 light is `light`: a slab
+// (a wall thinner than a voxel) shows the face the ray meets, not its other face's sunlit mean.
+vec3 lightSeen(vec4 light, int cascade, ivec3 v, vec3 dir) {
+    v = clamp(v, ivec3(0), ivec3(u_sdfResolution - 1));
+    return unpremultiply(voxelLightSeen(light, texelFetch(s_voxelSides, v + ivec3(0, 0, cascade * u_sdfResolution), 0), dir));
+}
+
 // The multi-bounce term: the probes' own irradiance at the hit times its albedo.
 vec3 bounceLight(vec3 P, vec3 N, vec3 albedo) {
     if (u_update.multiBounce == 0) return vec3(0.0);
@@ -74,7 +83,8 @@ vec4 traceRay(vec3 origin, vec3 dir) {
     HddaCascades cs = HddaCascades(u_cascades, u_cascadeCount, u_sdfResolution);
     HddaHit h = hddaTraceCascades(cs, origin, dir, 0.0, u_update.missDistance, 4096);
     if (!h.hit) return vec4(environmentRadiance(dir), u_update.missDistance);
-    vec3 radiance = unpremultiply(texelFetch(s_voxelRadiance, h.voxel + ivec3(0, 0, h.cascade * u_sdfResolution), 0));
+    vec3 radiance = lightSeen(texelFetch(s_voxelRadiance, h.voxel + ivec3(0, 0, h.cascade * u_sdfResolution), 0),
+                              h.cascade, h.voxel, dir);
     radiance += bounceLight(h.position, h.normal, voxelAlbedoAt(h.cascade, h.voxel));
     return vec4(finiteOrZero(radiance), max(h.t, 0.0));
 }
@@ -86,7 +96,10 @@ vec4 traceRay(vec3 origin, vec3 dir) {
     SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, dir, params);
     if (!h.hit) return vec4(environmentRadiance(dir), u_update.missDistance);
     SdfVolume vol = sdfCascadeVolume(cs, h.cascade);
-    vec3 radiance = unpremultiply(textureLod(s_voxelRadiance, sdfLayerCoord(vol, h.cascade, cs.count, h.position), 0.0));
+    // The voxel whose centre the hit lies on, a quarter cell in against rounding (as sdf_trace.comp).
+    ivec3 v = ivec3(floor((h.position - h.normal * 0.25 * sdfCellSize(vol) - vol.origin) / sdfCellSize(vol)));
+    vec3 radiance = lightSeen(textureLod(s_voxelRadiance, sdfLayerCoord(vol, h.cascade, cs.count, h.position), 0.0),
+                              h.cascade, v, dir);
     radiance += bounceLight(h.position, h.normal, voxelAlbedo(h.cascade, (h.position - vol.origin) / vol.size));
     return vec4(finiteOrZero(radiance), max(h.t, 0.0));
 }
