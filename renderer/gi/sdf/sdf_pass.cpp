@@ -57,7 +57,7 @@ std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Sc
     const SdfGiSettings s = sdfParams().read("sdf", settings.params);
     const int scale = s.tracePixels();
     const VolumeRequest request = sdfVolumeRequest(s);
-    const CascadeLayout layout = volumeLayout(scene.bounds, request);
+    const CascadeLayout layout = volumeLayout(sceneAirBounds(scene), request);  // as SceneServices fits it
     const int count = layout.count;
     const uint64_t traced = uint64_t(tracedSize(settings.width, scale)) * uint64_t(tracedSize(settings.height, scale));
     const uint64_t full = uint64_t(settings.width) * uint64_t(settings.height);
