@@ -12,6 +12,7 @@
 
 #include "gi/method.h"
 #include "gi/memory_budget.h"
+#include "metrics.h"
 #include "render_test_util.h"
 #include "volume/distance_field.h"
 #include "volume/voxelizer.h"
@@ -34,6 +35,16 @@ constexpr double kScaleTolerance = 0.01;
 // to several cells and straddle the wall (measured 0.20): 0.5. The others trace rays against the
 // distance field or the occupancy, or weight probes by visibility (measured 0.00 to 0.02): 0.1.
 double leakBound(const std::string& method) { return method == "vct" ? 0.5 : 0.1; }
+
+// The leak number at building scale (builtin:building's closed room over its corridor, whole
+// frames; 0 in truth). Issue #39 asks 0.01 of every method; none meets it yet. What each measured
+// (32x32, 24 frames) bounds it, so what was gained is kept: vct's slab voxels (0.70 before), the
+// probe rays' slab faces (probes 0.45 before); sdf's probe gather and hddagi leak through their
+// coarse cascades' probes, which sit outside the building's 20 cm walls (renderer/gi/hddagi/README.md).
+double buildingLeakBound(const std::string& method) {
+    static const std::map<std::string, double> bound{{"vct", 0.6}, {"sdf", 0.5}, {"probes", 0.25}, {"hddagi", 0.5}};
+    return bound.count(method) ? bound.at(method) : 0.01;
+}
 
 // Build-time bytes a method's estimate counts (the budget asks for the peak) that the ledger no
 // longer holds after the first frame: the voxelizer's sums and the jump flood's nearest-seed images.
@@ -306,6 +317,26 @@ TEST_P(MethodContract, ThinWallLeakIsBounded) {
         EXPECT_GT(lit, 0.0) << name;
         EXPECT_LT(leak, leakBound(m.name)) << name;
     }
+}
+
+// builtin:building: a room with no opening in a 32 m wing of 20 cm walls, under sun and sky. No
+// light reaches it, so all it shows leaked through a wall or the roof: its mean radiance over the
+// sunlit corridor's (Scene::leakCameras, bench's leak column).
+TEST_P(MethodContract, ClosedRoomInABuildingStaysDark) {
+    const GiMethod& m = method();
+    const Scene building = makeBuiltinScene("building");
+    RenderSettings s = contractSettings(m.name);
+    s.width = s.height = 32;  // what costs is the volume and the probes, not the pixels
+    s.camera = building.leakCameras.lit;
+    const Frame lit = render(building, s, 24);
+    if (!lit.outputs.count("indirect.diffuse")) GTEST_SKIP() << m.name << " writes no indirect light";
+    s.camera = building.leakCameras.dark;
+    const Frame dark = render(building, s, 24);
+    ASSERT_TRUE(everyImageFinite(lit) && everyImageFinite(dark));
+    const double litMean = meanRadiance(lit.image), leak = meanRadiance(dark.image) / litMean;
+    std::printf("CONTRACT %s building leak number: %.4f (corridor mean %.4f)\n", m.name.c_str(), leak, litMean);
+    ASSERT_GT(litMean, 0.0);
+    EXPECT_LE(leak, buildingLeakBound(m.name));
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryMethod, MethodContract, ::testing::ValuesIn(registeredMethods()), [](const auto& info) {
