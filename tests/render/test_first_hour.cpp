@@ -86,7 +86,7 @@ TEST(FirstHour, DocumentedAliasesDoNotWarn) {
 TEST(FirstHour, HelpListsEveryBuiltinScene) {
     const CliResult help = runCli("render --help");
     ASSERT_EQ(help.status, 0);
-    for (const char* name : {"cornell", "cornell-area", "brdf-gallery", "leak", "room", "mirror", "atrium"})
+    for (const char* name : {"cornell", "cornell-area", "brdf-gallery", "leak", "room", "mirror", "atrium", "building"})
         EXPECT_NE(help.out.find(name), std::string::npos) << name;
 }
 

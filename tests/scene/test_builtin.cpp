@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <set>
 
 #include "test_util.h"
@@ -132,7 +134,50 @@ void compareWithReference(const std::string& builtin, const std::string& ref) {
 
 TEST(Builtin, Names) {
     EXPECT_EQ(gis::builtinSceneNames(), (std::vector<std::string>{"cornell", "cornell-area", "brdf-gallery", "leak", "room",
-                                                                  "mirror", "atrium"}));
+                                                                  "mirror", "atrium", "building"}));
+}
+
+namespace {
+
+// Distance along the unit ray to the nearest triangle (Moller & Trumbore 1997), or infinity.
+float nearestHit(const std::vector<Tri>& tris, glm::vec3 o, glm::vec3 d) {
+    float best = std::numeric_limits<float>::infinity();
+    for (const Tri& tri : tris) {
+        const glm::vec3 e1 = tri.v[1] - tri.v[0], e2 = tri.v[2] - tri.v[0], p = glm::cross(d, e2);
+        const float det = glm::dot(e1, p);
+        if (std::abs(det) < 1e-12f) continue;
+        const glm::vec3 s = o - tri.v[0];
+        const float u = glm::dot(s, p) / det;
+        const glm::vec3 q = glm::cross(s, e1);
+        const float v = glm::dot(d, q) / det, hit = glm::dot(e2, q) / det;
+        if (u >= 0.0f && v >= 0.0f && u + v <= 1.0f && hit > 0.0f) best = std::min(best, hit);
+    }
+    return best;
+}
+
+}  // namespace
+
+// builtin:building's leak cameras: the dark one stands in a room no ray leaves (every direction
+// meets a wall, the floor or the roof within the room's diagonal), the lit one sees the sky
+// through a window. What the leak number divides is then light that came through a wall.
+TEST(Builtin, BuildingsClosedRoomHasNoOpening) {
+    const gis::Scene s = gis::makeBuiltinScene("building");
+    ASSERT_GE(s.leakCameras.dark, 0);
+    ASSERT_GE(s.leakCameras.lit, 0);
+    const std::vector<Tri> tris = worldTriangles(s);
+    auto escapes = [&](int camera, float reach) {
+        const glm::vec3 eye(s.cameras[size_t(camera)].cameraToWorld[3]);
+        int escaped = 0;
+        constexpr int kRays = 2000;  // a spherical Fibonacci set
+        for (int i = 0; i < kRays; ++i) {
+            const float z = 1.0f - 2.0f * (float(i) + 0.5f) / kRays, r = std::sqrt(1.0f - z * z);
+            const float phi = 2.39996323f * float(i);
+            escaped += nearestHit(tris, eye, glm::vec3(r * std::cos(phi), z, r * std::sin(phi))) > reach;
+        }
+        return escaped;
+    };
+    EXPECT_EQ(escapes(s.leakCameras.dark, 15.0f), 0) << "the closed room has an opening";
+    EXPECT_GT(escapes(s.leakCameras.lit, 100.0f), 0) << "the corridor sees no sky";
 }
 
 // The BRDF chart: 6 rows x 10 spheres, each row one BRDF combination (per-material override), the
