@@ -31,7 +31,7 @@ compare() {  # TEST REF -> "PSNR / mean ratio"
 ratio() { "$bin" diff "$1" "$2" | awk '/^mean ratio/ {printf "%.3f", $3}'; }
 
 atrium=(--scene "$shared/reference/scenes/atrium/atrium.gltf" --background 0.35,0.45,0.6)
-models=("$shared/gltf/BoxTextured/glTF/BoxTextured.gltf" "$shared/gltf/BoxVertexColors/glTF/BoxVertexColors.gltf"
+models=("$shared/gltf/BoxTextured/glTF/BoxTextured.gltf" "$shared/gltf/BoxVertexColors/BoxVertexColors.glb"
         "$shared/gltf/DamagedHelmet/glTF/DamagedHelmet.gltf" "$shared/gltf/VulkanSamplesAssets/teapot.gltf"
         "$shared/gltf/VulkanSamplesAssets/torusknot.gltf")
 for i in "${!models[@]}"; do render "$tmp/model$i-pt.exr" --scene "${models[$i]}" --gi pathtrace --size 128x128; done
