@@ -66,6 +66,20 @@ Light pointLight(const std::string& name, glm::vec3 position, float intensity) {
     return l;
 }
 
+// The outdoor scenes' sun: irradiance 3 of a warm white, from `elevation` degrees above the
+// horizon and `azimuth` degrees from +Z towards +X.
+Light sunLight(float elevationDegrees, float azimuthDegrees) {
+    Light sun;
+    sun.name = "Sun";
+    sun.type = LightType::Directional;
+    sun.intensity = 3.0f;
+    sun.color = glm::vec3(1.0f, 0.95f, 0.85f);
+    const float elevation = elevationDegrees * kPi / 180.0f, azimuth = azimuthDegrees * kPi / 180.0f;
+    sun.direction = -glm::vec3(std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
+                               std::cos(elevation) * std::cos(azimuth));
+    return sun;
+}
+
 }  // namespace
 
 SceneOptions parseSceneOptions(const std::string& spec, const std::string& query) {
@@ -255,15 +269,7 @@ Scene makeAtriumScene(const SceneOptions& o) {
         if (z > 0) m = glm::rotate(m, kPi, glm::vec3(0, 1, 0));
         s.draws.push_back(DrawItem{clothMesh[i % 3], m});
     }
-    Light sun;
-    sun.name = "Sun";
-    sun.type = LightType::Directional;
-    sun.intensity = 3.0f;
-    sun.color = glm::vec3(1.0f, 0.95f, 0.85f);
-    const float elevation = 55.0f * kPi / 180.0f, azimuth = 35.0f * kPi / 180.0f;
-    sun.direction = -glm::vec3(std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
-                               std::cos(elevation) * std::cos(azimuth));
-    s.lights.push_back(sun);
+    s.lights.push_back(sunLight(55.0f, 35.0f));
     s.cameras.push_back(lookAt("Courtyard", {-6.0f, 1.7f, 4.5f}, {6.0f, 3.5f, -5.0f}, 60.0f));
     finalizeScene(s);
     return s;
@@ -312,17 +318,9 @@ Scene makeBuildingScene(const SceneOptions& o) {
         from = x + 0.6f;
     }
     addBox(s, plaster, {from, 0, zi}, {X, H, zi + w});
-    Light sun;
-    sun.name = "Sun";
-    sun.type = LightType::Directional;
-    sun.intensity = 3.0f;
-    sun.color = glm::vec3(1.0f, 0.95f, 0.85f);
     // From the south-east, 45 degrees up: through a window head it lands within 2.2 m of the south
     // wall, short of the inner wall, so no sun enters the hall.
-    const float elevation = 45.0f * kPi / 180.0f, azimuth = 25.0f * kPi / 180.0f;
-    sun.direction = -glm::vec3(std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
-                               std::cos(elevation) * std::cos(azimuth));
-    s.lights.push_back(sun);
+    s.lights.push_back(sunLight(45.0f, 25.0f));
     s.cameras.push_back(lookAt("Corridor", {-14.5f, 1.6f, 3.6f}, {6.0f, 1.1f, 4.4f}, 60.0f));
     s.cameras.push_back(lookAt("Hall", {-15.0f, 1.7f, -4.8f}, {2.0f, 0.9f, 1.0f}, 60.0f));
     s.cameras.push_back(lookAt("Closed", {5.0f, 1.7f, -4.8f}, {15.0f, 0.9f, 1.5f}, 60.0f));
