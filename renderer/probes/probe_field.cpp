@@ -170,7 +170,7 @@ void ProbeField::setGridUniforms(GLuint p) const {
     glProgramUniform1i(p, UP_STORAGE, int(built_.storage));
 }
 
-// Only the programs that trace the volume (classify, trace) declare these: setting a location a
+// Only the programs that trace the volume (classify, trace, the screen gather) declare these: setting a location a
 // program does not have is GL_INVALID_OPERATION. The field's layers lie where the voxels do.
 void ProbeField::setFieldUniforms(GLuint p) const {
     glm::vec4 cascades[kMaxGrids]{};
@@ -185,10 +185,12 @@ void ProbeField::setFieldUniforms(GLuint p) const {
 }
 
 void ProbeField::bindTracer() const {
-    if (built_.tracer == Tracer::Occupancy)
+    if (built_.tracer == Tracer::Occupancy) {
         volume_->occupancy().bind();
-    else
-        volume_->field().bind(0);
+        return;
+    }
+    volume_->field().bind(0);
+    glBindSamplers(0, 2, nullptr);  // the field's own filtering
 }
 
 void ProbeField::bindBuffers() const {
@@ -205,6 +207,12 @@ void ProbeField::bindForGather(GLuint program) const {
     bindBuffers();
 }
 
+void ProbeField::bindForScreenGather(GLuint program) const {
+    bindForGather(program);
+    setFieldUniforms(program);
+    bindTracer();
+}
+
 void ProbeField::classify(int grid) {
     const GLuint p = classifyProgram_.id();
     glUseProgram(p);
@@ -213,7 +221,6 @@ void ProbeField::classify(int grid) {
     glProgramUniform1i(p, UP_MODE, built_.relocate ? 0 : 1);
     glProgramUniform1i(p, UP_CLASSIFY_GRID, grid);
     bindTracer();
-    glBindSamplers(0, 2, nullptr);
     bindBuffers();
     gl::dispatchCompute(gl::groupsFor(count_, 64), 1, 1, "probes: classify");
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -311,7 +318,6 @@ void ProbeField::trace(const Frame& frame, const FieldSettings& s, int batch) {
         textures[1 + c] = volume_->grid(std::min(c, volume_->cascadeCount() - 1)).albedo.id();
     textures[kUnits] = volume_->sidesTexture();  // read by texelFetch: no sampler
     glBindTextures(2, kUnits + 1, textures);
-    glBindSamplers(0, 2, nullptr);
     GLuint samplers[kUnits];
     std::fill_n(samplers, kUnits, sampler_.id());
     glBindSamplers(2, kUnits, samplers);

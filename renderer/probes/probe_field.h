@@ -88,6 +88,10 @@ public:
 
     // Grid uniforms and the probe buffers for a gather program (shaders/probes/probe_common.glsl).
     void bindForGather(GLuint program) const;
+    // And the volume its tracer walks, for a gather that tests each probe's path to the surface
+    // (shaders/probes/probe_tracer.glsl: the screen gather built for tracer()).
+    void bindForScreenGather(GLuint program) const;
+    Tracer tracer() const { return built_.tracer; }
     const std::vector<ProbeGrid>& grids() const { return grids_; }
     int count() const { return count_; }
     const FieldSettings& built() const { return built_; }

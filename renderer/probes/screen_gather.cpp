@@ -9,24 +9,31 @@ namespace gis::probes {
 namespace {
 const ProgramDesc kGatherProgram{"probe_screen_gather", {"probes/screen_gather.comp"}, {}};
 const ProgramDesc kUpsampleProgram{"probe_screen_upsample", {"probes/screen_upsample.comp"}, {}};
+const ProgramDesc kGatherOccupancyProgram{"probe_screen_gather_occupancy", {"probes/screen_gather.comp"},
+                                          {{"PROBE_TRACER_OCCUPANCY", "1"}}};
+const ProgramDesc kUpsampleOccupancyProgram{"probe_screen_upsample_occupancy", {"probes/screen_upsample.comp"},
+                                            {{"PROBE_TRACER_OCCUPANCY", "1"}}};
 
 int reduced(int pixels, int scale) { return (pixels + scale - 1) / scale; }
 }  // namespace
 
-std::vector<ProgramDesc> ScreenGather::programs() { return {kGatherProgram, kUpsampleProgram}; }
+std::vector<ProgramDesc> ScreenGather::programs() {
+    return {kGatherProgram, kUpsampleProgram, kGatherOccupancyProgram, kUpsampleOccupancyProgram};
+}
 
 int64_t ScreenGather::bytes(int width, int height, int scale) {
     const int64_t full = int64_t(width) * height * 8;
     return full + (scale > 1 ? int64_t(reduced(width, scale)) * reduced(height, scale) * 8 : 0);
 }
 
-ScreenGather::ScreenGather(const gl::MemoryScope& scope, int width, int height, int scale)
+ScreenGather::ScreenGather(const gl::MemoryScope& scope, int width, int height, int scale, Tracer tracer)
     : scale_(scale), block_(scope) {
+    const bool occupancy = tracer == Tracer::Occupancy;
     diffuse_ = gl::createTexture2D(scope, GL_RGBA16F, width, height);
-    gatherProgram_ = buildProgram(kGatherProgram);
+    gatherProgram_ = buildProgram(occupancy ? kGatherOccupancyProgram : kGatherProgram);
     if (scale > 1) {
         gathered_ = gl::createTexture2D(scope, GL_RGBA16F, reduced(width, scale), reduced(height, scale));
-        upsampleProgram_ = buildProgram(kUpsampleProgram);
+        upsampleProgram_ = buildProgram(occupancy ? kUpsampleOccupancyProgram : kUpsampleProgram);
     }
 }
 
@@ -34,7 +41,7 @@ void ScreenGather::dispatch(const Frame& frame, const ProbeField& field, const G
                             const gl::Texture& out) const {
     const GLuint gbuffer[2] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal)};
     glUseProgram(p);
-    field.bindForGather(p);
+    field.bindForScreenGather(p);
     glProgramUniformMatrix4fv(p, UP_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UP_CAMERA_POS, 1, &frame.camera.position[0]);
     ProbeGatherBlock b;

@@ -8,11 +8,10 @@
 #include "frame.h"
 #include "gl/gl.h"
 #include "gl/shader.h"
+#include "probes/probe_field.h"
 #include "probes/probe_uniforms.h"
 
 namespace gis::probes {
-
-class ProbeField;
 
 struct GatherSettings {
     float normalBias = 0.1f;   // along the normal and towards the eye, x the smallest probe step
@@ -22,8 +21,9 @@ struct GatherSettings {
 
 class ScreenGather {
 public:
-    // `scale`: full-resolution pixels per gathered pixel along each axis (1, 2 or 4).
-    ScreenGather(const gl::MemoryScope& scope, int width, int height, int scale);
+    // `scale`: full-resolution pixels per gathered pixel along each axis (1, 2 or 4); `tracer`: the
+    // volume the gathered field walks, through which each probe's path to a pixel is tested.
+    ScreenGather(const gl::MemoryScope& scope, int width, int height, int scale, Tracer tracer);
     // Gathers `field` for the frame's G-buffer into result().
     void run(const Frame& frame, const ProbeField& field, const GatherSettings& s);
     const gl::Texture& result() const { return diffuse_; }

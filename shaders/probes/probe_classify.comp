@@ -7,17 +7,9 @@
 // the state of grid u_classifyGrid's probes (offset, 0 active / 1 relocated / 2 off) and clears
 // their update counts.
 #include "probes/probe_common.glsl"
-#ifdef PROBE_TRACER_OCCUPANCY
-#include "volume/hdda.glsl"
-#else
-#include "volume/sdf_march.glsl"
-layout(binding = 0) uniform sampler3D s_distance;
-#endif
+#include "probes/probe_tracer.glsl"
 
 layout(local_size_x = 64) in;
-layout(location = UP_CASCADES) uniform vec4 u_cascades[SDF_MAX_CASCADES];
-layout(location = UP_CASCADE_COUNT) uniform int u_cascadeCount;
-layout(location = UP_SDF_RESOLUTION) uniform int u_sdfResolution;
 layout(location = UP_MODE) uniform int u_mode;
 layout(location = UP_CLASSIFY_GRID) uniform int u_classifyGrid;
 

@@ -167,10 +167,19 @@ int gridAt(vec3 P) {
     return u_gridCount - 1;
 }
 
+#ifdef PROBE_SEGMENT_TEST
+// Defined by the program that sets PROBE_SEGMENT_TEST, through its own tracer: whether the straight
+// path from surface point P (normal N) to a probe at `probe` crosses no geometry.
+bool probeSeesPoint(vec3 probe, vec3 P, vec3 N);
+#endif
+
 // Indirect diffuse (E / pi) at P (already biased off the surface) with normal N from grid g:
 // trilinear over the 8 surrounding probes, weighted by how the normal faces each (wrapped, as in
 // DDGI, so probes behind still count a little) and, with `visibility`, by Chebyshev's bound on the
 // probe seeing P (from its distance moments: light behind a wall the probe saw closer than P is cut).
+// Moments averaged over a texel cannot cut a probe behind a wall much thinner than the probe step
+// seen at a slant (issue #39: a closed room lit through its 20 cm walls), so with PROBE_SEGMENT_TEST
+// a probe the tracer finds no straight path to counts nothing; with none, P gets none of the grid's light.
 vec3 sampleProbeGrid(int g, vec3 P, vec3 N, bool visibility) {
     ivec3 counts = u_gridCounts[g];
     int first = gridBase(g);
@@ -194,6 +203,9 @@ vec3 sampleProbeGrid(int g, vec3 P, vec3 N, bool visibility) {
         float facing = 0.5 * (dot(dir, N) + 1.0);
         w *= facing * facing + 0.2;
         if (visibility) {
+#ifdef PROBE_SEGMENT_TEST
+            if (!probeSeesPoint(P + toProbe, P, N)) continue;
+#endif
             vec2 m = probeDistanceMoments(i, -dir);
             if (d > m.x) {
                 float variance = abs(m.y - m.x * m.x);

@@ -6,23 +6,19 @@
 // emission as the volume injected them) plus, for multi-bounce, the probes' own irradiance there
 // times the voxel albedo; a miss sees the sky. One workgroup per probe; rays go to the ray buffer for the
 // blend steps, and their count to the change buffer (what a ray budget is checked against).
+#define PROBE_SEGMENT_TEST 1
 #include "probes/probe_common.glsl"
+#include "probes/probe_tracer.glsl"
 #include "environment.glsl"
 #include "volume/voxel_faces.glsl"
-#ifdef PROBE_TRACER_OCCUPANCY
-#include "volume/hdda.glsl"
-#else
-#include "volume/sdf_march.glsl"
+#ifndef PROBE_TRACER_OCCUPANCY
+#include "volume/sdf_hit_light.glsl"
 #endif
 
 layout(local_size_x = 64) in;
 layout(std430, binding = 3) writeonly buffer Rays { vec4 rayResults[]; };
 layout(std430, binding = 4) buffer Change { uint u_change; uint u_rayCount; };
 layout(std430, binding = 5) readonly buffer Batch { int u_batch[]; };
-#ifndef PROBE_TRACER_OCCUPANCY
-layout(binding = 0) uniform sampler3D s_distance;
-layout(binding = 1) uniform sampler3D s_coarse;
-#endif
 layout(binding = 2) uniform sampler3D s_voxelRadiance;  // premultiplied by occupancy (a); a layer per cascade
 // Albedo (a = occupancy) of each cascade, its own texture each.
 layout(binding = 3) uniform sampler3D s_voxelAlbedo0;
@@ -34,9 +30,6 @@ layout(binding = 7) uniform sampler3D s_voxelSides;  // slab voxels' sides, a la
 layout(location = UP_RAYS) uniform int u_rays;
 layout(location = UP_SLOT_OFFSET) uniform int u_slotOffset;  // several dispatches past the work-group limit
 layout(location = UP_ROTATION) uniform mat3 u_rotation;
-layout(location = UP_CASCADES) uniform vec4 u_cascades[SDF_MAX_CASCADES];
-layout(location = UP_CASCADE_COUNT) uniform int u_cascadeCount;
-layout(location = UP_SDF_RESOLUTION) uniform int u_sdfResolution;
 ProbeUpdateBlock u_update;
 
 shared uint s_traced;
@@ -54,13 +47,6 @@ vec3 voxelAlbedo(int cascade, vec3 uvw) {
     }
 }
 
-// The light a ray along `dir` sees of voxel `v` of `cascade` whose level-0 light is `light`: a slab
-// (a wall thinner than a voxel) shows the face the ray meets, not its other face's sunlit mean.
-vec3 lightSeen(vec4 light, int cascade, ivec3 v, vec3 dir) {
-    v = clamp(v, ivec3(0), ivec3(u_sdfResolution - 1));
-    return unpremultiply(voxelLightSeen(light, texelFetch(s_voxelSides, v + ivec3(0, 0, cascade * u_sdfResolution), 0), dir));
-}
-
 // The multi-bounce term: the probes' own irradiance at the hit times its albedo.
 vec3 bounceLight(vec3 P, vec3 N, vec3 albedo) {
     if (u_update.multiBounce == 0) return vec3(0.0);
@@ -69,6 +55,13 @@ vec3 bounceLight(vec3 P, vec3 N, vec3 albedo) {
 }
 
 #ifdef PROBE_TRACER_OCCUPANCY
+// The light a ray along `dir` sees of voxel `v` of `cascade` whose level-0 light is `light`: a slab
+// (a wall thinner than a voxel) shows the face the ray meets, not its other face's sunlit mean.
+vec3 lightSeen(vec4 light, int cascade, ivec3 v, vec3 dir) {
+    v = clamp(v, ivec3(0), ivec3(u_sdfResolution - 1));
+    return unpremultiply(voxelLightSeen(light, texelFetch(s_voxelSides, v + ivec3(0, 0, cascade * u_sdfResolution), 0), dir));
+}
+
 // The hit voxel's own light and albedo (one voxel, no filtering: its neighbours may be empty).
 vec3 voxelAlbedoAt(int cascade, ivec3 v) {
     switch (cascade) {
@@ -96,10 +89,7 @@ vec4 traceRay(vec3 origin, vec3 dir) {
     SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, dir, params);
     if (!h.hit) return vec4(environmentRadiance(dir), u_update.missDistance);
     SdfVolume vol = sdfCascadeVolume(cs, h.cascade);
-    // The voxel whose centre the hit lies on, a quarter cell in against rounding (as sdf_trace.comp).
-    ivec3 v = ivec3(floor((h.position - h.normal * 0.25 * sdfCellSize(vol) - vol.origin) / sdfCellSize(vol)));
-    vec3 radiance = lightSeen(textureLod(s_voxelRadiance, sdfLayerCoord(vol, h.cascade, cs.count, h.position), 0.0),
-                              h.cascade, v, dir);
+    vec3 radiance = sdfHitLight(s_voxelRadiance, s_voxelSides, cs, h, dir);
     radiance += bounceLight(h.position, h.normal, voxelAlbedo(h.cascade, (h.position - vol.origin) / vol.size));
     return vec4(finiteOrZero(radiance), max(h.t, 0.0));
 }

@@ -5,7 +5,9 @@
 // not shadow the very surface they were measured on. Shared by the gather at the traced
 // resolution (screen_gather.comp) and the upsampling's fall-back (screen_upsample.comp).
 #include "gbuffer_layout.glsl"
+#define PROBE_SEGMENT_TEST 1
 #include "probes/probe_common.glsl"
+#include "probes/probe_tracer.glsl"
 
 layout(binding = 4) uniform sampler2D s_depth;
 layout(binding = 5) uniform sampler2D s_gbufNormal;

@@ -240,3 +240,14 @@ SdfHit sdfMarchCascades(sampler3D field, sampler3D coarse, SdfCascades cs, vec3 
     }
     return result;
 }
+
+// Whether the segment from `from` to `to` crosses no surface: a march along it that stops `endGap`
+// short of `to`. Each cascade's hit threshold is in its own cells, so a wall the field resolves
+// stops it wherever the wall lies.
+bool sdfSegmentClear(sampler3D field, sampler3D coarse, SdfCascades cs, vec3 from, vec3 to, float endGap, int maxSteps) {
+    float len = length(to - from);
+    if (len <= endGap) return true;
+    SdfMarchParams p = sdfDefaultParams(len - endGap);
+    p.maxSteps = maxSteps;
+    return !sdfMarchCascades(field, coarse, cs, from, (to - from) / len, p).hit;
+}

@@ -71,7 +71,8 @@ HddagiPass::HddagiPass(SceneServices& services, const RenderSettings& settings)
     sceneBounds_ = services.bounds();
     field_ = std::make_unique<probes::ProbeField>(
         scope, *volume_, probes::cascadeProbeGrids(*volume_, sceneBounds_, built_.probeSpacing), built_.field());
-    gather_ = std::make_unique<probes::ScreenGather>(scope, settings.width, settings.height, built_.gatherScale());
+    gather_ = std::make_unique<probes::ScreenGather>(scope, settings.width, settings.height, built_.gatherScale(),
+                                                     field_->tracer());
     debugProgram_ = buildProgram(kDebugProgram);
 }
 

@@ -53,7 +53,7 @@ ProbesPass::ProbesPass(SceneServices& services, const RenderSettings& settings)
     // The volume was fitted to the scene's air (SceneServices::airBounds): the grid gets a layer in it.
     const ProbeGrid grid = fitProbeGrid(services.bounds(), built_.spacing, services.airBounds());
     field_ = std::make_unique<ProbeField>(scope, *volume_, std::vector<ProbeGrid>{grid}, built_.field());
-    gather_ = std::make_unique<ScreenGather>(scope, settings.width, settings.height, built_.gatherPixels());
+    gather_ = std::make_unique<ScreenGather>(scope, settings.width, settings.height, built_.gatherPixels(), field_->tracer());
 }
 
 // The scene volume rebuilds what the change touched (a light edit relights it alone); the probes

@@ -12,7 +12,8 @@
 #include "environment.glsl"
 #include "gi/sdf/sdf_gbuffer.glsl"
 #include "volume/sdf_march.glsl"
-#include "volume/voxel_faces.glsl"
+#include "volume/sdf_hit_light.glsl"
+#define PROBE_SEGMENT_TEST 1
 #include "probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -39,6 +40,14 @@ layout(location = UG_AO) uniform float u_aoStrength;
 
 SdfCascades cascades() { return SdfCascades(u_cascades, u_cascadeCount, u_resolution); }
 
+// The probe gather's visibility through this field (probes/probe_common.glsl), from where the
+// diffuse rays start off the surface.
+bool probeSeesPoint(vec3 probe, vec3 P, vec3 N) {
+    SdfCascades cs = cascades();
+    float cell = sdfCellSize(sdfCascadeVolume(cs, sdfCascadeAt(cs, P)));
+    return sdfSegmentClear(s_distance, s_coarse, cs, P + N * (u_march.offset * cell), probe, 0.5 * cell, 32);
+}
+
 SdfMarchParams marchParams() {
     // The coarsest cascade is the scene's cube: no ray inside it goes further than its diagonal.
     SdfMarchParams p = sdfDefaultParams(u_cascades[u_cascadeCount - 1].w * 1.7320508);
@@ -50,22 +59,7 @@ SdfMarchParams marchParams() {
 
 // What a ray along `dir` brings back: the voxel radiance around its hit, or the environment.
 vec3 rayRadiance(SdfHit h, vec3 dir) {
-    if (!h.hit) return environmentRadiance(dir);
-    // Half a cell out of the surface, towards the ray: the level set runs through the centres of the
-    // outermost surface voxels, so the trilinear lookup there mixes them only with the empty voxels
-    // in front (divided out below), never with the voxels behind. Behind a wall thinner than two
-    // cells lies its other face, lit from outside: half a cell in, a ray from a closed room saw half
-    // of its sunlit outside (issue #39, builtin:building's closed room). The radiance of the cascade
-    // the hit was found in, whose voxels made its field. A slab voxel there (a wall thinner than a
-    // cell; the voxel whose centre the hit lies on, a quarter cell in against rounding) shows the
-    // ray the face it meets.
-    SdfVolume vol = sdfCascadeVolume(cascades(), h.cascade);
-    vec3 p = h.position + h.normal * 0.5 * sdfCellSize(vol);
-    vec4 r = textureLod(s_radiance, sdfLayerCoord(vol, h.cascade, u_cascadeCount, p), 0.0);
-    vec3 inside = (h.position - h.normal * 0.25 * sdfCellSize(vol) - vol.origin) / sdfCellSize(vol);
-    ivec3 v = clamp(ivec3(floor(inside)), ivec3(0), ivec3(u_resolution - 1));
-    r = voxelLightSeen(r, texelFetch(s_sides, v + ivec3(0, 0, h.cascade * u_resolution), 0), dir);
-    return r.a > 1e-3 ? r.rgb / r.a : vec3(0.0);
+    return h.hit ? sdfHitLight(s_radiance, s_sides, cascades(), h, dir) : environmentRadiance(dir);
 }
 
 // Occlusion closer than the rays' start offset, which the rays step over: the field a little way

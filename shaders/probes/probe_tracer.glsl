@@ -1,0 +1,34 @@
+// The volume a probe field walks (renderer/probes/probe_field.h, Tracer): the distance field's
+// cascades (volume/sdf_march.glsl), or with PROBE_TRACER_OCCUPANCY the occupancy hierarchy
+// (volume/hdda.glsl). Its inputs, as ProbeField::bindTracer and setFieldUniforms bind them, are
+// declared here once for every program that traces: classify, trace and the screen gather.
+#ifdef PROBE_TRACER_OCCUPANCY
+#include "volume/hdda.glsl"
+#else
+#include "volume/sdf_march.glsl"
+layout(binding = 0) uniform sampler3D s_distance;
+layout(binding = 1) uniform sampler3D s_coarse;
+#endif
+
+layout(location = UP_CASCADES) uniform vec4 u_cascades[SDF_MAX_CASCADES];
+layout(location = UP_CASCADE_COUNT) uniform int u_cascadeCount;
+layout(location = UP_SDF_RESOLUTION) uniform int u_sdfResolution;
+
+// The gathers' visibility (probe_common.glsl, PROBE_SEGMENT_TEST): the straight path to the probe
+// from a cell and a half off the surface, past the surface's own voxels and level set, stopping
+// half a cell short of the probe (a relocated probe sits near a surface).
+bool probeSeesPoint(vec3 probe, vec3 P, vec3 N) {
+#ifdef PROBE_TRACER_OCCUPANCY
+    HddaCascades cs = HddaCascades(u_cascades, u_cascadeCount, u_sdfResolution);
+    int c = hddaCascadeAt(cs, P);
+    float cell = cs.volumes[c].w / float(cs.resolution);
+    vec3 from = P + N * (1.5 * cell);
+    float len = length(probe - from);
+    if (len <= 0.5 * cell) return true;
+    return !hddaTraceCascades(cs, from, (probe - from) / len, 0.0, len - 0.5 * cell, 256).hit;
+#else
+    SdfCascades cs = SdfCascades(u_cascades, u_cascadeCount, u_sdfResolution);
+    float cell = sdfCellSize(sdfCascadeVolume(cs, sdfCascadeAt(cs, P)));
+    return sdfSegmentClear(s_distance, s_coarse, cs, P + N * (1.5 * cell), probe, 0.5 * cell, 32);
+#endif
+}
