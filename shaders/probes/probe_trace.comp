@@ -47,9 +47,12 @@ vec3 voxelAlbedo(int cascade, vec3 uvw) {
     }
 }
 
-// The multi-bounce term: the probes' own irradiance at the hit times its albedo.
-vec3 bounceLight(vec3 P, vec3 N, vec3 albedo) {
+// The multi-bounce term: the probes' own irradiance at the hit times its albedo, on the side the
+// ray `dir` came from (a field's gradient at a wall thinner than a cell may point out of the room,
+// and the gather's path test would then start behind the wall).
+vec3 bounceLight(vec3 P, vec3 N, vec3 dir, vec3 albedo) {
     if (u_update.multiBounce == 0) return vec3(0.0);
+    N = faceforward(N, dir, N);
     float bias = u_update.normalBias * gridMinStep(gridAt(P));
     return albedo * sampleProbes(P + N * bias, N, u_update.visibility != 0);
 }
@@ -78,7 +81,7 @@ vec4 traceRay(vec3 origin, vec3 dir) {
     if (!h.hit) return vec4(environmentRadiance(dir), u_update.missDistance);
     vec3 radiance = lightSeen(texelFetch(s_voxelRadiance, h.voxel + ivec3(0, 0, h.cascade * u_sdfResolution), 0),
                               h.cascade, h.voxel, dir);
-    radiance += bounceLight(h.position, h.normal, voxelAlbedoAt(h.cascade, h.voxel));
+    radiance += bounceLight(h.position, h.normal, dir, voxelAlbedoAt(h.cascade, h.voxel));
     return vec4(finiteOrZero(radiance), max(h.t, 0.0));
 }
 #else
@@ -90,7 +93,7 @@ vec4 traceRay(vec3 origin, vec3 dir) {
     if (!h.hit) return vec4(environmentRadiance(dir), u_update.missDistance);
     SdfVolume vol = sdfCascadeVolume(cs, h.cascade);
     vec3 radiance = sdfHitLight(s_voxelRadiance, s_voxelSides, cs, h, dir);
-    radiance += bounceLight(h.position, h.normal, voxelAlbedo(h.cascade, (h.position - vol.origin) / vol.size));
+    radiance += bounceLight(h.position, h.normal, dir, voxelAlbedo(h.cascade, (h.position - vol.origin) / vol.size));
     return vec4(finiteOrZero(radiance), max(h.t, 0.0));
 }
 #endif

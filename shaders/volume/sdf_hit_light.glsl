@@ -10,12 +10,14 @@
 // outside: half a cell in, a ray from a closed room saw half of its sunlit outside (issue #39,
 // builtin:building's closed room). The radiance is the cascade's the hit was found in, whose voxels
 // made its field. A slab voxel there (a wall thinner than a cell; the voxel whose centre the hit
-// lies on, a quarter cell in against rounding) shows the ray the face it meets.
+// lies on, a quarter cell in against rounding) shows the ray the face it meets. "Out" is the side
+// the ray came from: at a wall thinner than a cell the field's gradient may point the other way.
 vec3 sdfHitLight(sampler3D radiance, sampler3D sides, SdfCascades cs, SdfHit h, vec3 dir) {
     SdfVolume vol = sdfCascadeVolume(cs, h.cascade);
     float cell = sdfCellSize(vol);
-    vec4 r = textureLod(radiance, sdfLayerCoord(vol, h.cascade, cs.count, h.position + h.normal * 0.5 * cell), 0.0);
-    vec3 inside = (h.position - h.normal * 0.25 * cell - vol.origin) / cell;
+    vec3 front = faceforward(h.normal, dir, h.normal);
+    vec4 r = textureLod(radiance, sdfLayerCoord(vol, h.cascade, cs.count, h.position + front * 0.5 * cell), 0.0);
+    vec3 inside = (h.position - front * 0.25 * cell - vol.origin) / cell;
     ivec3 v = clamp(ivec3(floor(inside)), ivec3(0), ivec3(cs.resolution - 1));
     r = voxelLightSeen(r, texelFetch(sides, v + ivec3(0, 0, h.cascade * cs.resolution), 0), dir);
     return r.a > 1e-3 ? r.rgb / r.a : vec3(0.0);
