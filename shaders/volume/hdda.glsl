@@ -88,6 +88,21 @@ int hddaCascadeAt(HddaCascades cs, vec3 p) {
     return cs.count - 1;
 }
 
+// Whether p lies in an occupied voxel of the finest cascade holding it.
+bool hddaOccupied(HddaCascades cs, vec3 p) {
+    int c = hddaCascadeAt(cs, p);
+    vec3 v = (p - cs.volumes[c].xyz) / (cs.volumes[c].w / float(cs.resolution));
+    if (any(lessThan(v, vec3(0.0))) || any(greaterThanEqual(v, vec3(cs.resolution)))) return false;
+    return occVoxel(c, ivec3(v), cs.resolution);
+}
+
+// p, or the first point in a free voxel on the way along unit `dir` (half `cell` steps, at most
+// four cells): where a walk from p can start without stopping in the voxel it starts in.
+vec3 hddaFreeAlong(HddaCascades cs, vec3 p, vec3 dir, float cell) {
+    for (int i = 0; i < 8 && hddaOccupied(cs, p); ++i) p += dir * (0.5 * cell);
+    return p;
+}
+
 // From `origin` along unit `dir`, skipping `startOffset` (world), at most `maxDistance`: in the
 // finest cascade that holds the start, handed to the next coarser one where it leaves (cascades
 // nest, and a coarser cascade's voxels hold everything the finer one did). A ray that starts

@@ -241,6 +241,19 @@ SdfHit sdfMarchCascades(sampler3D field, sampler3D coarse, SdfCascades cs, vec3 
     return result;
 }
 
+// p moved along the field's gradient until it is `clearance` from every surface the field holds
+// (a few Newton steps on the distance; a point already that far stays where it is).
+vec3 sdfPushOut(sampler3D field, SdfCascades cs, vec3 p, float clearance) {
+    for (int i = 0; i < 3; ++i) {
+        int c = sdfCascadeAt(cs, p);
+        SdfVolume vol = sdfCascadeVolume(cs, c);
+        float d = sdfSample(field, vol, c, p);
+        if (d >= clearance) break;
+        p += sdfNormal(field, vol, c, p) * (clearance - d);
+    }
+    return p;
+}
+
 // Whether the segment from `from` to `to` crosses no surface: a march along it that stops `endGap`
 // short of `to`. Each cascade's hit threshold is in its own cells, so a wall the field resolves
 // stops it wherever the wall lies.

@@ -37,14 +37,16 @@ constexpr double kScaleTolerance = 0.01;
 double leakBound(const std::string& method) { return method == "vct" ? 0.5 : 0.1; }
 
 // The leak number at building scale (builtin:building's closed room over its corridor, whole
-// frames; 0 in truth). Issue #39 asks 0.01 of every method; none meets it yet. What each measured
-// (32x32, 24 frames) bounds it, so what was gained is kept: vct's slab voxels (0.70 before; what
-// remains comes through voxels that are no slab, where the roof meets a wall, and the cones'
-// trilinear footprints), the
-// probe rays' slab faces (probes 0.45 before); sdf's probe gather and hddagi leak through their
-// coarse cascades' probes, which sit outside the building's 20 cm walls (renderer/gi/hddagi/README.md).
+// frames; 0 in truth). Issue #39 asks 0.01 of every method; hddagi meets it: its probe gather walks
+// each probe's straight path to the pixel through the occupancy. What the others measured (32x32,
+// 24 frames) bounds them, so what was gained is kept: vct's slab voxels (0.70 before; what remains
+// comes through voxels that are no slab, where the roof meets a wall, and the cones' trilinear
+// footprints); sdf's probe gather, now path-tested through the distance field (0.5 before), leaks
+// where a coarse cascade's field does not stop the path through a 20 cm wall; the probe method's
+// rays inside the closed room still bring back light from the walls' sunlit far faces (0.45 before
+// its slab faces; the path test left it where it was).
 double buildingLeakBound(const std::string& method) {
-    static const std::map<std::string, double> bound{{"vct", 0.6}, {"sdf", 0.5}, {"probes", 0.25}, {"hddagi", 0.5}};
+    static const std::map<std::string, double> bound{{"vct", 0.6}, {"sdf", 0.15}, {"probes", 0.25}, {"hddagi", 0.01}};
     return bound.count(method) ? bound.at(method) : 0.01;
 }
 
