@@ -119,6 +119,9 @@ MeshCharts chartsOf(const MeshInput& m, const std::vector<uint32_t>& kept, doubl
             return mc;
         }
         out.fileUvsRejected = "TEXCOORD_1 not used: " + check.reason;
+        if (kept.size() * 3 != m.indices.size())
+            out.fileUvsRejected += " (triangle numbers count only the " + std::to_string(kept.size()) +
+                                   " triangles with area)";
     }
     mc.charts = detail::makeCharts(m.positions, m.indices, kept, p.chartAngleDegrees, p.texelsPerMetre);
     return mc;

@@ -53,7 +53,7 @@ public:
         if (angleDegrees < kMinAngleDegrees) {
             for (uint32_t t : subset) {
                 out.emplace_back();
-                flatten({t}, 1.0, out.back());
+                flatten({t}, -1.0, out.back());  // one face: no angle to hold, nothing to fold
             }
             return;
         }

@@ -71,7 +71,8 @@ TEST(UvCheck, LargeGridPassesAndOneMovedVertexFails) {
 }
 
 // End to end: a glTF whose second UV set is valid is used as laid out (one rectangle of the
-// atlas); one whose charts overlap is rejected with the reason and the atlas is generated.
+// atlas per instance: two draws of one mesh are lit differently); one whose charts overlap is
+// rejected with the reason and the atlas is generated.
 TEST(UvCheck, FileUvsFromGltfUsedOrRejected) {
     gistest::GltfBuilder g;
     const int pos = g.addVec3({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}});
@@ -79,17 +80,21 @@ TEST(UvCheck, FileUvsFromGltfUsedOrRejected) {
                                   {0.8f, 0.1f}, {0.8f, 0.45f}};
     const int tc1 = g.addVec2(uv1);
     const int ind = g.addIndices(kTwoQuadIndices);
-    g.addMeshNode(g.addMesh({{"attributes", {{"POSITION", pos}, {"TEXCOORD_1", tc1}}}, {"indices", ind}}));
+    const int mesh = g.addMesh({{"attributes", {{"POSITION", pos}, {"TEXCOORD_1", tc1}}}, {"indices", ind}});
+    g.addMeshNode(mesh);
+    g.addMeshNode(mesh, {{"translation", {0, 0, 3}}});
     gis::Scene scene = g.load();
+    ASSERT_EQ(scene.primitives.size(), 1u);
     gis::lightmap::AtlasParams p;
     p.texelsPerMetre = 32.0f;
     gis::lightmap::Atlas a = gis::lightmap::buildAtlas(gis::lightmap::meshesFromScene(scene), p);
-    ASSERT_EQ(a.meshes.size(), 1u);
-    EXPECT_TRUE(a.meshes[0].fileUvs);
+    ASSERT_EQ(a.meshes.size(), 2u);
+    EXPECT_TRUE(a.meshes[0].fileUvs && a.meshes[1].fileUvs);
     EXPECT_EQ(a.meshes[0].fileUvsRejected, "");
-    ASSERT_EQ(a.charts.size(), 1u);
+    ASSERT_EQ(a.charts.size(), 2u);
     EXPECT_TRUE(a.charts[0].fromFile);
     EXPECT_NEAR(a.charts[0].width, 64, 1);  // 2 m wide at 32 texels per metre
+    EXPECT_NEAR(a.charts[1].width, 64, 1);
     lmtest::expectValidLayout(a);
 
     scene.primitives[0].uv1[4] = {0.3f, 0.1f};  // the second quad folds back over the first
