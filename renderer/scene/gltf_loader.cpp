@@ -1277,6 +1277,12 @@ Primitive Loader::convertPrimitive(int meshIndex, int primIndex, const std::stri
             if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
             p.vertices[i].uv = uv;
         }
+    // Kept raw: the lightmap's chart check rejects non-finite values with its reason, where a
+    // silent 0 (as TEXCOORD_0 gets) would pass as a collapsed chart.
+    if (readAttr("TEXCOORD_1", {TINYGLTF_TYPE_VEC2}, true)) {
+        p.uv1.resize(nv);
+        for (size_t i = 0; i < nv; ++i) p.uv1[i] = glm::vec2(data.values[i]);
+    }
     if (readAttr("COLOR_0", {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, true)) {
         const bool rgb = model_.accessors[size_t(attr("COLOR_0"))].type == TINYGLTF_TYPE_VEC3;
         for (size_t i = 0; i < nv; ++i) {

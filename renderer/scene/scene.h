@@ -73,6 +73,9 @@ struct Primitive {
     std::vector<uint32_t> indices;  // 3 per triangle, every index < vertices.size()
     int material = -1;              // index into Scene::materials; -1 = default material
     Aabb bounds;                    // object space
+    // TEXCOORD_1, one per vertex: the file's lightmap UVs (renderer/lightmap/ checks their charts
+    // before using them). Empty when the file has none; values kept as read, NaN included.
+    std::vector<glm::vec2> uv1;
 };
 
 struct DrawItem {

@@ -363,6 +363,28 @@ TEST(Loader, AttributesColorsAndNormalizedUvs) {
     EXPECT_NE(errorOf([&] { g.load(); }).find("TEXCOORD_0"), std::string::npos);
 }
 
+// The lightmap (renderer/lightmap/) needs the file's second UV set per primitive, aligned with
+// its vertices; a file without one leaves uv1 empty so the atlas is generated instead.
+TEST(Loader, SecondUvSetIsKeptPerPrimitive) {
+    GltfBuilder g;
+    const int pos = g.addVec3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const int tc0 = g.addVec2({{0, 0}, {1, 0}, {0, 1}});
+    const int tc1 = g.addVec2({{0.25f, 0.5f}, {0.75f, 0.5f}, {0.25f, 1.0f}});
+    g.addMeshNode(g.addMesh({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", tc0}, {"TEXCOORD_1", tc1}}}}));
+    g.addMeshNode(g.addMesh({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", tc0}}}}));
+    Scene s = g.load();
+    ASSERT_EQ(s.primitives.size(), 2u);
+    const auto& p = s.primitives[0];
+    ASSERT_EQ(p.uv1.size(), p.vertices.size());
+    EXPECT_EQ(p.uv1[0], glm::vec2(0.25f, 0.5f));
+    EXPECT_EQ(p.uv1[2], glm::vec2(0.25f, 1.0f));
+    EXPECT_EQ(p.vertices[1].uv, glm::vec2(1, 0));  // TEXCOORD_0 is not replaced by the second set
+    EXPECT_TRUE(s.primitives[1].uv1.empty());
+    // Same element-count rule as every attribute.
+    g.j["accessors"][tc1]["count"] = 2;
+    EXPECT_NE(errorOf([&] { g.load(); }).find("TEXCOORD_1"), std::string::npos);
+}
+
 TEST(Loader, LightsAndCamerasFromNodes) {
     GltfBuilder g;
     g.j["extensionsUsed"] = {"KHR_lights_punctual"};
