@@ -416,6 +416,11 @@ void environmentControls(PanelContext& ctx) {
     if (ImGui::Button("Load")) act(ctx, PanelAction::withText(PanelAction::SetEnvironment, ctx.environmentPath));
     ImGui::SameLine();
     if (ImGui::Button("Off")) act(ctx, PanelAction::of(PanelAction::SetEnvironment));
+    if (s.environment.empty()) return;  // a rotation needs a map to turn
+    float degrees = s.environmentRotation;
+    if (ImGui::DragFloat("Rotation (deg, about +Y)", &degrees, 1.0f, -kMaxEnvironmentRotation, kMaxEnvironmentRotation,
+                         "%.1f", ImGuiSliderFlags_AlwaysClamp))
+        act(ctx, PanelAction::withValue(PanelAction::SetEnvironmentRotation, degrees));
 }
 
 // The heatmap's metric and the path tracer's own controls, apart from the methods' bounce
