@@ -417,9 +417,10 @@ void environmentControls(PanelContext& ctx) {
     ImGui::SameLine();
     if (ImGui::Button("Off")) act(ctx, PanelAction::of(PanelAction::SetEnvironment));
     if (s.environment.empty()) return;  // a rotation needs a map to turn
+    // Applied on Enter or a step, not while dragging: a new rotation rebuilds the renderers
+    // (requiresRebuild), as a new map does.
     float degrees = s.environmentRotation;
-    if (ImGui::DragFloat("Rotation (deg, about +Y)", &degrees, 1.0f, -kMaxEnvironmentRotation, kMaxEnvironmentRotation,
-                         "%.1f", ImGuiSliderFlags_AlwaysClamp))
+    if (ImGui::InputFloat("Rotation (deg, +Y)", &degrees, 15.0f, 90.0f, "%.1f", ImGuiInputTextFlags_EnterReturnsTrue))
         act(ctx, PanelAction::withValue(PanelAction::SetEnvironmentRotation, degrees));
 }
 

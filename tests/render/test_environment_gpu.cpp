@@ -417,6 +417,17 @@ TEST(EnvironmentGpu, BadFilesAreOneLineThroughTheCli) {
         EXPECT_EQ(countLines(r.err), 1) << r.err;
         EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
     }
+    // bench and view check the rotation as render does, before any job runs or window opens.
+    for (const std::string& cmd : {std::string("bench --plan --scenes builtin:cornell --methods none"),
+                                   std::string("view --scene builtin:cornell")})
+        for (const Case& c : {Case{" --environment-rotation 90", "there is none"},
+                              Case{" --environment " + kSky + " --environment-rotation nan", "must be a finite number"}}) {
+            SCOPED_TRACE(cmd + c.args);
+            const CliResult r = runCli(cmd + c.args);
+            EXPECT_NE(r.status, 0);
+            EXPECT_EQ(countLines(r.err), 1) << r.err;
+            EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+        }
     for (const std::string& fine : std::vector<std::string>{"--environment " + kSky, "--environment " + kSky + " --environment-rotation -90",
                                     "--environment-rotation 0"}) {
         const CliResult ok = runCli("render " + fine + out);
