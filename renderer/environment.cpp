@@ -185,16 +185,25 @@ EnvironmentMap constantEnvironment(glm::vec3 radiance) {
 }
 
 glm::vec2 directionToEquirect(glm::vec3 d) {
-    const float phi = std::atan2(d.x, -d.z);
-    const float u = phi / (2.0f * kPi) + 0.5f;
+    const float u = std::atan2(d.z, d.x) / (2.0f * kPi) + 0.5f;
     const float v = std::acos(std::clamp(d.y / std::max(glm::length(d), 1e-30f), -1.0f, 1.0f)) / kPi;
     return {u >= 1.0f ? 0.0f : u, std::min(v, std::nextafter(1.0f, 0.0f))};
 }
 
-glm::vec3 equirectToDirection(glm::vec2 uv) {
-    const float phi = (uv.x - 0.5f) * 2.0f * kPi, theta = uv.y * kPi;
-    const float s = std::sin(theta);
-    return {s * std::sin(phi), std::cos(theta), -s * std::cos(phi)};
+namespace {
+// The direction at column coordinate u and height cosTheta: equirectToDirection's, and the
+// sampler's, which draws cos(theta) uniformly inside a texel.
+glm::vec3 equirectDirection(float u, float cosTheta) {
+    const float phi = (u - 0.5f) * 2.0f * kPi, s = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
+    return {s * std::cos(phi), cosTheta, s * std::sin(phi)};
+}
+}  // namespace
+
+glm::vec3 equirectToDirection(glm::vec2 uv) { return equirectDirection(uv.x, std::cos(uv.y * kPi)); }
+
+glm::vec3 environmentToMap(glm::vec3 d, float rotationDegrees) {
+    const float a = rotationDegrees * (kPi / 180.0f), c = std::cos(a), s = std::sin(a);
+    return {c * d.x - s * d.z, d.y, s * d.x + c * d.z};
 }
 
 float texelSolidAngle(const EnvironmentMap& map, int y) { return wedgeSolidAngle(y, map.width, map.height); }
@@ -294,10 +303,8 @@ EnvironmentSampler::Sample EnvironmentSampler::sample(glm::vec2 u) const {
     const float fx = std::clamp(row > 0.0f ? (u.x * row - cdf[x]) / std::max(cdf[x + 1] - cdf[x], 1e-30f) : 0.5f,
                                 kEdge, 1.0f - kEdge);
     const float fy = std::clamp(row > 0.0f ? rowTarget / row : 0.5f, kEdge, 1.0f - kEdge);
-    const float phi = ((float(x) + fx) / float(width_) - 0.5f) * 2.0f * kPi;
     const float c0 = std::cos(kPi * float(y) / float(height_)), c1 = std::cos(kPi * float(y + 1) / float(height_));
-    const float cosTheta = c0 + (c1 - c0) * fy, sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
-    const glm::vec3 d(sinTheta * std::sin(phi), cosTheta, -sinTheta * std::cos(phi));
+    const glm::vec3 d = equirectDirection((float(x) + fx) / float(width_), c0 + (c1 - c0) * fy);
     return {d, texelWeight_[size_t(y) * size_t(width_) + size_t(x)] / total_ / wedgeSolidAngle(y, width_, height_)};
 }
 

@@ -34,14 +34,22 @@ EnvironmentMap constantEnvironment(glm::vec3 radiance);
 // decoded); nothing for a file loadEnvironmentMap would refuse, which then says why.
 std::optional<glm::ivec2> environmentMapSize(const std::string& path);
 
-// +Y up; u = 0.5 looks down -Z (the glTF camera's default view), u grows towards +X.
+// Blender's mapping (its Environment Texture node with the default mapping), in glTF axes, so a
+// map lights a scene here as it does a Cycles render of the same file: +Y up, the top row the
+// zenith, u = 0.5 + atan2(z, x) / 2pi (the centre column looks down +X, u = 0.25 down -Z),
+// v = acos(y) / pi. Directions in the map's own frame: environmentToMap turns a world one into it.
+// shaders/environment.glsl declares the same mapping for the GPU.
 glm::vec2 directionToEquirect(glm::vec3 direction);  // [0, 1)^2
-glm::vec3 equirectToDirection(glm::vec2 uv);
+glm::vec3 equirectToDirection(glm::vec2 uv);         // its inverse (unit length)
+// The map turned by `rotationDegrees` about +Y, right-handed (90 turns its centre column from +X
+// to -Z): the direction in the map's frame that world direction `d` reads (--environment-rotation).
+glm::vec3 environmentToMap(glm::vec3 d, float rotationDegrees);
 float texelSolidAngle(const EnvironmentMap& map, int y);  // steradians of any texel in row y
-glm::vec3 sampleNearest(const EnvironmentMap& map, glm::vec3 direction);
+glm::vec3 sampleNearest(const EnvironmentMap& map, glm::vec3 direction);  // in the map's frame
 
 // Radiance projected onto the real spherical harmonics up to band 2 (Y00, Y1-1, Y10, Y11, Y2-2,
-// Y2-1, Y20, Y21, Y22), integrated over every texel's solid angle.
+// Y2-1, Y20, Y21, Y22), integrated over every texel's solid angle; in the map's frame, as are the
+// sampler's directions (a rotated map's readers turn their directions into it).
 using Sh9 = std::array<glm::vec3, 9>;
 Sh9 projectSh9(const EnvironmentMap& map);
 std::array<float, 9> shBasis(glm::vec3 direction);

@@ -181,8 +181,9 @@ void GpuEnvironment::buildBrdfTable() {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-void GpuEnvironment::bind(glm::vec3 constant) {
+void GpuEnvironment::bind(glm::vec3 constant, float rotationDegrees) {
     if (values_.isMap == 0) values_.constant = glm::vec4(constant, 0.0f);
+    values_.rotation = glm::radians(rotationDegrees);
     block_.set(values_);
     glBindTextureUnit(kEnvironmentBrdfUnit, brdf_.id());
     glBindTextureUnit(kEnvironmentRadianceUnit, radiance_.id());

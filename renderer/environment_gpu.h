@@ -34,6 +34,7 @@ namespace gis {
     M(int, isMap)              /* 0: the constant above is the environment */ \
     M(float, cdfTotal)         /* the sampling CDFs' total weight */ \
     M(float, texelSteradians)  /* the mean solid angle of a level-0 texel */ \
+    M(float, rotation)         /* radians the map is turned about +Y (environmentToMap in environment.h) */ \
     A(vec4, sh, 9)             /* rgb: the radiance's SH9 projection (environment.h's basis order) */
 GIS_UNIFORM_BLOCK(EnvironmentBlock, 11, GIS_ENVIRONMENT_BLOCK)
 
@@ -61,8 +62,10 @@ public:
     GpuEnvironment& operator=(const GpuEnvironment&) = delete;
 
     // Binds the block and the textures; `constant` is the radiance of a constant environment
-    // (ignored for a map).
-    void bind(glm::vec3 constant);
+    // (ignored for a map), `rotationDegrees` turns a map about +Y (RenderSettings::environmentRotation).
+    // The textures stay in the map's frame, so a rotation needs no rebuild: the prefiltered chain
+    // is a lobe symmetric about each texel's direction, and the CDFs' pdf is per steradian.
+    void bind(glm::vec3 constant, float rotationDegrees);
 
     static std::vector<ProgramDesc> programs();
     // GPU bytes a width x height map's textures take (the memory budget's estimate, before loading),

@@ -15,7 +15,7 @@ void Frame::checkDeclared(const std::string& name, bool write) const {
                 "', which its " + (write ? "outputs()" : "inputs()") + " do not declare");
 }
 
-void Frame::bindEnvironment() const { environment->bind(background()); }
+void Frame::bindEnvironment() const { environment->bind(background(), settings.environmentRotation); }
 
 void Frame::put(const std::string& name, const gl::Texture& t) {
     checkDeclared(name, true);

@@ -1,5 +1,8 @@
 #include "render_settings.h"
 
+#include <cmath>
+#include <cstdio>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "error.h"
@@ -38,6 +41,29 @@ void checkEnvironmentChoice(bool background, const std::string& environment, boo
         throw Error("background and environment both set the radiance of rays that leave the scene: give one of them");
     if (ambient && !environment.empty())
         throw Error("--ambient has no effect with --environment (the map lights what the ambient would): drop one");
+}
+
+namespace {
+std::string rotationText(float degrees) {
+    char text[64];
+    std::snprintf(text, sizeof text, "environment rotation %g degrees", double(degrees));
+    return text;
+}
+}  // namespace
+
+void checkEnvironmentRotationValue(float degrees) {
+    if (std::isfinite(degrees) && std::abs(degrees) <= kMaxEnvironmentRotation) return;
+    char range[64];
+    std::snprintf(range, sizeof range, ": it must be a finite number in [-%g, %g]", double(kMaxEnvironmentRotation),
+                  double(kMaxEnvironmentRotation));
+    throw Error(rotationText(degrees) + range);
+}
+
+void checkEnvironmentRotation(float degrees, const std::string& environment) {
+    checkEnvironmentRotationValue(degrees);
+    if (degrees != 0.0f && environment.empty())
+        throw Error(rotationText(degrees) + " turns an environment map, and there is none: give one (--environment "
+                                            "FILE.hdr) or leave the rotation at 0");
 }
 
 CameraMatrices cameraMatrices(const Scene& scene, int cameraIndex, float aspect) {

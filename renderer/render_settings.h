@@ -47,6 +47,9 @@ struct RenderSettings {
     // An equirectangular Radiance .hdr lighting the scene from afar (renderer/environment_gpu.h);
     // empty: the constant `background` (or the scene's own). The two are exclusive.
     std::string environment;
+    // Degrees the map is turned about +Y (environment.h's environmentToMap): finite, in
+    // [-kMaxEnvironmentRotation, kMaxEnvironmentRotation], and zero without a map.
+    float environmentRotation = 0.0f;
     int samplesPerFrame = 1;           // progressive methods: samples added by each renderFrame()
     uint32_t seed = 0;                 // fixed: the same settings give the same image
     std::string view = "final";        // "final" or a debug view some pass offers (Renderer::views)
@@ -56,6 +59,14 @@ struct RenderSettings {
 // viewer's `background` with `environment`) is one error, the same for every caller; and a map is
 // the baseline's ambient, so an ambient given beside it (`ambient`) would be ignored: refused too.
 void checkEnvironmentChoice(bool background, const std::string& environment, bool ambient = false);
+// A turn past a whole one in either direction is no use, and a magnitude that large loses the
+// degrees' precision in float.
+constexpr float kMaxEnvironmentRotation = 360.0f;
+// --environment-rotation (the settings key environment_rotation, the viewer's line) as every caller
+// checks it: a finite number within the range, and non-zero only with a map to turn.
+void checkEnvironmentRotation(float degrees, const std::string& environment);
+// The number alone, where the map is not known yet (a script line before its context).
+void checkEnvironmentRotationValue(float degrees);
 
 struct CameraMatrices {
     glm::mat4 view{1.0f}, proj{1.0f}, viewProj{1.0f}, invViewProj{1.0f};

@@ -55,6 +55,7 @@ void checkSettings(const RenderSettings& s) {
             if (!std::isfinite((*s.background)[c]) || (*s.background)[c] < 0.0f)
                 throw Error("background radiance must be finite and non-negative");
     checkEnvironmentChoice(s.background.has_value(), s.environment);
+    checkEnvironmentRotation(s.environmentRotation, s.environment);
     range("samples per frame", s.samplesPerFrame, 1, 1 << 16);
     const GiMethod& method = giMethod(s.gi);
     if (method.physicalBrdfsOnly && !physicallyBased(s.diffuse, s.specular))
@@ -297,7 +298,8 @@ void Renderer::invalidate(Changes changes) {
 bool requiresRebuild(const RenderSettings& a, const RenderSettings& b) {
     if (a.width != b.width || a.height != b.height || a.gi != b.gi || a.shadowMapSize != b.shadowMapSize ||
         a.shadowCubeSize != b.shadowCubeSize || a.shadows != b.shadows || a.hdr32 != b.hdr32 || a.seed != b.seed ||
-        a.view != b.view || a.samplesPerFrame != b.samplesPerFrame || a.environment != b.environment)
+        a.view != b.view || a.samplesPerFrame != b.samplesPerFrame || a.environment != b.environment ||
+        a.environmentRotation != b.environmentRotation)
         return true;
     // A rebuild parameter of the method or of a shared table whose value differs (defaults included).
     auto differs = [&a, &b](const std::string& prefix, const std::vector<ParamDesc>& rows) {

@@ -89,8 +89,9 @@ private:
 };
 
 // True when going from `built` to `wanted` needs a new Renderer: anything baked into GPU
-// resources differs (size, method, a rebuild parameter, shadows ...). Camera, BRDFs, tone mapping,
-// exposure, ambient and live parameters never do.
+// resources differs (size, method, a rebuild parameter, shadows ...), or the environment map or its
+// rotation (what every method has accumulated of the sky: probes, voxel light, the path tracer's
+// samples). Camera, BRDFs, tone mapping, exposure, ambient and live parameters never do.
 bool requiresRebuild(const RenderSettings& built, const RenderSettings& wanted);
 
 // shaders/brdf_probe.comp: evaluates brdf.glsl at a list of points (the BRDF tests use it).

@@ -5,8 +5,8 @@ equirectangular Radiance .hdr (flat RGBE scanlines, which every .hdr reader take
 The sun stands where the default sun of `--lighting auto` does (elevation 50 deg, azimuth 30 deg
 from +Z towards +X; renderer/scene/scene.h), its disc of angular radius SUN_RADIUS_DEG carries
 the same irradiance at normal incidence (3), and the sky's mean radiance over the upper hemisphere
-is close to the default sky's 0.4. Mapping: +Y up, u = 0.5 looks down -Z, u grows towards +X
-(renderer/environment.h).
+is close to the default sky's 0.4. Mapping: Blender's (renderer/environment.h): +Y up, the top row
+the zenith, u = 0.5 + atan2(z, x) / 2pi (the centre column looks down +X).
 
     python3 scripts/make_sky_hdr.py assets/environments/sky_sun.hdr [WIDTH]
 """
@@ -22,7 +22,7 @@ SUN_RADIUS_DEG = 3.0
 def direction(u, v):
     phi, theta = (u - 0.5) * 2.0 * math.pi, v * math.pi
     s = math.sin(theta)
-    return (s * math.sin(phi), math.cos(theta), -s * math.cos(phi))
+    return (s * math.cos(phi), math.cos(theta), s * math.sin(phi))
 
 
 def sky(d, sun):

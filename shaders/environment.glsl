@@ -1,6 +1,8 @@
 // The radiance of rays that leave the scene (renderer/environment_gpu.h): a constant or an
 // equirectangular map, bound once for every program by GpuEnvironment::bind(). The mapping is
-// renderer/environment.h's: +Y up, u = 0.5 looks down -Z, u grows towards +X, rows from +Y down.
+// renderer/environment.h's, Blender's: +Y up, the top row the zenith, the centre column down +X
+// (u = 0.5 + atan2(z, x) / 2pi), the map turned by u_env.rotation about +Y. Every reader goes
+// through environmentUv or environmentDirectionAt, so the rotation turns them all alike.
 // A constant environment returns its value exactly, with no texture read, so a constant is the
 // same bits whichever function reads it.
 #ifndef ENVIRONMENT_GLSL
@@ -15,17 +17,31 @@ layout(binding = ENV_CONDITIONAL_UNIT) uniform sampler2D s_envConditional;  // (
 
 bool environmentIsMap() { return u_env.isMap != 0; }
 
-vec2 environmentUv(vec3 d) {
-    d = normalize(d);
-    float u = atan(d.x, -d.z) * (0.5 * INV_PI) + 0.5;
-    return vec2(u, acos(clamp(d.y, -1.0, 1.0)) * INV_PI);
+// World direction d in the map's frame (environment.cpp's environmentToMap), and back.
+vec3 environmentToMap(vec3 d) {
+    float c = cos(u_env.rotation), s = sin(u_env.rotation);
+    return vec3(c * d.x - s * d.z, d.y, s * d.x + c * d.z);
 }
 
-vec3 environmentDirection(vec2 uv) {
-    float phi = (uv.x - 0.5) * 2.0 * PI, theta = uv.y * PI;
-    float s = sin(theta);
-    return vec3(s * sin(phi), cos(theta), -s * cos(phi));
+vec3 environmentToWorld(vec3 m) {
+    float c = cos(u_env.rotation), s = sin(u_env.rotation);
+    return vec3(c * m.x + s * m.z, m.y, c * m.z - s * m.x);
 }
+
+vec2 environmentUv(vec3 d) {
+    vec3 m = environmentToMap(normalize(d));
+    float u = fract(atan(m.z, m.x) * (0.5 * INV_PI) + 0.5);  // fract: atan2 = pi lands on u = 0
+    return vec2(u, acos(clamp(m.y, -1.0, 1.0)) * INV_PI);
+}
+
+// The world direction at column coordinate u and height cosTheta: environmentUv's inverse, and the
+// importance sampler's (which draws cos(theta) uniformly inside a texel).
+vec3 environmentDirectionAt(float u, float cosTheta) {
+    float phi = (u - 0.5) * 2.0 * PI, s = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+    return environmentToWorld(vec3(s * cos(phi), cosTheta, s * sin(phi)));
+}
+
+vec3 environmentDirection(vec2 uv) { return environmentDirectionAt(uv.x, cos(uv.y * PI)); }
 
 // Radiance arriving along -d (d points away from the scene).
 vec3 environmentRadiance(vec3 d) {
@@ -49,7 +65,7 @@ float coneSteradians(float tanHalf) { return 2.0 * PI * (1.0 - inversesqrt(1.0 +
 // (Ramamoorthi and Hanrahan 2001, eq. 8): environment.cpp's shIrradiance. A constant gives pi L.
 vec3 environmentIrradiance(vec3 n) {
     if (!environmentIsMap()) return PI * u_env.constant.rgb;
-    n = normalize(n);
+    n = environmentToMap(normalize(n));  // the projection is the map's (environment.cpp's projectSh9)
     float b[9] = float[9](0.282095, 0.488603 * n.y, 0.488603 * n.z, 0.488603 * n.x, 1.092548 * n.x * n.y,
                           1.092548 * n.y * n.z, 0.315392 * (3.0 * n.z * n.z - 1.0), 1.092548 * n.x * n.z,
                           0.546274 * (n.x * n.x - n.y * n.y));
@@ -112,11 +128,9 @@ vec3 sampleEnvironment(vec2 u, out float pdf) {
     const float EDGE = 1e-4;
     float fx = clamp(row > 0.0 ? (u.x * row - c0) / max(c1 - c0, 1e-30) : 0.5, EDGE, 1.0 - EDGE);
     float fy = clamp(row > 0.0 ? (u.y * total - rowStart) / row : 0.5, EDGE, 1.0 - EDGE);
-    float phi = ((float(x) + fx) / float(w) - 0.5) * 2.0 * PI;
     float z0 = cos(PI * float(y) / float(h)), z1 = cos(PI * float(y + 1) / float(h));
-    float cosTheta = mix(z0, z1, fy), sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
     pdf = environmentTexelPdf(x, y);
-    return vec3(sinTheta * sin(phi), cosTheta, -sinTheta * cos(phi));
+    return environmentDirectionAt((float(x) + fx) / float(w), mix(z0, z1, fy));
 }
 
 #endif

@@ -42,7 +42,7 @@ void addBenchOptions(CLI::App& cmd, BenchOptions& o) {
     cmd.add_option("--backend", o.backend, "OpenGL context: auto, egl, osmesa")->capture_default_str();
     addSceneSetupOptions(cmd, o.setup);
     cmd.add_option("--ambient", o.ambient, "Constant ambient radiance: one value or R,G,B")->delimiter(',')->expected(1, 3);
-    addEnvironmentOption(cmd, o.environment);
+    addEnvironmentOptions(cmd, o.environment, o.environmentRotation);
     cmd.add_option("--background", o.background, "Environment radiance R,G,B (or one value), overriding the scene's")
         ->delimiter(',')
         ->expected(1, 3);

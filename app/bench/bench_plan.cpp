@@ -94,6 +94,7 @@ void validateFlags(const BenchOptions& o) {
         checkEnvironmentChoice(!o.background.empty(), o.environment, !o.ambient.empty());
         loadEnvironmentMap(o.environment);
     }
+    checkEnvironmentRotation(o.environmentRotation, o.environment);
     cameraRequest(o.setup);  // validates the camera flags before any work
     parseLightingMode(o.setup.lighting);
     if (o.referenceSpp < 1 || o.referenceSpp > (1 << 20)) throw Error("--reference-spp must be in [1, 1048576]");
@@ -167,6 +168,7 @@ PreparedScene prepareBenchScene(const BenchJob& job) {
     if (!job.background.empty()) p.base.background = colourFlag(job.background, "--background");
     if (!job.background.empty() && job.ambient.empty()) p.base.ambient = *p.base.background;  // as render does
     p.base.environment = job.environment;
+    p.base.environmentRotation = job.environmentRotation;
     p.scene = loadScene(job.scene);
     p.sha256 = sceneDigest(job.scene, p.scene);
     p.base.camera = prepareScene(p.scene, job.setup, float(p.base.width) / float(p.base.height), &p.base,
@@ -216,7 +218,12 @@ std::string contentId(const BenchJob& job, const RenderSettings& settings) {
     // this a cell's --emitters gi and lights results would share one id (and one cache entry).
     if (!job.setup.emitters.empty()) key["emitters"] = job.setup.emitters;
     // The map's bytes, not only its name: an edited file is another environment (and reference).
-    if (!job.environment.empty()) key["environment_sha256"] = environmentSha256(job.environment);
+    // And how they are mapped: a reference cached before the map meant what Blender's does (its
+    // centre column looked down -Z then) is another sky. (The rotation is in the settings' JSON.)
+    if (!job.environment.empty()) {
+        key["environment_sha256"] = environmentSha256(job.environment);
+        key["environment_mapping"] = "blender";
+    }
     if (job.kind == JobKind::Cell) {
         key["frames"] = job.frames;
         key["warmup"] = job.warmup;
@@ -248,6 +255,7 @@ std::vector<BenchJob> planBench(const BenchOptions& o) {
             common.environment = std::filesystem::absolute(o.environment).lexically_normal().string();
             common.environmentSha256 = environmentSha256(common.environment);
         }
+        common.environmentRotation = o.environmentRotation;
         common.referenceSpp = o.referenceSpp;
         const PreparedScene prepared = prepareBenchScene(common);  // fails early on a bad scene
         common.sceneSha256 = prepared.sha256;
@@ -302,6 +310,7 @@ ojson jobToJson(const BenchJob& job) {
     if (!job.environment.empty()) {
         j["environment"] = job.environment;
         j["environment_sha256"] = job.environmentSha256;
+        if (job.environmentRotation != 0.0f) j["environment_rotation"] = job.environmentRotation;
     }
     j["reference_spp"] = job.referenceSpp;
     if (job.kind == JobKind::Cell) {
@@ -339,6 +348,7 @@ BenchJob jobFromJson(const nlohmann::json& j) {
         job.background = j.at("background").get<std::vector<float>>();
         job.environment = j.value("environment", std::string());
         job.environmentSha256 = j.value("environment_sha256", std::string());
+        job.environmentRotation = j.value("environment_rotation", 0.0f);
         job.referenceSpp = j.at("reference_spp").get<int>();
         if (job.kind == JobKind::Cell) {
             job.preset = j.at("preset").get<std::string>();

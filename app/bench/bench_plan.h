@@ -36,6 +36,7 @@ struct BenchJob {
     std::vector<float> ambient, background;   // as given (empty: not given)
     std::string environment;                  // --environment FILE.hdr, absolute (empty: none)
     std::string environmentSha256;            // the map's bytes at --plan: an edit since is named
+    float environmentRotation = 0.0f;         // --environment-rotation DEG
     int referenceSpp = 0;
     int frames = 0, warmup = 0;               // cells; with flythrough, frames is the path's, warmup 0
     bool flythrough = false;                  // cells: fly the scripted camera path, scored against nothing

@@ -178,12 +178,16 @@ int renderFlythrough(Renderer& renderer, const Scene& scene, const RenderOptions
 
 }  // namespace
 
-void addEnvironmentOption(CLI::App& cmd, std::string& path) {
+void addEnvironmentOptions(CLI::App& cmd, std::string& path, float& rotationDegrees) {
     cmd.add_option("--environment", path,
-                   "Equirectangular Radiance .hdr lighting the scene from afar (every method; not with --background)")
+                   "Equirectangular Radiance .hdr lighting the scene from afar (every method; not with --background); "
+                   "mapped as Blender maps it: the centre column looks down +X, the top row is the zenith")
         ->check([](const std::string& v) {
             return v.empty() ? std::string("an empty name is no file (leave --environment out for no map)") : std::string();
         });
+    cmd.add_option("--environment-rotation", rotationDegrees,
+                   "Degrees the --environment map is turned about +Y (90: its centre column looks down -Z)")
+        ->capture_default_str();
 }
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
@@ -215,7 +219,7 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
     cmd.add_option("--background", o.background, "Environment radiance R,G,B (or one value), overriding the scene's")
         ->delimiter(',')
         ->expected(1, 3);
-    addEnvironmentOption(cmd, o.environment);
+    addEnvironmentOptions(cmd, o.environment, o.environmentRotation);
     cmd.add_option("--preset", o.preset, "Quality preset of the --gi method: low, medium, high (see `gisandbox methods`); without it "
                    "medium, the viewer's default, where the method has one");
     cmd.add_option("--set", o.sets,
@@ -346,7 +350,9 @@ void applyLookFlags(RenderJob& job) {
         if (!job.viewSettings && !job.given("--ambient")) s.ambient = *s.background;
     }
     if (job.use("--environment")) s.environment = o.environment;
+    if (job.use("--environment-rotation")) s.environmentRotation = o.environmentRotation;
     checkEnvironmentChoice(false, s.environment, job.given("--ambient"));
+    checkEnvironmentRotation(s.environmentRotation, s.environment);
 }
 
 // The preset and the method parameters (--set and the older alias flags), then the view.

@@ -35,6 +35,7 @@ struct RenderOptions {
     int flythrough = 0;                  // --flythrough[=N]: N frames of the scripted camera path; 0: still camera
     std::vector<float> background;
     std::string environment;                 // --environment FILE.hdr
+    float environmentRotation = 0.0f;        // --environment-rotation DEG
     std::string preset;                      // --preset low|medium|high: the method's preset
     std::vector<std::string> sets;           // --set METHOD.KEY=VALUE, in order
     std::map<std::string, std::string> aliases;  // older flags of parameter rows: --spp, --ao-samples ...
@@ -91,6 +92,7 @@ struct BenchOptions {
     std::vector<float> ambient;
     std::vector<float> background;
     std::string environment;          // --environment FILE.hdr, for every cell and the reference
+    float environmentRotation = 0.0f; // --environment-rotation DEG
     int flythrough = 0;               // --flythrough[=N]: each cell flies N frames of the scripted path, unscored
     bool useCurrentContext = false;   // in-process callers (tests) that hold a current GL context
     // A sweep spread over processes (app/bench_command.cpp): --plan prints the jobs, --cell ID
@@ -127,6 +129,7 @@ struct ViewOptions {
     std::string script;
     std::string screenshotDir = "screenshots";
     std::string environment;             // --environment FILE.hdr
+    float environmentRotation = 0.0f;    // --environment-rotation DEG
     SceneSetupOptions setup;
     bool glDebug = false;
     bool verbose = false;
@@ -136,8 +139,10 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o);
 int runView(const ViewOptions& o);
 
 void addRenderOptions(CLI::App& cmd, RenderOptions& o);
-// --environment FILE.hdr, as render, bench and view take it: an empty name is refused (it meant no map).
-void addEnvironmentOption(CLI::App& cmd, std::string& path);
+// --environment FILE.hdr and --environment-rotation DEG, as render, bench and view take them: an
+// empty name is refused (it meant no map); the rotation is checked with the settings
+// (checkEnvironmentRotation), where the map is known.
+void addEnvironmentOptions(CLI::App& cmd, std::string& path, float& rotationDegrees);
 void addInfoOptions(CLI::App& cmd, InfoOptions& o);
 void addShaderDumpOptions(CLI::App& cmd, ShaderDumpOptions& o);
 void addMethodsOptions(CLI::App& cmd, MethodsOptions& o);

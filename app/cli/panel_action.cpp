@@ -168,6 +168,12 @@ void applyEnvironment(ViewState& s, const PanelAction& a) {
         loadEnvironmentMap(a.text);  // the render's own check, now: a bad file is this line's error
     }
     s.environment = a.text;
+    if (a.text.empty()) s.environmentRotation = 0.0f;  // no map to turn (checkEnvironmentRotation)
+}
+
+void applyEnvironmentRotation(ViewState& s, const PanelAction& a) {
+    checkEnvironmentRotation(a.value, s.environment);
+    s.environmentRotation = a.value;
 }
 
 void applyMaxBounces(ViewState& s, const PanelAction& a) {

@@ -36,6 +36,8 @@ namespace gis::view {
     X(SetShadows, View, "shadows", "shadows on|off", readFlag, applyShadows)                                            \
     X(SetBackground, View, "background", "background R G B | background off", readBackground, applyBackground)          \
     X(SetEnvironment, View, "environment", "environment FILE.hdr | environment off", readEnvironment, applyEnvironment) \
+    X(SetEnvironmentRotation, View, "environment-rotation", "environment-rotation DEGREES (about +Y)", readNumber,    \
+      applyEnvironmentRotation)                                                                                       \
     X(SetMaxBounces, View, "max-bounces", "max-bounces N", readNumber, applyMaxBounces)                                 \
     X(SetRenderScale, View, "render-scale", "render-scale S", readNumber, applyRenderScale)                             \
     X(SetHeatmapMetric, View, "metric", "metric flip|rmse|relmse|ssim", readText, applyHeatmapMetric)                   \

@@ -161,6 +161,7 @@ ojson viewStateToJson(const ViewState& s) {
     j["shadows"] = s.shadows;
     j["background"] = s.background ? vec(*s.background) : ojson(nullptr);
     if (!s.environment.empty()) j["environment"] = s.environment;
+    if (s.environmentRotation != 0.0f) j["environment_rotation"] = s.environmentRotation;
     j["max_bounces"] = s.maxBounces;
     j["render_scale"] = s.renderScale;
     j["heatmap_metric"] = errorMetricName(s.heatmapMetric);
@@ -332,6 +333,7 @@ bool applyActionKey(const std::string& k, const json& v, ViewState& s) {
     else if (k == "shadows") a = PanelAction::withFlag(PanelAction::SetShadows, boolean(v, k));
     else if (k == "background") a = backgroundAction(v);
     else if (k == "environment") a = environmentAction(v);
+    else if (k == "environment_rotation") a = PanelAction::withValue(PanelAction::SetEnvironmentRotation, number(v, k));
     else if (k == "max_bounces") a = PanelAction::withValue(PanelAction::SetMaxBounces, number(v, k));
     else if (k == "render_scale") a = PanelAction::withValue(PanelAction::SetRenderScale, number(v, k));
     else if (k == "reference_spp") a = PanelAction::withValue(PanelAction::SetReferenceSpp, number(v, k));
@@ -438,6 +440,7 @@ ojson renderSettingsToJson(const RenderSettings& s) {
                  {"seed", s.seed},
                  {"view", s.view}};
     if (!s.environment.empty()) j["environment"] = s.environment;
+    if (s.environmentRotation != 0.0f) j["environment_rotation"] = s.environmentRotation;
     return j;
 }
 

@@ -185,6 +185,7 @@ RenderSettings paneSettings(const ViewState& state, int pane, glm::ivec2 size) {
     s.shadows = state.shadows;
     s.background = state.background;
     s.environment = state.environment;
+    s.environmentRotation = state.environmentRotation;
     applyPreset(s, p.gi, p.preset);
     const std::string bounces = roleParamKey(MethodRole::Reference, "bounces");
     s.params[bounces] = ParamValue{double(state.maxBounces)};  // shared by every pane

@@ -90,6 +90,7 @@ struct ViewState {
     bool shadows = true;
     std::optional<glm::vec3> background;
     std::string environment;              // an equirectangular .hdr (RenderSettings::environment), or none
+    float environmentRotation = 0.0f;     // degrees about +Y (RenderSettings::environmentRotation)
     int maxBounces = 16;                  // path tracer
     float renderScale = 1.0f;             // render at this fraction of the view's pixels, [0.125, 1]
 

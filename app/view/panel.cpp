@@ -416,6 +416,12 @@ void environmentControls(PanelContext& ctx) {
     if (ImGui::Button("Load")) act(ctx, PanelAction::withText(PanelAction::SetEnvironment, ctx.environmentPath));
     ImGui::SameLine();
     if (ImGui::Button("Off")) act(ctx, PanelAction::of(PanelAction::SetEnvironment));
+    if (s.environment.empty()) return;  // a rotation needs a map to turn
+    // Applied on Enter or a step, not while dragging: a new rotation rebuilds the renderers
+    // (requiresRebuild), as a new map does.
+    float degrees = s.environmentRotation;
+    if (ImGui::InputFloat("Rotation (deg, +Y)", &degrees, 15.0f, 90.0f, "%.1f", ImGuiInputTextFlags_EnterReturnsTrue))
+        act(ctx, PanelAction::withValue(PanelAction::SetEnvironmentRotation, degrees));
 }
 
 // The heatmap's metric and the path tracer's own controls, apart from the methods' bounce

@@ -257,11 +257,14 @@ void ViewApp::captureWindow(const std::string& path, int width, int height) {
     std::fflush(stdout);
 }
 
-// --environment through the script's own check (one message), before the scene opens (--lighting
-// auto reads it) and again over a settings file's.
+// --environment and --environment-rotation through the script's own checks (one message), before
+// the scene opens (--lighting auto reads the map) and again over a settings file's.
 void ViewApp::applyEnvironmentFlag() {
-    if (!options_.given || !options_.given("--environment")) return;
-    applyPanelAction(state_, PanelAction::withText(PanelAction::SetEnvironment, options_.environment));
+    if (!options_.given) return;
+    if (options_.given("--environment"))
+        applyPanelAction(state_, PanelAction::withText(PanelAction::SetEnvironment, options_.environment));
+    if (options_.given("--environment-rotation"))
+        applyPanelAction(state_, PanelAction::withValue(PanelAction::SetEnvironmentRotation, options_.environmentRotation));
 }
 
 // The scene (CPU only) before the window, so the script is checked against the view it will drive.
@@ -434,7 +437,7 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
         ->capture_default_str();
     addSceneSetupOptions(cmd, o.setup);
     cmd.add_option("--script", o.script, "Run timed actions from FILE (see docs/viewer.md)");
-    addEnvironmentOption(cmd, o.environment);
+    addEnvironmentOptions(cmd, o.environment, o.environmentRotation);
     cmd.add_option("--screenshot-dir", o.screenshotDir, "Where screenshots (F12) go")->capture_default_str();
     cmd.add_flag("--gl-debug", o.glDebug, "Debug context; print KHR_debug messages");
     cmd.add_flag("-v,--verbose", o.verbose, "Print the backend, GL_RENDERER and GL_VERSION");

@@ -34,6 +34,8 @@ void checkActionAlone(const PanelAction& a) {
     // A parameter's value alone: whether the method takes it with the pane's other values is for
     // checkScriptInContext (vct.debug-level 2 after vct.debug-channel occupancy).
     if (k == PanelAction::SetParam) parsePaneParam(a);
+    // A rotation's map may come from an earlier line or the settings: its number alone, here.
+    if (k == PanelAction::SetEnvironmentRotation) return checkEnvironmentRotationValue(a.value);
     ViewState scratch;
     if (!dependsOnScene && k != PanelAction::SetParam) applyPanelAction(scratch, a);
 }

@@ -93,6 +93,57 @@ TEST(Environment, ShippedSkyLoads) {
     EXPECT_GT(sampleNearest(sky, toSun).r, 0.3f * peak);
 }
 
+// Blender's mapping (Blender 3.4, Cycles' Environment Texture node, default mapping: a map whose
+// texels encode their own (u, v), rendered there), in glTF axes: u = 0.5 + atan2(z, x) / 2pi,
+// v from the top = acos(y) / pi. So a map lights a scene here as in a Cycles render of it.
+TEST(Environment, MappingIsBlenders) {
+    struct Case {
+        const char* name;
+        glm::vec3 d;
+        float u, v;
+    };
+    for (const Case& c : {Case{"+X", {1, 0, 0}, 0.5f, 0.5f}, Case{"-Z", {0, 0, -1}, 0.25f, 0.5f},
+                          Case{"+Z", {0, 0, 1}, 0.75f, 0.5f}, Case{"-X", {-1, 0, 0}, 0.0f, 0.5f},
+                          Case{"up", {0, 1, 0}, -1.0f, 0.0f}}) {
+        SCOPED_TRACE(c.name);
+        const glm::vec2 uv = directionToEquirect(c.d);
+        EXPECT_NEAR(uv.y, c.v, 1e-6f);
+        if (c.u < 0.0f) continue;  // up has no azimuth
+        EXPECT_NEAR(uv.x, c.u, 1e-6f);
+        EXPECT_NEAR(glm::length(equirectToDirection(uv) - c.d), 0.0f, 1e-6f) << "the inverse";
+    }
+    // Both ways round, over the sphere and over the image (the poles' azimuth aside).
+    std::mt19937 rng(5);
+    std::normal_distribution<float> g;
+    for (int i = 0; i < 1000; ++i) {
+        const glm::vec3 d = glm::normalize(glm::vec3(g(rng), g(rng), g(rng)));
+        // Float acos near the poles: a few ulps of y there are 1e-5 of angle.
+        EXPECT_NEAR(glm::length(equirectToDirection(directionToEquirect(d)) - d), 0.0f, 1e-5f) << i;
+        const glm::vec2 uv((float(i % 40) + 0.5f) / 40.0f, (float(i / 40) + 0.5f) / 25.0f);
+        const glm::vec2 back = directionToEquirect(equirectToDirection(uv));
+        EXPECT_NEAR(back.x, uv.x, 2e-6f) << i;
+        EXPECT_NEAR(back.y, uv.y, 2e-6f) << i;
+    }
+}
+
+// --environment-rotation about +Y, right-handed: 90 turns the centre column from +X to -Z, which
+// is the mapping gisandbox had before it took Blender's (u = 0.5 + atan2(x, -z) / 2pi): the shipped
+// sky was re-generated for that, and the rotation gives an old map its old look.
+TEST(Environment, RotationNinetyIsTheEarlierMapping) {
+    EXPECT_NEAR(directionToEquirect(environmentToMap({0, 0, -1}, 90.0f)).x, 0.5f, 1e-6f);
+    EXPECT_NEAR(directionToEquirect(environmentToMap({0, 0, 1}, -90.0f)).x, 0.5f, 1e-6f);
+    std::mt19937 rng(6);
+    std::normal_distribution<float> g;
+    for (int i = 0; i < 200; ++i) {
+        const glm::vec3 d = glm::normalize(glm::vec3(g(rng), g(rng), g(rng)));
+        const float earlier = std::atan2(d.x, -d.z) / float(2.0 * kPi) + 0.5f;
+        const float u = directionToEquirect(environmentToMap(d, 90.0f)).x;
+        EXPECT_NEAR(std::remainder(u - earlier, 1.0f), 0.0f, 2e-6f) << i;
+        EXPECT_EQ(environmentToMap(d, 90.0f).y, d.y);
+        EXPECT_NEAR(glm::length(environmentToMap(environmentToMap(d, 37.0f), -37.0f) - d), 0.0f, 1e-6f) << i;
+    }
+}
+
 TEST(Environment, BadFilesAreOneClearError) {
     const std::string dir = tempDir("environment_bad");
     EXPECT_NE(loadError(dir + "/none.hdr").find("does not exist"), std::string::npos);

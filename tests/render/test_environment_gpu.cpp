@@ -1,4 +1,5 @@
-// Environment maps on the GPU (renderer/environment_gpu.h, shaders/environment.glsl): a uniform
+// Environment maps on the GPU (renderer/environment_gpu.h, shaders/environment.glsl): the path
+// tracer reads a map as Blender does, and --environment-rotation turns every reader alike; a uniform
 // map renders as --background of the same value under every method; a white diffuse sphere under a
 // smooth map shows the map's SH irradiance (the CPU projection) under the rasterized baseline and
 // the path tracer; the path tracer's importance sampling has the mean of BSDF sampling alone with
@@ -24,13 +25,14 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 const std::string kSky = std::string(GIS_SOURCE_DIR) + "/assets/environments/sky_sun.hdr";
 
-// A flat-RGBE Radiance file (the layout stb_image reads without run-length encoding).
-void writeHdr(const std::string& path, int width, int height, const std::function<glm::vec3(glm::vec3)>& radiance) {
+// A flat-RGBE Radiance file (the layout stb_image reads without run-length encoding) of the
+// radiance at each texel centre's (u, v), u from the left, v from the top.
+void writeHdrTexels(const std::string& path, int width, int height, const std::function<glm::vec3(glm::vec2)>& radiance) {
     std::ofstream f(path, std::ios::binary);
     f << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " << height << " +X " << width << "\n";
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            const glm::vec3 c = radiance(equirectToDirection({(x + 0.5f) / float(width), (y + 0.5f) / float(height)}));
+            const glm::vec3 c = radiance({(x + 0.5f) / float(width), (y + 0.5f) / float(height)});
             const float m = std::max(c.r, std::max(c.g, c.b));
             unsigned char rgbe[4] = {0, 0, 0, 0};
             if (m > 1e-32f) {
@@ -41,6 +43,11 @@ void writeHdr(const std::string& path, int width, int height, const std::functio
             }
             f.write(reinterpret_cast<const char*>(rgbe), 4);
         }
+}
+
+// The same for radiance given by direction (through the CPU mapping, environment.h).
+void writeHdr(const std::string& path, int width, int height, const std::function<glm::vec3(glm::vec3)>& radiance) {
+    writeHdrTexels(path, width, height, [&](glm::vec2 uv) { return radiance(equirectToDirection(uv)); });
 }
 
 // A white (or grey) sphere on a grey floor, the sky visible above: rays escape in every direction.
@@ -166,11 +173,15 @@ TEST(EnvironmentGpu, WhiteFurnaceSphereShowsTheMapsShIrradiance) {
     const Sh9 sh = projectSh9(map);
     const Scene scene = sphereScene(1.0f, false);
     const CameraMatrices cam = cameraMatrices(scene, 0, 1.0f);
+    // Turned, the map's irradiance at n is the unturned one's at environmentToMap(n): the SH9
+    // projection (none) and the path tracer's samples turn with the rest.
+    for (const float rotation : {0.0f, 90.0f})
     for (const char* gi : {"none", "pathtrace"}) {
-        SCOPED_TRACE(gi);
+        SCOPED_TRACE(std::string(gi) + " turned by " + std::to_string(rotation));
         RenderSettings s = small(gi);
         s.width = s.height = 64;
         s.environment = file;
+        s.environmentRotation = rotation;
         if (std::string(gi) == "pathtrace") setParam(s, "pathtrace.spp", "64");
         const ImageF img = renderHdr(scene, s);
         double rendered = 0.0, expected = 0.0;
@@ -188,14 +199,119 @@ TEST(EnvironmentGpu, WhiteFurnaceSphereShowsTheMapsShIrradiance) {
                 if (disc <= 0.0f) continue;
                 const glm::vec3 n = glm::normalize(oc + dir * (-bb - std::sqrt(disc)));
                 if (glm::dot(n, -dir) < 0.4f) continue;  // away from the silhouette's mixed pixels
-                const glm::vec3 e = shIrradiance(sh, n) / float(kPi);
+                const glm::vec3 e = shIrradiance(sh, environmentToMap(n, rotation)) / float(kPi);
                 for (int c = 0; c < 3; ++c) rendered += img.at(x, y)[c], expected += e[c], rc[c] += img.at(x, y)[c], ec[c] += e[c];
                 ++pixels;
             }
         ASSERT_GT(pixels, 200);
-        std::printf("[ measured ] %s: rendered / SH irradiance per channel %.4f %.4f %.4f\n", gi, rc.x / ec.x, rc.y / ec.y, rc.z / ec.z);
+        std::printf("[ measured ] %s, map turned by %g degrees: rendered / SH irradiance per channel %.4f %.4f %.4f\n", gi,
+                    double(rotation), rc.x / ec.x, rc.y / ec.y, rc.z / ec.z);
         EXPECT_NEAR(rendered / expected, 1.0, 0.01) << pixels << " pixels";
     }
+}
+
+// Blender's mapping on the GPU (environment.cpp's MappingIsBlenders on the CPU): a map whose texels
+// encode their own (u, v), read back by the path tracer's camera rays straight along +X, -Z, +Z, -X
+// and up, gives the (u, v) Blender reads there. u is encoded as a point on a circle, so the seam at
+// u = 0 (-X) filters smoothly; v as it is. Turned by 90 degrees, the centre column looks down -Z.
+TEST(EnvironmentGpu, PathTracerReadsTheMapAsBlenderDoes) {
+    const std::string file = tempDir("environment_gpu_mapping") + "/uv.hdr";
+    writeHdrTexels(file, 64, 32, [](glm::vec2 uv) {
+        const float a = 2.0f * float(kPi) * uv.x;
+        return glm::vec3(0.5f + 0.5f * std::cos(a), 0.5f + 0.5f * std::sin(a), uv.y);
+    });
+    struct Case {
+        const char* name;
+        glm::vec3 look;
+        float u, u90;  // Blender's u, and with --environment-rotation 90 (up: no azimuth, v only)
+    };
+    const std::vector<Case> cases = {{"+X", {1, 0, 0}, 0.5f, 0.75f}, {"-Z", {0, 0, -1}, 0.25f, 0.5f},
+                                     {"+Z", {0, 0, 1}, 0.75f, 0.0f}, {"-X", {-1, 0, 0}, 0.0f, 0.25f},
+                                     {"up", {0, 1, 0}, -1.0f, -1.0f}};
+    Scene scene;  // only the sky in view: a small floor far below every camera
+    addQuad(scene, {0.0f, -50.0f, 0.0f}, {0, 1, 0}, 1.0f, detail::addMaterial(scene, detail::lambert("floor", glm::vec3(0.5f))));
+    for (const Case& c : cases) scene.cameras.push_back(lookAtCamera(glm::vec3(0.0f), c.look, 5.0f));
+    finalizeScene(scene);
+    for (const float rotation : {0.0f, 90.0f})
+        for (size_t i = 0; i < cases.size(); ++i) {
+            SCOPED_TRACE(std::string(cases[i].name) + " turned by " + std::to_string(rotation));
+            RenderSettings s = small("pathtrace");
+            s.width = s.height = 9;  // the centre pixel looks straight along the camera's axis
+            s.camera = int(i);
+            s.environment = file;
+            s.environmentRotation = rotation;
+            const ImageF img = renderHdr(scene, s);
+            const glm::vec3 c(img.at(4, 4)[0], img.at(4, 4)[1], img.at(4, 4)[2]);
+            const float u = std::fmod(std::atan2(c.g - 0.5f, c.r - 0.5f) / float(2.0 * kPi) + 1.0f, 1.0f), v = c.b;
+            const float expected = rotation == 0.0f ? cases[i].u : cases[i].u90;
+            std::printf("[ measured ] %s, map turned by %g degrees: reads u %.4f v %.4f\n", cases[i].name, double(rotation),
+                        double(u), double(v));
+            // A texel of the 32-row map is 1/32 of v (the pole's row reads its centre, 1/64) and
+            // RGBE keeps 8 bits: 0.03 is that; the wrong axis is a quarter turn off.
+            EXPECT_NEAR(v, expected < 0.0f ? 0.0f : 0.5f, 0.03f);
+            if (expected >= 0.0f) {
+                EXPECT_NEAR(std::remainder(u - expected, 1.0f), 0.0f, 0.01f);
+            }
+        }
+}
+
+// Two renders with different seeds: the per-pixel variance of one is half the mean squared difference.
+double pixelVariance(const ImageF& a, const ImageF& b) {
+    double sum = 0.0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            for (int c = 0; c < 3; ++c) sum += std::pow(double(a.at(x, y)[c]) - b.at(x, y)[c], 2.0);
+    return sum / (2.0 * 3.0 * a.width * a.height);
+}
+
+// The share of channel values of `a` within `relative` of `b`'s.
+double shareWithin(const ImageF& a, const ImageF& b, double relative) {
+    int within = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const double u = a.at(x, y)[c], v = b.at(x, y)[c];
+                within += std::abs(u - v) <= relative * std::max(1e-3, std::max(std::abs(u), std::abs(v)));
+            }
+    return double(within) / (3.0 * a.width * a.height);
+}
+
+// --environment-rotation turns every reader of the map alike: a scene symmetric under a quarter
+// turn about +Y (a sphere on a square floor, both centred on the axis), under the shipped sky turned
+// by 90 degrees and seen by a camera turned with it, renders the image of the unturned sky and
+// camera. Under `none` pixel for pixel: the background, the SH9 irradiance and the prefiltered
+// specular of a glossy sphere. The turned sky under the unturned camera must differ (the sky is
+// not symmetric). Under the path tracer (whose tangent frames do not turn with the scene, so its
+// paths are others) the same mean and the same noise: a sampler left unturned would keep the mean
+// and lose the sun (the noise of BSDF sampling), a pdf left unturned would move the mean.
+TEST(EnvironmentGpu, TurningTheMapEqualsTurningTheView) {
+    Scene scene = sphereScene(glossy(0.0f, 0.3f), true);
+    const glm::vec3 eye(0.3f, 1.1f, 2.2f), target(0.0f, 0.45f, 0.0f);
+    scene.cameras = {lookAtCamera(eye, target, 45.0f), lookAtCamera(environmentToMap(eye, -90.0f), target, 45.0f)};
+    auto render = [&](const std::string& gi, float rotation, int camera, uint32_t seed) {
+        RenderSettings s = small(gi);
+        s.environment = kSky;
+        s.environmentRotation = rotation;
+        s.camera = camera;
+        s.seed = seed;
+        if (gi == "pathtrace") setParam(s, "pathtrace.spp", "16");
+        return renderHdr(scene, s);
+    };
+    const ImageF unturned = render("none", 0.0f, 0, 0), turned = render("none", 90.0f, 1, 0);
+    const double same = shareWithin(turned, unturned, 0.01), control = shareWithin(render("none", 90.0f, 0, 0), unturned, 0.01);
+    std::printf("[ measured ] none: channel values within 1%%: sky and camera turned %.4f, sky alone %.4f\n", same, control);
+    EXPECT_GT(same, 0.999);
+    EXPECT_LT(control, 0.9);
+
+    const ImageF u1 = render("pathtrace", 0.0f, 0, 1), u2 = render("pathtrace", 0.0f, 0, 2);
+    const ImageF t1 = render("pathtrace", 90.0f, 1, 1), t2 = render("pathtrace", 90.0f, 1, 2);
+    const double varU = pixelVariance(u1, u2), varT = pixelVariance(t1, t2);
+    const double meanU = 0.5 * (imageMean(u1) + imageMean(u2)), meanT = 0.5 * (imageMean(t1) + imageMean(t2));
+    const double standardError = std::sqrt((varU + varT) / (2.0 * 3.0 * u1.width * u1.height));
+    std::printf("[ measured ] pathtrace: image mean unturned %.4f, turned %.4f (standard error %.4f); per-pixel "
+                "variance unturned %.4g, turned %.4g\n", meanU, meanT, standardError, varU, varT);
+    EXPECT_LT(std::abs(meanT - meanU), 4.0 * standardError);
+    EXPECT_NEAR(varT / varU, 1.0, 0.5);
 }
 
 // Issue 26's "metals are black under none, ssao and probes": a rough metal sphere under a uniform
@@ -245,15 +361,6 @@ TEST(EnvironmentGpu, MetalsReflectTheMapUnderEveryMethod) {
     }
 }
 
-// Two renders with different seeds: the per-pixel variance of one is half the mean squared difference.
-double pixelVariance(const ImageF& a, const ImageF& b) {
-    double sum = 0.0;
-    for (int y = 0; y < a.height; ++y)
-        for (int x = 0; x < a.width; ++x)
-            for (int c = 0; c < 3; ++c) sum += std::pow(double(a.at(x, y)[c]) - b.at(x, y)[c], 2.0);
-    return sum / (2.0 * 3.0 * a.width * a.height);
-}
-
 // Under the shipped sky (a sun disc about 10^4 times brighter than the sky around it), sampling the
 // map by luminance with MIS against the BSDF (PBRT 3rd ed. 14.3.1) keeps BSDF sampling's mean and
 // cuts its variance.
@@ -299,15 +406,33 @@ TEST(EnvironmentGpu, BadFilesAreOneLineThroughTheCli) {
                           Case{"--environment " + dir + "/picture.hdr", "is not a Radiance .hdr file"},
                           Case{"--environment " + dir + "/truncated.hdr", "is truncated"},
                           Case{"--environment " + kSky + " --background 1", "give one of them"},
-                          Case{"--environment " + kSky + " --ambient 0.1", "--ambient has no effect"}}) {
+                          Case{"--environment " + kSky + " --ambient 0.1", "--ambient has no effect"},
+                          Case{"--environment " + kSky + " --environment-rotation nan", "must be a finite number"},
+                          Case{"--environment " + kSky + " --environment-rotation -inf", "must be a finite number"},
+                          Case{"--environment " + kSky + " --environment-rotation 361", "must be a finite number"},
+                          Case{"--environment-rotation 90", "there is none"}}) {
         SCOPED_TRACE(c.args);
         const CliResult r = runCli("render " + c.args + out);
         EXPECT_NE(r.status, 0);
         EXPECT_EQ(countLines(r.err), 1) << r.err;
         EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
     }
-    const CliResult ok = runCli("render --environment " + kSky + out);
-    EXPECT_EQ(ok.status, 0) << ok.err;
+    // bench and view check the rotation as render does, before any job runs or window opens.
+    for (const std::string& cmd : {std::string("bench --plan --scenes builtin:cornell --methods none"),
+                                   std::string("view --scene builtin:cornell")})
+        for (const Case& c : {Case{" --environment-rotation 90", "there is none"},
+                              Case{" --environment " + kSky + " --environment-rotation nan", "must be a finite number"}}) {
+            SCOPED_TRACE(cmd + c.args);
+            const CliResult r = runCli(cmd + c.args);
+            EXPECT_NE(r.status, 0);
+            EXPECT_EQ(countLines(r.err), 1) << r.err;
+            EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+        }
+    for (const std::string& fine : std::vector<std::string>{"--environment " + kSky, "--environment " + kSky + " --environment-rotation -90",
+                                    "--environment-rotation 0"}) {
+        const CliResult ok = runCli("render " + fine + out);
+        EXPECT_EQ(ok.status, 0) << fine << ": " << ok.err;
+    }
 }
 
 }  // namespace

@@ -660,12 +660,27 @@ TEST(Script, EnvironmentLinesSayWhatRenderSays) {
     EXPECT_EQ(contextError("environment " + sky + "\nbackground 1 1 1\n", state), both);
     EXPECT_EQ(contextError("environment " + sky + "\nenvironment off\nbackground 1 1 1\n", state), "");
 
+    // The rotation: a map to turn, a finite number; `environment off` leaves none to turn.
+    EXPECT_EQ(contextError("environment-rotation 90\n", state), cliError("--environment-rotation 90"));
+    EXPECT_EQ(contextError("environment " + sky + "\nenvironment-rotation 400\n", state),
+              cliError("--environment " + sky + " --environment-rotation 400"));
+    EXPECT_EQ(contextError("environment " + sky + "\nenvironment-rotation 90\nenvironment off\n", state), "");
+    EXPECT_THROW(parseScript("environment-rotation nan\n", "c.txt"), Error);
+
     ViewState s = state;
     applyPanelAction(s, parsePanelAction(splitWords("environment " + sky)));
+    applyPanelAction(s, parsePanelAction(splitWords("environment-rotation -45")));
     EXPECT_EQ(paneSettings(s, 0, {64, 48}).environment, sky);
+    EXPECT_EQ(paneSettings(s, 0, {64, 48}).environmentRotation, -45.0f);
     const std::string dir = tempDir("view_environment_roundtrip");
     saveViewSettings(dir + "/a.json", s);
     EXPECT_EQ(viewStateToJson(loadViewSettings(dir + "/a.json")).dump(), viewStateToJson(s).dump());
+    EXPECT_EQ(loadViewSettings(dir + "/a.json").environmentRotation, -45.0f) << "the settings key environment_rotation";
+    // render --settings renders the file's turned map as the view does.
+    const CliResult r = runCli("render --settings " + dir + "/a.json --size 8x8 --out " + dir + "/a.png");
+    EXPECT_EQ(r.status, 0) << r.err;
+    applyPanelAction(s, parsePanelAction(splitWords("environment off")));
+    EXPECT_EQ(s.environmentRotation, 0.0f);
 }
 
 }  // namespace
