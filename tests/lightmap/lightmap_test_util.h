@@ -13,12 +13,14 @@
 #include "lightmap/atlas.h"
 #include "scene/mesh_builders.h"
 #include "scene/scene.h"
+#include "scene/test_util.h"
 
 namespace lmtest {
 
 using gis::lightmap::Atlas;
 using gis::lightmap::AtlasParams;
 using gis::lightmap::MeshInput;
+using gistest::errorOf;
 
 inline MeshInput meshOf(const gis::Primitive& p, const glm::mat4& world = glm::mat4(1.0f)) {
     MeshInput m;
@@ -31,17 +33,6 @@ inline MeshInput meshOf(const gis::Primitive& p, const glm::mat4& world = glm::m
 // The built-in unit cube (faces do not share vertices) scaled to `side` metres.
 inline MeshInput cube(float side = 1.0f) {
     return meshOf(gis::detail::unitCube(0), glm::scale(glm::mat4(1.0f), glm::vec3(side)));
-}
-
-// The message of the gis::Error that `f` throws ("" if it does not throw one).
-template <typename F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const gis::Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 inline double area2(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
