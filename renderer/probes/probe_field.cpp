@@ -333,7 +333,7 @@ void ProbeField::setUpdateBlock(const FieldSettings& s) const {
     b.replacingUpdates = s.bounces ? float(bounceUpdates_) : 0.0f;
     b.missDistance = missDistance(*volume_);
     b.multiBounce = s.bounces ? 1 : 0;
-    b.visibility = s.visibility ? 1 : 0;
+    b.visibility = visibilityMode(s.visibility, s.pathTest);
     b.normalBias = s.normalBias;
     update_.set(b);
 }

@@ -42,6 +42,7 @@ struct FieldSettings {
     int rayBudget = 0;        // rays per frame over every probe, 0 = every due probe each frame
     bool relocate = true;     // probes inside geometry: pushed out, else switched off
     bool visibility = true;   // live: Chebyshev visibility from the distance moments
+    bool pathTest = false;    // live: with visibility, a probe counts only along a clear straight path (kPathTestHelp)
     bool bounces = true;      // live: ray hits add the probes' own irradiance
     float hysteresis = 0.98f; // live: weight of the old value once warmed up
     float threshold = 0.01f;  // live: relative change below which a probe has converged
@@ -49,6 +50,10 @@ struct FieldSettings {
     float normalBias = 0.1f;  // live: gather offset along the normal and view, x the probe step
     int debugProbe = -1;      // live: the probe whose rays probes.rays draws, -1 the middle one
 };
+
+// The gather's visibility as the shaders read it (probe_common.glsl, sampleProbeGrid): 0 none,
+// 1 the distance moments, 2 the moments and the straight path through the tracer's volume.
+inline int visibilityMode(bool visibility, bool pathTest) { return visibility ? (pathTest ? 2 : 1) : 0; }
 
 // GPU bytes of `probes` probes (irradiance, distance moments, state) and of the ray buffer and
 // batch list for the probes a frame can update.

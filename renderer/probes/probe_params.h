@@ -52,11 +52,18 @@ inline std::string gridKey(const std::string& method, const std::string& prefix,
     return method + "." + prefix + key;
 }
 
-// The rows a field reads live each frame: visibility, feedback, hysteresis, convergence.
+// The help of every method's path-test row (a trade the method pages measure: issue #39).
+inline const char* const kPathTestHelp =
+    "with visibility, a probe counts only where its straight path to the shading point is clear through the "
+    "method's volume: no light through walls thinner than the probe step, but a point no probe sees gets no "
+    "probe light";
+
+// The rows a field reads live each frame: visibility, path test, feedback, hysteresis, convergence.
 template <class S>
 void addLiveFieldRows(ParamTable<S>& t) {
     using U = ParamUpdate;
     t.boolean(&S::visibility, "visibility", "Visibility", "Chebyshev visibility from the distance moments", U::Live)
+        .boolean(&S::pathTest, "path-test", "Path test", kPathTestHelp, U::Live)
         .boolean(&S::bounces, "multibounce", "Multi-bounce", "probe rays' hits add the probes' own irradiance", U::Live)
         .real(&S::hysteresis, "hysteresis", "Hysteresis", "weight of the old value once a probe has warmed up", 0.0,
               0.99, U::Live)
@@ -77,6 +84,7 @@ FieldSettings fieldSettingsOf(const S& s) {
     f.rays = s.rays;
     f.rayBudget = s.rayBudget;
     f.visibility = s.visibility;
+    f.pathTest = s.pathTest;
     f.bounces = s.bounces;
     f.hysteresis = s.hysteresis;
     f.threshold = s.threshold;

@@ -40,7 +40,7 @@ inline constexpr gl::UniformSlot kProbeUniforms[] = {GIS_PROBE_UNIFORMS(GIS_UNIF
     M(float, replacingUpdates)  /* blend: a probe's first updates replace its value (one bounce each) */ \
     M(float, missDistance)      /* what a ray that hits nothing records as its distance */ \
     M(int, multiBounce)         /* trace: 1 lights hits with the probes' irradiance (the next bounce) */ \
-    M(int, visibility)          /* trace: that irradiance weighed by the probes' distance moments */ \
+    M(int, visibility)          /* trace: that irradiance's visibility (probe_field.h, visibilityMode) */ \
     M(float, normalBias)        /* trace: that lookup's offset along the normal, x the smallest probe step */
 GIS_UNIFORM_BLOCK(ProbeUpdateBlock, 6, GIS_PROBE_UPDATE_BLOCK)
 
@@ -48,6 +48,6 @@ GIS_UNIFORM_BLOCK(ProbeUpdateBlock, 6, GIS_PROBE_UPDATE_BLOCK)
 #define GIS_PROBE_GATHER_BLOCK(M, A) \
     M(float, normalBias)        /* along the normal and towards the eye, x the smallest probe step */ \
     M(float, intensity) \
-    M(int, visibility)          /* 1: probes weighed by their distance moments (Chebyshev) */
+    M(int, visibility)          /* probe_field.h, visibilityMode: 1 distance moments, 2 and the path */
 GIS_UNIFORM_BLOCK(ProbeGatherBlock, 7, GIS_PROBE_GATHER_BLOCK)
 }  // namespace gis::probes

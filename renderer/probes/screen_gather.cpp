@@ -47,7 +47,7 @@ void ScreenGather::dispatch(const Frame& frame, const ProbeField& field, const G
     ProbeGatherBlock b;
     b.normalBias = s.normalBias;
     b.intensity = s.intensity;
-    b.visibility = s.visibility ? 1 : 0;
+    b.visibility = visibilityMode(s.visibility, s.pathTest);
     block_.set(b);
     glProgramUniform1i(p, UP_GATHER_SCALE, scale_);
     glBindTextures(4, 2, gbuffer);

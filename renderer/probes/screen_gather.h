@@ -17,6 +17,7 @@ struct GatherSettings {
     float normalBias = 0.1f;   // along the normal and towards the eye, x the smallest probe step
     float intensity = 1.0f;
     bool visibility = true;    // Chebyshev visibility from the distance moments
+    bool pathTest = false;     // with visibility: a probe counts only along a clear straight path
 };
 
 class ScreenGather {

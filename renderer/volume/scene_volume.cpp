@@ -1,5 +1,7 @@
 #include "volume/scene_volume.h"
 
+#include <cstdio>
+
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -274,6 +276,20 @@ const char* SceneVolume::updateName(Update u) {
 }
 
 glm::ivec3 SceneVolume::offset(int cascade) const { return cascades_.at(size_t(cascade)).offset; }
+
+std::string SceneVolume::describeCascade(int i) const {
+    const SdfVolume v = cascadeVolume(i);
+    const Builds b = builds(i);
+    const double mib = double(sceneVolumeBytes(request_, layout_.count)) / layout_.count / (1024.0 * 1024.0);
+    char line[240];
+    std::snprintf(line, sizeof line,
+                  "cascade %d: %d^3 cells of %.4g (a %.4g cube from %.4g, %.4g, %.4g), up to %.2f MiB; voxelized %d, "
+                  "field built %d, lit %d times; last frame %s",
+                  i, v.resolution, double(v.cellSize()), double(v.size), double(v.origin.x), double(v.origin.y),
+                  double(v.origin.z), mib, b.voxelizations + b.scrolls, b.fields, b.injections,
+                  updateName(lastUpdate(i)));
+    return line;
+}
 
 SceneVolume::Builds SceneVolume::builds(int cascade) const {
     if (cascade >= 0) return cascades_.at(size_t(cascade)).builds;

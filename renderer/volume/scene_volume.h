@@ -124,6 +124,10 @@ public:
     Builds builds(int cascade = -1) const;
     // The step-name prefix of cascade i ("" with one cascade, else "cN.").
     std::string stepPrefix(int cascade) const;
+    // One line per cascade for a method's stats(), alike for every method (scripts read it: the
+    // method pages' per-cascade cost tables): "cascade I: R^3 cells of C (a E cube from x, y, z),
+    // up to M MiB; voxelized V, field built F, lit L times; last frame U".
+    std::string describeCascade(int cascade) const;
 
 private:
     struct Cascade {

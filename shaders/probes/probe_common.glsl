@@ -175,14 +175,16 @@ bool probeSeesPoint(vec3 probe, vec3 P, vec3 N, vec3 V);
 #endif
 
 // Indirect diffuse (E / pi) at P (already biased off the surface) with normal N, seen along V
-// (towards free space: the eye, or the probe whose ray hit P), from grid g:
+// (towards free space: the eye, or the probe whose ray hit P), from grid g, with `visibility` as
+// renderer/probes/probe_field.h's visibilityMode writes it (0 none, 1 moments, 2 moments and path):
 // trilinear over the 8 surrounding probes, weighted by how the normal faces each (wrapped, as in
 // DDGI, so probes behind still count a little) and, with `visibility`, by Chebyshev's bound on the
 // probe seeing P (from its distance moments: light behind a wall the probe saw closer than P is cut).
 // Moments averaged over a texel cannot cut a probe behind a wall much thinner than the probe step
-// seen at a slant (issue #39: a closed room lit through its 20 cm walls), so with PROBE_SEGMENT_TEST
-// a probe the tracer finds no straight path to counts nothing; with none, P gets none of the grid's light.
-vec3 sampleProbeGrid(int g, vec3 P, vec3 N, vec3 V, bool visibility) {
+// seen at a slant (issue #39: a closed room lit through its 20 cm walls), so with the path (mode 2,
+// programs that define PROBE_SEGMENT_TEST) a probe the tracer finds no straight path to counts
+// nothing; with none, P gets none of the grid's light.
+vec3 sampleProbeGrid(int g, vec3 P, vec3 N, vec3 V, int visibility) {
     ivec3 counts = u_gridCounts[g];
     int first = gridBase(g);
     vec3 gp = (P - u_gridFirst[g]) / u_gridStep[g];
@@ -204,9 +206,9 @@ vec3 sampleProbeGrid(int g, vec3 P, vec3 N, vec3 V, bool visibility) {
         vec3 dir = d > 1e-30 ? toProbe / d : N;
         float facing = 0.5 * (dot(dir, N) + 1.0);
         w *= facing * facing + 0.2;
-        if (visibility) {
+        if (visibility > 0) {
 #ifdef PROBE_SEGMENT_TEST
-            if (!probeSeesPoint(P + toProbe, P, N, V)) continue;
+            if (visibility > 1 && !probeSeesPoint(P + toProbe, P, N, V)) continue;
 #endif
             vec2 m = probeDistanceMoments(i, -dir);
             if (d > m.x) {
@@ -222,12 +224,12 @@ vec3 sampleProbeGrid(int g, vec3 P, vec3 N, vec3 V, bool visibility) {
     }
     return weights > 0.0 ? sum / weights : vec3(0.0);
 }
-vec3 sampleProbes(vec3 P, vec3 N, vec3 V, bool visibility) { return sampleProbeGrid(gridAt(P), P, N, V, visibility); }
+vec3 sampleProbes(vec3 P, vec3 N, vec3 V, int visibility) { return sampleProbeGrid(gridAt(P), P, N, V, visibility); }
 
 // A gather at a surface seen from `eye`: the shading point moved off the surface along
 // 0.2 N + 0.8 V by `normalBias` x the probe step (DDGI's normal/view bias), so a probe's distance
 // moments do not shadow the very surface they were measured on.
-vec3 sampleProbesSeenFrom(vec3 P, vec3 N, vec3 eye, float normalBias, bool visibility) {
+vec3 sampleProbesSeenFrom(vec3 P, vec3 N, vec3 eye, float normalBias, int visibility) {
     vec3 toEye = eye - P;
     vec3 V = length(toEye) > 0.0 ? normalize(toEye) : N;
     float bias = normalBias * gridMinStep(gridAt(P));

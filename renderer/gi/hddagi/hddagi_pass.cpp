@@ -110,12 +110,7 @@ std::vector<std::string> HddagiPass::stats() const {
                   double(occupancyBytes(volume_->layout().resolution(), volume_->cascadeCount())) / 1024.0,
                   all.voxelizations, all.scrolls, static_cast<long long>(all.voxelizedCells));
     out.push_back(line);
-    for (int i = 0; i < volume_->cascadeCount(); ++i) {
-        const SdfVolume v = volume_->cascadeVolume(i);
-        std::snprintf(line, sizeof line, "cascade %d: edge %g, cell %g, last frame %s", i, double(v.size),
-                      double(v.cellSize()), SceneVolume::updateName(volume_->lastUpdate(i)));
-        out.push_back(line);
-    }
+    for (int i = 0; i < volume_->cascadeCount(); ++i) out.push_back(volume_->describeCascade(i));
     return out;
 }
 

@@ -48,7 +48,7 @@ probes::FieldSettings HddagiSettings::field() const {
     return f;
 }
 
-probes::GatherSettings HddagiSettings::gather() const { return {normalBias, intensity, visibility}; }
+probes::GatherSettings HddagiSettings::gather() const { return {normalBias, intensity, visibility, pathTest}; }
 
 void checkHddagiSettings(const HddagiSettings& s) {
     probes::checkFieldSettings(s.field(), probes::gridKey("hddagi", "", "ray-budget"), probes::gridKey("hddagi", "", "rays"));

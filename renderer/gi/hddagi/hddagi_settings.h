@@ -20,6 +20,7 @@ struct HddagiSettings {
     int storage = 1;             // hddagi.storage: sh1 | sh2 | octahedral (rebuild)
     bool halfResolution = true;  // hddagi.half-res: gather every 2x2 block's first pixel, upsample (rebuild)
     bool visibility = true;      // hddagi.visibility: Chebyshev visibility (live)
+    bool pathTest = true;        // hddagi.path-test (live): the straight path walked through the occupancy
     bool bounces = true;         // hddagi.multibounce: probe rays' hits add the probes' irradiance (live)
     float hysteresis = 0.98f;    // hddagi.hysteresis (live)
     float threshold = 0.01f;     // hddagi.threshold (live)

@@ -13,6 +13,9 @@ struct ProbeSettings {
     int rays = 128;             // probes.rays: rays per probe per update (rebuild: sizes the ray buffer)
     int storage = 1;            // probes.storage: sh1 | sh2 | octahedral (rebuild)
     bool visibility = true;     // probes.visibility: Chebyshev visibility from the distance moments (live)
+    // probes.path-test (live): off, as measured: one grid at the scene's scale puts no probe in a
+    // building's rooms, so it blacks out galleries and leaves the closed room's leak where it was.
+    bool pathTest = false;
     int rayBudget = 0;          // probes.ray-budget: probe rays per frame, most urgent probes first, 0 = all due (rebuild)
     int sdfResolution = 64;     // probes.sdf-resolution: voxels and distance-field cells per edge (rebuild)
     int inside = 0;             // probes.inside: relocate | off, for probes inside solid geometry (rebuild)

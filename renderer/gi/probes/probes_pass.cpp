@@ -70,7 +70,7 @@ void ProbesPass::run(Frame& frame) {
     field_->update(frame, live.field());
     {
         auto t = frame.step("shade");
-        gather_->run(frame, *field_, {live.normalBias, live.intensity, live.visibility});
+        gather_->run(frame, *field_, {live.normalBias, live.intensity, live.visibility, live.pathTest});
     }
     frame.put(resource::kIndirectDiffuse, gather_->result());
     changed_ = false;
@@ -125,7 +125,8 @@ GiMethod probesMethod() {
 }
 
 std::vector<std::string> ProbesPass::stats() const {
-    return {field_->describe(), describeVolume(volume_->grid().fit, "voxels / distance-field cells")};
+    return {field_->describe(), describeVolume(volume_->grid().fit, "voxels / distance-field cells"),
+            volume_->describeCascade(0)};
 }
 
 }  // namespace gis

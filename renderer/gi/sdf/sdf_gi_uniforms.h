@@ -42,6 +42,7 @@ GIS_UNIFORM_BLOCK(SdfDebugBlock, 5, GIS_SDF_DEBUG_BLOCK)
     M(int, specular)            /* 1: a mirror ray for surfaces below the roughness cut-off */ \
     M(float, specularRoughness) /* that cut-off */ \
     M(int, probeGather)         /* 1: diffuse from SDFGI's probes, not rays */ \
+    M(int, probeVisibility)     /* the gather's: probes/probe_field.h, visibilityMode */ \
     M(float, gatherBias)        /* the probe lookup's offset, x the smallest probe step */
 GIS_UNIFORM_BLOCK(SdfTraceBlock, 12, GIS_SDF_TRACE_BLOCK)
 

@@ -168,6 +168,7 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     trace.specular = s.specular ? 1 : 0;
     trace.specularRoughness = s.specularRoughness;
     trace.probeGather = field_ ? 1 : 0;
+    trace.probeVisibility = probes::visibilityMode(true, built_.probeField().pathTest);
     trace.gatherBias = built_.probeField().normalBias;
     traceBlock_.set(trace);
     glProgramUniform1f(p, UG_AO, s.aoStrength);
@@ -265,18 +266,7 @@ std::vector<std::string> SdfGiPass::stats() const {
                   double(layout.scene.size), double(built_.cascadeExtent));
     std::vector<std::string> out = {line};
     if (field_) out.push_back("SDFGI " + field_->describe());
-    const int64_t bytes = sceneVolumeBytes(volume_->request(), layout.count) / layout.count;
-    for (int i = 0; i < layout.count; ++i) {
-        const SdfVolume& v = volume_->field().volume(i);
-        const SceneVolume::Builds b = volume_->builds(i);
-        std::snprintf(line, sizeof line,
-                      "cascade %d: %d^3 cells of %.4g (a %.4g cube from %.4g, %.4g, %.4g), up to %.2f MiB; field built "
-                      "%d times, radiance %d; last frame %s",
-                      i, v.resolution, double(v.cellSize()), double(v.size), double(v.origin.x), double(v.origin.y),
-                      double(v.origin.z), double(bytes) / (1024.0 * 1024.0), b.fields, b.injections,
-                      SceneVolume::updateName(volume_->lastUpdate(i)));
-        out.push_back(line);
-    }
+    for (int i = 0; i < layout.count; ++i) out.push_back(volume_->describeCascade(i));
     return out;
 }
 

@@ -58,6 +58,7 @@ const ParamTable<SdfGiSettings>& sdfParams() {
                 "cosine rays per traced pixel, accumulated over frames and filtered",
                 {"probes", "rays"}, U::Rebuild);
         probes::addGridRows(t, "probe-", probes::SpacingOf::Cascade, {&S::probeSpacing, &S::probeRays, &S::rayBudget});
+        t.boolean(&S::pathTest, "probe-path-test", "Probe path test", probes::kPathTestHelp, ParamUpdate::Rebuild);
         t.choice(&S::traceScale, "trace-scale", "Trace scale",
                 "full-resolution pixels per traced pixel per axis: the probe gather, mirror ray and occlusion (with "
                 "sdf.diffuse=rays the diffuse rays) run for one pixel per block and are filtered back up",
@@ -97,6 +98,7 @@ probes::FieldSettings SdfGiSettings::probeField() const {
     probes::FieldSettings f;
     f.rays = probeRays;
     f.rayBudget = rayBudget;
+    f.pathTest = pathTest;
     return f;
 }
 

@@ -18,6 +18,7 @@ struct SdfGiSettings {
     float probeSpacing = 0.25f; // sdf.probe-spacing: probe cell as a fraction of each cascade's extent (rebuild)
     int probeRays = 128;        // sdf.probe-rays: rays per probe per update (rebuild)
     int rayBudget = 0;          // sdf.probe-ray-budget: probe rays per frame, 0 = every due probe (rebuild)
+    bool pathTest = true;       // sdf.probe-path-test: the probe gather's straight-path test (rebuild)
     int traceScale = 1;         // sdf.trace-scale: 1 | 2 | 4 full-resolution pixels per traced pixel per axis, the
                                 // choice's index (1: half resolution) (rebuild)
     int rays = 4;               // sdf.rays: cosine-distributed diffuse rays per traced pixel per frame (live)

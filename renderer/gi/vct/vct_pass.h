@@ -52,7 +52,7 @@ public:
     int injections() const { return volume_->builds().injections; }        // how often light was injected
     bool writesImagesOrBuffers() const override { return true; }
     std::vector<std::string> stats() const override {
-        return {describeVolume(volume_->grid().fit, "voxels")};
+        return {describeVolume(volume_->grid().fit, "voxels"), volume_->describeCascade(0)};
     }
     std::vector<DebugViewDesc> debugViews() const override;
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;

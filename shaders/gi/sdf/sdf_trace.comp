@@ -122,7 +122,7 @@ void main() {
     }
 
     // SDFGI: the diffuse term from the probes around the surface (shaders/probes/probe_common.glsl).
-    vec3 diffuse = u_trace.probeGather != 0 ? sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_trace.gatherBias, true)
+    vec3 diffuse = u_trace.probeGather != 0 ? sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_trace.gatherBias, u_trace.probeVisibility)
                                     : sum / float(max(u_rays, 1));
     imageStore(i_diffuse, pixel, vec4(finiteOrZero(diffuse), 1.0));
     imageStore(i_reflection, pixel, vec4(finiteOrZero(reflection.rgb), reflection.a));

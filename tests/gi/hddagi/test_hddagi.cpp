@@ -212,6 +212,24 @@ TEST(Hddagi, ACameraOutsideEveryCascadeStillSeesTheLitBox) {
     EXPECT_GT(sum, 0.0);
 }
 
+// hddagi.path-test is what holds builtin:building's closed room dark (the method contract checks
+// the default, on): switched off, the room's pixels take the light of probes outside its 20 cm
+// walls again. Its leak number (closed room over corridor; 0 in truth) then reads far above the
+// contract's bound (0.43 measured at 64x64), so the key reaches the gather.
+TEST(Hddagi, ThePathTestIsWhatKeepsTheClosedRoomDark) {
+    const Scene building = makeBuiltinScene("building");
+    RenderSettings s = base();
+    s.width = s.height = 32;
+    setHddagi(s, "path-test", "false");
+    s.camera = building.leakCameras.lit;
+    const double lit = meanRadiance(render(building, s, 24).frame);
+    s.camera = building.leakCameras.dark;
+    const double leak = meanRadiance(render(building, s, 24).frame) / lit;
+    std::printf("HDDAGI-TABLE building leak number without the path test: %.4f\n", leak);
+    ASSERT_GT(lit, 0.0);
+    EXPECT_GT(leak, 0.1);
+}
+
 TEST(Hddagi, DebugViews) {
     RenderSettings s = base();
     setHddagi(s, "resolution", "32");
