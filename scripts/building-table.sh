@@ -10,12 +10,14 @@
 # Writes each method's table between the "scale-table" markers of renderer/gi/METHOD/README.md.
 #
 # Usage (project root, after a build): bash scripts/building-table.sh [BIN (build/gisandbox)]
-# Environment: METHODS (vct,sdf,probes,hddagi), PRESETS (default,realtime; "default" = no preset).
+# Environment: METHODS (vct,sdf,probes,hddagi), PRESETS (default,realtime,path-test; "default" = no
+# preset; "path-test" = the defaults with the probe gather's path test switched the other way, for
+# the methods that have one: the trade between leaks through walls and points no probe reaches).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${1:-build/gisandbox}
 methods=${METHODS:-vct,sdf,probes,hddagi}
-presets=${PRESETS:-default,realtime}
+presets=${PRESETS:-default,realtime,path-test}
 shared=../shared/assets
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -36,6 +38,16 @@ models=("$shared/gltf/BoxTextured/glTF/BoxTextured.gltf" "$shared/gltf/BoxVertex
         "$shared/gltf/VulkanSamplesAssets/torusknot.gltf")
 for i in "${!models[@]}"; do render "$tmp/model$i-pt.exr" --scene "${models[$i]}" --gi pathtrace --size 128x128; done
 
+pathTestKey() {  # METHOD -> its path-test key, or nothing
+  case $1 in probes|hddagi) echo "$1.path-test" ;; sdf) echo "sdf.probe-path-test" ;; esac
+}
+pathTestFlipped() {  # METHOD -> the row's flags and label: the key set to the other value than its default
+  local key now
+  key=$(pathTestKey "$1")
+  now=$("$bin" methods "$1" 2>/dev/null | awk -v k="$key" '$1 == k {print $5; exit}')
+  if [ "$now" = true ]; then echo "--set $key=false"; else echo "--set $key=true"; fi
+}
+
 gl=$("$bin" render --scene builtin:cornell --size 8x8 --out "$tmp/gl.png" -v 2>&1 | sed -n 's/^GL_RENDERER: //p')
 for m in ${methods//,/ }; do
   {
@@ -46,7 +58,14 @@ for m in ${methods//,/ }; do
     echo "| preset | atrium | building corridor | building hall | leak | BoxTextured | BoxVertexColors | DamagedHelmet | teapot | torusknot |"
     echo "|---|---|---|---|---|---|---|---|---|---|"
     for p in ${presets//,/ }; do
-      flags=(--gi "$m"); [ "$p" = default ] || flags+=(--preset "$p")
+      flags=(--gi "$m")
+      if [ "$p" = path-test ]; then
+        [ -n "$(pathTestKey "$m")" ] || continue
+        read -r -a extra <<< "$(pathTestFlipped "$m")"
+        flags+=("${extra[@]}"); p="\`${extra[1]}\`"
+      elif [ "$p" != default ]; then
+        flags+=(--preset "$p")
+      fi
       render "$tmp/atrium.exr" "${atrium[@]}" "${flags[@]}" --size 256x256
       render "$tmp/corridor.exr" --scene builtin:building --camera 0 "${flags[@]}" --size 256x256
       render "$tmp/hall.exr" --scene builtin:building --camera 1 "${flags[@]}" --size 256x256
@@ -62,15 +81,7 @@ for m in ${methods//,/ }; do
       echo "$row |"
     done
   } > "$tmp/$m.md"
-  python3 - "renderer/gi/$m/README.md" "$tmp/$m.md" <<'PY'
-import sys
-page, table = sys.argv[1], open(sys.argv[2]).read()
-text = open(page).read()
-begin, end = "<!-- scale-table begin -->\n", "<!-- scale-table end -->"
-if begin not in text:
-    text += "\n## At real scale: a building, a courtyard, single models\n\n" + begin + end + "\n"
-head, rest = text.split(begin)
-open(page, "w").write(head + begin + table + end + rest.split(end)[1])
-PY
+  python3 scripts/page_table.py "renderer/gi/$m/README.md" scale-table \
+    "At real scale: a building, a courtyard, single models" "$tmp/$m.md"
   echo "wrote the table into renderer/gi/$m/README.md" >&2
 done
