@@ -16,7 +16,7 @@ VolumeRequest vctVolumeRequest(const VctSettings& s) {
     r.resolution = s.resolution;
     r.resolutionKey = "vct.resolution";
     r.conservative = s.conservativeMode();
-    r.conservativeKey = "vct.conservative";
+    r.conservativeKey = s.conservativeAsked() ? "vct.conservative" : "";
     r.cullBackfaces = s.backfaces == 1;
     r.cullUnlitOutsides = s.unlitOutsides == 0;
     r.marginVoxels = r.cullBackfaces ? 0.5f : kVolumeMarginVoxels;
@@ -55,9 +55,10 @@ const ParamTable<VctSettings>& vctParams() {
                      std::to_string(kVoxelBudgetBytes >> 30) + " GiB a voxel method may hold)",
                  8, maxVctResolution(), U::Rebuild)
         .choice(&S::conservative, "conservative", "Conservative raster",
-                "hardware = GL_NV_conservative_raster (falls back to geometry), geometry = dilation in the "
-                "geometry shader, off = plain rasterization",
-                {"hardware", "geometry", "off"}, U::Rebuild)
+                "auto = hardware where the driver has it, else geometry; hardware = GL_NV_conservative_raster "
+                "(falls back to geometry with a warning), geometry = dilation in the geometry shader, off = plain "
+                "rasterization",
+                {"auto", "hardware", "geometry", "off"}, U::Rebuild)
         .boolean(&S::anisotropic, "anisotropic", "Anisotropic mips", "six directional mip chains", U::Rebuild)
         .choice(&S::backfaces, "backfaces", "Back faces",
                 "opaque = a voxel occludes and shows its light to cones from every side (a cone sees part of its own "

@@ -13,7 +13,7 @@ namespace gis {
 
 struct VctSettings {
     int resolution = 64;       // vct.resolution: voxels per edge, a power of two (rebuild)
-    int conservative = 0;      // vct.conservative: hardware | geometry | off (ConservativeMode order; rebuild)
+    int conservative = 0;      // vct.conservative: auto | hardware | geometry | off (then ConservativeMode order; rebuild)
     bool anisotropic = true;   // vct.anisotropic: six directional mip chains (rebuild)
     int backfaces = 0;         // vct.backfaces: opaque | cull, what directional mips do with back faces (rebuild)
     int unlitOutsides = 0;     // vct.unlit-outsides: cull | keep, surfaces facing air no light reaches (rebuild)
@@ -33,7 +33,12 @@ struct VctSettings {
     int sliceAxis = 2;         // vct.slice-axis: x | y | z
     float slicePosition = 0.5f;  // vct.slice-position: 0..1 across the volume
 
-    ConservativeMode conservativeMode() const { return ConservativeMode(conservative); }
+    // auto is the hardware path where the driver has it, else geometry, silently: only a user who
+    // asked for `hardware` is told it fell back (issue #42: every llvmpipe run warned).
+    ConservativeMode conservativeMode() const {
+        return conservative == 0 ? ConservativeMode::Hardware : ConservativeMode(conservative - 1);
+    }
+    bool conservativeAsked() const { return conservative != 0; }
     int tracePixels() const { return 1 << traceScale; }  // full-resolution pixels per traced texel per axis
     // Frames a static view takes to reach the full-resolution result: one per jitter phase of a
     // traced texel (one frame without reduced-resolution tracing).
