@@ -31,8 +31,6 @@ bool probeSeesPoint(vec3 probe, vec3 P, vec3 N, vec3 V) {
     return !hddaTraceCascades(cs, from, (probe - from) / len, 0.0, len - 0.5 * cell, 256).hit;
 #else
     SdfCascades cs = SdfCascades(u_cascades, u_cascadeCount, u_sdfResolution);
-    float cell = sdfCellSize(sdfCascadeVolume(cs, sdfCascadeAt(cs, P)));
-    vec3 from = sdfPushOut(s_distance, cs, P + N * (1.5 * cell), cell);
-    return sdfSegmentClear(s_distance, s_coarse, cs, from, probe, 0.5 * cell, 32);
+    return sdfSurfaceSeesPoint(s_distance, s_coarse, cs, P, N, probe, 1.5);
 #endif
 }

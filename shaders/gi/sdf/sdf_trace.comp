@@ -43,10 +43,7 @@ SdfCascades cascades() { return SdfCascades(u_cascades, u_cascadeCount, u_resolu
 // The probe gather's visibility through this field (probes/probe_common.glsl), from where the
 // diffuse rays start off the surface.
 bool probeSeesPoint(vec3 probe, vec3 P, vec3 N, vec3 V) {
-    SdfCascades cs = cascades();
-    float cell = sdfCellSize(sdfCascadeVolume(cs, sdfCascadeAt(cs, P)));
-    vec3 from = sdfPushOut(s_distance, cs, P + N * (u_march.offset * cell), cell);
-    return sdfSegmentClear(s_distance, s_coarse, cs, from, probe, 0.5 * cell, 32);
+    return sdfSurfaceSeesPoint(s_distance, s_coarse, cascades(), P, N, probe, u_march.offset);
 }
 
 SdfMarchParams marchParams() {
