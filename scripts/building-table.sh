@@ -14,6 +14,7 @@
 # preset; "path-test" = the defaults with the probe gather's path test switched the other way, for
 # the methods that have one: the trade between leaks through walls and points no probe reaches).
 set -euo pipefail
+case ${1:-} in -h|--help) sed -n '2,/^set -e/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;; esac
 cd "$(dirname "$0")/.."
 bin=${1:-build/gisandbox}
 methods=${METHODS:-vct,sdf,probes,hddagi}

@@ -9,6 +9,7 @@
 # Usage (project root, after a build): bash scripts/cascade-cost-table.sh [BIN (build/gisandbox)]
 # Environment: METHODS (vct,sdf,probes,hddagi), SIZE (128), FRAMES (12).
 set -euo pipefail
+case ${1:-} in -h|--help) sed -n '2,/^set -e/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;; esac
 cd "$(dirname "$0")/.."
 bin=${1:-build/gisandbox}
 methods=${METHODS:-vct,sdf,probes,hddagi}
