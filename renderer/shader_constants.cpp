@@ -55,6 +55,7 @@ const std::vector<gl::BindingSlot>& bindingSlots() {
         std::vector<gl::BindingSlot> v;
         append(v, tableRows(kBindings));
         append(v, tableRows(emitters::kEmitterBindings));
+        append(v, tableRows(probes::kProbeBindings));
         for (const ShaderTables& t : methodShaderTables()) append(v, t.bindings);
         return v;
     }();
@@ -70,6 +71,7 @@ const std::vector<gl::UniformBlockDesc>& uniformBlocks() {
             sdf::SdfMarchBlock::desc(),
             probes::ProbeUpdateBlock::desc(),
             probes::ProbeGatherBlock::desc(),
+            probes::ProbeReflectBlock::desc(),
             SsaoBlock::desc(),
             SsaoTemporalBlock::desc(),
             EnvironmentBlock::desc(),

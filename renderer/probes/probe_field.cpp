@@ -300,31 +300,37 @@ std::vector<int> ProbeField::schedule(const Frame& frame, const FieldSettings& l
     return due;
 }
 
-void ProbeField::trace(const Frame& frame, const FieldSettings& s, int batch) {
-    const GLuint p = traceProgram_.id();
-    frame.bindEnvironment();
-    glUseProgram(p);
+void ProbeField::bindForHitLight(GLuint p, const FieldSettings& live) const {
     setGridUniforms(p);
     setFieldUniforms(p);
-    glProgramUniform1i(p, UP_RAYS, built_.rays);
-    glProgramUniformMatrix3fv(p, UP_ROTATION, 1, GL_FALSE, &rotation_[0][0]);
-    setUpdateBlock(s);
+    setUpdateBlock(live);
     bindTracer();
-    // Units 2.. (probe_trace.comp): the radiance, then each cascade's albedo (its own texture each,
-    // for the multi-bounce term; unused units repeat the last cascade's), then the slab voxels' sides.
+    // The radiance, then each cascade's albedo (its own texture each, for the multi-bounce term;
+    // unused units repeat the last cascade's), then the slab voxels' sides (texelFetch: no sampler).
     constexpr int kUnits = 1 + kMaxGrids;
     GLuint textures[kUnits + 1] = {volume_->radianceTexture()};
     for (int c = 0; c < kMaxGrids; ++c)
         textures[1 + c] = volume_->grid(std::min(c, volume_->cascadeCount() - 1)).albedo.id();
-    textures[kUnits] = volume_->sidesTexture();  // read by texelFetch: no sampler
-    glBindTextures(2, kUnits + 1, textures);
+    textures[kUnits] = volume_->sidesTexture();
+    glBindTextures(TP_VOXEL_RADIANCE, kUnits + 1, textures);
     GLuint samplers[kUnits];
     std::fill_n(samplers, kUnits, sampler_.id());
-    glBindSamplers(2, kUnits, samplers);
+    glBindSamplers(TP_VOXEL_RADIANCE, kUnits, samplers);
     bindBuffers();
+}
+
+void ProbeField::releaseHitLight() const { glBindSamplers(TP_VOXEL_RADIANCE, 1 + kMaxGrids, nullptr); }
+
+void ProbeField::trace(const Frame& frame, const FieldSettings& s, int batch) {
+    const GLuint p = traceProgram_.id();
+    frame.bindEnvironment();
+    glUseProgram(p);
+    glProgramUniform1i(p, UP_RAYS, built_.rays);
+    glProgramUniformMatrix3fv(p, UP_ROTATION, 1, GL_FALSE, &rotation_[0][0]);
+    bindForHitLight(p, s);
     gl::dispatchComputeSplit(batch, [&](GLuint slot) { glProgramUniform1i(p, UP_SLOT_OFFSET, int(slot)); });
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glBindSamplers(2, 1 + kMaxGrids, nullptr);
+    releaseHitLight();
 }
 
 void ProbeField::setUpdateBlock(const FieldSettings& s) const {

@@ -96,6 +96,11 @@ public:
     // And the volume its tracer walks, for a gather that tests each probe's path to the surface
     // (shaders/probes/probe_tracer.glsl: the screen gather built for tracer()).
     void bindForScreenGather(GLuint program) const;
+    // Everything a program that walks and shades rays as the probes do needs
+    // (shaders/probes/probe_hit_light.glsl): the gather's inputs, the voxels' light and albedo, the
+    // update block of `live`. releaseHitLight() unbinds the samplers it set.
+    void bindForHitLight(GLuint program, const FieldSettings& live) const;
+    void releaseHitLight() const;
     Tracer tracer() const { return built_.tracer; }
     const std::vector<ProbeGrid>& grids() const { return grids_; }
     int count() const { return count_; }

@@ -7,6 +7,7 @@
 
 #include "param_table.h"
 #include "probes/probe_field.h"
+#include "probes/screen_reflection.h"
 
 namespace gis::probes {
 
@@ -91,6 +92,36 @@ FieldSettings fieldSettingsOf(const S& s) {
     f.maxUpdates = s.maxUpdates;
     f.normalBias = s.normalBias;
     return f;
+}
+
+// The screen reflection's rows (live): reflection, reflection-roughness, reflection-rays,
+// reflection-frames, read into ReflectionSettings by reflectionSettingsOf.
+template <class S>
+void addReflectionRows(ParamTable<S>& t) {
+    using U = ParamUpdate;
+    t.choice(&S::reflection, "reflection", "Reflection",
+             "indirect.specular: rays = rays from the GGX lobe walked through the probes' volume and shaded as the "
+             "probes' rays are; environment = the prefiltered sky alone (no rays, no occlusion: a mirror indoors "
+             "shows the sky)",
+             {"environment", "rays"}, U::Live)
+        .real(&S::reflectionRoughness, "reflection-roughness", "Reflection roughness",
+              "rays below this roughness, blended towards the diffuse gather over its last quarter; at and above "
+              "it the specular term is the diffuse gather (the cosine lobe's mean radiance)",
+              0.0, 1.0, U::Live)
+        .integer(&S::reflectionRays, "reflection-rays", "Reflection rays",
+                 "rays per pixel per frame from the GGX lobe (a mirror traces one)", 1, 64, U::Live)
+        .integer(&S::reflectionFrames, "reflection-frames", "Reflection frames",
+                 "frames of a still view averaged before it counts as settled", 1, 4096, U::Live);
+}
+
+template <class S>
+ReflectionSettings reflectionSettingsOf(const S& s) {
+    ReflectionSettings r;
+    r.mode = Reflection(s.reflection);
+    r.roughness = s.reflectionRoughness;
+    r.rays = s.reflectionRays;
+    r.frames = s.reflectionFrames;
+    return r;
 }
 
 }  // namespace gis::probes

@@ -34,6 +34,28 @@ constexpr int kMaxGrids = kMaxCascades;
 enum ProbeUniform : int { GIS_PROBE_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kProbeUniforms[] = {GIS_PROBE_UNIFORMS(GIS_UNIFORM_SLOT)};
 
+// Units of the programs that shade a field's rays (probes/probe_hit_light.glsl: the probes' own
+// rays and the screen reflection's): the voxel radiance, each cascade's albedo (consecutive units,
+// one per grid), the slab voxels' sides; the screen reflection's G-buffer inputs, the gather's
+// indirect.diffuse it blends towards, and its two images. Units 11.. hold the environment.
+#define GIS_PROBE_BINDINGS(X) \
+    X(TP_VOXEL_RADIANCE, 2) \
+    X(TP_VOXEL_ALBEDO0, 3) \
+    X(TP_VOXEL_ALBEDO1, 4) \
+    X(TP_VOXEL_ALBEDO2, 5) \
+    X(TP_VOXEL_ALBEDO3, 6) \
+    X(TP_VOXEL_SIDES, 7) \
+    X(TP_REFLECT_DEPTH, 8) \
+    X(TP_REFLECT_NORMAL, 9) \
+    X(TP_REFLECT_MATERIAL, 10) \
+    X(TP_REFLECT_DIFFUSE, 16) \
+    X(IP_REFLECT_MEAN, 0) \
+    X(IP_REFLECT_SPECULAR, 1)
+
+enum ProbeBinding : int { GIS_PROBE_BINDINGS(GIS_BINDING_ENUM) };
+inline constexpr gl::BindingSlot kProbeBindings[] = {GIS_PROBE_BINDINGS(GIS_BINDING_SLOT)};
+static_assert(TP_VOXEL_ALBEDO0 + kMaxGrids == TP_VOXEL_SIDES, "one albedo unit per grid, then the sides");
+
 // One probe update (probe_trace.comp's rays, probe_blend.comp's blend).
 #define GIS_PROBE_UPDATE_BLOCK(M, A) \
     M(float, hysteresis)        /* the moving average's floor: weight 1 - hysteresis */ \
@@ -50,4 +72,12 @@ GIS_UNIFORM_BLOCK(ProbeUpdateBlock, 6, GIS_PROBE_UPDATE_BLOCK)
     M(float, intensity) \
     M(int, visibility)          /* probe_field.h, visibilityMode: 1 distance moments, 2 and the path */
 GIS_UNIFORM_BLOCK(ProbeGatherBlock, 7, GIS_PROBE_GATHER_BLOCK)
+
+// The screen reflection (screen_reflection.comp; renderer/probes/screen_reflection.h).
+#define GIS_PROBE_REFLECT_BLOCK(M, A) \
+    M(float, roughness)         /* rays below this roughness; at and above it the diffuse gather */ \
+    M(int, rays)                /* per pixel per frame, drawn from the GGX lobe (one at a mirror) */ \
+    M(float, framesAveraged)    /* still frames already in the running mean */ \
+    M(int, frame)               /* random stream */
+GIS_UNIFORM_BLOCK(ProbeReflectBlock, 14, GIS_PROBE_REFLECT_BLOCK)
 }  // namespace gis::probes

@@ -45,7 +45,7 @@ VolumeRequest checkedVolumeRequest(const RenderSettings& settings) {
 
 std::vector<ProgramDesc> HddagiPass::programs() {
     std::vector<ProgramDesc> all = SceneVolume::programs(volumeRequest(HddagiSettings{}));
-    for (const auto& list : {probes::fieldPrograms(), probes::ScreenGather::programs()})
+    for (const auto& list : {probes::fieldPrograms(), probes::ScreenGather::programs(), probes::ScreenReflection::programs()})
         all.insert(all.end(), list.begin(), list.end());
     all.push_back(kDebugProgram);
     return all;
@@ -61,7 +61,8 @@ std::vector<std::pair<std::string, uint64_t>> HddagiPass::estimateMemory(const S
             {"HDDAGI probes (" + std::to_string(probes) + ": irradiance, distance moments, state)",
              uint64_t(probes::fieldStorageBytes(s.field(), probes))},
             {"HDDAGI probe rays", uint64_t(probes::fieldRayBytes(s.field(), probes))},
-            {"HDDAGI screen gather", uint64_t(probes::ScreenGather::bytes(settings.width, settings.height, s.gatherScale()))}};
+            {"HDDAGI screen gather", uint64_t(probes::ScreenGather::bytes(settings.width, settings.height, s.gatherScale()))},
+            {"HDDAGI reflection (mean, specular)", uint64_t(probes::ScreenReflection::bytes(settings.width, settings.height))}};
 }
 
 HddagiPass::HddagiPass(SceneServices& services, const RenderSettings& settings)
@@ -73,6 +74,7 @@ HddagiPass::HddagiPass(SceneServices& services, const RenderSettings& settings)
         scope, *volume_, probes::cascadeProbeGrids(*volume_, sceneBounds_, built_.probeSpacing), built_.field());
     gather_ = std::make_unique<probes::ScreenGather>(scope, settings.width, settings.height, built_.gatherScale(),
                                                      field_->tracer());
+    reflection_ = std::make_unique<probes::ScreenReflection>(scope, settings.width, settings.height, field_->tracer());
     debugProgram_ = buildProgram(kDebugProgram);
 }
 
@@ -96,7 +98,12 @@ void HddagiPass::run(Frame& frame) {
         auto t = frame.step("gather");
         gather_->run(frame, *field_, live.gather());
     }
+    {
+        auto t = frame.step("reflection");
+        reflection_->run(frame, *field_, live.field(), gather_->result(), live.reflectionSettings(), changed_);
+    }
     frame.put(resource::kIndirectDiffuse, gather_->result());
+    frame.put(resource::kIndirectSpecular, reflection_->result());
     changed_ = false;
 }
 
@@ -111,6 +118,7 @@ std::vector<std::string> HddagiPass::stats() const {
                   all.voxelizations, all.scrolls, static_cast<long long>(all.voxelizedCells));
     out.push_back(line);
     for (int i = 0; i < volume_->cascadeCount(); ++i) out.push_back(volume_->describeCascade(i));
+    out.push_back(reflection_->describe());
     return out;
 }
 

@@ -5,7 +5,8 @@
 // probe pipeline (renderer/probes/) keeps one probe grid per cascade, walks its rays through the
 // occupancy by hierarchical DDA (shaders/volume/hdda.glsl), shades hits from the voxels' light
 // plus the probes' own irradiance (every bounce), and the screen gather reads them per pixel (at
-// half resolution by default) into "indirect.diffuse", with SDFGI's Chebyshev occlusion.
+// half resolution by default) into "indirect.diffuse", with SDFGI's Chebyshev occlusion; reflection
+// rays walked and shaded as the probes' own give "indirect.specular" (probes/screen_reflection.h).
 // A static view with converged probes costs nothing (settled()); a light edit relights the voxels
 // and restarts the probes; a camera move scrolls what left the snap distance.
 #pragma once
@@ -16,6 +17,7 @@
 #include "gi/hddagi/hddagi_uniforms.h"
 #include "probes/probe_field.h"
 #include "probes/screen_gather.h"
+#include "probes/screen_reflection.h"
 #include "frame.h"
 #include "gl/shader.h"
 #include "volume/volume_pass.h"
@@ -28,11 +30,13 @@ class HddagiPass final : public VolumePass {
 public:
     HddagiPass(SceneServices& services, const RenderSettings& settings);
     const char* name() const override { return "hddagi"; }
-    std::vector<std::string> ownInputs() const override { return {resource::kGbufferDepth, resource::kGbufferNormal}; }
-    std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse}; }
+    std::vector<std::string> ownInputs() const override {
+        return {resource::kGbufferDepth, resource::kGbufferNormal, resource::kGbufferMaterial};
+    }
+    std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse, resource::kIndirectSpecular}; }
     void run(Frame& frame) override;
-    bool settled() const override { return field_->converged() && !changed_; }
-    Progress progress() const override { return field_->progress(); }
+    bool settled() const override { return field_->converged() && !changed_ && reflection_->settled(); }
+    Progress progress() const override { return reflection_->progress(field_->progress(), field_->converged()); }
     void invalidate(Changes c) override;
     bool writesImagesOrBuffers() const override { return true; }
     std::vector<std::string> stats() const override;
@@ -52,6 +56,7 @@ private:
     Aabb sceneBounds_;
     std::unique_ptr<probes::ProbeField> field_;
     std::unique_ptr<probes::ScreenGather> gather_;
+    std::unique_ptr<probes::ScreenReflection> reflection_;
     gl::Object debugProgram_;
     bool changed_ = true;             // something arrived through invalidate() since the last execute
     gl::UniformBuffer<hddagi::HddagiSliceBlock> slice_;

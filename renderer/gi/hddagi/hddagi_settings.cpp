@@ -26,6 +26,7 @@ const ParamTable<HddagiSettings>& hddagiParams() {
                  "gather the probes at every 2x2 block's first pixel and upsample (pixels on an edge gather their own)",
                  U::Rebuild);
         probes::addLiveFieldRows(t);
+        probes::addReflectionRows(t);
         t.real(&S::intensity, "intensity", "Intensity", "scales indirect.diffuse", 0.0, 16.0, U::Live)
         .choice(&S::sliceAxis, "slice-axis", "Slice axis", "axis hddagi.occupancy cuts across", {"x", "y", "z"},
                 U::Live)
@@ -47,6 +48,8 @@ probes::FieldSettings HddagiSettings::field() const {
     f.tracer = probes::Tracer::Occupancy;
     return f;
 }
+
+probes::ReflectionSettings HddagiSettings::reflectionSettings() const { return probes::reflectionSettingsOf(*this); }
 
 probes::GatherSettings HddagiSettings::gather() const { return {normalBias, intensity, visibility, pathTest}; }
 

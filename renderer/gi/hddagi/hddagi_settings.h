@@ -6,6 +6,7 @@
 
 #include "param_table.h"
 #include "probes/probe_field.h"
+#include "probes/screen_reflection.h"
 #include "probes/screen_gather.h"
 
 namespace gis {
@@ -33,9 +34,15 @@ struct HddagiSettings {
     int sliceCascade = 0;        // hddagi.slice-cascade (clamped to the count)
     int sliceLevel = 0;          // hddagi.slice-level: voxels | blocks | regions
     int stepsMax = 64;           // hddagi.steps-max: steps shown white in hddagi.steps
+    // The screen reflection (probes/screen_reflection.h; live): its rows are probe_params.h's.
+    int reflection = 1;               // hddagi.reflection: environment | rays
+    float reflectionRoughness = 0.6f; // hddagi.reflection-roughness: rays below it
+    int reflectionRays = 4;           // hddagi.reflection-rays: per pixel per frame
+    int reflectionFrames = 16;        // hddagi.reflection-frames: still frames averaged
 
     probes::FieldSettings field() const;     // what the shared probe pipeline reads
     probes::GatherSettings gather() const;
+    probes::ReflectionSettings reflectionSettings() const;
     int gatherScale() const { return halfResolution ? 2 : 1; }
 };
 

@@ -19,6 +19,7 @@ const ParamTable<ProbeSettings>& probeParams() {
                 "switched off",
                 {"relocate", "off"}, U::Rebuild);
         probes::addLiveFieldRows(t);
+        probes::addReflectionRows(t);
         t.choice(&S::gatherScale, "gather-scale", "Gather scale",
                 "1 = gather every pixel; 2, 4 = every 2x2 / 4x4 block's first pixel, spread by joint bilateral "
                 "upsampling (pixels on an edge gather their own)",
@@ -38,6 +39,8 @@ probes::FieldSettings ProbeSettings::field() const {
     f.debugProbe = debugProbe;
     return f;
 }
+
+probes::ReflectionSettings ProbeSettings::reflectionSettings() const { return probes::reflectionSettingsOf(*this); }
 
 void checkProbeSettings(const ProbeSettings& s) {
     probes::checkFieldSettings(s.field(), probes::gridKey("probes", "", "ray-budget"), probes::gridKey("probes", "", "rays"));

@@ -43,7 +43,7 @@ VolumeRequest checkedVolumeRequest(const RenderSettings& settings) {
 
 std::vector<ProgramDesc> ProbesPass::programs() {
     std::vector<ProgramDesc> all = SceneVolume::programs(volumeRequest(ProbeSettings{}));
-    for (const auto& list : {fieldPrograms(), ScreenGather::programs()}) all.insert(all.end(), list.begin(), list.end());
+    for (const auto& list : {fieldPrograms(), ScreenGather::programs(), ScreenReflection::programs()}) all.insert(all.end(), list.begin(), list.end());
     return all;
 }
 
@@ -54,6 +54,7 @@ ProbesPass::ProbesPass(SceneServices& services, const RenderSettings& settings)
     const ProbeGrid grid = fitProbeGrid(services.bounds(), built_.spacing, services.airBounds());
     field_ = std::make_unique<ProbeField>(scope, *volume_, std::vector<ProbeGrid>{grid}, built_.field());
     gather_ = std::make_unique<ScreenGather>(scope, settings.width, settings.height, built_.gatherPixels(), field_->tracer());
+    reflection_ = std::make_unique<ScreenReflection>(scope, settings.width, settings.height, field_->tracer());
 }
 
 // The scene volume rebuilds what the change touched (a light edit relights it alone); the probes
@@ -63,7 +64,7 @@ void ProbesPass::invalidate(Changes c) {
     changed_ = true;
 }
 
-Pass::Progress ProbesPass::progress() const { return field_->progress(); }
+Pass::Progress ProbesPass::progress() const { return reflection_->progress(field_->progress(), field_->converged()); }
 
 void ProbesPass::run(Frame& frame) {
     const ProbeSettings live = probeParams().read("probes", frame.settings.params);
@@ -72,7 +73,12 @@ void ProbesPass::run(Frame& frame) {
         auto t = frame.step("shade");
         gather_->run(frame, *field_, {live.normalBias, live.intensity, live.visibility, live.pathTest});
     }
+    {
+        auto t = frame.step("reflection");
+        reflection_->run(frame, *field_, live.field(), gather_->result(), live.reflectionSettings(), changed_);
+    }
     frame.put(resource::kIndirectDiffuse, gather_->result());
+    frame.put(resource::kIndirectSpecular, reflection_->result());
     changed_ = false;
 }
 
@@ -110,7 +116,8 @@ GiMethod probesMethod() {
             {"probe voxels and distance field", uint64_t(sceneVolumeBytes(volumeRequest(p), 1))},
             {"probes (irradiance, distance moments, state)", uint64_t(fieldStorageBytes(p.field(), probes))},
             {"probe rays", uint64_t(fieldRayBytes(p.field(), probes))},
-            {"probe screen target", uint64_t(ScreenGather::bytes(s.width, s.height, p.gatherPixels()))}};
+            {"probe screen target", uint64_t(ScreenGather::bytes(s.width, s.height, p.gatherPixels()))},
+            {"probe reflection (mean, specular)", uint64_t(ScreenReflection::bytes(s.width, s.height))}};
     };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<ProbesPass>(b.services, b.settings)); };
     // Updates stop when converged or after max-updates; the bench renders this many frames first.
@@ -126,7 +133,7 @@ GiMethod probesMethod() {
 
 std::vector<std::string> ProbesPass::stats() const {
     return {field_->describe(), describeVolume(volume_->grid().fit, "voxels / distance-field cells"),
-            volume_->describeCascade(0)};
+            volume_->describeCascade(0), reflection_->describe()};
 }
 
 }  // namespace gis

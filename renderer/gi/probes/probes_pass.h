@@ -2,7 +2,8 @@
 // probe pipeline (renderer/probes/probe_field.h: rays sphere-traced through the scene volume's
 // distance field, shaded from its voxels' light plus the probes' own irradiance, blended with
 // hysteresis within a per-frame ray budget). Per pixel, the 8 surrounding probes are interpolated
-// with normal-facing and Chebyshev-visibility weights into "indirect.diffuse".
+// with normal-facing and Chebyshev-visibility weights into "indirect.diffuse"; reflection rays
+// walked and shaded as the probes' own give "indirect.specular" (probes/screen_reflection.h).
 // Volume and probes are view independent: a camera move costs the shading alone; converged probes
 // cost nothing, and a static view with converged probes costs nothing at all (settled()); a light
 // change relights the voxels (no voxelization, no flood) and restarts the probes.
@@ -12,6 +13,7 @@
 
 #include "probes/probe_math.h"
 #include "probes/screen_gather.h"
+#include "probes/screen_reflection.h"
 #include "gi/probes/probe_settings.h"
 #include "frame.h"
 #include "gl/shader.h"
@@ -25,10 +27,12 @@ class ProbesPass final : public VolumePass {
 public:
     ProbesPass(SceneServices& services, const RenderSettings& settings);
     const char* name() const override { return "probes"; }
-    std::vector<std::string> ownInputs() const override { return {resource::kGbufferDepth, resource::kGbufferNormal}; }
-    std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse}; }
+    std::vector<std::string> ownInputs() const override {
+        return {resource::kGbufferDepth, resource::kGbufferNormal, resource::kGbufferMaterial};
+    }
+    std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse, resource::kIndirectSpecular}; }
     void run(Frame& frame) override;
-    bool settled() const override { return field_->converged() && !changed_; }
+    bool settled() const override { return field_->converged() && !changed_ && reflection_->settled(); }
     // Updates as progress, so `render` (and the sandbox's "converge") renders until the probes
     // have converged: done = updates read back, target = the most updates there can be, and both
     // the updates done once no probe is due any more.
@@ -57,6 +61,7 @@ private:
     ProbeSettings built_;
     std::unique_ptr<probes::ProbeField> field_;
     std::unique_ptr<probes::ScreenGather> gather_;
+    std::unique_ptr<probes::ScreenReflection> reflection_;
     bool changed_ = true;             // something arrived through invalidate() since the last execute
 };
 

@@ -48,6 +48,7 @@ const ProgramDesc kDebugProgram{"sdf_gi_debug", {"gi/sdf/sdf_debug.comp"}, {}};
 std::vector<ProgramDesc> SdfGiPass::programs() {
     std::vector<ProgramDesc> all = SceneVolume::programs(sdfVolumeRequest(SdfGiSettings{}));
     for (const ProgramDesc& p : probes::fieldPrograms()) all.push_back(p);
+    for (const ProgramDesc& p : probes::ScreenReflection::programs()) all.push_back(p);
     for (const ProgramDesc* p : {&kTraceProgram, &kTemporalProgram, &kFilterProgram, &kDebugProgram}) all.push_back(*p);
     return all;
 }
@@ -73,6 +74,7 @@ std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Sc
         rows.push_back({"SDFGI probes (" + std::to_string(probes) + ": irradiance, distance moments, state)",
                         uint64_t(probes::fieldStorageBytes(s.probeField(), probes))});
         rows.push_back({"SDFGI probe rays", uint64_t(probes::fieldRayBytes(s.probeField(), probes))});
+        rows.push_back({"SDFGI reflection (mean, specular)", uint64_t(probes::ScreenReflection::bytes(settings.width, settings.height))});
     }
     return rows;
 }
@@ -86,6 +88,7 @@ SdfGiPass::SdfGiPass(SceneServices& services, const RenderSettings& settings)
         probes::checkFieldSettings(built_.probeField(), "sdf.probe-ray-budget", "sdf.probe-rays");
         field_ = std::make_unique<probes::ProbeField>(
             scope_, *volume_, probes::cascadeProbeGrids(*volume_, sceneBounds_, built_.probeSpacing), built_.probeField());
+        screenReflection_ = std::make_unique<probes::ScreenReflection>(scope_, settings.width, settings.height, field_->tracer());
     }
     scale_ = built_.tracePixels();
     const int tw = tracedSize(settings.width, scale_), th = tracedSize(settings.height, scale_);
@@ -128,12 +131,12 @@ void SdfGiPass::placeProbes() {
 // Probes: converged. Rays: the history has had its frames to converge (framesToConverge).
 bool SdfGiPass::settled() const {
     if (changed_) return false;
-    if (field_) return field_->converged();
+    if (field_) return field_->converged() && screenReflection_->settled();
     return temporal_ > 0.0f && historyFrames_ >= sdfFramesToConverge(temporal_);
 }
 
 Pass::Progress SdfGiPass::progress() const {
-    return field_ ? field_->progress() : Progress{};
+    return field_ ? screenReflection_->progress(field_->progress(), field_->converged()) : Progress{};
 }
 
 std::optional<RayCounts> SdfGiPass::raysTraced() const {
@@ -165,8 +168,9 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     glProgramUniform1i(p, UG_RAYS, field_ ? 0 : s.rays);  // with probes, no diffuse rays per pixel
     glProgramUniform1ui(p, UG_FRAME, GLuint(frame.index * 7919u + frame.settings.seed));
     SdfTraceBlock trace;
-    trace.specular = s.specular ? 1 : 0;
-    trace.specularRoughness = s.specularRoughness;
+    // With the probes the screen reflection gives indirect.specular: no mirror ray here.
+    trace.specular = !field_ && s.reflection != int(probes::Reflection::Environment) ? 1 : 0;
+    trace.specularRoughness = s.reflectionRoughness;
     trace.probeGather = field_ ? 1 : 0;
     trace.probeVisibility = probes::visibilityMode(true, built_.probeField().pathTest);
     trace.gatherBias = built_.probeField().normalBias;
@@ -247,6 +251,10 @@ void SdfGiPass::run(Frame& frame) {
         auto t = frame.step("filter");
         filter(frame, live);
     }
+    if (field_) {
+        auto t = frame.step("reflection");
+        screenReflection_->run(frame, *field_, built_.probeField(), diffuse_, live.reflectionSettings(), changed_);
+    }
     prevViewProj_ = frame.camera.viewProj;
     prevCameraPos_ = frame.camera.position;
     temporal_ = live.temporal;
@@ -254,7 +262,7 @@ void SdfGiPass::run(Frame& frame) {
     hasHistory_ = true;
     changed_ = false;
     frame.put(resource::kIndirectDiffuse, diffuse_);
-    frame.put(resource::kIndirectSpecular, specular_);
+    frame.put(resource::kIndirectSpecular, field_ ? screenReflection_->result() : specular_);
     frame.put(resource::kAo, ao_);
 }
 
@@ -266,6 +274,7 @@ std::vector<std::string> SdfGiPass::stats() const {
                   double(layout.scene.size), double(built_.cascadeExtent));
     std::vector<std::string> out = {line};
     if (field_) out.push_back("SDFGI " + field_->describe());
+    if (field_) out.push_back(screenReflection_->describe());
     for (int i = 0; i < layout.count; ++i) out.push_back(volume_->describeCascade(i));
     return out;
 }

@@ -3,11 +3,12 @@
 // probes per cascade kept by the shared probe pipeline (renderer/probes/probe_field.h: rays
 // sphere-traced through the field within a ray budget, every bounce through the probes' own
 // irradiance); per pixel the lighting contract's indirect.diffuse gathered from the 8 probes
-// around it, a mirror ray sphere-traced only where the surface is smoother than
-// sdf.specular-roughness (indirect.specular), and near-field soft occlusion from the field (ao).
+// around it, reflection rays walked and shaded as the probes' own rays (indirect.specular, the
+// shared probes/screen_reflection.h), and near-field soft occlusion from the field (ao).
 // With sdf.diffuse=rays the diffuse term is instead a few cosine rays per traced pixel,
 // accumulated over frames with reprojection and filtered edge-aware (the method before SDFGI, kept
-// to compare).
+// to compare), and the specular term a mirror ray below sdf.reflection-roughness, shaded by the
+// voxels' light alone.
 //
 // Cascades (renderer/volume/volume_cascades.h): a scene whose cube is larger than
 // sdf.cascade-extent gets up to four nested volumes around the camera, each with its own voxels,
@@ -22,6 +23,7 @@
 #include "gi/sdf/sdf_gi_uniforms.h"
 #include "gi/sdf/sdf_settings.h"
 #include "probes/probe_field.h"
+#include "probes/screen_reflection.h"
 #include "frame.h"
 #include "gl/shader.h"
 #include "volume/sdf_uniforms.h"
@@ -76,6 +78,7 @@ private:
     gl::MemoryScope scope_;
     Aabb sceneBounds_;
     std::unique_ptr<probes::ProbeField> field_;   // sdf.diffuse=probes: a grid per cascade
+    std::unique_ptr<probes::ScreenReflection> screenReflection_;  // with field_: indirect.specular
     int scale_ = 1;  // full-resolution pixels per traced pixel
     // Traced resolution: this frame's diffuse, mirror ray, occlusion, debug data; the history
     // and each history pixel's distance from its camera, ping-ponged.

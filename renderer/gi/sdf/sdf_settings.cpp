@@ -79,9 +79,6 @@ const ParamTable<SdfGiSettings>& sdfParams() {
                  "edge-aware filter half-width in traced pixels; 0 = no blur, a joint bilateral upsample of the 2x2 "
                  "traced pixels around each pixel (SDFGI's probe light is smooth already)",
                  0, 4, U::Live)
-        .boolean(&S::specular, "specular", "Reflection ray", "trace a mirror ray where roughness is low", U::Live)
-        .real(&S::specularRoughness, "specular-roughness", "Reflection roughness",
-              "below this roughness a mirror ray is traced per pixel; above it the specular term is the diffuse one", 0.0, 1.0, U::Live)
         .real(&S::aoStrength, "ao", "Soft occlusion", "strength of the near-field occlusion written to \"ao\"", 0.0,
               1.0, U::Live)
         .real(&S::intensity, "intensity", "Intensity", "scales the indirect terms", 0.0, 16.0, U::Live)
@@ -89,10 +86,13 @@ const ParamTable<SdfGiSettings>& sdfParams() {
         .real(&S::slicePosition, "slice-position", "Slice position", "where along the axis, 0..1", 0.0, 1.0, U::Live)
         .integer(&S::sliceCascade, "slice-cascade", "Slice cascade", "which cascade sdf.slice shows (0 = the finest)", 0,
                  kMaxCascades - 1, U::Live);
+        probes::addReflectionRows(t);
         return t;
     }();
     return table;
 }
+
+probes::ReflectionSettings SdfGiSettings::reflectionSettings() const { return probes::reflectionSettingsOf(*this); }
 
 probes::FieldSettings SdfGiSettings::probeField() const {
     probes::FieldSettings f;

@@ -1,0 +1,54 @@
+// A probe field's specular term on the screen (issue #40: mirrors were black under probe GI and
+// HDDAGI, which fell back to the constant ambient): per full-resolution pixel below a roughness
+// cut-off, rays drawn from the GGX lobe are walked through the field's tracer and shaded as the
+// probes' own rays are (shaders/probes/probe_hit_light.glsl), averaged over the frames of a still
+// view, and blended towards the diffuse gather as the lobe widens; into "indirect.specular".
+// Probe GI and HDDAGI reflect this way; SDF GI traces its own mirror ray.
+#pragma once
+
+#include <string>
+
+#include "frame.h"
+#include "gl/gl.h"
+#include "gl/shader.h"
+#include "probes/probe_field.h"
+#include "probes/probe_uniforms.h"
+
+namespace gis::probes {
+
+// What reflects and how (the methods' PREFIXreflection* rows, probe_params.h).
+enum class Reflection { Environment = 0, Rays = 1 };
+struct ReflectionSettings {
+    Reflection mode = Reflection::Rays;
+    float roughness = 0.6f;  // rays below it, blended towards the diffuse gather over its last quarter
+    int rays = 4;            // per pixel per frame (one at a mirror)
+    int frames = 16;         // still frames averaged before the view counts as settled
+};
+
+class ScreenReflection {
+public:
+    ScreenReflection(const gl::MemoryScope& scope, int width, int height, Tracer tracer);
+    // Traces this frame's rays for `field` (bound as its update `live` shades hits) and folds them
+    // into the mean, which restarts when `changed` (the pass was invalidated: the view, the light,
+    // a parameter), when the probes updated this frame or when `s` differs from the last frame's.
+    void run(const Frame& frame, const ProbeField& field, const FieldSettings& live, const gl::Texture& diffuse,
+             const ReflectionSettings& s, bool changed);
+    const gl::Texture& result() const { return specular_; }
+    int framesAveraged() const { return framesAveraged_; }
+    // The mean holds the frames the last run's settings ask for (at once without rays).
+    bool settled() const;
+    // The pass's progress: the field's updates, then (once it has converged) the frames averaged.
+    Pass::Progress progress(Pass::Progress field, bool fieldConverged) const;
+    std::string describe() const;  // "reflection: rays below roughness 0.5, 4 per pixel, 16 of 16 frames averaged"
+    static std::vector<ProgramDesc> programs();
+    static int64_t bytes(int width, int height);
+
+private:
+    gl::Texture mean_, specular_;
+    gl::Object program_, environmentProgram_;
+    gl::UniformBuffer<ProbeReflectBlock> block_;
+    ReflectionSettings live_;
+    int framesAveraged_ = 0, frame_ = 0;
+};
+
+}  // namespace gis::probes

@@ -1,0 +1,91 @@
+// What a ray of a probe field sees (renderer/probes/probe_field.h, ProbeField::bindForHitLight):
+// walked through the field's tracer (probe_tracer.glsl), a hit is shaded from the voxel radiance of
+// the cascade it was found in (direct light and emission as the volume injected them) plus, for
+// multi-bounce, the probes' own irradiance there times the voxel albedo; a miss sees the sky. The
+// probes' own rays (probe_trace.comp) and the screen reflection's (screen_reflection.comp) both
+// shade this way, so a mirror shows what the probes saw.
+#ifndef PROBE_HIT_LIGHT_GLSL
+#define PROBE_HIT_LIGHT_GLSL
+#include "probes/probe_tracer.glsl"
+#include "environment.glsl"
+#include "volume/voxel_faces.glsl"
+#ifndef PROBE_TRACER_OCCUPANCY
+#include "volume/sdf_hit_light.glsl"
+#endif
+
+layout(binding = TP_VOXEL_RADIANCE) uniform sampler3D s_voxelRadiance;  // premultiplied by occupancy (a); a layer per cascade
+// Albedo (a = occupancy) of each cascade, its own texture each.
+layout(binding = TP_VOXEL_ALBEDO0) uniform sampler3D s_voxelAlbedo0;
+layout(binding = TP_VOXEL_ALBEDO1) uniform sampler3D s_voxelAlbedo1;
+layout(binding = TP_VOXEL_ALBEDO2) uniform sampler3D s_voxelAlbedo2;
+layout(binding = TP_VOXEL_ALBEDO3) uniform sampler3D s_voxelAlbedo3;
+layout(binding = TP_VOXEL_SIDES) uniform sampler3D s_voxelSides;  // slab voxels' sides, a layer per cascade like the radiance
+
+ProbeUpdateBlock u_update;
+
+// The voxels store occupancy-weighted values; trilinear lookups then blend in empty voxels, which
+// dividing by the blended occupancy undoes (the surface's own value, not half of it).
+vec3 unpremultiply(vec4 v) { return v.a > 1e-4 ? v.rgb / v.a : vec3(0.0); }
+
+vec3 voxelAlbedo(int cascade, vec3 uvw) {
+    switch (cascade) {
+    case 0: return unpremultiply(textureLod(s_voxelAlbedo0, uvw, 0.0));
+    case 1: return unpremultiply(textureLod(s_voxelAlbedo1, uvw, 0.0));
+    case 2: return unpremultiply(textureLod(s_voxelAlbedo2, uvw, 0.0));
+    default: return unpremultiply(textureLod(s_voxelAlbedo3, uvw, 0.0));
+    }
+}
+
+// The multi-bounce term: the probes' own irradiance at the hit times its albedo, on the side the
+// ray `dir` came from (a field's gradient at a wall thinner than a cell may point out of the room,
+// and the gather's path test would then start behind the wall).
+vec3 bounceLight(vec3 P, vec3 N, vec3 dir, vec3 albedo) {
+    if (u_update.multiBounce == 0) return vec3(0.0);
+    N = faceforward(N, dir, N);
+    float bias = u_update.normalBias * gridMinStep(gridAt(P));
+    return albedo * sampleProbes(P + N * bias, N, -dir, u_update.visibility);
+}
+
+#ifdef PROBE_TRACER_OCCUPANCY
+// The light a ray along `dir` sees of voxel `v` of `cascade` whose level-0 light is `light`: a slab
+// (a wall thinner than a voxel) shows the face the ray meets, not its other face's sunlit mean.
+vec3 lightSeen(vec4 light, int cascade, ivec3 v, vec3 dir) {
+    v = clamp(v, ivec3(0), ivec3(u_sdfResolution - 1));
+    return unpremultiply(voxelLightSeen(light, texelFetch(s_voxelSides, v + ivec3(0, 0, cascade * u_sdfResolution), 0), dir));
+}
+
+// The hit voxel's own light and albedo (one voxel, no filtering: its neighbours may be empty).
+vec3 voxelAlbedoAt(int cascade, ivec3 v) {
+    switch (cascade) {
+    case 0: return unpremultiply(texelFetch(s_voxelAlbedo0, v, 0));
+    case 1: return unpremultiply(texelFetch(s_voxelAlbedo1, v, 0));
+    case 2: return unpremultiply(texelFetch(s_voxelAlbedo2, v, 0));
+    default: return unpremultiply(texelFetch(s_voxelAlbedo3, v, 0));
+    }
+}
+
+// Radiance along -dir at the first hit from origin (rgb) and its distance (a; a miss: the sky at
+// u_update.missDistance).
+vec4 fieldRayRadiance(vec3 origin, vec3 dir) {
+    HddaCascades cs = HddaCascades(u_cascades, u_cascadeCount, u_sdfResolution);
+    HddaHit h = hddaTraceCascades(cs, origin, dir, 0.0, u_update.missDistance, 4096);
+    if (!h.hit) return vec4(environmentRadiance(dir), u_update.missDistance);
+    vec3 radiance = lightSeen(texelFetch(s_voxelRadiance, h.voxel + ivec3(0, 0, h.cascade * u_sdfResolution), 0),
+                              h.cascade, h.voxel, dir);
+    radiance += bounceLight(h.position, h.normal, dir, voxelAlbedoAt(h.cascade, h.voxel));
+    return vec4(finiteOrZero(radiance), max(h.t, 0.0));
+}
+#else
+vec4 fieldRayRadiance(vec3 origin, vec3 dir) {
+    SdfCascades cs = SdfCascades(u_cascades, u_cascadeCount, u_sdfResolution);
+    SdfMarchParams params = sdfDefaultParams(u_update.missDistance);
+    params.maxSteps = 128;
+    SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, dir, params);
+    if (!h.hit) return vec4(environmentRadiance(dir), u_update.missDistance);
+    SdfVolume vol = sdfCascadeVolume(cs, h.cascade);
+    vec3 radiance = sdfHitLight(s_voxelRadiance, s_voxelSides, cs, h, dir);
+    radiance += bounceLight(h.position, h.normal, dir, voxelAlbedo(h.cascade, (h.position - vol.origin) / vol.size));
+    return vec4(finiteOrZero(radiance), max(h.t, 0.0));
+}
+#endif
+#endif
