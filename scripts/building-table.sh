@@ -45,7 +45,7 @@ pathTestKey() {  # METHOD -> its path-test key, or nothing
 pathTestFlipped() {  # METHOD -> the row's flags and label: the key set to the other value than its default
   local key now
   key=$(pathTestKey "$1")
-  now=$("$bin" methods "$1" 2>/dev/null | awk -v k="$key" '$1 == k {print $5; exit}')
+  now=$("$bin" methods "$1" 2>/dev/null | awk -v k="$key" '$1 == k && !v {v = $5} END {print v}')
   if [ "$now" = true ]; then echo "--set $key=false"; else echo "--set $key=true"; fi
 }
 

@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# The reflection tables of the probe-based method pages (issue #40: a specular term of every
+# method's own), in one sitting: each method at its defaults, with its `reflection=environment`
+# (the prefiltered sky alone, what the lighting pass gave before) and at its `realtime` preset,
+#   - builtin:mirror against Cycles (assets/reference/mirror, 256x256): the whole image and its two
+#     metal spheres alone (the pixels whose G-buffer metallic is 1): PSNR (sRGB) / mean radiance
+#     over the reference's;
+#   - DamagedHelmet under a white sky against Cycles (../shared/assets/reference/refs/DamagedHelmet_sky);
+#   - cornell_point against Cycles (its diffuse figure must not move);
+#   - the reflection step's GPU ms per frame on builtin:mirror (--timings, every pass each frame).
+# Writes each method's table between the "reflection-table" markers of renderer/gi/METHOD/README.md.
+#
+# Usage (project root, after a build): bash scripts/reflection-table.sh [BIN (build/gisandbox)]
+# Environment: METHODS (vct,sdf,probes,hddagi).
+set -euo pipefail
+case ${1:-} in -h|--help) sed -n '2,/^set -e/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;; esac
+cd "$(dirname "$0")/.."
+bin=${1:-build/gisandbox}
+methods=${METHODS:-vct,sdf,probes,hddagi}
+shared=../shared/assets/reference
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+render() {  # OUT flags...: renders or exits naming what failed
+  local out=$1; shift
+  timeout 1800 "$bin" render --out "$out" "$@" > "$tmp/log" 2>&1 ||
+    { echo "reflection-table: render $* failed:" >&2; tail -3 "$tmp/log" >&2; exit 1; }
+}
+compare() {  # TEST REF [diff flags] -> "PSNR / mean ratio"
+  "$bin" diff "$@" | awk '/^PSNR sRGB/ {p = $3} /^mean ratio/ {m = $3} END {printf "%.1f dB / %.2f", p, m}'
+}
+
+mirror=(--scene builtin:mirror --size 256x256)
+helmet=(--scene ../shared/assets/gltf/DamagedHelmet/glTF/DamagedHelmet.gltf --camera-pos 0 0 3.2 --look-at 0 0 0
+        --fov 40 --background 1 --lighting scene --size 256x256)  # Cycles' setup: a white sky and no other light
+cornell=(--scene "$shared/scenes/cornell_point/cornell_point.gltf" --size 256x256)
+# The spheres' mask: diff leaves out pixels whose red is >= 128, so every pixel but the metals'.
+render "$tmp/material.png" "${mirror[@]}" --gi none --view gbuffer.material --tonemap linear
+/usr/bin/python3 - "$tmp/material.png" "$tmp/mask.png" <<'PY'
+import sys
+from PIL import Image
+m = Image.open(sys.argv[1]).convert("RGB")
+r = m.getchannel("R").point(lambda v: 0 if v >= 128 else 255)
+Image.merge("RGB", (r, r, r)).save(sys.argv[2])
+PY
+
+gl=$("$bin" render --scene builtin:cornell --size 8x8 --out "$tmp/gl.png" -v 2>&1 | sed -n 's/^GL_RENDERER: //p')
+for m in ${methods//,/ }; do
+  hasKey=$("$bin" methods "$m" 2>/dev/null | awk -v k="$m.reflection" '$1 == k {found = 1} END {if (found) print "yes"}')
+  {
+    echo "\`scripts/reflection-table.sh\`, $(date -u +%Y-%m-%d), ${gl:-unknown GL renderer}. PSNR (sRGB) / mean radiance over"
+    echo "Cycles' at 256x256. Spheres: builtin:mirror's two metal spheres alone (the mirror and the rough metal)."
+    echo "Reflection ms: the reflection step's GPU time per frame on builtin:mirror (llvmpipe: a ratio, not a budget)."
+    echo
+    echo "| row | builtin:mirror | its spheres | DamagedHelmet, white sky | cornell_point | reflection ms |"
+    echo "|---|---|---|---|---|---|"
+    rows=(default realtime)
+    [ -n "$hasKey" ] && rows=(default environment realtime)
+    for p in "${rows[@]}"; do
+      flags=(--gi "$m"); label=$p
+      case $p in
+        environment) flags+=(--set "$m.reflection=environment"); label="\`$m.reflection=environment\`" ;;
+        realtime) flags+=(--preset realtime) ;;
+      esac
+      render "$tmp/mirror.exr" "${mirror[@]}" "${flags[@]}"
+      render "$tmp/helmet.exr" "${helmet[@]}" "${flags[@]}"
+      render "$tmp/cornell.exr" "${cornell[@]}" "${flags[@]}"
+      ms=$(timeout 1800 "$bin" render --out "$tmp/t.png" "${mirror[@]}" "${flags[@]}" --timings --frames 30 2>&1 |
+           awk '$1 == "reflection" && !ms {ms = $2} END {print ms}')
+      row="| $label | $(compare "$tmp/mirror.exr" assets/reference/mirror/full.exr)"
+      row+=" | $(compare "$tmp/mirror.exr" assets/reference/mirror/full.exr --mask "$tmp/mask.png")"
+      row+=" | $(compare "$tmp/helmet.exr" "$shared/refs/DamagedHelmet_sky/full.exr")"
+      row+=" | $(compare "$tmp/cornell.exr" "$shared/refs/cornell_point/full.exr")"
+      echo "$row | ${ms:-none} |"
+    done
+  } > "$tmp/$m.md"
+  cat "$tmp/$m.md"
+  /usr/bin/python3 scripts/page_table.py "renderer/gi/$m/README.md" reflection-table "Reflections, measured" "$tmp/$m.md"
+done
