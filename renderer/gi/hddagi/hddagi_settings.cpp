@@ -3,6 +3,7 @@
 #include <string>
 
 #include "probes/probe_params.h"
+#include "volume/cascade_params.h"
 #include "volume/volume_cascades.h"
 
 namespace gis {
@@ -13,14 +14,8 @@ const ParamTable<HddagiSettings>& hddagiParams() {
     static const ParamTable<S> table = [] {
         ParamTable<S> t;
         t.integer(&S::resolution, "resolution", "Resolution", "voxels per edge of every cascade (a power of two)", 16,
-                 256, U::Rebuild)
-        .integer(&S::cascades, "cascades", "Cascades",
-                 "nested volumes around the camera, each twice the last; 0 = from the scene's extent and "
-                 "hddagi.cascade-extent",
-                 0, kMaxCascades, U::Rebuild)
-        .real(&S::cascadeExtent, "cascade-extent", "Finest cascade extent",
-              "world units: a scene cube up to this edge gets one volume; each doubling beyond it one more cascade",
-              1e-6, 1e9, U::Rebuild);
+                 256, U::Rebuild);
+        addCascadeRows(t, "hddagi");
         probes::addGridRows(t, "", probes::SpacingOf::Cascade, {&S::probeSpacing, &S::rays, &S::rayBudget, &S::storage});
         t.boolean(&S::halfResolution, "half-res", "Half resolution",
                  "gather the probes at every 2x2 block's first pixel and upsample (pixels on an edge gather their own)",

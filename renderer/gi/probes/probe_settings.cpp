@@ -3,6 +3,7 @@
 #include <string>
 
 #include "probes/probe_params.h"
+#include "volume/cascade_params.h"
 
 namespace gis {
 
@@ -13,8 +14,9 @@ const ParamTable<ProbeSettings>& probeParams() {
         ParamTable<S> t;
         probes::addGridRows(t, "", probes::SpacingOf::Scene, {&S::spacing, &S::rays, &S::rayBudget, &S::storage});
         t.integer(&S::sdfResolution, "sdf-resolution", "SDF resolution",
-                 "voxels and distance-field cells per edge (a power of two)", 8, 256, U::Rebuild)
-        .choice(&S::inside, "inside", "Probes inside geometry",
+                 "voxels and distance-field cells per edge of each cascade (a power of two)", 8, 256, U::Rebuild);
+        addCascadeRows(t, "probes");
+        t.choice(&S::inside, "inside", "Probes inside geometry",
                 "relocate = pushed out along the distance field's gradient (at most 0.45 of a probe step), else off; off = "
                 "switched off",
                 {"relocate", "off"}, U::Rebuild);

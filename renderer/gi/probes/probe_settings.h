@@ -18,7 +18,13 @@ struct ProbeSettings {
     // building's rooms, so it blacks out galleries and leaves the closed room's leak where it was.
     bool pathTest = false;
     int rayBudget = 0;          // probes.ray-budget: probe rays per frame, most urgent probes first, 0 = all due (rebuild)
-    int sdfResolution = 64;     // probes.sdf-resolution: voxels and distance-field cells per edge (rebuild)
+    int sdfResolution = 64;     // probes.sdf-resolution: voxels and distance-field cells per edge of each cascade (rebuild)
+    // probes.cascades, probes.cascade-extent (rebuild): the rays' volume in cascades around the
+    // camera, as SDF GI's, so a 20 cm wall near the camera is resolved (the probe grid stays one,
+    // fitted to the scene): builtin:building's closed room leaked 0.20 of the corridor's light
+    // through 0.68 m cells of one scene-wide volume, 0.11 with them.
+    int cascades = 0;
+    float cascadeExtent = 8.0f;
     int inside = 0;             // probes.inside: relocate | off, for probes inside solid geometry (rebuild)
     bool bounces = true;        // probes.multibounce: ray hits also get the probes' own irradiance (live)
     float hysteresis = 0.98f;   // probes.hysteresis: weight of the old value once warmed up (live)

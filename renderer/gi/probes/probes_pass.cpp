@@ -22,14 +22,16 @@ ParamValue choiceValue(const char* name) {
 }  // namespace
 
 namespace {
-// What probes ask of the scene volume: one cube of voxels with their distance field (the rays'
-// sphere tracing) and their direct light and emission (what the rays see).
+// What probes ask of the scene volume: voxels with their distance field (the rays' sphere tracing)
+// and their direct light and emission (what the rays see), in cascades around the camera.
 VolumeRequest volumeRequest(const ProbeSettings& s) {
     VolumeRequest r;
     r.method = "probes";
     r.resolution = s.sdfResolution;
     r.resolutionKey = "probes.sdf-resolution";
     r.distanceField = true;
+    r.cascades = s.cascades;
+    r.cascadeExtent = s.cascadeExtent;
     return r;
 }
 
@@ -111,9 +113,11 @@ GiMethod probesMethod() {
     m.programs = &ProbesPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) {
         const ProbeSettings p = probeParams().read("probes", s.params);
+        const VolumeRequest request = volumeRequest(p);
+        const int cascades = volumeLayout(sceneAirBounds(scene), request).count;  // as SceneServices fits it
         const int probes = fitProbeGrid(scene.bounds, p.spacing, sceneAirBounds(scene)).count();
         return std::vector<std::pair<std::string, uint64_t>>{
-            {"probe voxels and distance field", uint64_t(sceneVolumeBytes(volumeRequest(p), 1))},
+            {"probe voxels and distance field", uint64_t(sceneVolumeBytes(request, cascades))},
             {"probes (irradiance, distance moments, state)", uint64_t(fieldStorageBytes(p.field(), probes))},
             {"probe rays", uint64_t(fieldRayBytes(p.field(), probes))},
             {"probe screen target", uint64_t(ScreenGather::bytes(s.width, s.height, p.gatherPixels()))},
@@ -132,8 +136,10 @@ GiMethod probesMethod() {
 }
 
 std::vector<std::string> ProbesPass::stats() const {
-    return {field_->describe(), describeVolume(volume_->grid().fit, "voxels / distance-field cells"),
-            volume_->describeCascade(0), reflection_->describe()};
+    std::vector<std::string> out{field_->describe(), describeVolume(volume_->grid().fit, "voxels / distance-field cells")};
+    for (int i = 0; i < volume_->cascadeCount(); ++i) out.push_back(volume_->describeCascade(i));
+    out.push_back(reflection_->describe());
+    return out;
 }
 
 }  // namespace gis

@@ -2,6 +2,7 @@
 
 #include "probes/probe_params.h"
 #include "volume/scene_volume.h"
+#include "volume/cascade_params.h"
 #include "volume/volume_cascades.h"
 
 namespace gis {
@@ -44,14 +45,9 @@ const ParamTable<SdfGiSettings>& sdfParams() {
                  "the " + std::to_string(kVoxelBudgetBytes >> 30) + " GiB a voxel method may hold)",
                  8, maxSdfResolution(), U::Rebuild)
         .choice(&S::jfa, "jfa", "Jump flood", "plain JFA, or with a step-1 pass first (1+jfa) or steps 2 and 1 after (jfa+2)",
-                {"plain", "1+jfa", "jfa+2"}, U::Rebuild)
-        .integer(&S::cascades, "cascades", "Cascades",
-                 "nested volumes around the camera, each twice the last; 0 = from the scene's extent and sdf.cascade-extent",
-                 0, kMaxCascades, U::Rebuild)
-        .real(&S::cascadeExtent, "cascade-extent", "Finest cascade extent",
-              "world units: a scene cube up to this edge gets one volume; each doubling beyond it one more cascade",
-              1e-6, 1e9, U::Rebuild)
-        .integer(&S::bounces, "bounces", "Bounces",
+                {"plain", "1+jfa", "jfa+2"}, U::Rebuild);
+        addCascadeRows(t, "sdf");
+        t.integer(&S::bounces, "bounces", "Bounces",
                  "1 = ray hits see direct light and emission; more gather in voxel space again", 1, 4, U::Rebuild)
         .choice(&S::diffuse, "diffuse", "Diffuse from",
                 "probes = SDFGI: a probe grid per cascade, traced through the field and gathered per pixel; rays = "
