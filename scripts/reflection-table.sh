@@ -6,6 +6,8 @@
 #     metal spheres alone (the pixels whose G-buffer metallic is 1): PSNR (sRGB) / mean radiance
 #     over the reference's;
 #   - DamagedHelmet under a white sky against Cycles (../shared/assets/reference/refs/DamagedHelmet_sky);
+#   - builtin:atrium lit by assets/environments/sky_sun.hdr alone against Cycles
+#     (assets/reference/atrium_sky_sun): the map's sun casts no shadow yet but the path tracer's;
 #   - cornell_point against Cycles (its diffuse figure must not move);
 #   - the reflection step's GPU ms per frame on builtin:mirror (--timings, every pass each frame).
 # Writes each method's table between the "reflection-table" markers of renderer/gi/METHOD/README.md.
@@ -34,6 +36,7 @@ mirror=(--scene builtin:mirror --size 256x256)
 helmet=(--scene ../shared/assets/gltf/DamagedHelmet/glTF/DamagedHelmet.gltf --camera-pos 0 0 3.2 --look-at 0 0 0
         --fov 40 --background 1 --lighting scene --size 256x256)  # Cycles' setup: a white sky and no other light
 cornell=(--scene "$shared/scenes/cornell_point/cornell_point.gltf" --size 256x256)
+maplit=(--scene builtin:atrium --environment assets/environments/sky_sun.hdr --lighting none --size 256x256)
 # The spheres' mask: diff leaves out pixels whose red is >= 128, so every pixel but the metals'.
 render "$tmp/material.png" "${mirror[@]}" --gi none --view gbuffer.material --tonemap linear
 /usr/bin/python3 - "$tmp/material.png" "$tmp/mask.png" <<'PY'
@@ -52,8 +55,8 @@ for m in ${methods//,/ }; do
     echo "Cycles' at 256x256. Spheres: builtin:mirror's two metal spheres alone (the mirror and the rough metal)."
     echo "Reflection ms: the reflection step's GPU time per frame on builtin:mirror (llvmpipe: a ratio, not a budget)."
     echo
-    echo "| row | builtin:mirror | its spheres | DamagedHelmet, white sky | cornell_point | reflection ms |"
-    echo "|---|---|---|---|---|---|"
+    echo "| row | builtin:mirror | its spheres | DamagedHelmet, white sky | atrium, sky_sun.hdr alone | cornell_point | reflection ms |"
+    echo "|---|---|---|---|---|---|---|"
     rows=(default realtime)
     [ -n "$hasKey" ] && rows=(default environment realtime)
     for p in "${rows[@]}"; do
@@ -65,11 +68,13 @@ for m in ${methods//,/ }; do
       render "$tmp/mirror.exr" "${mirror[@]}" "${flags[@]}"
       render "$tmp/helmet.exr" "${helmet[@]}" "${flags[@]}"
       render "$tmp/cornell.exr" "${cornell[@]}" "${flags[@]}"
+      render "$tmp/maplit.exr" "${maplit[@]}" "${flags[@]}"
       ms=$(timeout 1800 "$bin" render --out "$tmp/t.png" "${mirror[@]}" "${flags[@]}" --timings --frames 30 2>&1 |
            awk '$1 == "reflection" && !ms {ms = $2} END {print ms}')
       row="| $label | $(compare "$tmp/mirror.exr" assets/reference/mirror/full.exr)"
       row+=" | $(compare "$tmp/mirror.exr" assets/reference/mirror/full.exr --mask "$tmp/mask.png")"
       row+=" | $(compare "$tmp/helmet.exr" "$shared/refs/DamagedHelmet_sky/full.exr")"
+      row+=" | $(compare "$tmp/maplit.exr" assets/reference/atrium_sky_sun/full.exr)"
       row+=" | $(compare "$tmp/cornell.exr" "$shared/refs/cornell_point/full.exr")"
       echo "$row | ${ms:-none} |"
     done
