@@ -189,17 +189,18 @@ void ProbeField::bindTracer() const {
         volume_->occupancy().bind();
         return;
     }
-    volume_->field().bind(0);
-    glBindSamplers(0, 2, nullptr);  // the field's own filtering
+    static_assert(TP_FIELD_COARSE == TP_FIELD_DISTANCE + 1, "DistanceField::bind binds both levels from one unit");
+    volume_->field().bind(TP_FIELD_DISTANCE);
+    glBindSamplers(TP_FIELD_DISTANCE, 2, nullptr);  // the field's own filtering
 }
 
 void ProbeField::bindBuffers() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, irradiance_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, distance_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, state_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, rays_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, change_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, batch_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SP_IRRADIANCE, irradiance_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SP_DISTANCE, distance_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SP_STATE, state_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SP_RAYS, rays_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SP_CHANGE, change_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SP_BATCH, batch_.id());
 }
 
 void ProbeField::bindForGather(GLuint program) const {
@@ -441,10 +442,10 @@ std::vector<DebugViewDesc> ProbeField::debugViews(const std::string& prefix, con
 // The debug views' common end: depth and probe buffers bound, one thread per pixel into `target`.
 void ProbeField::dispatchDebugDraw(const Frame& frame, GLuint target) {
     const GLuint depth = frame.texture(resource::kGbufferDepth);
-    glBindTextures(4, 1, &depth);
-    glBindSamplers(4, 1, nullptr);
+    glBindTextures(TP_GATHER_DEPTH, 1, &depth);
+    glBindSamplers(TP_GATHER_DEPTH, 1, nullptr);
     bindBuffers();
-    glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IP_OUTPUT, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     const int w = frame.settings.width, h = frame.settings.height;
     gl::dispatchCompute(gl::groupsFor(w, 8), gl::groupsFor(h, 8), 1, "probes");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);

@@ -34,23 +34,40 @@ constexpr int kMaxGrids = kMaxCascades;
 enum ProbeUniform : int { GIS_PROBE_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kProbeUniforms[] = {GIS_PROBE_UNIFORMS(GIS_UNIFORM_SLOT)};
 
-// Units of the programs that shade a field's rays (probes/probe_hit_light.glsl: the probes' own
-// rays and the screen reflection's): the voxel radiance, each cascade's albedo (consecutive units,
-// one per grid), the slab voxels' sides; the screen reflection's G-buffer inputs, the gather's
-// indirect.diffuse it blends towards, and its two images. Units 11.. hold the environment.
+// Binding points of the probe pipeline's programs. Storage buffers: the probes' irradiance,
+// distance moments and state (every gather), the last update's rays, its change counters and its
+// batch (trace, blend, the rays view). Texture units of the programs that walk the field (the
+// distance field's two levels where the tracer has one) and shade its rays
+// (probes/probe_hit_light.glsl: the probes' own rays and the screen reflection's): the voxel
+// radiance, each cascade's albedo (consecutive units, one per grid), the slab voxels' sides; the
+// screen gather's and the reflection's G-buffer inputs. Image units: each program's output, the
+// gathered pixels, the reflection's running mean and the gather's indirect.diffuse it blends
+// towards. All below 11, where the environment's units begin (volume/volume_slots.h).
 #define GIS_PROBE_BINDINGS(X) \
+    X(SP_IRRADIANCE, 0) \
+    X(SP_DISTANCE, 1) \
+    X(SP_STATE, 2) \
+    X(SP_RAYS, 3) \
+    X(SP_CHANGE, 4) \
+    X(SP_BATCH, 5) \
+    X(TP_FIELD_DISTANCE, 0) \
+    X(TP_FIELD_COARSE, 1) \
     X(TP_VOXEL_RADIANCE, 2) \
     X(TP_VOXEL_ALBEDO0, 3) \
     X(TP_VOXEL_ALBEDO1, 4) \
     X(TP_VOXEL_ALBEDO2, 5) \
     X(TP_VOXEL_ALBEDO3, 6) \
     X(TP_VOXEL_SIDES, 7) \
+    X(TP_GATHER_DEPTH, 4) \
+    X(TP_GATHER_NORMAL, 5) \
+    X(TP_GATHERED, 6) \
     X(TP_REFLECT_DEPTH, 8) \
     X(TP_REFLECT_NORMAL, 9) \
     X(TP_REFLECT_MATERIAL, 10) \
-    X(TP_REFLECT_DIFFUSE, 16) \
-    X(IP_REFLECT_MEAN, 0) \
-    X(IP_REFLECT_SPECULAR, 1)
+    X(IP_OUTPUT, 0) \
+    X(IP_REFLECT_SPECULAR, 0) \
+    X(IP_REFLECT_MEAN, 1) \
+    X(IP_REFLECT_DIFFUSE, 2)
 
 enum ProbeBinding : int { GIS_PROBE_BINDINGS(GIS_BINDING_ENUM) };
 inline constexpr gl::BindingSlot kProbeBindings[] = {GIS_PROBE_BINDINGS(GIS_BINDING_SLOT)};

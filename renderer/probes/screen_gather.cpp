@@ -50,9 +50,10 @@ void ScreenGather::dispatch(const Frame& frame, const ProbeField& field, const G
     b.visibility = visibilityMode(s.visibility, s.pathTest);
     block_.set(b);
     glProgramUniform1i(p, UP_GATHER_SCALE, scale_);
-    glBindTextures(4, 2, gbuffer);
-    glBindSamplers(4, 3, nullptr);
-    glBindImageTexture(0, out.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    static_assert(TP_GATHER_NORMAL == TP_GATHER_DEPTH + 1 && TP_GATHERED == TP_GATHER_NORMAL + 1, "consecutive units");
+    glBindTextures(TP_GATHER_DEPTH, 2, gbuffer);
+    glBindSamplers(TP_GATHER_DEPTH, 3, nullptr);
+    glBindImageTexture(IP_OUTPUT, out.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl::dispatchCompute(gl::groupsFor(out.width, 8), gl::groupsFor(out.height, 8), 1, "probe gather");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -63,7 +64,7 @@ void ScreenGather::run(const Frame& frame, const ProbeField& field, const Gather
         return;
     }
     dispatch(frame, field, s, gatherProgram_.id(), gathered_);
-    glBindTextureUnit(6, gathered_.id());
+    glBindTextureUnit(TP_GATHERED, gathered_.id());
     dispatch(frame, field, s, upsampleProgram_.id(), diffuse_);
 }
 

@@ -72,7 +72,7 @@ void ScreenReflection::run(const Frame& frame, const ProbeField& field, const Fi
     glBindTextureUnit(TP_REFLECT_DEPTH, frame.texture(resource::kGbufferDepth));
     glBindTextureUnit(TP_REFLECT_NORMAL, frame.texture(resource::kGbufferNormal));
     glBindTextureUnit(TP_REFLECT_MATERIAL, frame.texture(resource::kGbufferMaterial));
-    glBindTextureUnit(TP_REFLECT_DIFFUSE, diffuse.id());
+    glBindImageTexture(IP_REFLECT_DIFFUSE, diffuse.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
     glBindImageTexture(IP_REFLECT_MEAN, mean_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glBindImageTexture(IP_REFLECT_SPECULAR, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl::dispatchCompute(gl::groupsFor(specular_.width, 8), gl::groupsFor(specular_.height, 8), 1, "probe reflection");

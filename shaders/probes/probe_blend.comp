@@ -11,9 +11,9 @@
 #include "probes/probe_common.glsl"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = 3) readonly buffer Rays { vec4 rayResults[]; };
-layout(std430, binding = 4) buffer Change { uint u_change; uint u_rayCount; };
-layout(std430, binding = 5) readonly buffer Batch { int u_batch[]; };
+layout(std430, binding = SP_RAYS) readonly buffer Rays { vec4 rayResults[]; };
+layout(std430, binding = SP_CHANGE) buffer Change { uint u_change; uint u_rayCount; };
+layout(std430, binding = SP_BATCH) readonly buffer Batch { int u_batch[]; };
 layout(location = UP_RAYS) uniform int u_rays;
 layout(location = UP_SLOT_OFFSET) uniform int u_slotOffset;  // several dispatches past the work-group limit
 layout(location = UP_ROTATION) uniform mat3 u_rotation;

@@ -15,9 +15,9 @@
 #define PROBE_OFF 2.0
 #define PROBE_MAX_GRIDS SDF_MAX_CASCADES
 
-layout(std430, binding = 0) buffer ProbeIrradiance { vec4 probeIrradiance[]; };
-layout(std430, binding = 1) buffer ProbeDistance { vec2 probeDistance[]; };
-layout(std430, binding = 2) buffer ProbeState { vec4 probeState[]; };
+layout(std430, binding = SP_IRRADIANCE) buffer ProbeIrradiance { vec4 probeIrradiance[]; };
+layout(std430, binding = SP_DISTANCE) buffer ProbeDistance { vec2 probeDistance[]; };
+layout(std430, binding = SP_STATE) buffer ProbeState { vec4 probeState[]; };
 
 layout(location = UP_GRID_FIRST) uniform vec3 u_gridFirst[PROBE_MAX_GRIDS];
 layout(location = UP_GRID_STEP) uniform vec3 u_gridStep[PROBE_MAX_GRIDS];

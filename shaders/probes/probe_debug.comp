@@ -5,8 +5,8 @@
 #include "probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 4) uniform sampler2D s_depth;
-layout(rgba16f, binding = 0) uniform writeonly image2D i_target;
+layout(binding = TP_GATHER_DEPTH) uniform sampler2D s_depth;
+layout(rgba16f, binding = IP_OUTPUT) uniform writeonly image2D i_target;
 layout(location = UP_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = UP_CAMERA_POS) uniform vec3 u_cameraPos;
 layout(location = UP_SPHERE_RADIUS) uniform float u_sphereRadius;

@@ -6,9 +6,9 @@
 #include "probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(std430, binding = 3) readonly buffer Rays { vec4 rayResults[]; };
-layout(binding = 4) uniform sampler2D s_depth;
-layout(rgba16f, binding = 0) uniform writeonly image2D i_target;
+layout(std430, binding = SP_RAYS) readonly buffer Rays { vec4 rayResults[]; };
+layout(binding = TP_GATHER_DEPTH) uniform sampler2D s_depth;
+layout(rgba16f, binding = IP_OUTPUT) uniform writeonly image2D i_target;
 layout(location = UP_VIEW_PROJ) uniform mat4 u_viewProj;
 layout(location = UP_RAYS) uniform int u_rays;
 layout(location = UP_BATCH_SLOT) uniform int u_slot;   // the probe's slot in the last batch, -1: none

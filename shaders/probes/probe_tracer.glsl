@@ -6,8 +6,8 @@
 #include "volume/hdda.glsl"
 #else
 #include "volume/sdf_march.glsl"
-layout(binding = 0) uniform sampler3D s_distance;
-layout(binding = 1) uniform sampler3D s_coarse;
+layout(binding = TP_FIELD_DISTANCE) uniform sampler3D s_distance;
+layout(binding = TP_FIELD_COARSE) uniform sampler3D s_coarse;
 #endif
 
 layout(location = UP_CASCADES) uniform vec4 u_cascades[SDF_MAX_CASCADES];

@@ -3,7 +3,7 @@
 #include "probes/screen_gather.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba16f, binding = 0) uniform writeonly image2D i_diffuse;
+layout(rgba16f, binding = IP_OUTPUT) uniform writeonly image2D i_diffuse;
 layout(location = UP_GATHER_SCALE) uniform int u_scale;
 
 void main() {

@@ -9,8 +9,8 @@
 #include "probes/probe_common.glsl"
 #include "probes/probe_tracer.glsl"
 
-layout(binding = 4) uniform sampler2D s_depth;
-layout(binding = 5) uniform sampler2D s_gbufNormal;
+layout(binding = TP_GATHER_DEPTH) uniform sampler2D s_depth;
+layout(binding = TP_GATHER_NORMAL) uniform sampler2D s_gbufNormal;
 layout(location = UP_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = UP_CAMERA_POS) uniform vec3 u_cameraPos;
 ProbeGatherBlock u_gather;

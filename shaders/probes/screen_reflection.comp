@@ -26,7 +26,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = TP_REFLECT_DEPTH) uniform sampler2D s_depth;
 layout(binding = TP_REFLECT_NORMAL) uniform sampler2D s_gbufNormal;
 layout(binding = TP_REFLECT_MATERIAL) uniform sampler2D s_gbufMaterial;  // metallic, roughness, occlusion, specular
-layout(binding = TP_REFLECT_DIFFUSE) uniform sampler2D s_diffuse;        // the screen gather's indirect.diffuse
+layout(binding = IP_REFLECT_DIFFUSE, rgba16f) uniform readonly image2D i_diffuse;  // the screen gather's indirect.diffuse
 layout(binding = IP_REFLECT_MEAN, rgba16f) uniform image2D i_mean;       // the traced radiance's running mean
 layout(binding = IP_REFLECT_SPECULAR, rgba16f) uniform writeonly image2D i_specular;
 layout(location = UP_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
@@ -89,7 +89,7 @@ void main() {
 #ifdef REFLECTION_ENVIRONMENT
     imageStore(i_specular, pixel, vec4(environmentSpecular(reflect(-V, N), roughness), 1.0));
 #else
-    vec3 diffuse = texelFetch(s_diffuse, pixel, 0).rgb;
+    vec3 diffuse = imageLoad(i_diffuse, pixel).rgb;
     if (!(roughness < u_reflect.roughness)) {
         imageStore(i_specular, pixel, vec4(diffuse, 1.0));
         return;
