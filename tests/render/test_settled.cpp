@@ -89,6 +89,42 @@ TEST(Settled, AStaticViewRunsNothingAndKeepsTheImage) {
         EXPECT_TRUE(settled.count(name)) << name << " did not settle within " << kMaxFrames << " frames";
 }
 
+// The probe methods' reflection (probes/screen_reflection.h) averages its reflection-frames still
+// frames once the probes have converged, counts them in the pass's progress and then settles like
+// the rest; with reflection=environment it has no frames of its own to wait for.
+int framesToSettle(const Scene& scene, const RenderSettings& s) {
+    Renderer r(scene, s);
+    int frames = 0;
+    for (; frames < 400 && !(frames > 0 && r.settled()); ++frames) r.renderFrame();
+    return r.settled() ? frames : -1;
+}
+
+TEST(Settled, ProbeReflectionsAverageTheirFramesThenSettle) {
+    context();
+    const Scene scene = makeBuiltinScene("mirror");
+    for (const std::string method : {"probes", "hddagi", "sdf"}) {
+        SCOPED_TRACE(method);
+        RenderSettings s = methodSettings(method);
+        setParam(s, method + ".reflection-frames", "6");
+        Renderer r(scene, s);
+        int frames = 0;
+        for (; frames < 400 && !(frames > 0 && r.settled()); ++frames) r.renderFrame();
+        ASSERT_TRUE(r.settled()) << "not settled after " << frames << " frames";
+        bool averaged = false;
+        for (const auto& pass : r.passes())
+            for (const std::string& line : pass->stats()) averaged = averaged || line.find("6 of 6 frames averaged") != std::string::npos;
+        EXPECT_TRUE(averaged) << "no pass says it averaged its 6 reflection frames";
+        RenderSettings environment = s;
+        setParam(environment, method + ".reflection", "environment");
+        const int withoutRays = framesToSettle(scene, environment);
+        std::printf("%s: settled after %d frames with reflection rays, %d without\n", method.c_str(), frames, withoutRays);
+        EXPECT_GT(withoutRays, 0);
+        // The mean starts with the probes' last update, which was blended before the reflection read
+        // it; the field says it has converged one frame later.
+        EXPECT_GT(frames, withoutRays) << "the reflection's frames were not waited for";
+    }
+}
+
 // A pass whose input was re-produced this frame runs even when it says it is settled: the lighting
 // pass re-runs while ReSTIR accumulates, however settled it is itself.
 TEST(Settled, AConsumerOfAReproducedInputRuns) {
