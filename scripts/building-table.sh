@@ -23,15 +23,7 @@ shared=../shared/assets
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-render() {  # OUT flags...: renders or exits naming what failed
-  local out=$1; shift
-  timeout 1800 "$bin" render --out "$out" "$@" > "$tmp/log" 2>&1 ||
-    { echo "building-table: render $* failed:" >&2; tail -3 "$tmp/log" >&2; exit 1; }
-}
-compare() {  # TEST REF -> "PSNR / mean ratio"
-  "$bin" diff "$1" "$2" | awk '/^PSNR sRGB/ {p = $3} /^mean ratio/ {m = $3} END {printf "%.1f dB / %.2f", p, m}'
-}
-ratio() { "$bin" diff "$1" "$2" | awk '/^mean ratio/ {printf "%.3f", $3}'; }
+source scripts/table_lib.sh
 
 atrium=(--scene "$shared/reference/scenes/atrium/atrium.gltf" --background 0.35,0.45,0.6)
 models=("$shared/gltf/BoxTextured/glTF/BoxTextured.gltf" "$shared/gltf/BoxVertexColors/BoxVertexColors.glb"

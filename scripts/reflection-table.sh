@@ -23,14 +23,7 @@ shared=../shared/assets/reference
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-render() {  # OUT flags...: renders or exits naming what failed
-  local out=$1; shift
-  timeout 1800 "$bin" render --out "$out" "$@" > "$tmp/log" 2>&1 ||
-    { echo "reflection-table: render $* failed:" >&2; tail -3 "$tmp/log" >&2; exit 1; }
-}
-compare() {  # TEST REF [diff flags] -> "PSNR / mean ratio"
-  "$bin" diff "$@" | awk '/^PSNR sRGB/ {p = $3} /^mean ratio/ {m = $3} END {printf "%.1f dB / %.2f", p, m}'
-}
+source scripts/table_lib.sh
 
 mirror=(--scene builtin:mirror --size 256x256)
 helmet=(--scene ../shared/assets/gltf/DamagedHelmet/glTF/DamagedHelmet.gltf --camera-pos 0 0 3.2 --look-at 0 0 0
