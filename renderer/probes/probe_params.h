@@ -95,7 +95,7 @@ FieldSettings fieldSettingsOf(const S& s) {
 }
 
 // The screen reflection's rows (live): reflection, reflection-roughness, reflection-rays,
-// reflection-frames, read into ReflectionSettings by reflectionSettingsOf.
+// reflection-frames, into the members S has from ReflectionSettings.
 template <class S>
 void addReflectionRows(ParamTable<S>& t) {
     using U = ParamUpdate;
@@ -112,16 +112,6 @@ void addReflectionRows(ParamTable<S>& t) {
                  "rays per pixel per frame from the GGX lobe (a mirror traces one)", 1, 64, U::Live)
         .integer(&S::reflectionFrames, "reflection-frames", "Reflection frames",
                  "frames of a still view averaged before it counts as settled", 1, 4096, U::Live);
-}
-
-template <class S>
-ReflectionSettings reflectionSettingsOf(const S& s) {
-    ReflectionSettings r;
-    r.mode = Reflection(s.reflection);
-    r.roughness = s.reflectionRoughness;
-    r.rays = s.reflectionRays;
-    r.frames = s.reflectionFrames;
-    return r;
 }
 
 }  // namespace gis::probes

@@ -28,27 +28,28 @@ ScreenReflection::ScreenReflection(const gl::MemoryScope& scope, int width, int 
 }
 
 bool ScreenReflection::settled() const {
-    return live_.mode == Reflection::Environment || framesAveraged_ >= live_.frames;
+    return live_.mode() == Reflection::Environment || framesAveraged_ >= live_.reflectionFrames;
 }
 
 Pass::Progress ScreenReflection::progress(Pass::Progress field, bool fieldConverged) const {
-    if (live_.mode == Reflection::Environment) return field;
-    if (fieldConverged) field.done += std::min(framesAveraged_, live_.frames);
-    field.target += live_.frames;
+    if (live_.mode() == Reflection::Environment) return field;
+    if (fieldConverged) field.done += std::min(framesAveraged_, live_.reflectionFrames);
+    field.target += live_.reflectionFrames;
     return field;
 }
 
 std::string ScreenReflection::describe() const {
-    if (live_.mode == Reflection::Environment) return "reflection: the prefiltered environment (no rays)";
+    if (live_.mode() == Reflection::Environment) return "reflection: the prefiltered environment (no rays)";
     char line[160];
     std::snprintf(line, sizeof line, "reflection: rays below roughness %.2g, %d per pixel, %d of %d frames averaged",
-                  double(live_.roughness), live_.rays, framesAveraged_, live_.frames);
+                  double(live_.reflectionRoughness), live_.reflectionRays, framesAveraged_, live_.reflectionFrames);
     return line;
 }
 
 namespace {
 bool sameSettings(const ReflectionSettings& a, const ReflectionSettings& b) {
-    return a.mode == b.mode && a.roughness == b.roughness && a.rays == b.rays && a.frames == b.frames;
+    return a.reflection == b.reflection && a.reflectionRoughness == b.reflectionRoughness &&
+           a.reflectionRays == b.reflectionRays && a.reflectionFrames == b.reflectionFrames;
 }
 }  // namespace
 
@@ -56,7 +57,7 @@ void ScreenReflection::run(const Frame& frame, const ProbeField& field, const Fi
                            const gl::Texture& diffuse, const ReflectionSettings& s, bool changed) {
     if (changed || field.updatedLastFrame() || !sameSettings(s, live_)) framesAveraged_ = 0;
     live_ = s;
-    const bool rays = s.mode == Reflection::Rays;
+    const bool rays = s.mode() == Reflection::Rays;
     const GLuint p = rays ? program_.id() : environmentProgram_.id();
     frame.bindEnvironment();
     glUseProgram(p);
@@ -64,8 +65,8 @@ void ScreenReflection::run(const Frame& frame, const ProbeField& field, const Fi
     glProgramUniformMatrix4fv(p, UP_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UP_CAMERA_POS, 1, &frame.camera.position[0]);
     ProbeReflectBlock b;
-    b.roughness = s.roughness;
-    b.rays = s.rays;
+    b.roughness = s.reflectionRoughness;
+    b.rays = s.reflectionRays;
     b.framesAveraged = float(framesAveraged_);
     b.frame = frame_++;
     block_.set(b);

@@ -3,7 +3,7 @@
 // cut-off, rays drawn from the GGX lobe are walked through the field's tracer and shaded as the
 // probes' own rays are (shaders/probes/probe_hit_light.glsl), averaged over the frames of a still
 // view, and blended towards the diffuse gather as the lobe widens; into "indirect.specular".
-// Probe GI and HDDAGI reflect this way; SDF GI traces its own mirror ray.
+// Probe GI, HDDAGI and SDF GI (with its probes) reflect this way.
 #pragma once
 
 #include <string>
@@ -16,13 +16,16 @@
 
 namespace gis::probes {
 
-// What reflects and how (the methods' PREFIXreflection* rows, probe_params.h).
+// What reflects and how: the members the METHOD.reflection* rows bind (probe_params.h,
+// addReflectionRows), with their defaults, declared once; each probe method's settings derive
+// from it (live parameters).
 enum class Reflection { Environment = 0, Rays = 1 };
 struct ReflectionSettings {
-    Reflection mode = Reflection::Rays;
-    float roughness = 0.6f;  // rays below it, blended towards the diffuse gather over its last quarter
-    int rays = 4;            // per pixel per frame (one at a mirror)
-    int frames = 16;         // still frames averaged before the view counts as settled
+    int reflection = int(Reflection::Rays);  // METHOD.reflection: environment | rays
+    float reflectionRoughness = 0.6f;        // rays below it, blended towards the diffuse gather over its last quarter
+    int reflectionRays = 4;                  // per pixel per frame (one at a mirror)
+    int reflectionFrames = 16;               // still frames averaged before the view counts as settled
+    Reflection mode() const { return Reflection(reflection); }
 };
 
 class ScreenReflection {
@@ -34,12 +37,11 @@ public:
     void run(const Frame& frame, const ProbeField& field, const FieldSettings& live, const gl::Texture& diffuse,
              const ReflectionSettings& s, bool changed);
     const gl::Texture& result() const { return specular_; }
-    int framesAveraged() const { return framesAveraged_; }
     // The mean holds the frames the last run's settings ask for (at once without rays).
     bool settled() const;
     // The pass's progress: the field's updates, then (once it has converged) the frames averaged.
     Pass::Progress progress(Pass::Progress field, bool fieldConverged) const;
-    std::string describe() const;  // "reflection: rays below roughness 0.5, 4 per pixel, 16 of 16 frames averaged"
+    std::string describe() const;  // "reflection: rays below roughness 0.6, 4 per pixel, 16 of 16 frames averaged"
     static std::vector<ProgramDesc> programs();
     static int64_t bytes(int width, int height);
 

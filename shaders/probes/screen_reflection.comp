@@ -95,9 +95,10 @@ void main() {
         return;
     }
     vec3 estimate = tracedRadiance(P, N, V, roughness, pixel);
-    // mean += (x - mean) / n over the still frames (the first frame of a view replaces it).
+    // mean += (x - mean) / n over the still frames (the first frame of a view replaces it). Not
+    // guarded: the estimate is finite, and a NaN here is a bug the finiteness checks must see.
     vec3 mean = u_reflect.framesAveraged > 0.0 ? imageLoad(i_mean, pixel).rgb : vec3(0.0);
-    mean = finiteOrZero(mean + (estimate - mean) / (u_reflect.framesAveraged + 1.0));
+    mean += (estimate - mean) / (u_reflect.framesAveraged + 1.0);
     imageStore(i_mean, pixel, vec4(mean, 1.0));
     // The rays are right at any roughness; the blend only hides the cut-off, over its last quarter.
     float towardsDiffuse = smoothstep(0.75 * u_reflect.roughness, u_reflect.roughness, roughness);

@@ -44,8 +44,6 @@ probes::FieldSettings HddagiSettings::field() const {
     return f;
 }
 
-probes::ReflectionSettings HddagiSettings::reflectionSettings() const { return probes::reflectionSettingsOf(*this); }
-
 probes::GatherSettings HddagiSettings::gather() const { return {normalBias, intensity, visibility, pathTest}; }
 
 void checkHddagiSettings(const HddagiSettings& s) {

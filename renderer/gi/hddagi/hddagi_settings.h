@@ -11,7 +11,8 @@
 
 namespace gis {
 
-struct HddagiSettings {
+// Its reflection members (hddagi.reflection*) come from probes::ReflectionSettings.
+struct HddagiSettings : probes::ReflectionSettings {
     int resolution = 64;         // hddagi.resolution: voxels per cascade edge, a power of two (rebuild)
     int cascades = 0;            // hddagi.cascades: 0 = from the scene's extent, else 1..4 (rebuild)
     float cascadeExtent = 8.0f;  // hddagi.cascade-extent: the finest cascade's largest edge, world units (rebuild)
@@ -34,15 +35,9 @@ struct HddagiSettings {
     int sliceCascade = 0;        // hddagi.slice-cascade (clamped to the count)
     int sliceLevel = 0;          // hddagi.slice-level: voxels | blocks | regions
     int stepsMax = 64;           // hddagi.steps-max: steps shown white in hddagi.steps
-    // The screen reflection (probes/screen_reflection.h; live): its rows are probe_params.h's.
-    int reflection = 1;               // hddagi.reflection: environment | rays
-    float reflectionRoughness = 0.6f; // hddagi.reflection-roughness: rays below it
-    int reflectionRays = 4;           // hddagi.reflection-rays: per pixel per frame
-    int reflectionFrames = 16;        // hddagi.reflection-frames: still frames averaged
 
     probes::FieldSettings field() const;     // what the shared probe pipeline reads
     probes::GatherSettings gather() const;
-    probes::ReflectionSettings reflectionSettings() const;
     int gatherScale() const { return halfResolution ? 2 : 1; }
 };
 

@@ -42,8 +42,6 @@ probes::FieldSettings ProbeSettings::field() const {
     return f;
 }
 
-probes::ReflectionSettings ProbeSettings::reflectionSettings() const { return probes::reflectionSettingsOf(*this); }
-
 void checkProbeSettings(const ProbeSettings& s) {
     probes::checkFieldSettings(s.field(), probes::gridKey("probes", "", "ray-budget"), probes::gridKey("probes", "", "rays"));
     const int r = s.sdfResolution;

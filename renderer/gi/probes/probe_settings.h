@@ -9,7 +9,8 @@
 
 namespace gis {
 
-struct ProbeSettings {
+// Its reflection members (probes.reflection*) come from probes::ReflectionSettings.
+struct ProbeSettings : probes::ReflectionSettings {
     float spacing = 0.25f;      // probes.spacing: cell width as a fraction of the scene's largest extent (rebuild)
     int rays = 128;             // probes.rays: rays per probe per update (rebuild: sizes the ray buffer)
     int storage = 1;            // probes.storage: sh1 | sh2 | octahedral (rebuild)
@@ -34,14 +35,8 @@ struct ProbeSettings {
     int gatherScale = 0;        // probes.gather-scale: 1 | 2 | 4 pixels per gathered pixel, upsampled (rebuild)
     float intensity = 1.0f;     // probes.intensity: scales indirect.diffuse (live)
     int debugProbe = -1;        // probes.debug-probe: whose rays probes.rays draws; -1 = the middle one (live)
-    // The screen reflection (probes/screen_reflection.h; live): its rows are probe_params.h's.
-    int reflection = 1;               // probes.reflection: environment | rays
-    float reflectionRoughness = 0.6f; // probes.reflection-roughness: rays below it
-    int reflectionRays = 4;           // probes.reflection-rays: per pixel per frame
-    int reflectionFrames = 16;        // probes.reflection-frames: still frames averaged
     probes::Storage storageKind() const { return probes::Storage(storage); }
     probes::FieldSettings field() const;  // what the shared probe pipeline reads
-    probes::ReflectionSettings reflectionSettings() const;
     int gatherPixels() const { return 1 << gatherScale; }  // full-resolution pixels per gathered one, per axis
 };
 

@@ -77,7 +77,7 @@ void ProbesPass::run(Frame& frame) {
     }
     {
         auto t = frame.step("reflection");
-        reflection_->run(frame, *field_, live.field(), gather_->result(), live.reflectionSettings(), changed_);
+        reflection_->run(frame, *field_, live.field(), gather_->result(), live, changed_);
     }
     frame.put(resource::kIndirectDiffuse, gather_->result());
     frame.put(resource::kIndirectSpecular, reflection_->result());

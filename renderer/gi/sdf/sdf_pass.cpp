@@ -169,7 +169,7 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     glProgramUniform1ui(p, UG_FRAME, GLuint(frame.index * 7919u + frame.settings.seed));
     SdfTraceBlock trace;
     // With the probes the screen reflection gives indirect.specular: no mirror ray here.
-    trace.specular = !field_ && s.reflection != int(probes::Reflection::Environment) ? 1 : 0;
+    trace.specular = !field_ && s.mode() == probes::Reflection::Rays ? 1 : 0;
     trace.specularRoughness = s.reflectionRoughness;
     trace.probeGather = field_ ? 1 : 0;
     trace.probeVisibility = probes::visibilityMode(true, built_.probeField().pathTest);
@@ -253,7 +253,7 @@ void SdfGiPass::run(Frame& frame) {
     }
     if (field_) {
         auto t = frame.step("reflection");
-        screenReflection_->run(frame, *field_, built_.probeField(), diffuse_, live.reflectionSettings(), changed_);
+        screenReflection_->run(frame, *field_, built_.probeField(), diffuse_, live, changed_);
     }
     prevViewProj_ = frame.camera.viewProj;
     prevCameraPos_ = frame.camera.position;

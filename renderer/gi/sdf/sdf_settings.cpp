@@ -88,8 +88,6 @@ const ParamTable<SdfGiSettings>& sdfParams() {
     return table;
 }
 
-probes::ReflectionSettings SdfGiSettings::reflectionSettings() const { return probes::reflectionSettingsOf(*this); }
-
 probes::FieldSettings SdfGiSettings::probeField() const {
     probes::FieldSettings f;
     f.rays = probeRays;

@@ -9,7 +9,10 @@
 
 namespace gis {
 
-struct SdfGiSettings {
+// indirect.specular's members (sdf.reflection*) come from probes::ReflectionSettings: with the
+// probes, the shared screen reflection; with sdf.diffuse=rays, a mirror ray of its own below
+// sdf.reflection-roughness (reflection-rays and -frames are the screen reflection's alone).
+struct SdfGiSettings : probes::ReflectionSettings {
     int resolution = 64;        // sdf.resolution: cells per edge of the voxel grid and the field (rebuild)
     int jfa = 2;                // sdf.jfa: plain | 1+jfa | jfa+2 (JfaVariant order; rebuild)
     int cascades = 0;           // sdf.cascades: 0 = from the scene's extent, else 1..4 (rebuild)
@@ -29,13 +32,6 @@ struct SdfGiSettings {
     float offset = 1.5f;        // sdf.offset: rays start this many cells above the surface (live)
     float temporal = 0.9f;      // sdf.temporal: largest weight of the reprojected history (live)
     int filterRadius = 2;       // sdf.filter-radius: edge-aware filter half-width, traced pixels (live)
-    // indirect.specular (live; the rows are probe_params.h's): with the probes, the shared screen
-    // reflection (probes/screen_reflection.h); with sdf.diffuse=rays, a mirror ray of its own below
-    // sdf.reflection-roughness (reflection-rays and -frames are the probes' reflection's alone).
-    int reflection = 1;               // sdf.reflection: environment | rays
-    float reflectionRoughness = 0.6f; // sdf.reflection-roughness
-    int reflectionRays = 4;           // sdf.reflection-rays
-    int reflectionFrames = 16;        // sdf.reflection-frames
     // sdf.ao: strength of the near-field soft occlusion written to "ao" (live). Off by default: the
     // probes' Chebyshev visibility already occludes their light, and the extra darkening made every
     // comparison with Cycles and the path tracer worse (README, "sdf.ao", scripts/sdf-ao-table.sh).
@@ -50,7 +46,6 @@ struct SdfGiSettings {
     bool probeGather() const { return diffuse == 0; }
     int tracePixels() const { return 1 << traceScale; }  // full-resolution pixels per traced pixel per axis
     probes::FieldSettings probeField() const;  // what the shared probe pipeline reads
-    probes::ReflectionSettings reflectionSettings() const;
 };
 
 const ParamTable<SdfGiSettings>& sdfParams();
