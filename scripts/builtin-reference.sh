@@ -22,8 +22,9 @@ tool=../shared/tools/cycles-ref.py
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 # The sky is not in the file; export names it ("... a sky of radiance (R, G, B) ...").
-sky=$("$bin" export --scene "builtin:$scene" --out "$work/scene.gltf" 2>&1 |
-      sed -n 's/.*sky of radiance (\([^)]*\)).*/\1/p' | tr -d ',')
+"$bin" export --scene "builtin:$scene" --out "$work/scene.gltf" > "$work/export.log" 2>&1 ||
+  { cat "$work/export.log" >&2; exit 1; }
+sky=$(sed -n 's/.*sky of radiance (\([^)]*\)).*/\1/p' "$work/export.log" | tr -d ',')
 /usr/bin/python3 - "$work/scene.gltf" "${NO_LIGHTS:-0}" <<'PY'
 import json, sys
 path = sys.argv[1]
