@@ -36,6 +36,8 @@ GIS_STORAGE_STRUCT(Emitter, GIS_EMITTER)
 // The storage-buffer binding points of RayScene::bind() (the lights' is kLightsBinding).
 constexpr int kBvhNodesBinding = 1, kBvhTrianglesBinding = 2, kRayAttributesBinding = 3, kRayMaterialsBinding = 4,
               kRayEmittersBinding = 5;
+// The path tracer's ray counts (shaders/path_tracer.glsl: 3 x (low, high) uint), which its passes bind.
+constexpr int kRayCountsBinding = 6;
 
 struct RayScene {
     RayScene(const GpuScene& scene, gl::MemoryLedger& ledger, const std::string& owner);

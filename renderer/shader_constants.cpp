@@ -102,6 +102,7 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
             {"RAY_ATTRIBUTES_BINDING", std::to_string(kRayAttributesBinding)},
             {"RAY_MATERIALS_BINDING", std::to_string(kRayMaterialsBinding)},
             {"RAY_EMITTERS_BINDING", std::to_string(kRayEmittersBinding)},
+            {"RAY_COUNTS_BINDING", std::to_string(kRayCountsBinding)},
             {"OCC_BLOCK", std::to_string(kOccupancyBlock)},
             {"OCC_REGION", std::to_string(kOccupancyRegion)},
             {"OCC_BLOCKS_BINDING", std::to_string(kOccupancyBlocksBinding)},

@@ -8,7 +8,6 @@
 namespace gis {
 
 namespace {
-constexpr GLuint RAY_COUNTS_BINDING = 6;  // pathtrace.comp's RayCounts
 
 // The term views in pathtrace.comp's u_term order (1 ... 5): direct + emission + pathtrace.indirect
 // add up to the final image, and indirect.diffuse + indirect.specular to pathtrace.indirect.
@@ -90,7 +89,7 @@ void PathTracePass::execute(Frame& frame) {
     params_ = now;
     if (!beginFrame(frame, params_.spp, restart)) return;  // converged to the requested sample count
     const GLuint p = program();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RAY_COUNTS_BINDING, rayCounts_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRayCountsBinding, rayCounts_.id());
     frame.bindEnvironment();
     glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));
     glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));
