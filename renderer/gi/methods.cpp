@@ -11,7 +11,8 @@
     X(vctMethod)               \
     X(sdfMethod)               \
     X(probesMethod)            \
-    X(hddagiMethod)
+    X(hddagiMethod)            \
+    X(lightmapMethod)
 
 namespace gis {
 

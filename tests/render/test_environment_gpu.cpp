@@ -143,9 +143,10 @@ TEST(EnvironmentGpu, UniformMapEqualsBackgroundForEveryMethod) {
         constant.background = value;
         constant.ambient = value;  // what render's --background does for the baseline's ambient
         map.environment = file;
-        // The path tracer's map is sampled as a light too: another estimator of the same mean (the
-        // importance-sampling test); BSDF samples alone draw the same random numbers as the constant.
-        if (m.name == "pathtrace") setParam(map, "pathtrace.env-sampling", "false");
+        // The path tracer's map (and the lightmap bake's, the same paths) is sampled as a light too:
+        // another estimator of the same mean (the importance-sampling test); BSDF samples alone draw
+        // the same random numbers as the constant.
+        if (m.name == "pathtrace" || m.name == "lightmap") setParam(map, m.name + ".env-sampling", "false");
         const Difference d = compare(renderHdr(scene, constant), renderHdr(scene, map));
         std::printf("[ measured ] %s: %d channel values differ, largest relative difference %.3g\n", m.name.c_str(),
                     d.differing, d.maxRelative);

@@ -1,0 +1,300 @@
+#include "gi/lightmap/lightmap_pass.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "emitter_settings.h"
+#include "error.h"
+#include "gi/lightmap/lightmap_uniforms.h"
+#include "gi/method.h"
+#include "scene/atomic_file.h"
+#include "services/scene_services.h"
+#include "uniforms.h"
+
+namespace gis {
+
+using namespace lightmap;  // its uniform and binding names
+
+namespace {
+const ProgramDesc kApplyProgram{"lightmap-apply", {"gi/lightmap/apply.vert", "gi/lightmap/apply.frag"}, {}};
+// path_tracer.glsl's u_term: the indirect term, or everything (emitters' direct light included).
+constexpr int kTermAll = 0, kTermIndirect = 3;
+// apply.frag's u_mode: the lightmap, or the texels view's checker.
+constexpr int kShowLight = 0, kShowTexels = 1;
+// The cache file's first line, also in the key: a change of the file format or of the bake's C++
+// (its shaders are in the key themselves) bumps it, and old files are then never read.
+constexpr char kCacheMagic[] = "gisandbox lightmap 2\n";
+
+std::string describeBytes(double bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f MiB", bytes / (1024.0 * 1024.0));
+    return text;
+}
+
+std::string cacheFolder() {
+    if (const char* dir = std::getenv("GIS_LIGHTMAP_CACHE"); dir && *dir) return dir;
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/gisandbox/lightmaps";
+    if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.cache/gisandbox/lightmaps";
+    return "";
+}
+
+// FNV-1a, 64 bits: a content id, not a defence against forgery (as the atlas's hash).
+struct ContentId {
+    uint64_t h = 1469598103934665603ull;
+    void add(const void* data, size_t n) {
+        const auto* b = static_cast<const unsigned char*>(data);
+        for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+    }
+    void add(const std::string& s) { add(s.data(), s.size()), add("\0", 1); }
+    template <class T>
+    void value(const T& v) { add(&v, sizeof v); }
+    std::string hex() const {
+        char text[17];
+        std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+        return text;
+    }
+};
+}  // namespace
+
+std::vector<ProgramDesc> LightmapPass::programs() {
+    std::vector<ProgramDesc> out = lightmapBakePrograms();
+    out.push_back(kApplyProgram);
+    return out;
+}
+
+std::vector<std::pair<std::string, uint64_t>> LightmapPass::estimateMemory(const Scene& scene, const RenderSettings& s) {
+    const LightmapSettings p = lightmapParams().read("lightmap", s.params);
+    const LightmapMesh mesh = lightmapMesh(scene, lightmapAtlas(scene, p));
+    const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
+    return {{"lightmap atlas, texels and bake (" + std::to_string(mesh.layers) + " x " + std::to_string(mesh.side) + "^2)",
+             uint64_t(LightmapBake::bytes(mesh))},
+            {"lightmap lookup (RGBA16F + depth)", pixels * (8 + 4)}};
+}
+
+LightmapPass::LightmapPass(const Scene& scene, RayScene& rays, const RenderSettings& settings, gl::MemoryLedger& ledger)
+    : scene_(scene), rays_(rays), params_(lightmapParams().read("lightmap", settings.params)),
+      atlas_(lightmapAtlas(scene, params_)) {
+    const gl::MemoryScope scope{&ledger, kName};
+    const float texelSize = atlas_.atlasSizes.empty() ? 0.0f : 1.0f / atlas_.params.texelsPerMetre;
+    bake_ = std::make_unique<LightmapBake>(lightmapMesh(scene, atlas_), texelSize, scope);
+    indirect_ = gl::createTexture2D(scope, GL_RGBA16F, settings.width, settings.height);
+    depth_ = gl::createTexture2D(scope, GL_DEPTH_COMPONENT32F, settings.width, settings.height);
+    fbo_ = gl::createFramebuffer();
+    glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+    applyProgram_ = buildProgram(kApplyProgram);
+    const uint32_t zeros[6] = {};
+    rayCounts_ = gl::createStorageBuffer({&ledger, kName}, sizeof(zeros), zeros);
+}
+
+void LightmapPass::invalidate(Changes c) {
+    changed_ = true;
+    // What the light depends on: the bake is stale and starts over (the last image stays shown).
+    if (c & (ChangeLights | ChangeGeometry | ChangeMaterials | ChangeBrdfModels)) done_ = 0, cacheTried_ = false;
+}
+
+void LightmapPass::execute(Frame& frame) {
+    const LightmapSettings now = lightmapParams().read("lightmap", frame.settings.params);
+    if (now.denoise != params_.denoise) resolved_ = false;
+    if (now.samples < done_) done_ = 0;  // fewer samples asked than are in: start over
+    if (now.samples != params_.samples) cacheTried_ = false;  // another bake: its own cache file
+    params_ = now;
+    if (!bake_->classified()) rays_.bind(), bake_->classify();
+    if (!cacheTried_) readCache(frame);
+    if (done_ < params_.samples) bake(frame);
+    if (!resolved_) bake_->resolve(done_, params_.denoise), resolved_ = true;
+    draw(frame, indirect_.id(), kShowLight);
+    frame.put(resource::kIndirectDiffuse, indirect_);
+    changed_ = false;
+}
+
+void LightmapPass::bake(Frame& frame) {
+    if (done_ == 0) bakeStarted_ = std::chrono::steady_clock::now(), bakeSeconds_ = 0.0;
+    const GLuint p = bake_->traceProgram();
+    const RenderSettings& s = frame.settings;
+    auto step = frame.step("trace");
+    rays_.bind();
+    frame.bindEnvironment();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRayCountsBinding, rayCounts_.id());
+    glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));
+    glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));
+    glProgramUniform1i(p, U_MAX_BOUNCES, params_.bounces);
+    glProgramUniform1i(p, U_EMITTER_COUNT, int(rays_.emitterCount));
+    glProgramUniform1i(p, U_RR_START, 3);
+    glProgramUniform1i(p, U_CAUSTICS, 1);
+    glProgramUniform1i(p, U_ENV_SAMPLING, params_.environmentSampling ? 1 : 0);
+    glProgramUniform1ui(p, U_SEED, s.seed);
+    // Emitters the direct pass lights with are its light; otherwise the bake carries theirs.
+    glProgramUniform1i(p, U_PT_TERM, emittersAreLights(scene_, s) ? kTermIndirect : kTermAll);
+    const int batch = std::min(s.samplesPerFrame, params_.samples - done_);
+    bake_->trace(done_, batch);
+    done_ += batch;
+    resolved_ = false;
+    if (done_ < params_.samples) return;
+    glFinish();  // the bake's end, for its wall time
+    bakeSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - bakeStarted_).count();
+    writeCache();
+}
+
+void LightmapPass::draw(const Frame& frame, GLuint target, int mode) {
+    const GLuint f = fbo_.id();
+    glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT0, target, 0);
+    glNamedFramebufferDrawBuffer(f, GL_COLOR_ATTACHMENT0);
+    gl::checkFramebuffer(f, "lightmap lookup");
+    const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f}, far = 1.0f;
+    glClearNamedFramebufferfv(f, GL_COLOR, 0, none);
+    glClearNamedFramebufferfv(f, GL_DEPTH, 0, &far);
+    if (bake_->empty()) return;
+    glBindFramebuffer(GL_FRAMEBUFFER, f);
+    glViewport(0, 0, frame.settings.width, frame.settings.height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    const GLuint p = applyProgram_.id();
+    glUseProgram(p);
+    glProgramUniformMatrix4fv(p, UL_VIEW_PROJ, 1, GL_FALSE, &frame.camera.viewProj[0][0]);
+    glProgramUniform1i(p, UL_MODE, mode);
+    glProgramUniform1i(p, UL_STEP, bake_->mesh().side);
+    glProgramUniform1f(p, UL_TEXEL_SIZE, bake_->texelSize());
+    rays_.bind();  // the lookup's rays beside a wall's foot (apply.frag)
+    glBindTextureUnit(TL_LIGHTMAP, bake_->result().id());
+    glBindTextureUnit(TL_TEXELS, bake_->positions().id());
+    bake_->drawSurfaces();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+std::vector<DebugViewDesc> LightmapPass::debugViews() const {
+    return {{"lightmap.texels", "the lightmap's texels on the surfaces as a checker (one square per texel), tinted "
+                                "by the baked light: the density each surface got"}};
+}
+
+void LightmapPass::drawDebugView(const std::string&, const Frame& frame, GLuint target) {
+    draw(frame, target, kShowTexels);
+}
+
+std::string LightmapPass::cacheKey(const Frame& frame) const {
+    ContentId id;
+    id.add(kCacheMagic);
+    // The bake's own code: a changed shader (the paths, the texels, their classification) bakes anew.
+    for (const ProgramDesc& program : lightmapBakePrograms())
+        for (const std::string& stage : program.stages) id.add(preprocessShader(stage, program.defines).source);
+    const GltfBytes bytes = serializeGltf(scene_, "scene.bin");
+    id.add(bytes.json), id.add(bytes.bin);
+    const RenderSettings& s = frame.settings;
+    id.add(s.environment);
+    if (!s.environment.empty()) {
+        std::ifstream in(s.environment, std::ios::binary);
+        std::ostringstream content;
+        content << in.rdbuf();
+        id.add(content.str());
+    }
+    id.value(s.environmentRotation), id.value(frame.background());
+    id.value(int(s.diffuse)), id.value(int(s.specular)), id.value(s.seed);
+    id.value(emittersAreLights(scene_, s));
+    id.add(atlas_.hash);
+    id.value(params_.samples), id.value(params_.bounces), id.value(params_.environmentSampling);
+    return id.hex();
+}
+
+void LightmapPass::readCache(const Frame& frame) {
+    cacheTried_ = true;
+    cachePath_.clear();
+    if (!params_.cache || bake_->empty()) return void(cacheState_ = params_.cache ? "nothing to bake" : "off");
+    const std::string folder = cacheFolder();
+    if (folder.empty()) return void(cacheState_ = "no folder (set GIS_LIGHTMAP_CACHE)");
+    cachePath_ = folder + "/" + cacheKey(frame) + ".lightmap";
+    std::ifstream in(cachePath_, std::ios::binary);
+    if (!in) return void(cacheState_ = "miss " + cachePath_);
+    std::string magic(sizeof kCacheMagic - 1, '\0');
+    int32_t header[3] = {};
+    in.read(magic.data(), std::streamsize(magic.size()));
+    in.read(reinterpret_cast<char*>(header), sizeof header);
+    const LightmapMesh& m = bake_->mesh();
+    if (!in || magic != kCacheMagic || header[0] != m.side || header[1] != m.layers || header[2] != params_.samples)
+        return void(cacheState_ = "unreadable " + cachePath_ + " (baking again)");
+    std::vector<float> texels(size_t(bake_->meanFloats()));
+    in.read(reinterpret_cast<char*>(texels.data()), std::streamsize(texels.size() * sizeof(float)));
+    if (!in) return void(cacheState_ = "truncated " + cachePath_ + " (baking again)");
+    bake_->loadMean(texels);
+    done_ = params_.samples;
+    resolved_ = false;
+    cacheState_ = "read " + cachePath_;
+}
+
+// A failed write costs the next run a bake, nothing else: it is said, not thrown.
+void LightmapPass::writeCache() {
+    if (!params_.cache || cachePath_.empty()) return;
+    try {
+        std::filesystem::create_directories(std::filesystem::path(cachePath_).parent_path());
+        const LightmapMesh& m = bake_->mesh();
+        const int32_t header[3] = {m.side, m.layers, params_.samples};
+        const std::vector<float> texels = bake_->readMean();
+        AtomicFile file(cachePath_);
+        file.write(kCacheMagic, sizeof kCacheMagic - 1);
+        file.write(header, sizeof header);
+        file.write(texels.data(), texels.size() * sizeof(float));
+        file.commit();
+        cacheState_ = "written " + cachePath_;
+    } catch (const std::exception& e) {
+        cacheState_ = std::string("not written: ") + e.what();
+        std::fprintf(stderr, "warning: lightmap cache %s\n", cacheState_.c_str());
+    }
+}
+
+std::vector<std::string> LightmapPass::stats() const {
+    if (bake_->empty()) return {"lightmap: no surfaces to bake"};
+    const LightmapMesh& m = bake_->mesh();
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "lightmap %d atlas%s of %d^2, %d texels on surfaces (fill %.2f), %d inside geometry, %d steps "
+                  "blocked, %d charts in %d regions, %.4g texels per unit, %s",
+                  m.layers, m.layers == 1 ? "" : "es", m.side, bake_->validTexels(), atlas_.fill(), bake_->insideTexels(),
+                  bake_->blockedLinks(), int(atlas_.charts.size()), bake_->regions(),
+                  double(atlas_.params.texelsPerMetre), describeBytes(double(LightmapBake::bytes(m))).c_str());
+    std::vector<std::string> out{line};
+    std::snprintf(line, sizeof line, "lightmap bake %d / %d paths per texel, %d bounces%s", done_, params_.samples,
+                  params_.bounces, done_ >= params_.samples && bakeSeconds_ > 0.0
+                                       ? (", " + std::to_string(bakeSeconds_).substr(0, 6) + " s").c_str() : "");
+    out.push_back(line);
+    out.push_back("lightmap cache: " + cacheState_);
+    return out;
+}
+
+std::optional<RayCounts> LightmapPass::raysTraced() const {
+    uint32_t words[6] = {};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(rayCounts_.id(), 0, sizeof(words), words);
+    auto count = [&](int k) { return uint64_t(words[2 * k]) | uint64_t(words[2 * k + 1]) << 32; };
+    return RayCounts{count(0), count(1), count(2)};
+}
+
+GiMethod lightmapMethod() {
+    GiMethod m;
+    m.name = "lightmap";
+    m.summary = "baked lightmaps: the path tracer's light per texel of an atlas, baked once (cached), looked up per frame";
+    m.params = lightmapParams().rows;
+    // Sized for llvmpipe, where a path per texel costs about 7 us: medium bakes the Cornell box in
+    // seconds, high in under two minutes (the README's table).
+    m.presets = {{"low", "4k texels, 32 paths each", {{"lightmap.texels", {4096.0}}, {"lightmap.samples", {32.0}}}},
+                 {"medium", "16k texels, 64 paths each", {{"lightmap.texels", {16384.0}}, {"lightmap.samples", {64.0}}}},
+                 {"high", "64k texels, 256 paths each", {{"lightmap.texels", {65536.0}}, {"lightmap.samples", {256.0}}}}};
+    m.programs = &LightmapPass::programs;
+    m.estimateMemory = &LightmapPass::estimateMemory;
+    m.addPasses = [](MethodBuild& b) {
+        b.add(std::make_unique<LightmapPass>(b.scene, b.services.rays(), b.settings, b.ledger));
+    };
+    // The bake's frames (render stops at its progress: progress()), capped as the probes' are.
+    m.framesToConverge = [](const RenderSettings& s) {
+        return std::min(lightmapParams().read("lightmap", s.params).samples / std::max(1, s.samplesPerFrame) + 1, 1024);
+    };
+    m.shaderTables.uniforms = tableRows(lightmap::kLightmapUniforms);
+    m.shaderTables.bindings = tableRows(lightmap::kLightmapBindings);
+    return m;
+}
+
+}  // namespace gis

@@ -1,0 +1,32 @@
+// The lightmap's parameters: one row each in lightmapParams() (names scripts and checks use:
+// lightmap.texels, lightmap.texels-per-metre, lightmap.samples, lightmap.bounces,
+// lightmap.env-sampling, lightmap.denoise, lightmap.cache), defaults in the initialisers below.
+#pragma once
+
+#include <string>
+
+#include "lightmap/atlas.h"
+#include "param_table.h"
+
+namespace gis {
+
+struct Scene;
+
+struct LightmapSettings {
+    int texels = 16384;            // lightmap.texels: texels on all surfaces together (rebuild)
+    float texelsPerMetre = 0.0f;   // lightmap.texels-per-metre: 0 = from texels and the surfaces' area (rebuild)
+    int samples = 64;              // lightmap.samples: paths per texel (live: more continue the bake)
+    int bounces = 8;               // lightmap.bounces: bounces after the texel's first (rebuild)
+    bool environmentSampling = true;  // lightmap.env-sampling: a map sampled as a light too (rebuild)
+    bool denoise = true;           // lightmap.denoise: the edge-aware filter within each chart (live)
+    bool cache = true;             // lightmap.cache: read and write finished bakes on disk (live)
+};
+
+const ParamTable<LightmapSettings>& lightmapParams();
+
+// The atlas a scene gets under these settings: the density from texels-per-metre, else from
+// `texels` over the surfaces' world area, so a scene scaled by any factor gets the same texels.
+// A scene without surfaces gets an empty atlas. Throws gis::Error naming lightmap.texels or lightmap.texels-per-metre when the atlas cannot hold it.
+lightmap::Atlas lightmapAtlas(const Scene& scene, const LightmapSettings& s);
+
+}  // namespace gis

@@ -1,0 +1,33 @@
+// The lightmap's uniform locations and binding points (gl/uniform_table.h: emitted into every
+// shader; the shader-constants test checks no two tables overlap). Its bake also sets the path
+// tracer's rows (renderer/uniforms.h), whose paths it traces.
+#pragma once
+
+#include "gl/uniform_table.h"
+
+namespace gis::lightmap {
+#define GIS_LIGHTMAP_UNIFORMS(X) \
+    X(UL_VIEW_PROJ, 900, 1)   /* the apply pass's camera */ \
+    X(UL_STEP, 901, 1)        /* the denoiser's a-trous step, texels */ \
+    X(UL_SAMPLES, 902, 1)     /* paths in each texel's mean so far */ \
+    X(UL_MODE, 903, 1)        /* filter: 0 copy, 1 denoise step, 2 dilate */ \
+    X(UL_TEXEL_SIZE, 904, 1)  /* world units per texel */
+
+enum LightmapUniform : int { GIS_LIGHTMAP_UNIFORMS(GIS_UNIFORM_ENUM) };
+inline constexpr gl::UniformSlot kLightmapUniforms[] = {GIS_LIGHTMAP_UNIFORMS(GIS_UNIFORM_SLOT)};
+
+// Image units of the bake and its filters (the texels' position and normal, the paths' running
+// mean, a filter's source and target); the texture units the lookup samples (the lightmap, the
+// texels' positions and flags).
+#define GIS_LIGHTMAP_BINDINGS(X) \
+    X(IL_POSITION, 0) \
+    X(IL_NORMAL, 1) \
+    X(IL_MEAN, 2) \
+    X(IL_SOURCE, 3) \
+    X(IL_TARGET, 4) \
+    X(TL_LIGHTMAP, 1) \
+    X(TL_TEXELS, 2)
+
+enum LightmapBinding : int { GIS_LIGHTMAP_BINDINGS(GIS_BINDING_ENUM) };
+inline constexpr gl::BindingSlot kLightmapBindings[] = {GIS_LIGHTMAP_BINDINGS(GIS_BINDING_SLOT)};
+}  // namespace gis::lightmap

@@ -1,0 +1,68 @@
+// indirect.diffuse from the lightmap, on the surfaces the G-buffer sees: single-sided faces seen
+// from behind are culled there, so they are left out here too. The lookup is bilinear over the
+// texels with light of their own (filter.comp's alpha 1) that the nearest texel reaches
+// (classify.comp's flags): a texel inside a wall or across it never lends its light. Where the
+// nearest texel is itself inside a wall (a pixel beside the wall's foot), its flags cannot say
+// which side the pixel is on: the taps are then those a ray from the pixel reaches. Where no tap
+// is left (a chart's border), the dilated gutter's light is used.
+#include "gi/lightmap/lightmap_texels.glsl"
+#include "ray_scene.glsl"
+
+in vec3 v_uvLayer;
+in vec3 v_world;
+in vec3 v_normal;
+flat in float v_doubleSided;
+
+layout(binding = TL_LIGHTMAP) uniform sampler2DArray s_lightmap;
+layout(binding = TL_TEXELS) uniform sampler2DArray s_texels;    // position, w = 1 + flags
+layout(location = UL_MODE) uniform int u_mode;  // 0 the light, 1 lightmap.texels' checker
+layout(location = UL_STEP) uniform int u_side;  // the atlas array's side, texels
+layout(location = UL_TEXEL_SIZE) uniform float u_texelSize;
+layout(location = 0) out vec4 o_indirect;
+
+// As classify.comp's rays: a twentieth of a texel above the surface.
+const float LIFT = 0.05;
+
+bool reaches(vec3 from, vec3 to) {
+    vec3 d = to - from;
+    float distance = length(d);
+    Hit hit;
+    return !(distance > 0.0) || !traceRay(from, d / distance, distance, true, false, hit);
+}
+
+vec3 lightmapLight(vec2 uv, int layer) {
+    vec2 st = uv * float(u_side) - 0.5;
+    ivec2 corner = ivec2(floor(st));
+    vec2 f = st - floor(st);
+    ivec2 nearest = corner + ivec2(greaterThanEqual(f, vec2(0.5)));
+    int flags = texelFlags(texelFetch(s_texels, ivec3(clamp(nearest, ivec2(0), ivec2(u_side - 1)), layer), 0).w);
+    bool nearestInside = (flags & TEXEL_INSIDE) != 0;
+    vec3 n = dot(v_normal, v_normal) > 0.0 ? normalize(v_normal) : vec3(0.0);
+    vec3 pixel = v_world + n * (LIFT * u_texelSize);
+    vec4 own = vec4(0.0), any = vec4(0.0);
+    for (int k = 0; k < 4; ++k) {
+        ivec2 offset = ivec2(k & 1, k >> 1);
+        ivec3 tap = ivec3(clamp(corner + offset, ivec2(0), ivec2(u_side - 1)), layer);
+        vec4 light = texelFetch(s_lightmap, tap, 0);
+        float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
+        ivec2 step = corner + offset - nearest;
+        bool blocked = nearestInside
+                           ? !reaches(pixel, texelFetch(s_texels, tap, 0).xyz + n * (LIFT * u_texelSize))
+                           : (flags & (neighbourBit(ivec2(step.x, 0)) | neighbourBit(ivec2(0, step.y)))) != 0;
+        if (light.a == 1.0 && !blocked) own += vec4(light.rgb, 1.0) * w;
+        if (light.a > 0.0) any += vec4(light.rgb, 1.0) * w;
+    }
+    if (own.w > 0.0) return own.rgb / own.w;
+    return any.w > 0.0 ? any.rgb / any.w : vec3(0.0);
+}
+
+void main() {
+    if (!gl_FrontFacing && v_doubleSided < 0.5) discard;
+    vec3 light = lightmapLight(v_uvLayer.xy, int(v_uvLayer.z + 0.5));
+    if (u_mode == 1) {
+        vec2 texel = floor(v_uvLayer.xy * float(u_side));
+        float square = mod(texel.x + texel.y, 2.0) < 0.5 ? 0.25 : 0.75;
+        light = square * (0.5 + 0.5 * light / max(max(light.r, max(light.g, light.b)), 1e-30));
+    }
+    o_indirect = vec4(light, 1.0);
+}

@@ -1,0 +1,212 @@
+// `--gi lightmap` (issue #41): the bake against what a surface must receive, the light kept on its
+// side of a wall, the cache, the atlas at every scale and a density past the atlases refused.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "error.h"
+#include "gi/lightmap/lightmap_settings.h"
+#include "gi/method.h"
+#include "render_test_util.h"
+#include "renderer.h"
+
+using namespace gis;
+using namespace gis::test;
+
+namespace {
+
+RenderSettings lightmapSettings(int size, int texels, int samples) {
+    RenderSettings s;
+    s.width = s.height = size;
+    s.gi = "lightmap";
+    s.hdr32 = true;
+    s.ambient = glm::vec3(0.0f);
+    setParam(s, "lightmap.texels", std::to_string(texels));
+    setParam(s, "lightmap.samples", std::to_string(samples));
+    setParam(s, "lightmap.cache", "false");
+    return s;
+}
+
+// Renders until the bake is done; returns the lighting contract's indirect.diffuse.
+ImageF bakedIndirect(Renderer& r) {
+    do r.renderFrame();
+    while (!r.converged());
+    EXPECT_EQ(r.nonFiniteReport(), "");
+    return readTextureFloat(r.frameTexture("indirect.diffuse"), r.settings().width, r.settings().height);
+}
+
+std::vector<std::string> lightmapStats(const Renderer& r) {
+    for (const auto& pass : r.passes())
+        if (std::string(pass->name()) == "lightmap") return pass->stats();
+    return {};
+}
+
+bool statsSay(const Renderer& r, const std::string& text) {
+    for (const std::string& line : lightmapStats(r))
+        if (line.find(text) != std::string::npos) return true;
+    return false;
+}
+
+// A floor of 4 x 4 units seen from above, under `background` alone.
+Scene floorScene() {
+    Scene s;
+    s.materials.push_back(lambert(glm::vec3(0.5f)));
+    addQuad(s, glm::vec3(0.0f), glm::vec3(0, 1, 0), 4.0f, 0);
+    s.cameras.push_back(lookAtCamera({0.0f, 6.0f, 0.01f}, {0, 0, 0}, 60.0f));
+    finalizeScene(s);
+    return s;
+}
+
+// The floor with a wall standing on it along z (two faces 0.1 apart, taller and longer than the
+// floor is wide, so no light goes round it) and a point light low on the -x side: the +x side
+// gets no light in truth, neither direct nor bounced.
+Scene wallOnAFloor() {
+    Scene s = floorScene();
+    s.materials.push_back(lambert(glm::vec3(0.8f)));
+    addQuad(s, glm::vec3(-0.05f, 0.0f, 0.0f), glm::vec3(-1, 0, 0), 6.0f, 1);
+    addQuad(s, glm::vec3(0.05f, 0.0f, 0.0f), glm::vec3(1, 0, 0), 6.0f, 1);
+    Light light;
+    light.type = LightType::Point;
+    light.intensity = 4.0f;
+    light.position = {-1.0f, 0.5f, 0.0f};
+    s.lights.push_back(light);
+    finalizeScene(s);
+    return s;
+}
+
+}  // namespace
+
+// Under a uniform sky of radiance L an open upward plane receives E = pi L: the bake's
+// indirect.diffuse (E / pi) is L.
+TEST(Lightmap, APlaneUnderAUniformSkyGetsTheSkysIrradiance) {
+    context();
+    RenderSettings s = lightmapSettings(64, 1024, 16);
+    s.background = glm::vec3(0.5f);
+    const Scene scene = floorScene();
+    Renderer r(scene, s);
+    const ImageF indirect = bakedIndirect(r);
+    const double centre = meanAround(indirect, 32, 32, 8);
+    std::printf("LIGHTMAP plane under a sky of 0.5: indirect.diffuse %.4f\n", centre);
+    EXPECT_NEAR(centre, 0.5, 0.01);
+}
+
+// The wall's lit side and its dark side right beside it, one texel (15 cm here) from the wall:
+// the dark side stays below 1% of the lit side. The floor's texels run under the wall and its
+// texels are wider than the wall is thick; before classify.comp, the lookup's bilinear taps and
+// the denoiser carried the lit side's light under and across it.
+TEST(Lightmap, AWallOnAFloorKeepsTheLightOnItsSide) {
+    context();
+    const Scene scene = wallOnAFloor();
+    RenderSettings s = lightmapSettings(128, 4096, 64);
+    Renderer r(scene, s);
+    const ImageF indirect = bakedIndirect(r);
+    double lit = 0.0, dark = 0.0;
+    for (float z : {-1.5f, -0.5f, 0.5f, 1.5f}) {
+        const glm::ivec2 l = projectToPixel(scene, s, {-0.15f, 0.0f, z}), d = projectToPixel(scene, s, {0.15f, 0.0f, z});
+        lit += meanAround(indirect, l.x, l.y, 1) + meanAround(indirect, l.x, l.y, 1, 1) + meanAround(indirect, l.x, l.y, 1, 2);
+        dark += meanAround(indirect, d.x, d.y, 1) + meanAround(indirect, d.x, d.y, 1, 1) + meanAround(indirect, d.x, d.y, 1, 2);
+    }
+    std::printf("LIGHTMAP wall on a floor: dark side %.5f, lit side %.5f (%s)\n", dark, lit,
+                lightmapStats(r).empty() ? "" : lightmapStats(r)[0].c_str());
+    ASSERT_GT(lit, 0.0);
+    EXPECT_LE(dark, 0.01 * lit);
+}
+
+// A finished bake is written under its content id; the same scene's next renderer reads it and
+// traces nothing; a light edited (a different content id) bakes again.
+TEST(Lightmap, TheSecondRunReadsTheCacheAndAnEditedLightBakesAgain) {
+    context();
+    const std::filesystem::path folder = std::filesystem::temp_directory_path() / "gis-lightmap-cache-test";
+    std::filesystem::remove_all(folder);
+    const char* before = std::getenv("GIS_LIGHTMAP_CACHE");
+    const std::string saved = before ? before : "";
+    setenv("GIS_LIGHTMAP_CACHE", folder.c_str(), 1);
+    Scene scene = wallOnAFloor();
+    RenderSettings s = lightmapSettings(32, 1024, 8);
+    setParam(s, "lightmap.cache", "true");
+    ImageF first;
+    {
+        Renderer r(scene, s);
+        first = bakedIndirect(r);
+        EXPECT_TRUE(statsSay(r, "cache: written")) << lightmapStats(r).back();
+    }
+    {
+        Renderer r(scene, s);
+        r.renderFrame();
+        EXPECT_TRUE(r.converged()) << "the cached bake is complete after one frame";
+        EXPECT_TRUE(statsSay(r, "cache: read")) << lightmapStats(r).back();
+        for (const auto& pass : r.passes()) {
+            if (std::string(pass->name()) != "lightmap") continue;
+            EXPECT_EQ(pass->raysTraced()->total(), 0u) << "no path traced";
+        }
+        const ImageF again = readTextureFloat(r.frameTexture("indirect.diffuse"), 32, 32);
+        EXPECT_EQ(again.rgba, first.rgba) << "the cached bake looks up as the baked one";
+    }
+    scene.lights[0].intensity *= 2.0f;
+    {
+        Renderer r(scene, s);
+        r.renderFrame();
+        EXPECT_TRUE(statsSay(r, "cache: miss")) << lightmapStats(r).back();
+        EXPECT_FALSE(r.converged());
+    }
+    if (before) setenv("GIS_LIGHTMAP_CACHE", saved.c_str(), 1);
+    else unsetenv("GIS_LIGHTMAP_CACHE");
+    std::filesystem::remove_all(folder);
+}
+
+// The density follows from lightmap.texels over the surfaces' area: the Cornell box at x1e-3 and
+// x1e3 gets the atlas it gets at x1, texel for texel.
+TEST(Lightmap, TheAtlasDoesNotDependOnTheUnitOfLength) {
+    const Scene cornell = makeBuiltinScene("cornell");
+    const LightmapSettings defaults;
+    const lightmap::Atlas unit = lightmapAtlas(cornell, defaults);
+    for (float scale : {1e-3f, 1e3f}) {
+        const lightmap::Atlas scaled = lightmapAtlas(scaledScene(cornell, scale), defaults);
+        EXPECT_EQ(scaled.atlasSizes, unit.atlasSizes) << "scale " << scale;
+        ASSERT_EQ(scaled.charts.size(), unit.charts.size()) << "scale " << scale;
+        for (size_t c = 0; c < unit.charts.size(); ++c) {
+            const lightmap::Chart &a = unit.charts[c], &b = scaled.charts[c];
+            EXPECT_TRUE(a.x == b.x && a.y == b.y && a.width == b.width && a.height == b.height)
+                << "scale " << scale << " chart " << c << ": " << b.width << "x" << b.height << " at " << b.x << ","
+                << b.y << " against " << a.width << "x" << a.height << " at " << a.x << "," << a.y;
+        }
+    }
+}
+
+// A density whose texels need more than the atlases is refused before anything is built, in one
+// message naming the parameter that asked for it.
+TEST(Lightmap, ADensityPastTheAtlasesIsOneErrorNamingIt) {
+    context();
+    RenderSettings s = lightmapSettings(32, 1024, 1);
+    setParam(s, "lightmap.texels-per-metre", "100000");
+    const Scene scene = makeBuiltinScene("cornell");
+    try {
+        Renderer r(scene, s);
+        FAIL() << "built a lightmap at 1e5 texels per unit";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("lightmap.texels-per-metre"), std::string::npos) << e.what();
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    }
+}
+
+// The texels the atlas puts on the surfaces and the regions classify.comp splits them into are the
+// same at x1e-3 and x1e3 as at x1 (the rays it traces are a texel long, in world units).
+TEST(Lightmap, TheTexelsAndTheirRegionsDoNotDependOnTheUnitOfLength) {
+    context();
+    const Scene cornell = makeBuiltinScene("cornell");
+    for (int texels : {4096, 16384}) {
+    const RenderSettings s = lightmapSettings(32, texels, 1);
+    std::string unit;
+    for (float scale : {1.0f, 1e-3f, 1e3f}) {
+        Renderer r(scaledScene(cornell, scale), s);
+        r.renderFrame();
+        std::string line = lightmapStats(r).at(0);
+        line = line.substr(0, line.find(" texels per unit"));
+        line = line.substr(0, line.rfind(','));  // the density itself scales
+        std::printf("LIGHTMAP x%g: %s\n", scale, line.c_str());
+        if (scale == 1.0f) unit = line;
+        else EXPECT_EQ(line, unit) << "scale " << scale;
+    }
+    }
+}
