@@ -1,6 +1,7 @@
 #include "gi/lightmap/lightmap_pass.h"
 
 #include <chrono>
+#include <iterator>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "error.h"
 #include "gi/lightmap/lightmap_uniforms.h"
 #include "gi/method.h"
+#include "lightmap/content_id.h"
 #include "scene/atomic_file.h"
 #include "services/scene_services.h"
 #include "uniforms.h"
@@ -20,7 +22,10 @@ namespace gis {
 using namespace lightmap;  // its uniform and binding names
 
 namespace {
-const ProgramDesc kApplyProgram{"lightmap-apply", {"gi/lightmap/apply.vert", "gi/lightmap/apply.frag"}, {}};
+// The lookup (apply.frag): every pixel without rays, then the pixels beside a wall's foot with them.
+const ProgramDesc kApplyPrograms[2] = {
+    {"lightmap-apply", {"gi/lightmap/apply.vert", "gi/lightmap/apply.frag"}, {{"RAY_FALLBACK", "0"}}},
+    {"lightmap-apply-rays", {"gi/lightmap/apply.vert", "gi/lightmap/apply.frag"}, {{"RAY_FALLBACK", "1"}}}};
 // path_tracer.glsl's u_term: the indirect term, or everything (emitters' direct light included).
 constexpr int kTermAll = 0, kTermIndirect = 3;
 // apply.frag's u_mode: the lightmap, or the texels view's checker.
@@ -42,27 +47,11 @@ std::string cacheFolder() {
     return "";
 }
 
-// FNV-1a, 64 bits: a content id, not a defence against forgery (as the atlas's hash).
-struct ContentId {
-    uint64_t h = 1469598103934665603ull;
-    void add(const void* data, size_t n) {
-        const auto* b = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
-    }
-    void add(const std::string& s) { add(s.data(), s.size()), add("\0", 1); }
-    template <class T>
-    void value(const T& v) { add(&v, sizeof v); }
-    std::string hex() const {
-        char text[17];
-        std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
-        return text;
-    }
-};
 }  // namespace
 
 std::vector<ProgramDesc> LightmapPass::programs() {
     std::vector<ProgramDesc> out = lightmapBakePrograms();
-    out.push_back(kApplyProgram);
+    out.insert(out.end(), std::begin(kApplyPrograms), std::end(kApplyPrograms));
     return out;
 }
 
@@ -84,10 +73,10 @@ LightmapPass::LightmapPass(const Scene& scene, RayScene& rays, const RenderSetti
     indirect_ = gl::createTexture2D(scope, GL_RGBA16F, settings.width, settings.height);
     depth_ = gl::createTexture2D(scope, GL_DEPTH_COMPONENT32F, settings.width, settings.height);
     fbo_ = gl::createFramebuffer();
+    gbufferFbo_ = gl::createFramebuffer();
     glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
-    applyProgram_ = buildProgram(kApplyProgram);
-    const uint32_t zeros[6] = {};
-    rayCounts_ = gl::createStorageBuffer({&ledger, kName}, sizeof(zeros), zeros);
+    for (int i = 0; i < 2; ++i) applyPrograms_[i] = buildProgram(kApplyPrograms[i]);
+    rayCounts_ = createRayCounts({&ledger, kName});
 }
 
 void LightmapPass::invalidate(Changes c) {
@@ -144,27 +133,38 @@ void LightmapPass::draw(const Frame& frame, GLuint target, int mode) {
     glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT0, target, 0);
     glNamedFramebufferDrawBuffer(f, GL_COLOR_ATTACHMENT0);
     gl::checkFramebuffer(f, "lightmap lookup");
-    const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f}, far = 1.0f;
+    const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearNamedFramebufferfv(f, GL_COLOR, 0, none);
-    glClearNamedFramebufferfv(f, GL_DEPTH, 0, &far);
     if (bake_->empty()) return;
+    // A copy of the G-buffer's depth: fragments behind the surface it kept fail before shading (a
+    // cleared depth cost 2.6x --gi none's frame on cornell_point in overdraw), and of those the
+    // offset lets through (the last bits by which the pre-transformed positions differ), the
+    // nearest wins, as depth writes stay on: the floor under a wall's foot never shades its pixel.
+    const int w = frame.settings.width, h = frame.settings.height;
+    glNamedFramebufferTexture(gbufferFbo_.id(), GL_DEPTH_ATTACHMENT, frame.texture(resource::kGbufferDepth), 0);
+    glBlitNamedFramebuffer(gbufferFbo_.id(), f, 0, 0, w, h, 0, 0, w, h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, f);
-    glViewport(0, 0, frame.settings.width, frame.settings.height);
+    glViewport(0, 0, w, h);
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_TRUE);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(0.0f, -16.0f);  // no slope term: a grazing floor must not pass a wall in front of it
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
-    const GLuint p = applyProgram_.id();
-    glUseProgram(p);
-    glProgramUniformMatrix4fv(p, UL_VIEW_PROJ, 1, GL_FALSE, &frame.camera.viewProj[0][0]);
-    glProgramUniform1i(p, UL_MODE, mode);
-    glProgramUniform1i(p, UL_STEP, bake_->mesh().side);
-    glProgramUniform1f(p, UL_TEXEL_SIZE, bake_->texelSize());
-    rays_.bind();  // the lookup's rays beside a wall's foot (apply.frag)
+    rays_.bind();  // the second program's rays beside a wall's foot
     glBindTextureUnit(TL_LIGHTMAP, bake_->result().id());
     glBindTextureUnit(TL_TEXELS, bake_->positions().id());
-    bake_->drawSurfaces();
+    for (const gl::Object& program : applyPrograms_) {
+        const GLuint p = program.id();
+        glUseProgram(p);
+        glProgramUniformMatrix4fv(p, UL_VIEW_PROJ, 1, GL_FALSE, &frame.camera.viewProj[0][0]);
+        glProgramUniform1i(p, UL_MODE, mode);
+        glProgramUniform1i(p, UL_STEP, bake_->mesh().side);
+        glProgramUniform1f(p, UL_TEXEL_SIZE, bake_->texelSize());
+        bake_->drawSurfaces();
+    }
+    glDisable(GL_POLYGON_OFFSET_FILL);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
@@ -265,13 +265,7 @@ std::vector<std::string> LightmapPass::stats() const {
     return out;
 }
 
-std::optional<RayCounts> LightmapPass::raysTraced() const {
-    uint32_t words[6] = {};
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(rayCounts_.id(), 0, sizeof(words), words);
-    auto count = [&](int k) { return uint64_t(words[2 * k]) | uint64_t(words[2 * k + 1]) << 32; };
-    return RayCounts{count(0), count(1), count(2)};
-}
+std::optional<RayCounts> LightmapPass::raysTraced() const { return readRayCounts(rayCounts_); }
 
 GiMethod lightmapMethod() {
     GiMethod m;

@@ -20,6 +20,7 @@ public:
     static constexpr const char* kName = "lightmap";
     LightmapPass(const Scene& scene, RayScene& rays, const RenderSettings& settings, gl::MemoryLedger& ledger);
     const char* name() const override { return kName; }
+    std::vector<std::string> inputs() const override { return {resource::kGbufferDepth}; }
     std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse}; }
     void execute(Frame& frame) override;
     void invalidate(Changes c) override;
@@ -48,7 +49,7 @@ private:
     lightmap::Atlas atlas_;
     std::unique_ptr<LightmapBake> bake_;
     gl::Texture indirect_, depth_;
-    gl::Object fbo_, applyProgram_;
+    gl::Object fbo_, gbufferFbo_, applyPrograms_[2];
     gl::Buffer rayCounts_;
     int done_ = 0;
     bool changed_ = true;           // something since the last execute() asks for a redraw
