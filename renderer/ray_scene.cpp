@@ -5,11 +5,25 @@
 #include <algorithm>
 #include <cmath>
 
+#include "frame.h"
 #include "gl/dispatch.h"
 #include "lights.h"
 #include "uniforms.h"
 
 namespace gis {
+
+gl::Buffer createRayCounts(const gl::MemoryScope& scope) {
+    const uint32_t zeros[6] = {};
+    return gl::createStorageBuffer(scope, sizeof(zeros), zeros);
+}
+
+RayCounts readRayCounts(const gl::Buffer& counts) {
+    uint32_t words[6] = {};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(counts.id(), 0, sizeof(words), words);
+    auto count = [&](int k) { return uint64_t(words[2 * k]) | uint64_t(words[2 * k + 1]) << 32; };
+    return RayCounts{count(0), count(1), count(2)};
+}
 
 namespace {
 

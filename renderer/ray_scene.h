@@ -38,6 +38,9 @@ constexpr int kBvhNodesBinding = 1, kBvhTrianglesBinding = 2, kRayAttributesBind
               kRayEmittersBinding = 5;
 // The path tracer's ray counts (shaders/path_tracer.glsl: 3 x (low, high) uint), which its passes bind.
 constexpr int kRayCountsBinding = 6;
+struct RayCounts;
+gl::Buffer createRayCounts(const gl::MemoryScope& scope);  // zeroed
+RayCounts readRayCounts(const gl::Buffer& counts);         // the counts so far (a GPU sync)
 
 struct RayScene {
     RayScene(const GpuScene& scene, gl::MemoryLedger& ledger, const std::string& owner);

@@ -7,6 +7,7 @@
 
 #include "error.h"
 #include "lightmap/charts.h"
+#include "lightmap/content_id.h"
 #include "lightmap/pack.h"
 #include "scene/scene.h"
 
@@ -139,23 +140,8 @@ void checkBudget(double area, const AtlasParams& p) {
              num(p.texelsPerMetre * std::sqrt(have / need)) + ")");
 }
 
-// FNV-1a, 64 bits: a content id to go into the bake's cache key, not a defence against forgery.
-struct Fnv {
-    uint64_t h = 1469598103934665603ull;
-    void add(const void* data, size_t n) {
-        const auto* b = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
-    }
-    template <typename T>
-    void vec(const std::vector<T>& v) {
-        const uint64_t n = v.size();
-        add(&n, sizeof n);
-        if (n) add(v.data(), n * sizeof(T));
-    }
-};
-
 std::string hashOf(const Atlas& a) {
-    Fnv f;
+    ContentId f;
     const AtlasParams& p = a.params;
     const int ints[] = {p.maxAtlasSize, p.maxAtlases, p.gutter, p.useFileUvs ? 1 : 0};
     const float floats[] = {p.texelsPerMetre, p.chartAngleDegrees};
@@ -169,9 +155,7 @@ std::string hashOf(const Atlas& a) {
     for (const MeshAtlas& m : a.meshes) {
         f.vec(m.sourceVertex), f.vec(m.chart), f.vec(m.uv), f.vec(m.indices), f.vec(m.sourceTriangle);
     }
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(f.h));
-    return hex;
+    return f.hex();
 }
 
 }  // namespace

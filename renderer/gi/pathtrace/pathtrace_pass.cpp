@@ -68,17 +68,10 @@ PathTracePass::PathTracePass(SceneServices& services, const RenderSettings& sett
     : ProgressiveRayPass(services.rays(), settings, {&ledger, kName}, programs()[0]),
       params_(pathTraceParams().read("pathtrace", settings.params)), term_(termOf(settings.view)) {
     samples_.target = params_.spp;
-    const uint32_t zeros[6] = {};
-    rayCounts_ = gl::createStorageBuffer({&ledger, name()}, sizeof(zeros), zeros);
+    rayCounts_ = createRayCounts({&ledger, name()});
 }
 
-std::optional<RayCounts> PathTracePass::raysTraced() const {
-    uint32_t words[6] = {};
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(rayCounts_.id(), 0, sizeof(words), words);
-    auto count = [&](int k) { return uint64_t(words[2 * k]) | uint64_t(words[2 * k + 1]) << 32; };
-    return RayCounts{count(0), count(1), count(2)};
-}
+std::optional<RayCounts> PathTracePass::raysTraced() const { return readRayCounts(rayCounts_); }
 
 void PathTracePass::execute(Frame& frame) {
     const RenderSettings& s = frame.settings;
