@@ -123,11 +123,6 @@ void LightmapBake::rasterizeTexels() {
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    // Texels with a point of the surface, for the stats.
-    std::vector<float> positions(size_t(mesh_.side) * mesh_.side * mesh_.layers * 4);
-    glGetTextureImage(position_.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(positions.size() * 4), positions.data());
-    validTexels_ = 0;
-    for (size_t i = 3; i < positions.size(); i += 4) validTexels_ += positions[i] > 0.0f ? 1 : 0;
 }
 
 void LightmapBake::drawSurfaces() const {
@@ -182,9 +177,10 @@ void LightmapBake::splitChartsAtWalls() {
                 if (x + 1 < side) link(i, i + 1, kPlusX, kMinusX);
                 if (y + 1 < side) link(i, i + side, kPlusY, kMinusY);
             }
-    insideTexels_ = blockedLinks_ = 0;
+    validTexels_ = insideTexels_ = blockedLinks_ = 0;
     for (int i = 0; i < texels; ++i) {
         if (flags(i) < 0) continue;
+        ++validTexels_;
         insideTexels_ += (flags(i) & kInside) ? 1 : 0;
         for (int bit : {kPlusX, kMinusX, kPlusY, kMinusY}) blockedLinks_ += (flags(i) & bit) ? 1 : 0;
     }

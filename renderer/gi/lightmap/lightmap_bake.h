@@ -68,7 +68,7 @@ public:
     void loadMean(const std::vector<float>& texels);
     int64_t meanFloats() const { return int64_t(mesh_.side) * mesh_.side * mesh_.layers * 4; }
     const LightmapMesh& mesh() const { return mesh_; }
-    int validTexels() const { return validTexels_; }
+    int validTexels() const { return validTexels_; }  // texels on a surface, counted by classify()
     float texelSize() const { return texelSize_; }
 
 private:
