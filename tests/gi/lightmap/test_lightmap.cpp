@@ -199,7 +199,8 @@ TEST(Lightmap, TheTexelsAndTheirRegionsDoNotDependOnTheUnitOfLength) {
     const RenderSettings s = lightmapSettings(32, texels, 1);
     std::string unit;
     for (float scale : {1.0f, 1e-3f, 1e3f}) {
-        Renderer r(scaledScene(cornell, scale), s);
+        const Scene scaled = scaledScene(cornell, scale);  // the renderer keeps a reference to its scene
+        Renderer r(scaled, s);
         r.renderFrame();
         std::string line = lightmapStats(r).at(0);
         line = line.substr(0, line.find(" texels per unit"));
