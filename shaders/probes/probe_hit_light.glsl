@@ -47,11 +47,12 @@ vec3 bounceLight(vec3 P, vec3 N, vec3 dir, vec3 albedo) {
 }
 
 #ifdef PROBE_TRACER_OCCUPANCY
-// The light a ray along `dir` sees of voxel `v` of `cascade` whose level-0 light is `light`: a slab
-// (a wall thinner than a voxel) shows the face the ray meets, not its other face's sunlit mean.
-vec3 lightSeen(vec4 light, int cascade, ivec3 v, vec3 dir) {
+// The light a ray from `origin` sees of voxel `v` of `cascade` whose level-0 light is `light`: a
+// slab (a wall thinner than a voxel) shows the face on the ray's side, not its other face's sunlit mean.
+vec3 lightSeen(vec4 light, int cascade, ivec3 v, vec3 origin) {
     v = clamp(v, ivec3(0), ivec3(u_sdfResolution - 1));
-    return unpremultiply(voxelLightSeen(light, texelFetch(s_voxelSides, v + ivec3(0, 0, cascade * u_sdfResolution), 0), dir));
+    vec3 centre = u_cascades[cascade].xyz + (vec3(v) + 0.5) * (u_cascades[cascade].w / float(u_sdfResolution));
+    return unpremultiply(voxelLightSeen(light, texelFetch(s_voxelSides, v + ivec3(0, 0, cascade * u_sdfResolution), 0), origin - centre));
 }
 
 // The hit voxel's own light and albedo (one voxel, no filtering: its neighbours may be empty).
@@ -71,7 +72,7 @@ vec4 fieldRayRadiance(vec3 origin, vec3 dir) {
     HddaHit h = hddaTraceCascades(cs, origin, dir, 0.0, u_update.missDistance, 4096);
     if (!h.hit) return vec4(environmentRadiance(dir), u_update.missDistance);
     vec3 radiance = lightSeen(texelFetch(s_voxelRadiance, h.voxel + ivec3(0, 0, h.cascade * u_sdfResolution), 0),
-                              h.cascade, h.voxel, dir);
+                              h.cascade, h.voxel, origin);
     radiance += bounceLight(h.position, h.normal, dir, voxelAlbedoAt(h.cascade, h.voxel));
     return vec4(finiteOrZero(radiance), max(h.t, 0.0));
 }

@@ -37,7 +37,7 @@ ConeTracer makeConeTracer(int resolution, float stepFactor, float maxDistance, i
 // Level 0 around p as seen travelling dir: the voxel p lies in, if a slab, shows the face dir meets.
 vec4 sampleLevel0(ConeTracer t, vec3 p, vec3 dir) {
     ivec3 v = clamp(ivec3(floor(p)), ivec3(0), ivec3(int(t.resolution) - 1));
-    return voxelLightSeen(textureLod(s_voxelRadiance, p / t.resolution, 0.0), texelFetch(s_voxelSides, v, 0), dir);
+    return voxelLightSeen(textureLod(s_voxelRadiance, p / t.resolution, 0.0), texelFetch(s_voxelSides, v, 0), -dir);
 }
 
 // Radiance and opacity seen through the voxels around p (voxel units) at level lod, travelling dir.

@@ -19,6 +19,7 @@ vec3 sdfHitLight(sampler3D radiance, sampler3D sides, SdfCascades cs, SdfHit h, 
     vec4 r = textureLod(radiance, sdfLayerCoord(vol, h.cascade, cs.count, h.position + front * 0.5 * cell), 0.0);
     vec3 inside = (h.position - front * 0.25 * cell - vol.origin) / cell;
     ivec3 v = clamp(ivec3(floor(inside)), ivec3(0), ivec3(cs.resolution - 1));
-    r = voxelLightSeen(r, texelFetch(sides, v + ivec3(0, 0, h.cascade * cs.resolution), 0), dir);
+    vec3 towardOrigin = (h.position - dir * h.t) - (vol.origin + (vec3(v) + 0.5) * cell);
+    r = voxelLightSeen(r, texelFetch(sides, v + ivec3(0, 0, h.cascade * cs.resolution), 0), towardOrigin);
     return r.a > 1e-3 ? r.rgb / r.a : vec3(0.0);
 }

@@ -36,7 +36,7 @@ vec4 child(ivec3 c, int axis, float travel) {
     if (slab >= 0) {
         vec3 dir = vec3(0.0);
         dir[axis] = travel;
-        return slab == axis ? voxelLightSeen(v, sides, dir) : vec4(0.0, 0.0, 0.0, v.a);
+        return slab == axis ? voxelLightSeen(v, sides, -dir) : vec4(0.0, 0.0, 0.0, v.a);
     }
     vec3 n = texelFetch(s_normal, c, 0).xyz * 2.0 - 1.0;
     float len = length(n);

@@ -14,12 +14,19 @@ layout(location = UV_KEEP_HI) uniform ivec3 u_keepHi;
 
 float sumOf(ivec3 v, int channel) { return float(u_voxelSums[voxelSumIndex(v, u_resolution, channel)]); }
 
-// A voxel whose normals cancel (mean shorter than VOXEL_TWO_SIDED) holds opposite faces: a wall
-// thinner than a voxel, a slab along the axis its faces face most (the largest mean |normal|
-// component), whose two faces inject.comp lights apart. 1, 2, 3 for x, y, z; 0 for any other voxel.
-float slabAxis(ivec3 v, vec3 meanNormal) {
+// A slab: a voxel with opposite faces, whose two faces inject.comp lights apart. Along the axis
+// where the lesser of the shares facing + and - is largest, when it is VOXEL_OPPOSITE_SHARE or more
+// (a wall thinner than a voxel; a junction of such a wall and a roof, whose mean normal points up
+// and whose light was the sunlit roof's); else, where the normals still cancel (mean shorter than
+// VOXEL_TWO_SIDED), along the axis the faces face most. 1, 2, 3 for x, y, z; 0 for any other voxel.
+float slabAxis(ivec3 v, vec3 meanNormal, float count) {
+    vec3 a = vec3(sumOf(v, 11), sumOf(v, 12), sumOf(v, 13)) / VOXEL_FIXED_ONE;  // sums of |n|
+    vec3 n = vec3(sumOf(v, 7), sumOf(v, 8), sumOf(v, 9)) / VOXEL_FIXED_ONE * 2.0 - count;  // sums of n
+    vec3 opposite = min(a + n, a - n) * 0.5;  // the lesser of the + and - sums, per axis
+    float most = max(opposite.x, max(opposite.y, opposite.z));
+    if (most >= VOXEL_OPPOSITE_SHARE * count)
+        return opposite.x == most ? 1.0 : opposite.y == most ? 2.0 : 3.0;
     if (length(meanNormal) > VOXEL_TWO_SIDED) return 0.0;
-    vec3 a = vec3(sumOf(v, 11), sumOf(v, 12), sumOf(v, 13));
     return a.x >= a.y && a.x >= a.z ? 1.0 : a.y >= a.z ? 2.0 : 3.0;
 }
 
@@ -46,5 +53,5 @@ void main() {
     vec3 normal = vec3(sumOf(v, 7), sumOf(v, 8), sumOf(v, 9)) * norm * 2.0 - 1.0;
     imageStore(i_albedo, v, vec4(albedo, 1.0));
     imageStore(i_normal, v, vec4(normal * 0.5 + 0.5, 1.0));
-    imageStore(i_emission, v, vec4(min(emission, vec3(MAX_HALF_FLOAT)), slabAxis(v, normal)));
+    imageStore(i_emission, v, vec4(min(emission, vec3(MAX_HALF_FLOAT)), slabAxis(v, normal, count)));
 }
