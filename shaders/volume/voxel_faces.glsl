@@ -1,8 +1,9 @@
 // What a voxel's faces say about the light it shows (renderer/volume/voxelizer.h, voxel_radiance.h).
-// A mean normal shorter than VOXEL_TWO_SIDED comes from faces that face opposite ways: a wall
-// thinner than a voxel. The voxelizer marks such a voxel a slab along the axis its faces face most,
-// and injection lights the slab's two faces apart (shaders/volume/inject.comp): level 0 holds their
-// mean, the sides texture half their difference (rgb) and the axis (a: 1, 2, 3; 0 for no slab).
+// A voxel with faces facing both ways along an axis (VOXEL_OPPOSITE_SHARE), or whose mean normal is
+// shorter than VOXEL_TWO_SIDED, holds a wall thinner than itself. The voxelizer marks it a slab
+// (shaders/volume/voxel_resolve.comp, slabAxis), and injection lights the slab's two faces apart
+// (shaders/volume/inject.comp): level 0 holds their mean, the sides texture half their difference
+// (rgb) and the axis (a: 1, 2, 3; 0 for no slab).
 #define VOXEL_TWO_SIDED 0.3
 
 // The slab's axis (0, 1, 2), or -1 for a voxel that is no slab.
