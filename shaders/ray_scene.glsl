@@ -78,6 +78,14 @@ vec3 offsetRayOrigin(vec3 p, vec3 n) {
     return q;
 }
 
+// The origin of a ray leaving a G-buffer position P (normal N) seen from `camera`: reconstructed
+// from depth, P may lie a few depth-buffer steps behind its surface, a distance that grows with the
+// distance to the camera; so the origin first moves off by a small fraction of that distance, then
+// by offsetRayOrigin's few ulps.
+vec3 gbufferRayOrigin(vec3 P, vec3 N, vec3 camera) {
+    return offsetRayOrigin(P + N * (2e-4 * length(camera - P)), N);
+}
+
 struct RayHitGeometry {
     vec3 position;
     vec3 geometricNormal;     // faces the incoming ray

@@ -141,11 +141,9 @@ float targetAt(Surface s, Reservoir r) {
     return luminance(contribution(s, emitterPoint(r.triangle, r.b, s.P), L, dist));
 }
 
-// A ray from a G-buffer position: reconstructed from depth, it may lie a few depth-buffer steps
-// behind its surface, a distance that grows with the distance to the camera; so the origin first
-// moves off by a small fraction of that distance, then by offsetRayOrigin's few ulps.
+// A ray from a G-buffer position (gbufferRayOrigin) to `target`.
 bool visible(vec3 P, vec3 N, vec3 target) {
-    vec3 origin = offsetRayOrigin(P + N * (2e-4 * length(u_cameraPos - P)), N);
+    vec3 origin = gbufferRayOrigin(P, N, u_cameraPos);
     vec3 d = target - origin;
     float dist = length(d);
     if (!(dist > 0.0)) return false;
@@ -248,7 +246,7 @@ Reservoir bsdfCandidate(Surface s, float pSpecular, inout Rng rng) {
     bool specularLobe;
     if (!sampleBsdf(s.brdf, s.N, s.N, s.V, pSpecular, rng, L, specularLobe)) return r;
     Hit h;
-    vec3 origin = offsetRayOrigin(s.P + s.N * (2e-4 * length(u_cameraPos - s.P)), s.N);
+    vec3 origin = gbufferRayOrigin(s.P, s.N, u_cameraPos);
     if (!traceRay(origin, L, 1e30, false, h) || !(u_attributes[h.triangle].uv2MaterialEmitter.w > 0.0)) return r;
     r.triangle = h.triangle;
     r.b = h.barycentric;

@@ -30,29 +30,7 @@ layout(location = UV_TRACE_JITTER) uniform ivec3 u_traceJitter;  // pixels per t
 layout(location = UV_PREV_VIEW_PROJ) uniform mat4 u_prevViewProj;
 layout(location = UV_PREV_CAMERA_POS) uniform vec3 u_prevCameraPos;
 layout(location = UV_HISTORY) uniform ivec2 u_history;  // history valid, camera moved
-
-// A sample whose surface lies farther than this fraction of the pixel's depth off the pixel's
-// tangent plane is another surface: it gets no weight, so light never blends across a step.
-const float PLANE_TOLERANCE = 0.05;
-const float NORMAL_POWER = 8.0;
-
-struct Surface {
-    bool valid;  // false: background
-    vec3 position, normal;
-};
-
-Surface surfaceAt(ivec2 pixel) {
-    ivec2 size = textureSize(s_depth, 0);
-    float depth = texelFetch(s_depth, pixel, 0).r;
-    vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
-    vec4 world = u_invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
-    return Surface(depth < 1.0, world.xyz / world.w, normalize(texelFetch(s_gbufNormal, pixel, 0).xyz));
-}
-
-// The full-resolution pixel traced texel `texel` stands for this frame.
-ivec2 tracedPixel(ivec2 texel) {
-    return min(texel * u_traceJitter.x + u_traceJitter.yz, textureSize(s_depth, 0) - 1);
-}
+#include "gi/vct/vct_surface.glsl"
 
 // Joint bilateral upsample: the 3x3 traced texels nearest the pixel, each weighted by its
 // distance in pixels, by how far its surface lies off the pixel's tangent plane relative to the
@@ -79,8 +57,7 @@ void upsample(ivec2 pixel, Surface s, out vec3 diffuse, out vec3 specular) {
                 best = t;
             }
             vec2 d = vec2(q - pixel) / float(scale);
-            float w = exp(-dot(d, d)) * pow(saturate(1.0 - off / PLANE_TOLERANCE), 2.0) *
-                      pow(max(dot(o.normal, s.normal), 0.0), NORMAL_POWER);
+            float w = exp(-dot(d, d)) * surfaceWeight(s, o, u_cameraPos);
             sumD += w * vec4(texelFetch(s_tracedDiffuse, t, 0).rgb, 1.0);
             sumS += w * vec4(texelFetch(s_tracedSpecular, t, 0).rgb, 1.0);
         }
