@@ -29,3 +29,10 @@ vec3 sampleGgxHalfVector(vec2 u, float a2) {
     float phi = 2.0 * PI * u.y;
     return vec3(sinH * cos(phi), sinH * sin(phi), cosH);
 }
+
+// A value in [0, 1) per pixel whose neighbours differ as much as possible (interleaved gradient
+// noise, Jimenez 2014, "Next generation post processing in Call of Duty: Advanced Warfare"): turning
+// a few fixed directions by it makes their error a fine-grained noise instead of bands.
+float interleavedGradientNoise(vec2 pixel) {
+    return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
+}

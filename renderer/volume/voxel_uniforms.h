@@ -44,7 +44,8 @@ inline constexpr gl::UniformSlot kVoxelUniforms[] = {GIS_VOXEL_UNIFORMS(GIS_UNIF
     M(float, stepFactor)   /* each step's length over the cone's diameter there */ \
     M(float, maxDistance)  /* voxels */ \
     M(float, offset)       /* the cones' start along the normal, voxels */ \
-    M(int, specular)       /* VCT: 1 traces the specular cone */
+    M(int, specular)       /* VCT: 1 traces the specular cone */ \
+    M(int, skyRays)        /* VCT: rays per cone deciding its environment term (vct.sky-rays); 0 the cone's transmittance */
 GIS_UNIFORM_BLOCK(ConeTraceBlock, 2, GIS_CONE_TRACE_BLOCK)
 
 // What VCT's debug views show (vct.voxels and vct.slice).

@@ -15,6 +15,19 @@ layout(binding = VOLUME_RADIANCE_UNIT + 5) uniform sampler3D s_voxelPosZ;
 layout(binding = VOLUME_RADIANCE_UNIT + 6) uniform sampler3D s_voxelNegZ;
 layout(binding = VOLUME_RADIANCE_UNIT + 7) uniform sampler3D s_voxelSides;
 
+// How much of the environment a cone sees, given what the voxels let through of it
+// (`transmittance`) and whether it left the volume. By default that transmittance where it left
+// and nothing where it ran out of distance inside (indoors, the environment would leak); an
+// includer that knows better (VCT's sky rays through the scene's triangles: coarse voxels let the
+// sky through thin walls) defines CONE_ENVIRONMENT_WEIGHT and the function itself.
+#ifdef CONE_ENVIRONMENT_WEIGHT
+float coneEnvironmentWeight(vec3 dir, float tanHalf, float transmittance, bool escaped);
+#else
+float coneEnvironmentWeight(vec3 dir, float tanHalf, float transmittance, bool escaped) {
+    return escaped ? transmittance : 0.0;
+}
+#endif
+
 struct ConeTracer {
     float resolution;   // voxels per edge
     float stepFactor;   // step length as a fraction of the cone's diameter there
@@ -195,7 +208,7 @@ vec4 traceDiffuse(ConeTracer t, vec3 origin, vec3 n, int coneSet, float start, f
         diffuseCone(coneSet, i, d, tanHalf, weight);
         bool escaped;
         vec4 c = traceCone(t, origin, frame * d, tanHalf, start, n, escaped);
-        if (escaped) c.rgb += (1.0 - c.a) * environmentCone(frame * d, coneSteradians(tanHalf));
+        c.rgb += coneEnvironmentWeight(frame * d, tanHalf, 1.0 - c.a, escaped) * environmentCone(frame * d, coneSteradians(tanHalf));
         sum += weight * c;
     }
     return sum;

@@ -40,12 +40,13 @@ VolumeRequest checkedVolumeRequest(const RenderSettings& settings) {
     return volumeRequest(s);
 }
 
-// The traced diffuse, specular (RGBA16F) and ao (R16F); above scale 1 two full-resolution
-// histories of three RGBA16F textures each.
+// The traced diffuse, specular (RGBA16F) and ao (R16F); the sky-filtered diffuse (RGBA16F, full
+// resolution); above scale 1 two full-resolution histories of three RGBA16F textures each.
 uint64_t screenTargetBytes(const VctSettings& v, int width, int height) {
     const int scale = v.tracePixels();
     const uint64_t traced = uint64_t(tracedSize(width, scale)) * uint64_t(tracedSize(height, scale)) * 18;
-    return traced + (scale == 1 ? 0 : uint64_t(width) * uint64_t(height) * 2 * 3 * 8);
+    const uint64_t full = uint64_t(width) * uint64_t(height) * 8;
+    return traced + full + (scale == 1 ? 0 : full * 2 * 3);
 }
 
 // The pixel of its scale x scale block a traced texel stands for in frame `frame`: the phases in
@@ -62,31 +63,38 @@ glm::ivec2 jitterPhase(int scale, uint32_t frame) {
 }
 }  // namespace
 
-const ProgramDesc kTraceProgram{"vct_trace", {"gi/vct/vct_trace.comp"}, {}};
+// The ray scene's texture array in the trace (its sky rays), above the G-buffer's units.
+constexpr int kTraceRaySceneUnit = 3;
+const ProgramDesc kTraceProgram{
+    "vct_trace", {"gi/vct/vct_trace.comp"}, {{"RAY_SCENE_TEXTURE_UNIT", std::to_string(kTraceRaySceneUnit)}}};
 const ProgramDesc kDebugProgram{"vct_debug", {"gi/vct/vct_debug.comp"}, {}};
 const ProgramDesc kUpsampleProgram{"vct_upsample", {"gi/vct/vct_upsample.comp"}, {}};
+const ProgramDesc kSkyFilterProgram{"vct_sky_filter", {"gi/vct/vct_sky_filter.comp"}, {}};
 
 std::vector<ProgramDesc> VctPass::programs() {
     std::vector<ProgramDesc> all = SceneVolume::programs(volumeRequest(VctSettings{}));
     all.push_back(kDebugProgram);
     all.push_back(kTraceProgram);
     all.push_back(kUpsampleProgram);
+    all.push_back(kSkyFilterProgram);
     return all;
 }
 
 VctPass::VctPass(SceneServices& services, const RenderSettings& settings)
     : VolumePass(services.volume(checkedVolumeRequest(settings))), built_(vctParams().read("vct", settings.params)),
-      live_(built_), cones_({&services.ledger, name()}), debug_({&services.ledger, name()}) {
+      live_(built_), services_(&services), cones_({&services.ledger, name()}), debug_({&services.ledger, name()}) {
     // Everything is charged to the pass, so --timings, info and the panel show the method's whole
     // footprint on its row (its README page lists it per texture).
     const gl::MemoryScope trace{&services.ledger, name()};
     const int scale = built_.tracePixels();
     const int tw = tracedSize(settings.width, scale), th = tracedSize(settings.height, scale);
     diffuse_ = gl::createTexture2D(trace, GL_RGBA16F, tw, th);
+    skyFiltered_ = gl::createTexture2D(trace, GL_RGBA16F, settings.width, settings.height);
     specular_ = gl::createTexture2D(trace, GL_RGBA16F, tw, th);
     ao_ = gl::createTexture2D(trace, GL_R16F, tw, th);
     traceProgram_ = buildProgram(kTraceProgram);
     debugProgram_ = buildProgram(kDebugProgram);
+    skyFilterProgram_ = buildProgram(kSkyFilterProgram);
     if (scale == 1) return;
     for (History& h : history_)
         for (gl::Texture* t : {&h.diffuse, &h.specular, &h.geometry})
@@ -116,6 +124,7 @@ void VctPass::trace(const Frame& frame, const VctSettings& s, glm::ivec2 jitter)
     cones.maxDistance = s.maxDistance * float(fit.resolution);
     cones.offset = s.offset;
     cones.specular = s.specular ? 1 : 0;
+    cones.skyRays = s.skyRays;
     cones_.set(cones);
     glProgramUniform1i(p, UV_ANISOTROPIC, volume_->tracedRadiance().mipMode());
     glProgramUniform1f(p, UV_INTENSITY, s.intensity);
@@ -126,11 +135,33 @@ void VctPass::trace(const Frame& frame, const VctSettings& s, glm::ivec2 jitter)
     glBindTextures(0, 3, gbuffer);
     glBindSamplers(0, 3, nullptr);
     volume_->bind();
+    if (s.skyRays > 0) services_->rays().bind(kTraceRaySceneUnit);
     glBindImageTexture(0, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(2, ao_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     gl::dispatchCompute(gl::groupsFor(diffuse_.width, 8), gl::groupsFor(diffuse_.height, 8), 1, "vct");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void VctPass::filterSky(const Frame& frame, const gl::Texture& diffuse) {
+    const GLuint p = skyFilterProgram_.id();
+    glUseProgram(p);
+    glProgramUniformMatrix4fv(p, UV_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
+    glProgramUniform3fv(p, UV_CAMERA_POS, 1, &frame.camera.position[0]);
+    glProgramUniform3i(p, UV_TRACE_JITTER, 1, 0, 0);  // a full-resolution input: every pixel its own texel
+    const GLuint inputs[3] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal), diffuse.id()};
+    glBindTextures(0, 3, inputs);
+    glBindSamplers(0, 3, nullptr);
+    glBindImageTexture(0, skyFiltered_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    gl::dispatchCompute(gl::groupsFor(skyFiltered_.width, 8), gl::groupsFor(skyFiltered_.height, 8), 1, "vct sky filter");
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+const gl::Texture& VctPass::skyFilteredDiffuse(Frame& frame, const gl::Texture& diffuse) {
+    if (live_.skyRays == 0) return diffuse;
+    auto t = frame.step("sky filter");
+    filterSky(frame, diffuse);
+    return skyFiltered_;
 }
 
 void VctPass::upsample(const Frame& frame, glm::ivec2 jitter) {
@@ -226,14 +257,16 @@ void VctPass::run(Frame& frame) {
         trace(frame, live_, jitter);
     }
     if (built_.tracePixels() == 1) {
-        frame.put(resource::kIndirectDiffuse, diffuse_);
+        frame.put(resource::kIndirectDiffuse, skyFilteredDiffuse(frame, diffuse_));
         frame.put(resource::kIndirectSpecular, specular_);
     } else {
         {
             auto t = frame.step("upsample");
             upsample(frame, jitter);
         }
-        frame.put(resource::kIndirectDiffuse, history_[current_].diffuse);
+        // The history keeps the exact samples; the filter runs on the full-resolution result, so
+        // a converged frame is the full-resolution trace's, filtered alike.
+        frame.put(resource::kIndirectDiffuse, skyFilteredDiffuse(frame, history_[current_].diffuse));
         frame.put(resource::kIndirectSpecular, history_[current_].specular);
         hasHistory_ = true;
         cameraMoved_ = false;

@@ -72,9 +72,16 @@ private:
     bool updateFeedback(Frame& frame, const ConeSettings& cones);
     void trace(const Frame& frame, const VctSettings& live, glm::ivec2 jitter);
     void upsample(const Frame& frame, glm::ivec2 jitter);
+    // The sky rays' noise filtered out of a full-resolution diffuse term into skyFiltered_
+    // (vct_sky_filter.comp).
+    void filterSky(const Frame& frame, const gl::Texture& diffuse);
+    // The diffuse term the frame shows: `diffuse` itself, or filtered where sky rays were traced.
+    const gl::Texture& skyFilteredDiffuse(Frame& frame, const gl::Texture& diffuse);
     VctSettings built_;    // the rebuild parameters this pass was made with
     VctSettings live_;     // the live parameters of the last frame
+    SceneServices* services_;
     gl::Texture diffuse_, specular_, ao_;   // what the cones traced: one texel per vct.trace-scale block
+    gl::Texture skyFiltered_;               // the full-resolution diffuse term with the sky rays' noise filtered out
     History history_[2];                    // trace scale above 1: written alternately, [current_] last
     int current_ = 0;
     bool hasHistory_ = false;               // history_[current_] belongs to this scene and these settings
@@ -85,7 +92,7 @@ private:
     // vct.feedback (the volume's feedback light, VolumeRequest::feedback): one update adds one bounce.
     int feedbackUpdates_ = 0;   // bounces added since the volume was last lit
     int feedbackTarget_ = 0;    // bounces wanted for the scene's albedo (feedbackBouncesFor)
-    gl::Object traceProgram_, upsampleProgram_, debugProgram_;
+    gl::Object traceProgram_, upsampleProgram_, debugProgram_, skyFilterProgram_;
     gl::UniformBuffer<voxel::ConeTraceBlock> cones_;
     gl::UniformBuffer<voxel::VctDebugBlock> debug_;
 };

@@ -89,6 +89,11 @@ const ParamTable<VctSettings>& vctParams() {
         .real(&S::specularRoughness, "specular-roughness", "Specular cone up to roughness",
               "above this roughness the specular term takes the diffuse cones' result instead of a cone of its own",
               0.0, 1.0, U::Live)
+        .integer(&S::skyRays, "sky-rays", "Sky rays per cone",
+                 "rays per cone through the scene's triangles that decide how much of the environment a cone sees "
+                 "(and one along the specular cone): the sky reaches a surface only where they escape; 0 = the cone's "
+                 "own transmittance through the voxels (coarse voxels let the sky through thin walls)",
+                 0, 16, U::Live)
         .choice(&S::traceScale, "trace-scale", "Trace scale",
                 "full-resolution pixels per traced texel per axis: 1 = every pixel; 2 and 4 trace a quarter or a "
                 "sixteenth of them, upsampled by depth and normal and gathered over jittered frames",

@@ -26,6 +26,9 @@ struct VctSettings {
     float intensity = 1.0f;    // vct.intensity: scales the indirect terms (live)
     bool specular = true;      // vct.specular: trace the specular cone (live)
     float specularRoughness = 1.0f;  // vct.specular-roughness: rougher surfaces take the diffuse cones' result (live)
+    // vct.sky-rays: rays per diffuse cone through the scene's triangles deciding how much of the
+    // environment the cone sees; 0 = the cone's own transmittance through the voxels (live)
+    int skyRays = 1;
     int traceScale = 0;        // vct.trace-scale: 1 | 2 | 4 full-resolution pixels per traced texel per axis (rebuild)
     // What the debug views vct.voxels and vct.slice show (live).
     int debugChannel = 0;      // vct.debug-channel: albedo | emission | radiance | occupancy
