@@ -2,13 +2,16 @@
 // every bounce, and a coarse cone texel that holds a wall holds its outside too, which the
 // directional mips show in front for cones travelling outwards: the cones of a room's own walls
 // and floor saw them as black (renderer/gi/vct/README.md, "Unlit outsides"). Three steps over the
-// voxel grid, run after injection:
-//   SEED:  the air in front of every lit voxel (direct light or emission) is reached, and with a
-//          lit environment the air on the volume's boundary;
-//   SWEEP: reached air floods along lines of one axis through air (the host alternates the axes
+// voxel grid, run after injection, each air voxel holding two bits:
+//   SEED:  REACHED for the air in front of a lit voxel (direct light or emission), and with a lit
+//          environment for the air on the volume's boundary; OPEN for the air on the boundary;
+//   SWEEP: each bit floods along lines of one axis through air (the host alternates the axes
 //          until a round adds nothing);
-//   CULL:  a surface voxel whose front is air that was not reached leaves the light's level 0
-//          (radiance and occupancy 0); the wall keeps its inside's voxels.
+//   CULL:  a surface voxel whose front is air that is OPEN but not REACHED (the space around a
+//          closed, lit room) leaves the light's level 0 (radiance and occupancy 0); the wall
+//          keeps its inside's voxels. Unreached air that is not OPEN is a closed room of its own
+//          (a room with no opening in a sunlit building): its surfaces stay, or its cones would
+//          see through its walls to the sunlit outsides behind them.
 #include "common.glsl"
 #include "volume/voxel_faces.glsl"
 
@@ -26,6 +29,8 @@ layout(std430, binding = 0) buffer Changed { uint u_changed; };
 
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_EXTERIOR_STEP) uniform ivec2 u_step;  // SEED/CULL: (0 seed | 2 cull, environment lit); SWEEP: (axis, 0)
+
+const uint REACHED = 1u, OPEN = 2u;
 
 bool inside(ivec3 v) { return all(greaterThanEqual(v, ivec3(0))) && all(lessThan(v, ivec3(u_resolution))); }
 bool isAir(ivec3 v) { return texelFetch(s_albedo, v, 0).a == 0.0; }
@@ -50,17 +55,19 @@ void main() {
     ivec3 base = u * line.x + w * line.y;
     uint added = 0u;
     for (int pass = 0; pass < 2; ++pass) {
-        bool carry = false;
+        uint carry = 0u;
         for (int i = 0; i < u_resolution; ++i) {
             ivec3 p = base + along * (pass == 0 ? i : u_resolution - 1 - i);
             if (!isAir(p)) {
-                carry = false;
-            } else if (imageLoad(i_reach, p).r != 0u) {
-                carry = true;
-            } else if (carry) {
-                imageStore(i_reach, p, uvec4(1u));
+                carry = 0u;
+                continue;
+            }
+            uint have = imageLoad(i_reach, p).r;
+            if ((carry & ~have) != 0u) {
+                imageStore(i_reach, p, uvec4(have | carry));
                 ++added;
             }
+            carry |= have;
         }
     }
     if (added > 0u) atomicAdd(u_changed, added);
@@ -69,19 +76,25 @@ void main() {
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
     if (!inside(v)) return;
-    bool seed = u_step.x == 0;
-    if (isAir(v)) {
+    if (u_step.x == 0) {
+        // Each air voxel writes its own bits, gathered from the neighbours that face it (a
+        // rounded normal may point to an edge or corner neighbour; two neighbours writing one
+        // voxel's different bits would race).
+        if (!isAir(v)) return;
         bool boundary = any(equal(v, ivec3(0))) || any(equal(v, ivec3(u_resolution - 1)));
-        if (seed && u_step.y != 0 && boundary) imageStore(i_reach, v, uvec4(1u));
+        uint bits = boundary ? (u_step.y != 0 ? OPEN | REACHED : OPEN) : 0u;
+        for (int i = 0; i < 27; ++i) {
+            ivec3 s = v + ivec3(i % 3, (i / 3) % 3, i / 9) - 1;
+            if (s == v || !inside(s) || isAir(s) || frontOf(s) != v) continue;
+            vec3 light = texelFetch(s_radiance, s, 0).rgb;
+            if (max(light.r, max(light.g, light.b)) > 0.0) bits |= REACHED;
+        }
+        if (bits != 0u) imageStore(i_reach, v, uvec4(bits));
         return;
     }
+    if (isAir(v)) return;
     ivec3 f = frontOf(v);
     if (f == v || !inside(f) || !isAir(f)) return;
-    if (seed) {
-        vec3 light = texelFetch(s_radiance, v, 0).rgb;
-        if (max(light.r, max(light.g, light.b)) > 0.0) imageStore(i_reach, f, uvec4(1u));
-    } else if (imageLoad(i_reach, f).r == 0u) {
-        imageStore(i_radiance, v, vec4(0.0));
-    }
+    if (imageLoad(i_reach, f).r == OPEN) imageStore(i_radiance, v, vec4(0.0));
 }
 #endif

@@ -461,6 +461,35 @@ TEST(Vct, UnlitOutsidesOfAnOpenSceneStay) {
     EXPECT_NEAR(a / b, 1.0, 0.01);
 }
 
+// A room with no opening in a sunlit building is unreached air too, but no outside: its walls'
+// inner faces stay. At 128^3 (34 cm voxels) a 20 cm wall often splits across two voxels, one per
+// face; culling the inner one opened the wall, and the room's cones saw the sunlit outer faces
+// behind it: the closed room read 1.43x the corridor's light with `cull` against 0.25x with
+// `keep`. Sun only, one gather (the sky and the bounces have leaks of their own).
+TEST(Vct, UnlitOutsidesKeepAClosedRoomInASunlitBuildingClosed) {
+    const Scene building = makeBuiltinScene("building");
+    double leak[2] = {};
+    for (int keep = 0; keep < 2; ++keep) {
+        RenderSettings r;
+        r.width = r.height = 32;
+        r.background = glm::vec3(0.0f);
+        setVct(r, "resolution", "128");
+        setVct(r, "bounces", "1");
+        setVct(r, "unlit-outsides", keep ? "keep" : "cull");
+        double mean[2] = {};
+        for (int dark = 0; dark < 2; ++dark) {
+            r.camera = dark ? building.leakCameras.dark : building.leakCameras.lit;
+            const VctImages v = renderVct(building, r);
+            ASSERT_TRUE(allFinite(v.frame));
+            for (size_t i = 0; i < v.frame.rgba.size(); i += 4) mean[dark] += v.frame.rgba[i] + v.frame.rgba[i + 1] + v.frame.rgba[i + 2];
+        }
+        leak[keep] = mean[1] / mean[0];
+        std::printf("VCT-TABLE building at 128^3, sun only, unlit outsides %s: closed room over corridor %.3f\n",
+                    keep ? "keep" : "cull", leak[keep]);
+    }
+    EXPECT_LT(leak[0], 1.05 * leak[1] + 0.01);
+}
+
 // The specular cone: a glossy metal floor in front of a red emissive wall reflects red, and a
 // rough one reflects a wider, dimmer, still red image.
 TEST(Vct, GlossyFloorReflectsAnEmitter) {
