@@ -15,17 +15,14 @@ layout(binding = VOLUME_RADIANCE_UNIT + 5) uniform sampler3D s_voxelPosZ;
 layout(binding = VOLUME_RADIANCE_UNIT + 6) uniform sampler3D s_voxelNegZ;
 layout(binding = VOLUME_RADIANCE_UNIT + 7) uniform sampler3D s_voxelSides;
 
-// How much of the environment a cone sees, given what the voxels let through of it
-// (`transmittance`) and whether it left the volume. By default that transmittance where it left
-// and nothing where it ran out of distance inside (indoors, the environment would leak); an
-// includer that knows better (VCT's sky rays through the scene's triangles: coarse voxels let the
-// sky through thin walls) defines CONE_ENVIRONMENT_WEIGHT and the function itself.
-#ifdef CONE_ENVIRONMENT_WEIGHT
-float coneEnvironmentWeight(vec3 dir, float tanHalf, float transmittance, bool escaped);
+// An includer that knows better than the voxels how much of a cone is open to the sky (VCT's sky
+// rays through the scene's triangles: coarse voxels let the sky through thin walls) defines
+// CONE_SKY_VISIBILITY and the function, which returns that fraction, or a negative number where it
+// has none to give.
+#ifdef CONE_SKY_VISIBILITY
+float coneSkyVisibility(vec3 dir, float tanHalf);
 #else
-float coneEnvironmentWeight(vec3 dir, float tanHalf, float transmittance, bool escaped) {
-    return escaped ? transmittance : 0.0;
-}
+float coneSkyVisibility(vec3 dir, float tanHalf) { return -1.0; }
 #endif
 
 struct ConeTracer {
@@ -142,6 +139,20 @@ vec4 traceCone(ConeTracer t, vec3 origin, vec3 dir, float tanHalf, float start, 
     return acc;
 }
 
+// The radiance a cone along `dir` brings from its march `c` (premultiplied voxel light and opacity)
+// and the environment. By the voxels alone: the environment for what they let through where the
+// cone left the volume, none where it ran out of distance inside (indoors, the environment would
+// leak). With a sky visibility: the environment for the open fraction, also where the cone ran
+// out of distance, and the voxels' light over at most the rest (a cone's own surface's voxels
+// otherwise add their light to a sky the rays see whole: a box under a uniform sky read 10% too
+// bright).
+vec3 coneRadiance(vec4 c, vec3 dir, float tanHalf, bool escaped) {
+    vec3 sky = environmentCone(dir, coneSteradians(tanHalf));
+    float open = coneSkyVisibility(dir, tanHalf);
+    if (open < 0.0) return c.rgb + (escaped ? 1.0 - c.a : 0.0) * sky;
+    return c.rgb * min(1.0, (1.0 - open) / max(c.a, 1e-6)) + open * sky;
+}
+
 // The diffuse cone sets (vct.cones). Weights sum to 1: for uniform incoming radiance L the result
 // is L, i.e. the cosine-weighted mean radiance E / pi.
 //   0 six: 6 cones of 60 degrees, one along the normal weighing 0.25 and five at 60 degrees from
@@ -208,7 +219,7 @@ vec4 traceDiffuse(ConeTracer t, vec3 origin, vec3 n, int coneSet, float start, f
         diffuseCone(coneSet, i, d, tanHalf, weight);
         bool escaped;
         vec4 c = traceCone(t, origin, frame * d, tanHalf, start, n, escaped);
-        c.rgb += coneEnvironmentWeight(frame * d, tanHalf, 1.0 - c.a, escaped) * environmentCone(frame * d, coneSteradians(tanHalf));
+        c.rgb = coneRadiance(c, frame * d, tanHalf, escaped);
         sum += weight * c;
     }
     return sum;

@@ -4,7 +4,7 @@
 // At a trace scale above 1 each texel traces one full-resolution pixel of its block, the one this
 // frame's jitter picks (vct_upsample.comp brings the texels to full resolution).
 #include "common.glsl"
-#define CONE_ENVIRONMENT_WEIGHT
+#define CONE_SKY_VISIBILITY
 #include "volume/cone_trace.glsl"
 #include "ray_scene.glsl"
 
@@ -38,10 +38,10 @@ struct SkyRays {
 };
 SkyRays g_sky;
 
-// The rays decide alone, also for a cone that ran out of distance inside the volume.
-float coneEnvironmentWeight(vec3 dir, float tanHalf, float transmittance, bool escaped) {
+// The fraction of the cone's rays that leave the scene (-1 without sky rays: the voxels decide).
+float coneSkyVisibility(vec3 dir, float tanHalf) {
     int count = u_cones.skyRays;
-    if (count == 0) return escaped ? transmittance : 0.0;
+    if (count == 0) return -1.0;
     mat3 frame = tangentFrame(dir);
     float cosCap = inversesqrt(1.0 + tanHalf * tanHalf);
     float leaving = 0.0;
@@ -93,7 +93,7 @@ void main() {
         bool escaped;
         vec4 c = traceCone(t, origin, R, specularConeTan(material.y), 1.0, N, escaped);
         float tanHalf = specularConeTan(material.y);
-        specular = c.rgb + coneEnvironmentWeight(R, tanHalf, 1.0 - c.a, escaped) * environmentCone(R, coneSteradians(tanHalf));
+        specular = coneRadiance(c, R, tanHalf, escaped);
     }
     imageStore(i_diffuse, texel, vec4(finiteOrZero(diffuse.rgb * u_intensity), 1.0));
     imageStore(i_specular, texel, vec4(finiteOrZero(specular * u_intensity), 1.0));
