@@ -167,11 +167,22 @@ int gridAt(vec3 P) {
     return u_gridCount - 1;
 }
 
+// Where a gather's path test starts: the surface point itself and the unit direction off it into
+// the free space in front of it. Not the gather's biased point: the bias is a fraction of the
+// grid's probe step, which in a coarse cascade reaches past the ceiling of a 3 m room (issue #39: a
+// room with no opening took the sky from probes outside it). At a probe ray's hit, back along the
+// ray, not along the field's normal: a coarse cascade's normal at a wall thinner than a cell may
+// point along the wall or out of the room.
+struct PathStart {
+    vec3 surface;
+    vec3 away;
+};
+
 #ifdef PROBE_SEGMENT_TEST
 // Defined by the program that sets PROBE_SEGMENT_TEST, through its own tracer: whether the straight
-// path from surface point P (normal N, seen along V from free space) to a probe at `probe` crosses
-// no geometry.
-bool probeSeesPoint(vec3 probe, vec3 P, vec3 N, vec3 V);
+// path from surface point P (leaving it along `away`, seen along V from free space) to a probe at
+// `probe` crosses no geometry.
+bool probeSeesPoint(vec3 probe, vec3 P, vec3 away, vec3 V);
 #endif
 
 // Indirect diffuse (E / pi) at P (already biased off the surface) with normal N, seen along V
@@ -183,8 +194,8 @@ bool probeSeesPoint(vec3 probe, vec3 P, vec3 N, vec3 V);
 // Moments averaged over a texel cannot cut a probe behind a wall much thinner than the probe step
 // seen at a slant (issue #39: a closed room lit through its 20 cm walls), so with the path (mode 2,
 // programs that define PROBE_SEGMENT_TEST) a probe the tracer finds no straight path to counts
-// nothing; with none, P gets none of the grid's light.
-vec3 sampleProbeGrid(int g, vec3 P, vec3 N, vec3 V, int visibility) {
+// nothing; with none, P gets none of the grid's light. The path starts at `path`.
+vec3 sampleProbeGrid(int g, vec3 P, vec3 N, vec3 V, int visibility, PathStart path) {
     ivec3 counts = u_gridCounts[g];
     int first = gridBase(g);
     vec3 gp = (P - u_gridFirst[g]) / u_gridStep[g];
@@ -208,7 +219,7 @@ vec3 sampleProbeGrid(int g, vec3 P, vec3 N, vec3 V, int visibility) {
         w *= facing * facing + 0.2;
         if (visibility > 0) {
 #ifdef PROBE_SEGMENT_TEST
-            if (visibility > 1 && !probeSeesPoint(P + toProbe, P, N, V)) continue;
+            if (visibility > 1 && !probeSeesPoint(P + toProbe, path.surface, path.away, V)) continue;
 #endif
             vec2 m = probeDistanceMoments(i, -dir);
             if (d > m.x) {
@@ -224,7 +235,9 @@ vec3 sampleProbeGrid(int g, vec3 P, vec3 N, vec3 V, int visibility) {
     }
     return weights > 0.0 ? sum / weights : vec3(0.0);
 }
-vec3 sampleProbes(vec3 P, vec3 N, vec3 V, int visibility) { return sampleProbeGrid(gridAt(P), P, N, V, visibility); }
+vec3 sampleProbes(vec3 P, vec3 N, vec3 V, int visibility, PathStart path) {
+    return sampleProbeGrid(gridAt(P), P, N, V, visibility, path);
+}
 
 // A gather at a surface seen from `eye`: the shading point moved off the surface along
 // 0.2 N + 0.8 V by `normalBias` x the probe step (DDGI's normal/view bias), so a probe's distance
@@ -233,5 +246,5 @@ vec3 sampleProbesSeenFrom(vec3 P, vec3 N, vec3 eye, float normalBias, int visibi
     vec3 toEye = eye - P;
     vec3 V = length(toEye) > 0.0 ? normalize(toEye) : N;
     float bias = normalBias * gridMinStep(gridAt(P));
-    return sampleProbes(P + (0.2 * N + 0.8 * V) * bias, N, V, visibility);
+    return sampleProbes(P + (0.2 * N + 0.8 * V) * bias, N, V, visibility, PathStart(P, N));
 }

@@ -265,12 +265,13 @@ bool sdfSegmentClear(sampler3D field, sampler3D coarse, SdfCascades cs, vec3 fro
     return !sdfMarchCascades(field, coarse, cs, from, (to - from) / len, p).hit;
 }
 
-// Whether a surface point P (normal N) sees `to` along a straight path: from `offsetCells` cells
-// off the surface (past its own level set), moved a cell clear of any other surface (at a corner
-// the start lies in the second one), to half a cell short of `to`. The probe gathers' path test.
-bool sdfSurfaceSeesPoint(sampler3D field, sampler3D coarse, SdfCascades cs, vec3 P, vec3 N, vec3 to,
+// Whether a surface point P sees `to` along a straight path: from `offsetCells` cells off the
+// surface along `away` (a unit vector into the free space in front of it: past its own level set),
+// moved a cell clear of any other surface (at a corner the start lies in the second one), to half a
+// cell short of `to`. The probe gathers' path test.
+bool sdfSurfaceSeesPoint(sampler3D field, sampler3D coarse, SdfCascades cs, vec3 P, vec3 away, vec3 to,
                          float offsetCells) {
     float cell = sdfCellSize(sdfCascadeVolume(cs, sdfCascadeAt(cs, P)));
-    vec3 from = sdfPushOut(field, cs, P + N * (offsetCells * cell), cell);
+    vec3 from = sdfPushOut(field, cs, P + away * (offsetCells * cell), cell);
     return sdfSegmentClear(field, coarse, cs, from, to, 0.5 * cell, 32);
 }

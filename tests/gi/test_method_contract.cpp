@@ -50,10 +50,24 @@ double leakBound(const std::string& method) { return method == "vct" ? 0.5 : 0.1
 // 0.68 m cells), still bring some light round the walls through its scene-wide grid's probes,
 // 10 m apart (0.45 before its slab faces). sdf and probes fell from about 0.105 to 0.07 when the
 // voxels where a wall meets the roof became slabs too (they had lit the ceiling's edge as the
-// sunlit roof top).
+// sunlit roof top); sdf to 0.03 when the gathers' path test started at the surface rather than at
+// the biased point (meters off it in a coarse cascade: past the room's ceiling) and, at a probe
+// ray's hit, back along the ray rather than along a coarse normal.
 double buildingLeakBound(const std::string& method) {
-    static const std::map<std::string, double> bound{{"vct", 0.25}, {"sdf", 0.1}, {"probes", 0.1}, {"hddagi", 0.01}};
+    static const std::map<std::string, double> bound{{"vct", 0.25}, {"sdf", 0.05}, {"probes", 0.1}, {"hddagi", 0.01}};
     return bound.count(method) ? bound.at(method) : 0.01;
+}
+
+// The same closed room under the sky alone (issue #39: "the sky is occluded"): its light over the
+// sky's radiance, 0 in truth (32x32). hddagi and the lightmap measure 0; sdf 0.00005 since the
+// gathers' path test starts at the surface (0.0037 before: probes outside the room lit it through
+// the multi-bounce at its walls); 0.001 holds them. vct's pixels take the sky only along rays
+// through the triangles, but its voxel bounces gather the sky-lit outsides through the cones'
+// coarse footprints, and the probe method's scene-wide grid has probes outside the room that its
+// default Chebyshev weights do not cut: both 0.004, under 0.01.
+double skyLeakBound(const std::string& method) {
+    static const std::map<std::string, double> bound{{"vct", 0.01}, {"probes", 0.01}};
+    return bound.count(method) ? bound.at(method) : 0.001;
 }
 
 // Build-time bytes a method's estimate counts (the budget asks for the peak) that the ledger no
@@ -360,6 +374,22 @@ TEST_P(MethodContract, ClosedRoomInABuildingStaysDark) {
     std::printf("CONTRACT %s building leak number: %.4f (corridor mean %.4f)\n", m.name.c_str(), leak, litMean);
     ASSERT_GT(litMean, 0.0);
     EXPECT_LE(leak, buildingLeakBound(m.name));
+}
+
+TEST_P(MethodContract, TheSkyStaysOutOfAClosedRoom) {
+    const GiMethod& m = method();
+    Scene building = makeBuiltinScene("building");
+    building.lights.clear();
+    RenderSettings s = contractSettings(m.name);
+    s.width = s.height = 32;
+    s.camera = building.leakCameras.dark;
+    const glm::vec3 sky = building.background;
+    const Frame dark = render(building, s, 24);
+    if (!dark.outputs.count("indirect.diffuse")) GTEST_SKIP() << m.name << " writes no indirect light";
+    ASSERT_TRUE(everyImageFinite(dark));
+    const double leak = meanRadiance(dark.image) / ((sky.x + sky.y + sky.z) / 3.0);
+    std::printf("CONTRACT %s closed room under the sky alone: %.5f of the sky's radiance\n", m.name.c_str(), leak);
+    EXPECT_LE(leak, skyLeakBound(m.name));
 }
 
 // --- Reflections ----------------------------------------------------------------------------

@@ -42,8 +42,8 @@ SdfCascades cascades() { return SdfCascades(u_cascades, u_cascadeCount, u_resolu
 
 // The probe gather's visibility through this field (probes/probe_common.glsl), from where the
 // diffuse rays start off the surface.
-bool probeSeesPoint(vec3 probe, vec3 P, vec3 N, vec3 V) {
-    return sdfSurfaceSeesPoint(s_distance, s_coarse, cascades(), P, N, probe, u_march.offset);
+bool probeSeesPoint(vec3 probe, vec3 P, vec3 away, vec3 V) {
+    return sdfSurfaceSeesPoint(s_distance, s_coarse, cascades(), P, away, probe, u_march.offset);
 }
 
 SdfMarchParams marchParams() {
