@@ -143,14 +143,19 @@ vec4 traceCone(ConeTracer t, vec3 origin, vec3 dir, float tanHalf, float start, 
 // and the environment. By the voxels alone: the environment for what they let through where the
 // cone left the volume, none where it ran out of distance inside (indoors, the environment would
 // leak). With a sky visibility: the environment for the open fraction, also where the cone ran
-// out of distance, and the voxels' light over at most the rest (a cone's own surface's voxels
-// otherwise add their light to a sky the rays see whole: a box under a uniform sky read 10% too
-// bright).
+// out of distance, beside the voxels' light. Linear in the open fraction, so the few rays' noise
+// averages out. Where a cone's wide footprint takes in voxels that do not occlude it (a box's
+// other faces beside its path) their light is counted with a sky the rays see whole: a box under
+// a uniform sky reads 10% too bright (renderer/gi/vct/README.md). Tried and dropped: scaling the
+// voxels' light to the closed fraction (one ray leaving through a Cornell box's open front took
+// that cone's bounce away: the walls fell to 70% of the path tracer's), the product with the
+// cones' transmittance (the atrium fell to 23.8 dB), and taking out the first sample's opacity
+// (no change).
 vec3 coneRadiance(vec4 c, vec3 dir, float tanHalf, bool escaped) {
     vec3 sky = environmentCone(dir, coneSteradians(tanHalf));
     float open = coneSkyVisibility(dir, tanHalf);
     if (open < 0.0) return c.rgb + (escaped ? 1.0 - c.a : 0.0) * sky;
-    return c.rgb * min(1.0, (1.0 - open) / max(c.a, 1e-6)) + open * sky;
+    return c.rgb + open * sky;
 }
 
 // The diffuse cone sets (vct.cones). Weights sum to 1: for uniform incoming radiance L the result
