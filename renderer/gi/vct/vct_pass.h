@@ -79,7 +79,7 @@ private:
     const gl::Texture& skyFilteredDiffuse(Frame& frame, const gl::Texture& diffuse);
     VctSettings built_;    // the rebuild parameters this pass was made with
     VctSettings live_;     // the live parameters of the last frame
-    SceneServices* services_;
+    SceneServices* services_;  // its ray scene is what the sky rays trace (built on first use)
     gl::Texture diffuse_, specular_, ao_;   // what the cones traced: one texel per vct.trace-scale block
     gl::Texture skyFiltered_;               // the full-resolution diffuse term with the sky rays' noise filtered out
     History history_[2];                    // trace scale above 1: written alternately, [current_] last
