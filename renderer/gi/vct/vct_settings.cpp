@@ -91,7 +91,7 @@ const ParamTable<VctSettings>& vctParams() {
               0.0, 1.0, U::Live)
         .integer(&S::skyRays, "sky-rays", "Sky rays per cone",
                  "rays per cone through the scene's triangles that decide how much of the environment a cone sees "
-                 "(and one along the specular cone): the sky reaches a surface only where they escape; 0 = the cone's "
+                 "(as many around the specular cone): the sky reaches a surface only where they escape; 0 = the cone's "
                  "own transmittance through the voxels (coarse voxels let the sky through thin walls)",
                  0, 16, U::Live)
         .choice(&S::traceScale, "trace-scale", "Trace scale",
