@@ -148,7 +148,6 @@ void VctPass::filterSky(const Frame& frame, const gl::Texture& diffuse) {
     glUseProgram(p);
     glProgramUniformMatrix4fv(p, UV_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UV_CAMERA_POS, 1, &frame.camera.position[0]);
-    glProgramUniform3i(p, UV_TRACE_JITTER, 1, 0, 0);  // a full-resolution input: every pixel its own texel
     const GLuint inputs[3] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal), diffuse.id()};
     glBindTextures(0, 3, inputs);
     glBindSamplers(0, 3, nullptr);

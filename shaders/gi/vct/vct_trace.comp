@@ -90,9 +90,9 @@ void main() {
     } else if (u_cones.specular != 0) {
         vec3 V = normalize(u_cameraPos - P);
         vec3 R = reflect(-V, N);
-        bool escaped;
-        vec4 c = traceCone(t, origin, R, specularConeTan(material.y), 1.0, N, escaped);
         float tanHalf = specularConeTan(material.y);
+        bool escaped;
+        vec4 c = traceCone(t, origin, R, tanHalf, 1.0, N, escaped);
         specular = coneRadiance(c, R, tanHalf, escaped);
     }
     imageStore(i_diffuse, texel, vec4(finiteOrZero(diffuse.rgb * u_intensity), 1.0));

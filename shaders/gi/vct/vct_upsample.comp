@@ -32,6 +32,11 @@ layout(location = UV_PREV_CAMERA_POS) uniform vec3 u_prevCameraPos;
 layout(location = UV_HISTORY) uniform ivec2 u_history;  // history valid, camera moved
 #include "gi/vct/vct_surface.glsl"
 
+// The full-resolution pixel traced texel `texel` stands for this frame.
+ivec2 tracedPixel(ivec2 texel) {
+    return min(texel * u_traceJitter.x + u_traceJitter.yz, textureSize(s_depth, 0) - 1);
+}
+
 // Joint bilateral upsample: the 3x3 traced texels nearest the pixel, each weighted by its
 // distance in pixels, by how far its surface lies off the pixel's tangent plane relative to the
 // pixel's depth, and by the normals' agreement. Where no texel is on the pixel's surface (a

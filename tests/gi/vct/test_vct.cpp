@@ -406,18 +406,13 @@ TEST(Vct, ClosedEmissiveBoxIsAFurnace) {
 TEST(Vct, UnlitOutsidesOfAClosedRoomLeaveTheVolume) {
     const Scene room = makeBuiltinScene("room");
     constexpr int kRoomSize = 64;
-    auto meanOf = [](const ImageF& img) {
-        double sum = 0.0;
-        for (size_t i = 0; i < img.rgba.size(); i += 4) sum += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2];
-        return sum / (3.0 * double(img.rgba.size() / 4));
-    };
     RenderSettings pt = baseSettings("pathtrace");
     pt.width = pt.height = kRoomSize;
     setParam(pt, "pathtrace.spp", "128");
     setParam(pt, "pathtrace.bounces", "0");
-    const double direct = meanOf(renderHdr(room, pt));
+    const double direct = meanRadiance(renderHdr(room, pt));
     setParam(pt, "pathtrace.bounces", std::to_string(kBounces));
-    const double indirect = meanOf(renderHdr(room, pt)) - direct;
+    const double indirect = meanRadiance(renderHdr(room, pt)) - direct;
     double ratio[2] = {};
     for (int keep = 0; keep < 2; ++keep) {
         RenderSettings r = vctSettings();
@@ -427,9 +422,9 @@ TEST(Vct, UnlitOutsidesOfAClosedRoomLeaveTheVolume) {
         ASSERT_TRUE(allFinite(v.indirect));
         int culled = 0;
         for (size_t i = 0; i < v.albedo.size() / 4; ++i) culled += v.albedo[4 * i + 3] > 0 && v.radiance[4 * i + 3] == 0.0f;
-        ratio[keep] = meanOf(v.indirect) / indirect;
+        ratio[keep] = meanRadiance(v.indirect) / indirect;
         std::printf("VCT-TABLE room (point lamp), unlit outsides %s: %d voxels left out, indirect %.4f, path tracer's "
-                    "%d bounces %.4f (%.0f%%)\n", keep ? "keep" : "cull", culled, meanOf(v.indirect), kBounces, indirect,
+                    "%d bounces %.4f (%.0f%%)\n", keep ? "keep" : "cull", culled, meanRadiance(v.indirect), kBounces, indirect,
                     100.0 * ratio[keep]);
         if (keep) EXPECT_EQ(culled, 0);
         else EXPECT_GT(culled, 1000) << "the room's outsides";
@@ -481,7 +476,7 @@ TEST(Vct, UnlitOutsidesKeepAClosedRoomInASunlitBuildingClosed) {
             r.camera = dark ? building.leakCameras.dark : building.leakCameras.lit;
             const VctImages v = renderVct(building, r);
             ASSERT_TRUE(allFinite(v.frame));
-            for (size_t i = 0; i < v.frame.rgba.size(); i += 4) mean[dark] += v.frame.rgba[i] + v.frame.rgba[i + 1] + v.frame.rgba[i + 2];
+            mean[dark] = meanRadiance(v.frame);
         }
         leak[keep] = mean[1] / mean[0];
         std::printf("VCT-TABLE building at 128^3, sun only, unlit outsides %s: closed room over corridor %.3f\n",
@@ -599,17 +594,15 @@ TEST(Vct, SkyRaysKeepTheSkyOutOfARoomWithNoOpening) {
     s.camera = building.leakCameras.dark;
     setVct(s, "bounces", "1");
     const double sky = (building.background.x + building.background.y + building.background.z) / 3.0;
+    const int rays[2] = {0, 4};
     double mean[2] = {0.0, 0.0};
-    for (int rays : {0, 4}) {
-        setVct(s, "sky-rays", std::to_string(rays));
+    for (int i = 0; i < 2; ++i) {
+        setVct(s, "sky-rays", std::to_string(rays[i]));
         const VctImages v = renderVct(building, s);
         ASSERT_TRUE(allFinite(v.diffuse));
-        double sum = 0.0;
-        for (size_t i = 0; i < v.diffuse.rgba.size(); i += 4)
-            sum += (v.diffuse.rgba[i] + v.diffuse.rgba[i + 1] + v.diffuse.rgba[i + 2]) / 3.0;
-        mean[rays == 0 ? 0 : 1] = sum / double(v.diffuse.width * v.diffuse.height);
+        mean[i] = meanRadiance(v.diffuse);
         std::printf("VCT-TABLE closed room under the sky alone, sky-rays %d: indirect.diffuse %.5f of the sky's radiance\n",
-                    rays, mean[rays == 0 ? 0 : 1] / sky);
+                    rays[i], mean[i] / sky);
     }
     EXPECT_GT(mean[0], 0.05 * sky) << "the cones no longer let the sky through: the test shows nothing";
     EXPECT_LT(mean[1], 1e-4 * sky);
