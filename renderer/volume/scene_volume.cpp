@@ -165,6 +165,11 @@ void SceneVolume::revoxelize(Frame& frame, int i) {
 
 void SceneVolume::update(Frame& frame, const ConeSettings& bounceCones) {
     place(frame.camera.position);
+    // The bounces gather with the method's live cone settings (vct.cones, vct.sky-rays ...): a
+    // change gathers again.
+    if (request_.bounces > 1 && !(bounceCones == litWith_))
+        for (Cascade& c : cascades_) c.radianceValid = false;
+    litWith_ = bounceCones;
     for (int i = 0; i < layout_.count; ++i) refresh(frame, i, bounceCones);
 }
 
@@ -206,7 +211,7 @@ void SceneVolume::relight(Frame& frame, int i, const ConeSettings& bounceCones) 
     if (request_.bounces > 1) {
         auto t = frame.step(prefix + "bounce");
         frame.bindEnvironment();
-        c.radiance->bounce(grid, bounceCones);
+        c.radiance->bounce(grid, bounceCones, bounceCones.rays > 0 ? &rays_() : nullptr);
     }
     if (layout_.count > 1) {  // into this cascade's layer, where tracers read it
         const int n = layout_.resolution();
@@ -246,12 +251,12 @@ void SceneVolume::bind() const {
 
 void SceneVolume::restartFeedback() {
     if (!feedback_) throw Error("scene volume: " + request_.method + " asked for no feedback");
-    feedback_->restartFeedback(grid(), radiance().radiance());
+    feedback_->restartFeedback(grid(), radiance());
 }
 
 void SceneVolume::addFeedbackBounce(const ConeSettings& cones) {
     if (!feedback_) throw Error("scene volume: " + request_.method + " asked for no feedback");
-    feedback_->feedbackBounce(grid(), cones);
+    feedback_->feedbackBounce(grid(), cones, cones.rays > 0 ? &rays_() : nullptr);
 }
 
 const DistanceField& SceneVolume::field() const {

@@ -147,6 +147,7 @@ private:
     VolumeRequest request_;
     gl::MemoryScope scope_;
     RaySceneSource rays_;
+    ConeSettings litWith_;  // the bounce cones the cascades' light was gathered with
     ConservativeMode mode_;
     CascadeLayout layout_;
     std::vector<Cascade> cascades_;

@@ -44,12 +44,12 @@ int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces, bool u
     int64_t bytes = 8 * chainTexels(resolution) + 8 * int64_t(resolution) * resolution * resolution;
     if (unlitOutsides) bytes += int64_t(resolution) * resolution * resolution + 4;
     if (anisotropic) bytes += 6 * 8 * chainTexels(resolution / 2);
-    if (bounces > 1) bytes += 8 * int64_t(resolution) * resolution * resolution;
+    if (bounces > 1) bytes += 16 * int64_t(resolution) * resolution * resolution;  // direct light and its sides
     return bytes;
 }
 
 int64_t voxelFeedbackBytes(int resolution, bool anisotropic) {
-    return voxelRadianceBytes(resolution, anisotropic, 2) + 8 * int64_t(resolution) * resolution * resolution;
+    return voxelRadianceBytes(resolution, anisotropic, 2) + 16 * int64_t(resolution) * resolution * resolution;
 }
 
 const ProgramDesc kInjectProgram{"voxel_inject", {"volume/inject.comp"}, {}};
@@ -58,6 +58,10 @@ const ProgramDesc kInjectProgram{"voxel_inject", {"volume/inject.comp"}, {}};
 const ProgramDesc kEmitterInjectProgram{"voxel_inject_emitters", {"volume/inject.comp"}, {{"EMITTER_LIGHT", "1"}}};
 const ProgramDesc kMipProgram{"voxel_mip", {"volume/voxel_mip.comp"}, {}};
 const ProgramDesc kBounceProgram{"voxel_bounce", {"volume/bounce.comp"}, {}};
+// The bounce whose cones cast rays through the ray scene (bounce.comp's BOUNCE_RAYS).
+constexpr GLuint kBounceRaySceneUnit = 4;
+const ProgramDesc kBounceRaysProgram{
+    "voxel_bounce_rays", {"volume/bounce.comp"}, {{"BOUNCE_RAYS", "1"}, {"RAY_SCENE_TEXTURE_UNIT", std::to_string(kBounceRaySceneUnit)}}};
 const ProgramDesc kExteriorProgram{"voxel_exterior", {"volume/exterior.comp"}, {}};
 const ProgramDesc kExteriorSweepProgram{"voxel_exterior_sweep", {"volume/exterior.comp"}, {{"SWEEP", "1"}}};
 constexpr int kExteriorSeed = 0, kExteriorCull = 2;
@@ -65,7 +69,8 @@ constexpr int kSweepGroup = 8;          // exterior.comp's SWEEP local size
 constexpr GLuint kChangedBinding = 0;    // exterior.comp's Changed
 
 std::vector<ProgramDesc> VoxelRadiance::programs() {
-    return {kInjectProgram, kMipProgram, kBounceProgram, kEmitterInjectProgram, kExteriorProgram, kExteriorSweepProgram};
+    return {kInjectProgram, kMipProgram, kBounceProgram, kBounceRaysProgram, kEmitterInjectProgram, kExteriorProgram,
+            kExteriorSweepProgram};
 }
 
 VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::MemoryScope& scope, bool cullBackfaces,
@@ -88,7 +93,11 @@ VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::Mem
             t = gl::createTexture3D(scope, GL_RGBA16F, n / 2, n / 2, n / 2, levelsFor(n / 2));
             setVolumeSampling(t);
         }
-    if (bounces_ > 1) direct_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n);
+    if (bounces_ > 1) {
+        direct_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n);
+        directSides_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n);
+        glClearTexImage(directSides_.id(), 0, GL_RGBA, GL_FLOAT, none);
+    }
     injectProgram_ = buildProgram(kInjectProgram);
     mipProgram_ = buildProgram(kMipProgram);
     bounceProgram_ = buildProgram(kBounceProgram);
@@ -119,11 +128,17 @@ void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
     if (lights.buffer) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightsBinding, lights.buffer);
     const gl::Texture& target = bounces_ > 1 ? direct_ : radiance_;
     glBindImageTexture(0, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, sides_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, (bounces_ > 1 ? directSides_ : sides_).id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch3D(n, n, n);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     if (reach_.id()) cullUnlitOutsides(grid, target, lights.environmentLit);
-    if (bounces_ > 1) glCopyImageSubData(direct_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, radiance_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    if (bounces_ > 1) copyDirectLight();
+}
+
+void VoxelRadiance::copyDirectLight() {
+    const int n = radiance_.width;
+    glCopyImageSubData(direct_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, radiance_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    glCopyImageSubData(directSides_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, sides_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
 }
 
 void VoxelRadiance::cullUnlitOutsides(const VoxelGrid& grid, const gl::Texture& target, bool environmentLit) {
@@ -192,9 +207,19 @@ void VoxelRadiance::buildMips(const VoxelGrid& grid) {
     }
 }
 
-void VoxelRadiance::setBounceUniforms(const ConeSettings& cones) {
+GLuint VoxelRadiance::useBounceProgram(const VoxelGrid& grid, const ConeSettings& cones, const RayScene* rays) {
     const int n = radiance_.width;
-    const GLuint p = bounceProgram_.id();
+    const bool withRays = rays && cones.rays > 0;
+    if (withRays && !bounceRaysProgram_.id()) bounceRaysProgram_ = buildProgram(kBounceRaysProgram);
+    const GLuint p = withRays ? bounceRaysProgram_.id() : bounceProgram_.id();
+    glUseProgram(p);
+    if (withRays) {
+        rays->bind(kBounceRaySceneUnit);
+        const glm::mat4 voxelToWorld = grid.fit.voxelToWorldMatrix();
+        glProgramUniformMatrix4fv(p, UV_VOXEL_TO_WORLD, 1, GL_FALSE, &voxelToWorld[0][0]);
+        const glm::mat4 worldToVoxel = grid.fit.worldToVoxelMatrix();
+        glProgramUniformMatrix4fv(p, UV_WORLD_TO_VOXEL, 1, GL_FALSE, &worldToVoxel[0][0]);
+    }
     const float maxDistance = cones.maxDistance > 0.0f ? cones.maxDistance : std::sqrt(3.0f) * float(n);
     glProgramUniform1i(p, UV_RESOLUTION, n);
     glProgramUniform1i(p, UV_CONE_SET, cones.coneSet);
@@ -202,46 +227,53 @@ void VoxelRadiance::setBounceUniforms(const ConeSettings& cones) {
     block.stepFactor = cones.stepFactor;
     block.maxDistance = maxDistance;
     block.offset = cones.offset;
+    block.skyRays = withRays ? cones.rays : 0;
     coneBlock_.set(block);
     glProgramUniform1i(p, UV_ANISOTROPIC, mipMode());
+    return p;
 }
 
-void VoxelRadiance::gatherOnce(const VoxelGrid& grid, const gl::Texture& scratch) {
-    // Cones read the whole chain while the result is written: write to a scratch volume, then
-    // copy it over level 0.
+void VoxelRadiance::gatherOnce(const VoxelGrid& grid, const Scratch& scratch, GLuint program) {
+    // Cones read the whole chain while the result is written: write to scratch volumes, then
+    // copy them over level 0 and the sides.
     const int n = radiance_.width;
-    glUseProgram(bounceProgram_.id());
-    const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), direct_.id()};
-    glBindTextures(0, 3, textures);
+    glUseProgram(program);
+    const GLuint textures[4] = {grid.albedo.id(), grid.normal.id(), direct_.id(), directSides_.id()};
+    glBindTextures(0, 4, textures);
     glBindSamplers(0, 10, nullptr);
     bind();
-    glBindImageTexture(0, scratch.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(0, scratch.radiance.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, scratch.sides.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch3D(n, n, n);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    glCopyImageSubData(scratch.id(), GL_TEXTURE_3D, 0, 0, 0, 0, radiance_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    glCopyImageSubData(scratch.radiance.id(), GL_TEXTURE_3D, 0, 0, 0, 0, radiance_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    glCopyImageSubData(scratch.sides.id(), GL_TEXTURE_3D, 0, 0, 0, 0, sides_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
     buildMips(grid);
 }
 
-void VoxelRadiance::bounce(const VoxelGrid& grid, const ConeSettings& cones) {
+VoxelRadiance::Scratch VoxelRadiance::makeScratch() const {
     const int n = radiance_.width;
-    setBounceUniforms(cones);
-    for (int b = 1; b < bounces_; ++b) gatherOnce(grid, gl::createTexture3D(scope_, GL_RGBA16F, n, n, n));
+    return {gl::createTexture3D(scope_, GL_RGBA16F, n, n, n), gl::createTexture3D(scope_, GL_RGBA16F, n, n, n)};
 }
 
-void VoxelRadiance::restartFeedback(const VoxelGrid& grid, const gl::Texture& injected) {
+void VoxelRadiance::bounce(const VoxelGrid& grid, const ConeSettings& cones, const RayScene* rays) {
+    const GLuint program = useBounceProgram(grid, cones, rays);
+    for (int b = 1; b < bounces_; ++b) gatherOnce(grid, makeScratch(), program);
+}
+
+void VoxelRadiance::restartFeedback(const VoxelGrid& grid, const VoxelRadiance& injected) {
     if (!direct_.id()) throw Error("voxel radiance: bounce feedback needs a volume made with bounces > 1");
     const int n = radiance_.width;
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    for (const gl::Texture* target : {&direct_, &radiance_})
-        glCopyImageSubData(injected.id(), GL_TEXTURE_3D, 0, 0, 0, 0, target->id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    glCopyImageSubData(injected.radiance().id(), GL_TEXTURE_3D, 0, 0, 0, 0, direct_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    glCopyImageSubData(injected.sides().id(), GL_TEXTURE_3D, 0, 0, 0, 0, directSides_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    copyDirectLight();
     buildMips(grid);
 }
 
-void VoxelRadiance::feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones) {
-    const int n = radiance_.width;
-    if (!feedbackScratch_.id()) feedbackScratch_ = gl::createTexture3D(scope_, GL_RGBA16F, n, n, n);
-    setBounceUniforms(cones);
-    gatherOnce(grid, feedbackScratch_);
+void VoxelRadiance::feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones, const RayScene* rays) {
+    if (!feedbackScratch_.radiance.id()) feedbackScratch_ = makeScratch();
+    gatherOnce(grid, feedbackScratch_, useBounceProgram(grid, cones, rays));
 }
 
 void VoxelRadiance::bind() const {

@@ -21,13 +21,21 @@ struct ConeSettings {
     float stepFactor = 0.5f;     // step as a fraction of the cone diameter
     float maxDistance = 0.0f;    // voxels; 0 = the volume's diagonal
     float offset = 1.0f;         // self-occlusion offset along the normal, voxels
+    // Rays per cone through the scene's triangles (vct.sky-rays): the environment only where they
+    // leave the scene, the march only up to where they met a surface (shaders/volume/cone_trace.glsl,
+    // ConeRays); 0: the cones' transmittance alone.
+    int rays = 0;
+    bool operator==(const ConeSettings& o) const {
+        return coneSet == o.coneSet && stepFactor == o.stepFactor && maxDistance == o.maxDistance && offset == o.offset &&
+               rays == o.rays;
+    }
 };
 
 // Bytes of the radiance chains at this resolution (for the budget check before allocating).
 // unlitOutsides: with the reach grid cullUnlitOutsides() floods (one byte a voxel).
 int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces, bool unlitOutsides = false);
 // Bytes of a feedback volume (VoxelRadiance::feedbackBounce) at this resolution: its chains, its
-// direct light and its scratch level.
+// direct light and its scratch level, each with its slab sides.
 int64_t voxelFeedbackBytes(int resolution, bool anisotropic);
 
 class VoxelRadiance {
@@ -58,16 +66,17 @@ public:
     void buildMips(const VoxelGrid& grid);
     // bounces - 1 more bounces, each followed by new mips. Needs inject() and buildMips() first.
     // Cones that leave the volume see the environment the caller bound (Frame::bindEnvironment).
-    void bounce(const VoxelGrid& grid, const ConeSettings& cones);
-    // Bounce feedback (vct.feedback; needs bounces > 1 for the direct-light volume): level 0 of
-    // `injected` (another volume's direct light and emission) becomes this one's direct light and
-    // its starting radiance, followed by its mips.
-    void restartFeedback(const VoxelGrid& grid, const gl::Texture& injected);
+    // With cones.rays, `rays` is the scene they are traced through.
+    void bounce(const VoxelGrid& grid, const ConeSettings& cones, const RayScene* rays = nullptr);
+    // Bounce feedback (vct.feedback; needs bounces > 1 for the direct-light volume): level 0 and
+    // the sides of `injected` (another volume's direct light and emission) become this one's direct
+    // light and its starting radiance, followed by its mips.
+    void restartFeedback(const VoxelGrid& grid, const VoxelRadiance& injected);
     // One bounce more than the last call: radiance = direct + albedo * the diffuse cones' gather
     // from the previous result, then new mips. Repeated, it sums the bounce series (the voxel
     // counterpart of DDGI's recursive irradiance); it cannot diverge for albedo < 1, as each term
     // is the previous one scaled by albedo times the gathered fraction (at most 1).
-    void feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones);
+    void feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones, const RayScene* rays = nullptr);
     // At kVolumeRadianceUnit and the six units after it (shaders/volume/cone_trace.glsl's layout).
     void bind() const;
     const gl::Texture& radiance() const { return radiance_; }
@@ -81,17 +90,28 @@ public:
     static std::vector<ProgramDesc> programs();
 
 private:
-    void setBounceUniforms(const ConeSettings& cones);
+    // The bounce program for these cones (with rays: the variant that traces them through `rays`),
+    // bound, with its uniforms set.
+    GLuint useBounceProgram(const VoxelGrid& grid, const ConeSettings& cones, const RayScene* rays);
     // exterior.comp's three steps on `target` (level 0 as injected): seed, flood, cull.
     void cullUnlitOutsides(const VoxelGrid& grid, const gl::Texture& target, bool environmentLit);
-    // One gather of the current chain into `scratch`, copied over level 0, then new mips.
-    void gatherOnce(const VoxelGrid& grid, const gl::Texture& scratch);
+    // A bounce's results, written while the cones read the chain and the sides.
+    struct Scratch {
+        gl::Texture radiance, sides;
+    };
+    Scratch makeScratch() const;
+    // One gather of the current chain into `scratch`, copied over level 0 and the sides, then new mips.
+    void gatherOnce(const VoxelGrid& grid, const Scratch& scratch, GLuint program);
+    // The direct light (and its sides) as the radiance to bounce from.
+    void copyDirectLight();
     void downsample(const gl::Texture& source, int sourceLevel, const gl::Texture& target, int targetLevel, int direction,
                     GLuint normals = 0);
     gl::Texture radiance_, direct_, sides_;
-    gl::Texture feedbackScratch_;  // feedbackBounce()'s target, kept between updates (made on first need)
+    gl::Texture directSides_;  // with bounces: the sides of the direct light, which each bounce adds to
+    Scratch feedbackScratch_;  // feedbackBounce()'s target, kept between updates (made on first need)
     gl::Texture directional_[6];
     gl::Object injectProgram_, mipProgram_, bounceProgram_;
+    gl::Object bounceRaysProgram_;  // built on first need
     gl::Object emitterInjectProgram_;  // built on first need
     gl::Object exteriorProgram_, sweepProgram_;  // with cullUnlitOutsides
     gl::Texture reach_;                          // R8UI: air that light reaches

@@ -1,7 +1,16 @@
 // A further bounce: each occupied voxel gathers the incoming radiance of the current chain with the
 // diffuse cones around its mean normal and adds albedo * (E / pi) to what injection gave it
-// (direct light and emission, in s_direct).
+// (direct light and emission, in s_direct). A slab voxel (a wall thinner than a voxel,
+// volume/voxel_faces.glsl) gathers for each of its two faces apart, into its room, and keeps their
+// difference in the sides as injection does: gathered around the mean normal, one face's light
+// (a sunlit roof's sky) reached the room on the other side.
 #include "common.glsl"
+#ifndef BOUNCE_RAYS
+#define BOUNCE_RAYS 0
+#endif
+#if BOUNCE_RAYS
+#define CONE_RAYS
+#endif
 #include "volume/cone_trace.glsl"
 #include "volume/voxel_faces.glsl"
 
@@ -9,29 +18,63 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0) uniform sampler3D s_albedo;
 layout(binding = 1) uniform sampler3D s_normal;
 layout(binding = 2) uniform sampler3D s_direct;
+layout(binding = 3) uniform sampler3D s_directSides;  // inject.comp's i_sides
 layout(rgba16f, binding = 0) uniform writeonly image3D i_radiance;
+layout(rgba16f, binding = 1) uniform writeonly image3D i_sides;
 
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_CONE_SET) uniform int u_coneSet;
 ConeTraceBlock u_cones;
 layout(location = UV_ANISOTROPIC) uniform int u_anisotropic;
 
+#if BOUNCE_RAYS
+// The cones' rays (vct.sky-rays), as the pixels' (gi/vct/vct_trace.comp), from off the voxel's face.
+#include "ray_scene.glsl"
+layout(location = UV_VOXEL_TO_WORLD) uniform mat4 u_voxelToWorld;
+layout(location = UV_WORLD_TO_VOXEL) uniform mat4 u_worldToVoxel;
+#include "volume/cone_rays.glsl"
+#endif
+
+// The diffuse cones' gather for a face through `centre` (voxel units) facing n.
+vec3 gatherAround(vec3 centre, vec3 n) {
+#if BOUNCE_RAYS
+    // Half a voxel out along an axis clears both faces of a slab; sqrt(3)/2 clears any plane
+    // through the voxel facing n.
+    float clearance = abs(n.x) + abs(n.y) + abs(n.z) > 1.001 ? 0.87 : 0.5;
+    g_coneRays = ConeRaySource((u_voxelToWorld * vec4(centre + n * clearance, 1.0)).xyz,
+                               fract(dot(centre, vec3(0.7548776, 0.5698403, 0.3846154))), u_cones.skyRays, true,
+                               vec3(0.0));
+#endif
+    ConeTracer t = makeConeTracer(u_resolution, u_cones.stepFactor, u_cones.maxDistance, u_anisotropic);
+    return traceDiffuse(t, centre + n * u_cones.offset, n, u_coneSet, 1.0, 0.0).rgb;
+}
+
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(v, ivec3(u_resolution)))) return;
     vec4 direct = texelFetch(s_direct, v, 0);
+    vec4 sides = texelFetch(s_directSides, v, 0);
     vec4 albedo = texelFetch(s_albedo, v, 0);
     vec3 meanNormal = texelFetch(s_normal, v, 0).xyz * 2.0 - 1.0;
     float len = length(meanNormal);
+    int slab = voxelSlabAxis(sides);
     // direct.a 0 on a surface voxel: an unlit outside left out of the volume (exterior.comp).
-    if (albedo.a == 0.0 || len < VOXEL_TWO_SIDED || direct.a == 0.0) {
+    if (albedo.a == 0.0 || (slab < 0 && len < VOXEL_TWO_SIDED) || direct.a == 0.0) {
         imageStore(i_radiance, v, direct);
+        imageStore(i_sides, v, sides);
         return;
     }
-    ConeTracer t = makeConeTracer(u_resolution, u_cones.stepFactor, u_cones.maxDistance, u_anisotropic);
-    vec3 n = meanNormal / len;
-    vec3 origin = vec3(v) + 0.5 + n * u_cones.offset;
-    vec4 gathered = traceDiffuse(t, origin, n, u_coneSet, 1.0, 0.0);
-    vec3 radiance = direct.rgb + albedo.rgb * gathered.rgb;
+    vec3 centre = vec3(v) + 0.5;
+    vec3 radiance = direct.rgb;
+    if (slab >= 0) {
+        vec3 axis = vec3(0.0);
+        axis[slab] = 1.0;
+        vec3 front = albedo.rgb * gatherAround(centre, axis), back = albedo.rgb * gatherAround(centre, -axis);
+        radiance += 0.5 * (front + back);
+        sides.rgb += 0.5 * (front - back);
+    } else {
+        radiance += albedo.rgb * gatherAround(centre, meanNormal / len);
+    }
     imageStore(i_radiance, v, vec4(min(finiteOrZero(radiance), vec3(MAX_HALF_FLOAT)), direct.a));
+    imageStore(i_sides, v, vec4(clamp(finiteOrZero(sides.rgb), vec3(-MAX_HALF_FLOAT), vec3(MAX_HALF_FLOAT)), sides.a));
 }

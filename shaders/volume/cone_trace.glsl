@@ -15,14 +15,16 @@ layout(binding = VOLUME_RADIANCE_UNIT + 5) uniform sampler3D s_voxelPosZ;
 layout(binding = VOLUME_RADIANCE_UNIT + 6) uniform sampler3D s_voxelNegZ;
 layout(binding = VOLUME_RADIANCE_UNIT + 7) uniform sampler3D s_voxelSides;
 
-// An includer that knows better than the voxels how much of a cone is open to the sky (VCT's sky
-// rays through the scene's triangles: coarse voxels let the sky through thin walls) defines
-// CONE_SKY_VISIBILITY and the function, which returns that fraction, or a negative number where it
-// has none to give.
-#ifdef CONE_SKY_VISIBILITY
-float coneSkyVisibility(vec3 dir, float tanHalf);
+// Where an includer casts rays through the scene's triangles (VCT's `vct.sky-rays`,
+// volume/cone_rays.glsl), the diffuse gather is theirs: voxels coarser than the walls let a cone's
+// march through a thin wall and, once its footprint is wider than a room, mix in the light beyond
+// the room's walls; a ray stops at the first surface. traceDiffuseRays casts as many as `cones`
+// cones would, spread over the hemisphere around n by cosine, and returns E / pi and the occluded
+// fraction, or a negative fraction where no rays are cast.
+#ifdef CONE_RAYS
+vec4 traceDiffuseRays(vec3 n, int cones);
 #else
-float coneSkyVisibility(vec3 dir, float tanHalf) { return -1.0; }
+vec4 traceDiffuseRays(vec3 n, int cones) { return vec4(-1.0); }
 #endif
 
 struct ConeTracer {
@@ -79,6 +81,25 @@ float boundaryCrossing(vec3 a, vec3 b, float lo, float hi) {
     vec3 bound = mix(vec3(lo), vec3(hi), greaterThan(d, vec3(0.0)));
     vec3 f = mix(vec3(1.0), (bound - a) / d, greaterThan(abs(d), vec3(1e-6)));
     return clamp(min(f.x, min(f.y, f.z)), 0.0, 1.0);
+}
+
+// The light a surface that a ray from `from` travelling `dir` met at `hit` (voxel units) sends
+// back along the ray: the voxel that holds the surface, if a slab the face on the side of it the ray
+// came from (judged from the voxel's centre: a ray from the room that meets the wall just under the
+// roof, in the voxel that holds both, gets the roof's underside, not the sunlit top its direction's
+// tiny upward part would pick). One voxel, not a blend: a trilinear blend reaches the voxels behind
+// a wall thinner than one. Where the surface's fragments went to the voxel in front (a surface on a
+// voxel boundary), that one.
+vec3 surfaceLight(float resolution, vec3 from, vec3 hit, vec3 dir) {
+    ivec3 last = ivec3(int(resolution) - 1);
+    ivec3 v = clamp(ivec3(floor(hit + dir * 0.05)), ivec3(0), last);
+    vec4 light = texelFetch(s_voxelRadiance, v, 0);
+    if (light.a <= 0.0) {
+        v = clamp(ivec3(floor(hit - dir * 0.5)), ivec3(0), last);
+        light = texelFetch(s_voxelRadiance, v, 0);
+    }
+    light = voxelLightSeen(light, texelFetch(s_voxelSides, v, 0), from - (vec3(v) + 0.5));
+    return light.a > 1e-6 ? light.rgb / light.a : vec3(0.0);
 }
 
 // Front-to-back accumulation along a cone from `origin` (voxel units) with tan(half aperture)
@@ -139,23 +160,11 @@ vec4 traceCone(ConeTracer t, vec3 origin, vec3 dir, float tanHalf, float start, 
     return acc;
 }
 
-// The radiance a cone along `dir` brings from its march `c` (premultiplied voxel light and opacity)
-// and the environment. By the voxels alone: the environment for what they let through where the
-// cone left the volume, none where it ran out of distance inside (indoors, the environment would
-// leak). With a sky visibility: the environment for the open fraction, also where the cone ran
-// out of distance, beside the voxels' light. Linear in the open fraction, so the few rays' noise
-// averages out. Where a cone's wide footprint takes in voxels that do not occlude it (a box's
-// other faces beside its path) their light is counted with a sky the rays see whole: a box under
-// a uniform sky reads 10% too bright (renderer/gi/vct/README.md). Tried and dropped: scaling the
-// voxels' light to the closed fraction (one ray leaving through a Cornell box's open front took
-// that cone's bounce away: the walls fell to 70% of the path tracer's), the product with the
-// cones' transmittance (the atrium fell to 23.8 dB), and taking out the first sample's opacity
-// (no change).
+// The radiance a cone along `dir` brings from its march `c` (premultiplied voxel light and
+// opacity) and the environment for what the voxels let through where the cone left the volume;
+// none where it ran out of distance inside (indoors, the environment would leak).
 vec3 coneRadiance(vec4 c, vec3 dir, float tanHalf, bool escaped) {
-    vec3 sky = environmentCone(dir, coneSteradians(tanHalf));
-    float open = coneSkyVisibility(dir, tanHalf);
-    if (open < 0.0) return c.rgb + (escaped ? 1.0 - c.a : 0.0) * sky;
-    return c.rgb + open * sky;
+    return c.rgb + (escaped ? 1.0 - c.a : 0.0) * environmentCone(dir, coneSteradians(tanHalf));
 }
 
 // The diffuse cone sets (vct.cones). Weights sum to 1: for uniform incoming radiance L the result
@@ -214,6 +223,8 @@ mat3 tangentFrame(vec3 n) {
 // set is turned about n by `rotation` (a fraction of a full turn; for methods that vary it over
 // pixels or frames and filter, which a fixed set of a few cones otherwise aliases).
 vec4 traceDiffuse(ConeTracer t, vec3 origin, vec3 n, int coneSet, float start, float rotation) {
+    vec4 rays = traceDiffuseRays(n, diffuseConeCount(coneSet));
+    if (rays.a >= 0.0) return rays;
     mat3 frame = tangentFrame(n);
     float angle = rotation * 6.2831853;
     frame = mat3(frame[0] * cos(angle) + frame[1] * sin(angle), -frame[0] * sin(angle) + frame[1] * cos(angle), frame[2]);

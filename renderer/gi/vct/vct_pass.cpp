@@ -15,7 +15,7 @@ using namespace voxel;
 
 namespace {
 ConeSettings coneSettingsOf(const VctSettings& s) {
-    return {s.coneSet, s.stepFactor, s.maxDistance * float(s.resolution), s.offset};
+    return {s.coneSet, s.stepFactor, s.maxDistance * float(s.resolution), s.offset, s.skyRays};
 }
 
 ParamValue choiceValue(const char* name) {

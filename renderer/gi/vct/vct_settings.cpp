@@ -90,9 +90,10 @@ const ParamTable<VctSettings>& vctParams() {
               "above this roughness the specular term takes the diffuse cones' result instead of a cone of its own",
               0.0, 1.0, U::Live)
         .integer(&S::skyRays, "sky-rays", "Sky rays per cone",
-                 "rays per cone through the scene's triangles that decide how much of the environment a cone sees "
-                 "(as many around the specular cone): the sky reaches a surface only where they escape; 0 = the cone's "
-                 "own transmittance through the voxels (coarse voxels let the sky through thin walls)",
+                 "rays per diffuse cone through the scene's triangles in place of the cones' march (spread by cosine "
+                 "over the hemisphere; as many for the voxel bounces): each brings the light of the voxel holding the "
+                 "surface it meets, or the environment where it leaves the scene; 0 = the cones march through the "
+                 "voxel mips (coarse voxels let the sky and the light beyond thin walls through)",
                  0, 16, U::Live)
         .choice(&S::traceScale, "trace-scale", "Trace scale",
                 "full-resolution pixels per traced texel per axis: 1 = every pixel; 2 and 4 trace a quarter or a "

@@ -4,7 +4,7 @@
 // At a trace scale above 1 each texel traces one full-resolution pixel of its block, the one this
 // frame's jitter picks (vct_upsample.comp brings the texels to full resolution).
 #include "common.glsl"
-#define CONE_SKY_VISIBILITY
+#define CONE_RAYS
 #include "volume/cone_trace.glsl"
 #include "ray_scene.glsl"
 
@@ -27,33 +27,30 @@ layout(location = UV_INTENSITY) uniform float u_intensity;
 layout(location = UV_TRACE_JITTER) uniform ivec3 u_traceJitter;  // pixels per texel, this frame's pixel in the block
 layout(location = UV_SPECULAR_ROUGHNESS) uniform float u_specularRoughness;
 
-// Sky rays (vct.sky-rays, issue #39): the environment reaches a surface only along rays that
-// leave the scene, traced through its triangles from the surface point, not along cones through
-// voxels coarser than the walls (a 20 cm wall in 68 cm voxels lets most of a cone through). Each
-// cone's rays cover its cap in equal areas, the set turned per pixel (noise rather than bands
-// where a window's edge crosses them).
-struct SkyRays {
-    vec3 origin;      // world, off the surface
-    float rotation;   // the pixel's turn of every cone's rays, in [0, 1)
-};
-SkyRays g_sky;
+// Sky rays (vct.sky-rays, issue #39): rays from the pixel's surface through the scene's triangles
+// in place of each cone's march (volume/cone_rays.glsl): the environment only along rays that leave
+// the scene, and the light of the surfaces the others meet, not cones through voxels coarser than
+// the walls, which let the sky and the sunlit ground beyond a room's walls in.
+#include "volume/cone_rays.glsl"
 
-// The fraction of the cone's rays that leave the scene (-1 without sky rays: the voxels decide).
-float coneSkyVisibility(vec3 dir, float tanHalf) {
-    int count = u_cones.skyRays;
-    if (count == 0) return -1.0;
-    mat3 frame = tangentFrame(dir);
-    float cosCap = inversesqrt(1.0 + tanHalf * tanHalf);
-    float leaving = 0.0;
-    for (int i = 0; i < count; ++i) {
-        float cosTheta = 1.0 - (float(i) + 0.5) / float(count) * (1.0 - cosCap);
-        float phi = 6.2831853 * fract(float(i) * 0.618034 + g_sky.rotation);
-        float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
-        vec3 d = frame * vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
-        Hit h;
-        if (!traceRay(g_sky.origin, d, 1e30, true, h)) leaving += 1.0;
-    }
-    return leaving / float(count);
+// The normal of the surface's own plane at `pixel` (whose position is P), from the positions of
+// its neighbours in the depth buffer, on each axis the side nearer in depth (not across an edge);
+// towards the camera.
+vec3 positionAt(ivec2 q, ivec2 size) {
+    q = clamp(q, ivec2(0), size - 1);
+    vec2 uv = (vec2(q) + 0.5) / vec2(size);
+    vec4 w = u_invViewProj * vec4(uv * 2.0 - 1.0, texelFetch(s_depth, q, 0).r * 2.0 - 1.0, 1.0);
+    return w.xyz / w.w;
+}
+
+vec3 depthNormal(ivec2 pixel, vec3 P) {
+    ivec2 size = textureSize(s_depth, 0);
+    vec3 r = positionAt(pixel + ivec2(1, 0), size) - P, l = P - positionAt(pixel - ivec2(1, 0), size);
+    vec3 u = positionAt(pixel + ivec2(0, 1), size) - P, d = P - positionAt(pixel - ivec2(0, 1), size);
+    vec3 n = cross(dot(r, r) < dot(l, l) ? r : l, dot(u, u) < dot(d, d) ? u : d);
+    if (!(dot(n, n) > 0.0)) return vec3(0.0);
+    n = normalize(n);
+    return dot(n, u_cameraPos - P) < 0.0 ? -n : n;
 }
 
 // tan(half aperture) of the specular cone: the GGX lobe widens with alpha = roughness^2; a floor
@@ -77,7 +74,8 @@ void main() {
     vec3 P = world.xyz / world.w;
     vec3 N = normalize(texelFetch(s_gbufNormal, pixel, 0).xyz);
     vec4 material = texelFetch(s_gbufMaterial, pixel, 0);
-    g_sky = SkyRays(gbufferRayOrigin(P, N, u_cameraPos), interleavedGradientNoise(vec2(pixel)));
+    g_coneRays = ConeRaySource(gbufferRayOrigin(P, N, u_cameraPos), interleavedGradientNoise(vec2(pixel)), u_cones.skyRays,
+                               false, depthNormal(pixel, P));
     ConeTracer t = makeConeTracer(u_resolution, u_cones.stepFactor, u_cones.maxDistance, u_anisotropic);
     vec3 origin = (u_worldToVoxel * vec4(P, 1.0)).xyz + N * u_cones.offset;
 
@@ -90,6 +88,8 @@ void main() {
     } else if (u_cones.specular != 0) {
         vec3 V = normalize(u_cameraPos - P);
         vec3 R = reflect(-V, N);
+        // The specular cone marches: one ray's visibility over a rough lobe was noise no filter
+        // takes out (renderer/gi/vct/README.md, *Sky rays*).
         float tanHalf = specularConeTan(material.y);
         bool escaped;
         vec4 c = traceCone(t, origin, R, tanHalf, 1.0, N, escaped);

@@ -289,6 +289,33 @@ TEST(Vct, LightEditReinjectsWithoutRevoxelizing) {
     EXPECT_EQ(pass->injections(), 3);
 }
 
+// The bounces gather with the live cone settings: a change of vct.sky-rays (or the cones) gathers
+// them again from the same injected light, and nothing else is redone.
+TEST(Vct, ConeSettingsEditGathersTheBouncesAgain) {
+    context();
+    RenderSettings s = vctSettings();
+    setVct(s, "resolution", "32");
+    s.gi = "vct";
+    const Scene scene = makeBuiltinScene("cornell");
+    Renderer r(scene, s);
+    const VctPass* pass = nullptr;
+    for (const auto& p : r.passes())
+        if (auto* v = dynamic_cast<const VctPass*>(p.get())) pass = v;
+    ASSERT_NE(pass, nullptr);
+    auto radiance = [&] { return readVoxelsRgba16f(pass->volume().radiance().radiance()); };
+    r.renderFrame();
+    const std::vector<float> withRays = radiance();
+    r.renderFrame();
+    EXPECT_EQ(pass->injections(), 1) << "a still frame relit the volume";
+    RenderSettings live = s;
+    setVct(live, "sky-rays", "0");
+    r.setLiveSettings(live);
+    r.renderFrame();
+    EXPECT_EQ(pass->voxelizations(), 1);
+    EXPECT_EQ(pass->injections(), 2) << "the bounces kept the rays they were gathered with";
+    EXPECT_NE(radiance(), withRays) << "marching cones gathered the same bounces as rays";
+}
+
 TEST(Vct, EmitterLightsTheRoom) {
     // cornell-area has no punctual light: the rasterizer's direct term is the emitter itself, and
     // every bit of light on the walls comes from the emissive quad's voxels. (The path tracer
@@ -413,24 +440,31 @@ TEST(Vct, UnlitOutsidesOfAClosedRoomLeaveTheVolume) {
     const double direct = meanRadiance(renderHdr(room, pt));
     setParam(pt, "pathtrace.bounces", std::to_string(kBounces));
     const double indirect = meanRadiance(renderHdr(room, pt)) - direct;
-    double ratio[2] = {};
-    for (int keep = 0; keep < 2; ++keep) {
-        RenderSettings r = vctSettings();
-        r.width = r.height = kRoomSize;
-        setVct(r, "unlit-outsides", keep ? "keep" : "cull");
-        const VctImages v = renderVct(room, r);
-        ASSERT_TRUE(allFinite(v.indirect));
-        int culled = 0;
-        for (size_t i = 0; i < v.albedo.size() / 4; ++i) culled += v.albedo[4 * i + 3] > 0 && v.radiance[4 * i + 3] == 0.0f;
-        ratio[keep] = meanRadiance(v.indirect) / indirect;
-        std::printf("VCT-TABLE room (point lamp), unlit outsides %s: %d voxels left out, indirect %.4f, path tracer's "
-                    "%d bounces %.4f (%.0f%%)\n", keep ? "keep" : "cull", culled, meanRadiance(v.indirect), kBounces, indirect,
-                    100.0 * ratio[keep]);
-        if (keep) EXPECT_EQ(culled, 0);
-        else EXPECT_GT(culled, 1000) << "the room's outsides";
+    // Marching cones (vct.sky-rays=0) see the outsides through the walls' coarse texels; rays stop
+    // at the walls and see the room's insides alone, so with them keeping the outsides costs nothing.
+    for (const char* rays : {"0", "1"}) {
+        double ratio[2] = {};
+        for (int keep = 0; keep < 2; ++keep) {
+            RenderSettings r = vctSettings();
+            r.width = r.height = kRoomSize;
+            setVct(r, "unlit-outsides", keep ? "keep" : "cull");
+            setVct(r, "sky-rays", rays);
+            const VctImages v = renderVct(room, r);
+            ASSERT_TRUE(allFinite(v.indirect));
+            int culled = 0;
+            for (size_t i = 0; i < v.albedo.size() / 4; ++i)
+                culled += v.albedo[4 * i + 3] > 0 && v.radiance[4 * i + 3] == 0.0f;
+            ratio[keep] = meanRadiance(v.indirect) / indirect;
+            std::printf("VCT-TABLE room (point lamp), sky rays %s, unlit outsides %s: %d voxels left out, indirect %.4f, path "
+                        "tracer's %d bounces %.4f (%.0f%%)\n", rays, keep ? "keep" : "cull", culled, meanRadiance(v.indirect),
+                        kBounces, indirect, 100.0 * ratio[keep]);
+            if (keep) EXPECT_EQ(culled, 0);
+            else EXPECT_GT(culled, 1000) << "the room's outsides";
+        }
+        EXPECT_NEAR(ratio[0], 1.0, 0.2) << "sky rays " << rays;
+        if (rays[0] == '0') EXPECT_LT(ratio[1], 0.8) << "what the outsides cost the marching cones when kept";
+        else EXPECT_NEAR(ratio[1], 1.0, 0.2) << "kept outsides, seen by no ray";
     }
-    EXPECT_NEAR(ratio[0], 1.0, 0.2);
-    EXPECT_LT(ratio[1], 0.8) << "what the outsides cost when kept";
 }
 
 // In an open scene light reaches the air around everything: only shadowed pockets of air that the
