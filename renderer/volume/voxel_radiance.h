@@ -21,9 +21,8 @@ struct ConeSettings {
     float stepFactor = 0.5f;     // step as a fraction of the cone diameter
     float maxDistance = 0.0f;    // voxels; 0 = the volume's diagonal
     float offset = 1.0f;         // self-occlusion offset along the normal, voxels
-    // Rays per cone through the scene's triangles (vct.sky-rays): the environment only where they
-    // leave the scene, the march only up to where they met a surface (shaders/volume/cone_trace.glsl,
-    // ConeRays); 0: the cones' transmittance alone.
+    // Rays per diffuse cone through the scene's triangles in place of the cones' march
+    // (vct.sky-rays; shaders/volume/cone_rays.glsl); 0: the cones march.
     int rays = 0;
     bool operator==(const ConeSettings& o) const {
         return coneSet == o.coneSet && stepFactor == o.stepFactor && maxDistance == o.maxDistance && offset == o.offset &&

@@ -1,6 +1,6 @@
 // The surfaces behind VCT's pixels, for the passes that weigh neighbouring samples by whether they
-// lie on a pixel's surface (vct_upsample.comp, vct_sky_filter.comp). The includer declares s_depth,
-// s_gbufNormal and u_invViewProj.
+// lie on a pixel's surface (vct_upsample.comp, vct_sky_filter.comp) and for the trace's positions
+// (vct_trace.comp). The includer declares s_depth, s_gbufNormal and u_invViewProj.
 
 // A sample whose surface lies farther than this fraction of the pixel's depth off the pixel's
 // tangent plane is another surface: it gets no weight, so light never blends across a step.
@@ -12,12 +12,16 @@ struct Surface {
     vec3 position, normal;
 };
 
-Surface surfaceAt(ivec2 pixel) {
-    ivec2 size = textureSize(s_depth, 0);
-    float depth = texelFetch(s_depth, pixel, 0).r;
-    vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
+// The world position behind `pixel` whose depth-buffer value is `depth`.
+vec3 positionFromDepth(ivec2 pixel, float depth) {
+    vec2 uv = (vec2(pixel) + 0.5) / vec2(textureSize(s_depth, 0));
     vec4 world = u_invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
-    return Surface(depth < 1.0, world.xyz / world.w, normalize(texelFetch(s_gbufNormal, pixel, 0).xyz));
+    return world.xyz / world.w;
+}
+
+Surface surfaceAt(ivec2 pixel) {
+    float depth = texelFetch(s_depth, pixel, 0).r;
+    return Surface(depth < 1.0, positionFromDepth(pixel, depth), normalize(texelFetch(s_gbufNormal, pixel, 0).xyz));
 }
 
 // How much a sample on surface `o` counts for one on `s` seen from `camera`: none off the tangent

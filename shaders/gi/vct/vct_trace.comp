@@ -26,6 +26,7 @@ layout(location = UV_ANISOTROPIC) uniform int u_anisotropic;
 layout(location = UV_INTENSITY) uniform float u_intensity;
 layout(location = UV_TRACE_JITTER) uniform ivec3 u_traceJitter;  // pixels per texel, this frame's pixel in the block
 layout(location = UV_SPECULAR_ROUGHNESS) uniform float u_specularRoughness;
+#include "gi/vct/vct_surface.glsl"
 
 // Sky rays (vct.sky-rays, issue #39): rays from the pixel's surface through the scene's triangles
 // in place of each cone's march (volume/cone_rays.glsl): the environment only along rays that leave
@@ -36,17 +37,14 @@ layout(location = UV_SPECULAR_ROUGHNESS) uniform float u_specularRoughness;
 // The normal of the surface's own plane at `pixel` (whose position is P), from the positions of
 // its neighbours in the depth buffer, on each axis the side nearer in depth (not across an edge);
 // towards the camera.
-vec3 positionAt(ivec2 q, ivec2 size) {
-    q = clamp(q, ivec2(0), size - 1);
-    vec2 uv = (vec2(q) + 0.5) / vec2(size);
-    vec4 w = u_invViewProj * vec4(uv * 2.0 - 1.0, texelFetch(s_depth, q, 0).r * 2.0 - 1.0, 1.0);
-    return w.xyz / w.w;
+vec3 neighbourPosition(ivec2 q) {
+    q = clamp(q, ivec2(0), textureSize(s_depth, 0) - 1);
+    return positionFromDepth(q, texelFetch(s_depth, q, 0).r);
 }
 
 vec3 depthNormal(ivec2 pixel, vec3 P) {
-    ivec2 size = textureSize(s_depth, 0);
-    vec3 r = positionAt(pixel + ivec2(1, 0), size) - P, l = P - positionAt(pixel - ivec2(1, 0), size);
-    vec3 u = positionAt(pixel + ivec2(0, 1), size) - P, d = P - positionAt(pixel - ivec2(0, 1), size);
+    vec3 r = neighbourPosition(pixel + ivec2(1, 0)) - P, l = P - neighbourPosition(pixel - ivec2(1, 0));
+    vec3 u = neighbourPosition(pixel + ivec2(0, 1)) - P, d = P - neighbourPosition(pixel - ivec2(0, 1));
     vec3 n = cross(dot(r, r) < dot(l, l) ? r : l, dot(u, u) < dot(d, d) ? u : d);
     if (!(dot(n, n) > 0.0)) return vec3(0.0);
     n = normalize(n);
@@ -69,13 +67,13 @@ void main() {
         imageStore(i_ao, texel, vec4(1.0));
         return;
     }
-    vec2 uv = (vec2(pixel) + 0.5) / vec2(size);
-    vec4 world = u_invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
-    vec3 P = world.xyz / world.w;
+    vec3 P = positionFromDepth(pixel, depth);
     vec3 N = normalize(texelFetch(s_gbufNormal, pixel, 0).xyz);
     vec4 material = texelFetch(s_gbufMaterial, pixel, 0);
+    // The surface's plane only matters to the rays (marching cones lift off the shading normal).
+    vec3 plane = u_cones.skyRays > 0 ? depthNormal(pixel, P) : vec3(0.0);
     g_coneRays = ConeRaySource(gbufferRayOrigin(P, N, u_cameraPos), interleavedGradientNoise(vec2(pixel)), u_cones.skyRays,
-                               false, depthNormal(pixel, P));
+                               false, plane);
     ConeTracer t = makeConeTracer(u_resolution, u_cones.stepFactor, u_cones.maxDistance, u_anisotropic);
     vec3 origin = (u_worldToVoxel * vec4(P, 1.0)).xyz + N * u_cones.offset;
 

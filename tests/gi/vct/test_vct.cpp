@@ -264,10 +264,7 @@ TEST(Vct, LightEditReinjectsWithoutRevoxelizing) {
     s.gi = "vct";
     Scene scene = makeBuiltinScene("cornell");  // the renderer keeps a reference to it
     Renderer r(scene, s);
-    const VctPass* pass = nullptr;
-    for (const auto& p : r.passes())
-        if (auto* v = dynamic_cast<const VctPass*>(p.get())) pass = v;
-    ASSERT_NE(pass, nullptr);
+    const VctPass* pass = &vctPassOf(r);
     auto radianceSum = [&] {  // RGB of every voxel (alpha is occupancy, the same before and after)
         const std::vector<float> v = readVoxelsRgba16f(pass->volume().radiance().radiance());
         double sum = 0.0;
@@ -298,10 +295,7 @@ TEST(Vct, ConeSettingsEditGathersTheBouncesAgain) {
     s.gi = "vct";
     const Scene scene = makeBuiltinScene("cornell");
     Renderer r(scene, s);
-    const VctPass* pass = nullptr;
-    for (const auto& p : r.passes())
-        if (auto* v = dynamic_cast<const VctPass*>(p.get())) pass = v;
-    ASSERT_NE(pass, nullptr);
+    const VctPass* pass = &vctPassOf(r);
     auto radiance = [&] { return readVoxelsRgba16f(pass->volume().radiance().radiance()); };
     r.renderFrame();
     const std::vector<float> withRays = radiance();

@@ -110,12 +110,6 @@ TEST(VctRealtime, ReducedResolutionConvergesToFullResolution) {
     }
 }
 
-const VctPass& vctPassOf(const Renderer& r) {
-    for (const auto& p : r.passes())
-        if (auto* v = dynamic_cast<const VctPass*>(p.get())) return *v;
-    throw Error("internal: no VCT pass");
-}
-
 // A static view settles after framesToConverge frames; a camera move or a light edit unsettles it
 // until the view has stood still that long again. At trace-scale 1 one frame settles it.
 TEST(VctRealtime, StaticViewSettlesAndACameraMoveUnsettles) {

@@ -12,16 +12,19 @@ namespace gis::test {
 
 void setVct(RenderSettings& s, const std::string& key, const std::string& text) { setParam(s, "vct." + key, text); }
 
+const VctPass& vctPassOf(const Renderer& r) {
+    for (const auto& p : r.passes())
+        if (auto* v = dynamic_cast<const VctPass*>(p.get())) return *v;
+    throw Error("internal: no VCT pass");
+}
+
 VctImages renderVct(const Scene& scene, RenderSettings settings, int frames) {
     context();
     settings.gi = "vct";
     settings.hdr32 = true;
     Renderer renderer(scene, settings);
     VctImages out;
-    const VctPass* pass = nullptr;
-    for (const auto& p : renderer.passes())
-        if (auto* v = dynamic_cast<const VctPass*>(p.get())) pass = v;
-    if (!pass) throw Error("internal: no VCT pass");
+    const VctPass* pass = &vctPassOf(renderer);
     for (int f = 0; f < std::max(frames, 1); ++f) {
         renderer.renderFrame();
         if (f == 1) out.cachedSecondFrame = pass->voxelsReusedLastFrame();

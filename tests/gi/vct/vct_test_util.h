@@ -27,6 +27,9 @@ struct VctImages {
 // settings.gi is set to "vct"; "vct.*" parameters come from settings.params.
 VctImages renderVct(const Scene& scene, RenderSettings settings, int frames = 1);
 
+// The renderer's VCT pass (throws where it has none).
+const VctPass& vctPassOf(const Renderer& r);
+
 // Sets "vct.KEY" to `text` (validated by the registry).
 void setVct(RenderSettings& s, const std::string& key, const std::string& text);
 
