@@ -12,7 +12,8 @@
 # Usage (project root, after a build): bash scripts/building-table.sh [BIN (build/gisandbox)]
 # Environment: METHODS (vct,sdf,probes,hddagi), PRESETS (default,realtime,path-test; "default" = no
 # preset; "path-test" = the defaults with the probe gather's path test switched the other way, for
-# the methods that have one: the trade between leaks through walls and points no probe reaches).
+# the methods that have one: the trade between leaks through walls and points no probe reaches; a
+# KEY=VALUE: the defaults with that one parameter set).
 set -euo pipefail
 case ${1:-} in -h|--help) sed -n '2,/^set -e/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;; esac
 cd "$(dirname "$0")/.."
@@ -56,6 +57,8 @@ for m in ${methods//,/ }; do
         [ -n "$(pathTestKey "$m")" ] || continue
         read -r -a extra <<< "$(pathTestFlipped "$m")"
         flags+=("${extra[@]}"); p="\`${extra[1]}\`"
+      elif [[ $p == *=* ]]; then
+        flags+=(--set "$p"); p="\`$p\`"
       elif [ "$p" != default ]; then
         flags+=(--preset "$p")
       fi

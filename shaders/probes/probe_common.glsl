@@ -194,8 +194,9 @@ bool probeSeesPoint(vec3 probe, vec3 P, vec3 away, vec3 V);
 // Moments averaged over a texel cannot cut a probe behind a wall much thinner than the probe step
 // seen at a slant (issue #39: a closed room lit through its 20 cm walls), so with the path (mode 2,
 // programs that define PROBE_SEGMENT_TEST) a probe the tracer finds no straight path to counts
-// nothing; with none, P gets none of the grid's light. The path starts at `path`.
-vec3 sampleProbeGrid(int g, vec3 P, vec3 N, vec3 V, int visibility, PathStart path) {
+// nothing. The path starts at `path`. Returns E / pi and a = 1, or a = 0 where no probe counted (the
+// caller lights such a point otherwise, or not at all).
+vec4 sampleProbeGrid(int g, vec3 P, vec3 N, vec3 V, int visibility, PathStart path) {
     ivec3 counts = u_gridCounts[g];
     int first = gridBase(g);
     vec3 gp = (P - u_gridFirst[g]) / u_gridStep[g];
@@ -233,16 +234,16 @@ vec3 sampleProbeGrid(int g, vec3 P, vec3 N, vec3 V, int visibility, PathStart pa
         sum += w * probeIrradianceOverPi(i, lookup);
         weights += w;
     }
-    return weights > 0.0 ? sum / weights : vec3(0.0);
+    return weights > 0.0 ? vec4(sum / weights, 1.0) : vec4(0.0);
 }
-vec3 sampleProbes(vec3 P, vec3 N, vec3 V, int visibility, PathStart path) {
+vec4 sampleProbes(vec3 P, vec3 N, vec3 V, int visibility, PathStart path) {
     return sampleProbeGrid(gridAt(P), P, N, V, visibility, path);
 }
 
 // A gather at a surface seen from `eye`: the shading point moved off the surface along
 // 0.2 N + 0.8 V by `normalBias` x the probe step (DDGI's normal/view bias), so a probe's distance
 // moments do not shadow the very surface they were measured on.
-vec3 sampleProbesSeenFrom(vec3 P, vec3 N, vec3 eye, float normalBias, int visibility) {
+vec4 sampleProbesSeenFrom(vec3 P, vec3 N, vec3 eye, float normalBias, int visibility) {
     vec3 toEye = eye - P;
     vec3 V = length(toEye) > 0.0 ? normalize(toEye) : N;
     float bias = normalBias * gridMinStep(gridAt(P));

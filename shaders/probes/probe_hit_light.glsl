@@ -43,7 +43,7 @@ vec3 bounceLight(vec3 P, vec3 N, vec3 dir, vec3 albedo) {
     if (u_update.multiBounce == 0) return vec3(0.0);
     N = faceforward(N, dir, N);
     float bias = u_update.normalBias * gridMinStep(gridAt(P));
-    return albedo * sampleProbes(P + N * bias, N, -dir, u_update.visibility, PathStart(P, -dir));
+    return albedo * sampleProbes(P + N * bias, N, -dir, u_update.visibility, PathStart(P, -dir)).rgb;
 }
 
 #ifdef PROBE_TRACER_OCCUPANCY

@@ -30,6 +30,6 @@ GatherSurface gatherSurface(ivec2 pixel) {
 }
 
 vec3 gatherAt(GatherSurface s) {
-    vec3 e = sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_gather.normalBias, u_gather.visibility);
+    vec3 e = sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_gather.normalBias, u_gather.visibility).rgb;
     return finiteOrZero(e * u_gather.intensity);
 }

@@ -1,7 +1,7 @@
 // HDDAGI's parameters: one row each in hddagiParams() (names that scripts and other checks use:
 // hddagi.resolution, hddagi.cascades, hddagi.spacing, hddagi.rays, hddagi.half-res), defaults
 // in the initialisers below. Where SDF GI has the same setting the default is the same, except the
-// probe spacing (renderer/gi/hddagi/README.md says why).
+// probe spacing and rays per probe (renderer/gi/hddagi/README.md says why).
 #pragma once
 
 #include "param_table.h"

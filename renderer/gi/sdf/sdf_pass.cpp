@@ -165,7 +165,8 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     march.maxSteps = s.maxSteps;
     march.offset = s.offset;
     march_.set(march);
-    glProgramUniform1i(p, UG_RAYS, field_ ? 0 : s.rays);  // with probes, no diffuse rays per pixel
+    // With probes, the rays of a pixel whose gather sees none of them (the shader's fallback).
+    glProgramUniform1i(p, UG_RAYS, s.rays);
     glProgramUniform1ui(p, UG_FRAME, GLuint(frame.index * 7919u + frame.settings.seed));
     SdfTraceBlock trace;
     // With the probes the screen reflection gives indirect.specular: no mirror ray here.
@@ -341,15 +342,14 @@ GiMethod sdfMethod() {
           {"sdf.probe-spacing", {0.34}},
           {"sdf.probe-rays", {64.0}},
           {"sdf.max-steps", {32.0}}}},
-        {"medium", "64^3, JFA+2, probes every 1/4 with 128 rays, gathered and mirror rays at half resolution, 64 steps", {}},
-        {"high", "128^3, JFA+2, probes every 1/6 with 256 rays, mirror rays at full resolution, 128 steps",
+        {"medium", "64^3, JFA+2, probes every 1/8 with 32 rays, gathered and mirror rays at half resolution, 64 steps", {}},
+        {"high", "128^3, JFA+2, probes every 1/8 with 128 rays, mirror rays at full resolution, 128 steps",
          {{"sdf.resolution", {128.0}},
-          {"sdf.probe-spacing", {0.167}},
-          {"sdf.probe-rays", {256.0}},
+          {"sdf.probe-rays", {128.0}},
           {"sdf.trace-scale", choiceValue("1")},
           {"sdf.max-steps", {128.0}}}},
         {"realtime",
-         "medium's probes within a budget of 8192 rays per frame (64 probes), gathered, mirror rays and occlusion every "
+         "medium's probes within a budget of 8192 rays per frame (256 probes), gathered, mirror rays and occlusion every "
          "4x4 pixels and upsampled",
          {{"sdf.probe-ray-budget", {8192.0}}, {"sdf.trace-scale", choiceValue("4")}, {"sdf.filter-radius", {0.0}}}},
     };

@@ -60,7 +60,8 @@ const ParamTable<SdfGiSettings>& sdfParams() {
                 "sdf.diffuse=rays the diffuse rays) run for one pixel per block and are filtered back up",
                 {"1", "2", "4"}, U::Rebuild)
         .integer(&S::rays, "rays", "Rays per pixel",
-                 "cosine-distributed diffuse rays per traced pixel and frame (sdf.diffuse=rays)", 1,
+                 "cosine-distributed diffuse rays per traced pixel and frame (sdf.diffuse=rays; with probes, a "
+                 "pixel's that sees none of them)", 1,
                  64, U::Live)
         .integer(&S::maxSteps, "max-steps", "Max steps", "sphere-tracing steps before a ray counts as a miss", 4, 1024,
                  U::Live)

@@ -19,8 +19,12 @@ struct SdfGiSettings : probes::ReflectionSettings {
     float cascadeExtent = 8.0f; // sdf.cascade-extent: the finest cascade's largest edge, world units (rebuild)
     int bounces = 1;            // sdf.bounces: 1 = hits see direct light and emission; more gather again (rebuild)
     int diffuse = 0;            // sdf.diffuse: probes (SDFGI's gather) | rays (per pixel) (rebuild)
-    float probeSpacing = 0.25f; // sdf.probe-spacing: probe cell as a fraction of each cascade's extent (rebuild)
-    int probeRays = 128;        // sdf.probe-rays: rays per probe per update (rebuild)
+    // sdf.probe-spacing: probe cell as a fraction of each cascade's extent (rebuild): SDFGI's fraction. Twice
+    // it left a building's corridor in the finest cascade with hardly a probe (README, "Probe spacing").
+    float probeSpacing = 0.125f;
+    // sdf.probe-rays: rays per probe per update (rebuild). A pixel reads 8 probes, each averaged over its
+    // updates: this many score as four times as many at this spacing (README, "Probe spacing").
+    int probeRays = 32;
     int rayBudget = 0;          // sdf.probe-ray-budget: probe rays per frame, 0 = every due probe (rebuild)
     bool pathTest = true;       // sdf.probe-path-test: the probe gather's straight-path test (rebuild)
     int traceScale = 1;         // sdf.trace-scale: 1 | 2 | 4 full-resolution pixels per traced pixel per axis, the

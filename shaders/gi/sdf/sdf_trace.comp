@@ -98,10 +98,15 @@ void main() {
     SdfMarchParams params = marchParams();
     Rng rng = makeRng(uvec2(pixel), u_frame, 0x5df1u);
 
+    // SDFGI: the diffuse term from the probes around the surface (shaders/probes/probe_common.glsl).
+    // Where the path test finds none of them in sight, the pixel's own rays.
+    vec4 gathered = vec4(0.0);
+    if (u_trace.probeGather != 0) gathered = sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_trace.gatherBias, u_trace.probeVisibility);
+    int rays = gathered.a > 0.0 ? 0 : u_rays;
     vec3 sum = vec3(0.0);
     float steps = 0.0;
     vec3 firstNormal = vec3(0.0);
-    for (int i = 0; i < u_rays; ++i) {
+    for (int i = 0; i < rays; ++i) {
         vec3 dir = cosineDirection(s.normal, nextFloat2(rng));
         SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, dir, params);
         sum += rayRadiance(h, dir);
@@ -118,11 +123,9 @@ void main() {
         reflection = vec4(rayRadiance(h, R), 1.0 - roughness / max(u_trace.specularRoughness, 1e-6));
     }
 
-    // SDFGI: the diffuse term from the probes around the surface (shaders/probes/probe_common.glsl).
-    vec3 diffuse = u_trace.probeGather != 0 ? sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_trace.gatherBias, u_trace.probeVisibility)
-                                    : sum / float(max(u_rays, 1));
+    vec3 diffuse = rays > 0 ? sum / float(rays) : gathered.rgb;
     imageStore(i_diffuse, pixel, vec4(finiteOrZero(diffuse), 1.0));
     imageStore(i_reflection, pixel, vec4(finiteOrZero(reflection.rgb), reflection.a));
     imageStore(i_ao, pixel, vec4(nearFieldOcclusion(vol, home, s.position, s.normal, max(u_march.offset, 0.5) * cell)));
-    imageStore(i_info, pixel, vec4(steps / float(max(u_rays, 1)), firstNormal));
+    imageStore(i_info, pixel, vec4(steps / float(max(rays, 1)), firstNormal));
 }

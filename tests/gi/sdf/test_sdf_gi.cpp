@@ -93,11 +93,10 @@ const GiReference& reference(const std::string& name) { return giReference(name,
 
 double interiorRmse(const ImageF& a, const ImageF& b, const GiReference& r) { return test::interiorRmse(a, b, r.interior()); }
 
-// The band (80-120% on the walls and floor) is asserted with the near-field occlusion on
-// (sdf.ao=1), and 80-125% at the default. At the default, sdf.ao=0, the back wall and floor read just above 120%: the shared
-// probe field's own excess at this density (probe GI's medium preset has its back wall at the
-// band's edge, renderer/gi/probes/README.md), which the occlusion had hidden by darkening the
-// room's edges. The default's rows are printed beside it (README, "sdf.ao against the truth").
+// The band (80-120% on the walls and floor), with the near-field occlusion on (sdf.ao=1) and off
+// (the default). With probes a quarter of the room apart the default's back wall and floor read
+// just above 120% (the occlusion had hidden it by darkening the room's edges); an eighth apart,
+// the default since issue #39, they are within it (README, "sdf.ao against the truth").
 TEST(SdfGi, CornellIndirectEnergyPerWallAgainstPathTracer) {
     const GiReference& ref = reference("cornell");
     const ImageF pt = subtract(ref.ptFull(), ref.ptDirect());
@@ -107,7 +106,6 @@ TEST(SdfGi, CornellIndirectEnergyPerWallAgainstPathTracer) {
         const SdfImages v = renderSdf(makeBuiltinScene("cornell"), s);
         const ImageF indirect = subtract(v.frame, ref.direct());
         ASSERT_TRUE(allFinite(indirect));
-        const bool asserted = std::string(ao) == "1";
         int inBand = 0;
         for (const auto& [name, region] : kCornellFaces) {
             const double ours = ref.regionMean(indirect, region), theirs = ref.regionMean(pt, region);
@@ -117,9 +115,8 @@ TEST(SdfGi, CornellIndirectEnergyPerWallAgainstPathTracer) {
                         ao, name.c_str(), ours, theirs, 100.0 * ratio, ok ? "(in 80-120%)" : "(OUTSIDE 80-120%)");
             if (name == "ceiling") continue;
             inBand += ok;
-            // The default is held to the band widened by the excess above, so that it cannot drift further.
             EXPECT_GE(ratio, 0.8) << name << " ao=" << ao;
-            EXPECT_LE(ratio, asserted ? 1.2 : 1.25) << name << " ao=" << ao;
+            EXPECT_LE(ratio, 1.2) << name << " ao=" << ao;
         }
         std::printf("SDF-TABLE energy ao=%s: %d of 4 (walls, floor) within 80-120%%\n", ao, inBand);
         std::printf("SDF-TABLE psnr cornell medium ao=%s: %.2f dB sRGB vs the 16-bounce path tracer\n", ao,
@@ -485,8 +482,9 @@ double meanRelativeDifference(const ImageF& a, const ImageF& b) {
     return n ? sum / n : 0.0;
 }
 
-// The probes' light is smooth, so the upsampled gather is the per-pixel one within 3% on average
-// over the Cornell box (what it loses: the gather's variation inside a traced block). The
+// The probes' light is smooth, so the upsampled gather is the per-pixel one within 4.5% on average
+// over the Cornell box (what it loses: the gather's variation inside a traced block, which grows
+// with the probes' density: 2.6% with probes a quarter of the room apart, 4.0% an eighth). The
 // near-field occlusion is printed, not held to it: per pixel it carries the 32^3 field's stripes
 // along the boxes' faces, which one sample per block does not resolve.
 TEST(SdfGi, UpsampledGatherStaysCloseToThePerPixelGather) {
@@ -503,7 +501,7 @@ TEST(SdfGi, UpsampledGatherStaysCloseToThePerPixelGather) {
         const double ao = meanRelativeDifference(reduced.ao, full.ao);
         std::printf("SDF-TABLE trace-scale %d: mean relative difference from the per-pixel gather: indirect.diffuse "
                     "%.4f, ao %.4f\n", pixels, diffuse, ao);
-        EXPECT_LT(diffuse, 0.03) << "trace-scale " << pixels;
+        EXPECT_LT(diffuse, 0.045) << "trace-scale " << pixels;
     }
 }
 
@@ -609,6 +607,36 @@ TEST(SdfGi, BuildingClosedRoomLeaksLittle) {
     std::printf("SDF-TABLE building diffuse=rays: closed room / corridor = %.4f (corridor %.4f)\n", leak, mean[0]);
     EXPECT_GT(mean[0], 0.0);
     EXPECT_LT(leak, 0.05);
+}
+
+// The corridor of builtin:building (64x64, issue #39) with SDFGI's probes a quarter of each cascade
+// apart (the default until issue #39; an eighth now, where few pixels lack a probe): the 3 m
+// corridor in the finest cascade's 5.4 m holds hardly a probe, and the path test finds none of the
+// 8 around most of its pixels in sight (they stand in or behind its 20 cm walls). The gather gave
+// those no indirect light at all (a third of the surface pixels, whole blocks of wall and ceiling
+// black); they take their own rays instead.
+TEST(SdfGi, PixelsThatSeeNoProbeTakeTheirOwnRays) {
+    constexpr int kSide = 64;
+    const Scene building = makeBuiltinScene("building");
+    RenderSettings s = base("sdf");
+    s.width = s.height = kSide;
+    s.camera = 0;
+    setSdf(s, "probe-spacing", "0.25");
+    const SdfImages img = renderSdf(building, s);
+    ASSERT_TRUE(allFinite(img.frame));
+    int surface = 0, unlit = 0;
+    for (int y = 0; y < kSide; ++y)
+        for (int x = 0; x < kSide; ++x) {
+            const float* f = img.frame.at(x, y);
+            const bool sky = std::abs(f[0] - building.background.x) + std::abs(f[2] - building.background.z) < 1e-3f;
+            const float* d = img.diffuse.at(x, y);
+            surface += sky ? 0 : 1;
+            unlit += !sky && d[0] + d[1] + d[2] <= 0.0f ? 1 : 0;
+        }
+    std::printf("SDF-TABLE building corridor, probes a quarter of a cascade apart: %d of %d surface pixels without "
+                "indirect light\n", unlit, surface);
+    EXPECT_GT(surface, kSide * kSide / 2);
+    EXPECT_LT(unlit, surface / 50);
 }
 
 // An open floor under a uniform sky of radiance 1 and no light: every ray misses and reads the
