@@ -16,13 +16,10 @@ case ${1:-} in -h|--help) sed -n '2,/^set -e/p' "$0" | sed '$d; s/^# \{0,1\}//';
 cd "$(dirname "$0")/.."
 bin=${1:-build/gisandbox}
 rows=${ROWS:-0.25:128,0.125:128,default,realtime}
-shared=../shared/assets
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 source scripts/table_lib.sh
-
-atrium=(--scene "$shared/reference/scenes/atrium/atrium.gltf" --background 0.35,0.45,0.6)
 
 costs() {  # flags... -> "probes | probe ms | gather ms" of the corridor at 256x256
   timeout 1800 "$bin" render --scene builtin:building --camera 0 --size 256x256 --timings --rerun-settled --frames 4 \
@@ -35,18 +32,8 @@ costs() {  # flags... -> "probes | probe ms | gather ms" of the corridor at 256x
 
 row() {  # label flags... -> one table row
   local label=$1; shift
-  render "$tmp/atrium.exr" "${atrium[@]}" --gi sdf "$@" --size 256x256
-  render "$tmp/corridor.exr" --scene builtin:building --camera 0 --gi sdf "$@" --size 256x256
-  render "$tmp/hall.exr" --scene builtin:building --camera 1 --gi sdf "$@" --size 256x256
-  render "$tmp/closed.exr" --scene builtin:building --camera 2 --gi sdf "$@" --size 256x256
-  render "$tmp/cornell.exr" --scene "$shared/reference/scenes/cornell_point/cornell_point.gltf" --gi sdf "$@" --size 256x256
-  local r="| $label | $(compare "$tmp/atrium.exr" "$shared/reference/refs/atrium/full.exr")"
-  r+=" | $(compare "$tmp/corridor.exr" assets/reference/building/corridor/full.exr)"
-  r+=" | $(compare "$tmp/hall.exr" assets/reference/building/hall/full.exr)"
-  r+=" | $(ratio "$tmp/closed.exr" "$tmp/corridor.exr")"
-  r+=" | $(compare "$tmp/cornell.exr" "$shared/reference/refs/cornell_point/full.exr" | sed 's| / .*||')"
-  r+=" | $(costs --gi sdf "$@") |"
-  echo "$r"
+  cyclesRenders --gi sdf "$@"
+  echo "| $label$(cyclesColumns) | $(costs --gi sdf "$@") |"
 }
 
 gl=$("$bin" render --scene builtin:cornell --size 8x8 --out "$tmp/gl.png" -v 2>&1 | sed -n 's/^GL_RENDERER: //p')

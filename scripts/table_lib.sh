@@ -12,3 +12,26 @@ compare() {  # TEST REF [diff flags] -> "PSNR / mean ratio"
 ratio() {  # TEST REF -> the mean ratio alone
   "$bin" diff "$1" "$2" | awk '/^mean ratio/ {printf "%.3f", $3}'
 }
+
+# The real-scale columns against Cycles at 256x256 (issue #39): cyclesRenders FLAGS... renders the
+# atrium courtyard, builtin:building's corridor, hall and closed room, and cornell_point with the
+# method's flags (in this shell, so that a failed render ends the script); cyclesColumns then prints
+# their columns, each led by " | ": atrium, corridor and hall ("PSNR / mean ratio"), the building's
+# leak number (its closed room's mean over the corridor's) and cornell_point (PSNR alone). Both
+# need the project root as the working folder.
+cyclesRenders() {
+  local shared=../shared/assets
+  render "$tmp/atrium.exr" --scene "$shared/reference/scenes/atrium/atrium.gltf" --background 0.35,0.45,0.6 "$@" --size 256x256
+  render "$tmp/corridor.exr" --scene builtin:building --camera 0 "$@" --size 256x256
+  render "$tmp/hall.exr" --scene builtin:building --camera 1 "$@" --size 256x256
+  render "$tmp/closed.exr" --scene builtin:building --camera 2 "$@" --size 256x256
+  render "$tmp/cornell.exr" --scene "$shared/reference/scenes/cornell_point/cornell_point.gltf" "$@" --size 256x256
+}
+cyclesColumns() {
+  local shared=../shared/assets
+  echo -n " | $(compare "$tmp/atrium.exr" "$shared/reference/refs/atrium/full.exr")"
+  echo -n " | $(compare "$tmp/corridor.exr" assets/reference/building/corridor/full.exr)"
+  echo -n " | $(compare "$tmp/hall.exr" assets/reference/building/hall/full.exr)"
+  echo -n " | $(ratio "$tmp/closed.exr" "$tmp/corridor.exr")"
+  echo -n " | $(compare "$tmp/cornell.exr" "$shared/reference/refs/cornell_point/full.exr" | sed 's| / .*||')"
+}

@@ -23,7 +23,6 @@ trap 'rm -rf "$tmp"' EXIT
 
 source scripts/table_lib.sh
 
-atrium=(--scene "$shared/reference/scenes/atrium/atrium.gltf" --background 0.35,0.45,0.6)
 helmet=(--scene "$shared/gltf/DamagedHelmet/glTF/DamagedHelmet.gltf")
 render "$tmp/helmet-pt.exr" "${helmet[@]}" --gi pathtrace --size 128x128
 
@@ -35,19 +34,9 @@ gpuMs() {  # flags... -> "trace ms / filter ms" of the corridor at 256x256
 
 row() {  # label flags... -> one table row
   local label=$1; shift
-  render "$tmp/atrium.exr" "${atrium[@]}" --gi vct "$@" --size 256x256
-  render "$tmp/corridor.exr" --scene builtin:building --camera 0 --gi vct "$@" --size 256x256
-  render "$tmp/hall.exr" --scene builtin:building --camera 1 --gi vct "$@" --size 256x256
-  render "$tmp/closed.exr" --scene builtin:building --camera 2 --gi vct "$@" --size 256x256
-  render "$tmp/cornell.exr" --scene "$shared/reference/scenes/cornell_point/cornell_point.gltf" --gi vct "$@" --size 256x256
   render "$tmp/helmet.exr" "${helmet[@]}" --gi vct "$@" --size 128x128
-  local r="| $label | $(compare "$tmp/atrium.exr" "$shared/reference/refs/atrium/full.exr")"
-  r+=" | $(compare "$tmp/corridor.exr" assets/reference/building/corridor/full.exr)"
-  r+=" | $(compare "$tmp/hall.exr" assets/reference/building/hall/full.exr)"
-  r+=" | $(ratio "$tmp/closed.exr" "$tmp/corridor.exr")"
-  r+=" | $(compare "$tmp/cornell.exr" "$shared/reference/refs/cornell_point/full.exr" | sed 's| / .*||')"
-  r+=" | $(ratio "$tmp/helmet.exr" "$tmp/helmet-pt.exr") | $(gpuMs --gi vct "$@") |"
-  echo "$r"
+  cyclesRenders --gi vct "$@"
+  echo "| $label$(cyclesColumns) | $(ratio "$tmp/helmet.exr" "$tmp/helmet-pt.exr") | $(gpuMs --gi vct "$@") |"
 }
 
 gl=$("$bin" render --scene builtin:cornell --size 8x8 --out "$tmp/gl.png" -v 2>&1 | sed -n 's/^GL_RENDERER: //p')
