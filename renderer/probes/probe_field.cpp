@@ -65,6 +65,10 @@ std::vector<ProbeGrid> cascadeProbeGrids(const SceneVolume& volume, const Aabb& 
     return grids;
 }
 
+void followCascades(ProbeField& field, const SceneVolume& volume, const Aabb& sceneBounds, float spacing) {
+    for (int i = 0; i < volume.cascadeCount(); ++i) field.place(i, cascadeProbeGrid(volume, sceneBounds, spacing, i));
+}
+
 int cascadeProbeCount(const Aabb& sceneBounds, const CascadeLayout& layout, float spacing) {
     int count = fitProbeGrid(sceneBounds, spacing, layout.scene.bounds).count();
     const float e = layout.extent(0);

@@ -1,5 +1,5 @@
-// The probe pipeline that probe GI (`--gi probes`) and SDF GI (`--gi sdf`) share: one or more grids
-// of irradiance probes (one fitted to the scene, or one per cascade following the camera) that
+// The probe pipeline that probe GI (`--gi probes`), SDF GI (`--gi sdf`) and HDDAGI share: grids of
+// irradiance probes (one per cascade of the scene volume, cascadeProbeGrids) that
 // trace rays through the scene volume's distance field (cascades handed over outwards), shade their
 // hits from the voxels' light plus the probes' own irradiance (every bounce, DDGI's recursion), and
 // blend them into SH or octahedral irradiance and distance moments with hysteresis. Each method
@@ -169,6 +169,10 @@ private:
     bool converged_ = false, updatedLastFrame_ = false, pending_ = false, warnedAllOff_ = false;
     gl::UniformBuffer<ProbeUpdateBlock> update_;
 };
+
+// For a field built from cascadeProbeGrids: each grid follows its cascade (a grid whose cascade
+// moved is classified again and its probes restart).
+void followCascades(ProbeField& field, const SceneVolume& volume, const Aabb& sceneBounds, float spacing);
 
 std::vector<ProgramDesc> fieldPrograms();   // both tracers' variants
 

@@ -11,10 +11,6 @@
 
 namespace gis::probes {
 
-// What a grid's spacing is a fraction of: the scene's largest extent (one grid over the scene),
-// or each cascade's extent (a grid per cascade, SDFGI's layout).
-enum class SpacingOf { Scene, Cascade };
-
 // The members of a method's settings S that hold the grid's rebuild parameters; `storage` may be
 // null for a method that stores every probe one way.
 template <class S>
@@ -26,16 +22,15 @@ struct GridMembers {
 };
 
 // The rows that size the field (rebuild): PREFIXspacing, PREFIXrays, PREFIXray-budget and, when the
-// method has one, PREFIXstorage.
+// method has one, PREFIXstorage. Every method keeps a grid per cascade of its volume
+// (cascadeProbeGrids), so the spacing means the same under each.
 template <class S>
-void addGridRows(ParamTable<S>& t, const std::string& prefix, SpacingOf of, GridMembers<S> m) {
+void addGridRows(ParamTable<S>& t, const std::string& prefix, GridMembers<S> m) {
     using U = ParamUpdate;
-    if (of == SpacingOf::Scene)
-        t.real(m.spacing, prefix + "spacing", "Probe spacing",
-               "probe cell as a fraction of the scene's largest extent (>= 1: one probe)", 0.02, 4.0, U::Rebuild);
-    else
-        t.real(m.spacing, prefix + "spacing", "Probe spacing", "probe cell as a fraction of each cascade's extent", 0.02,
-               1.0, U::Rebuild);
+    t.real(m.spacing, prefix + "spacing", "Probe spacing",
+           "probe cell as a fraction of each cascade's extent (the coarsest: the scene's largest extent; >= 1: one "
+           "probe per cascade)",
+           0.02, 4.0, U::Rebuild);
     t.integer(m.rays, prefix + "rays", "Rays per probe", "rays each probe traces per update", 8, 512, U::Rebuild)
         .integer(m.rayBudget, prefix + "ray-budget", "Probe ray budget",
                  "probe rays per frame, spent on the due probes most urgent first (visible, least updated, most "

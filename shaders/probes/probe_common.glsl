@@ -1,7 +1,6 @@
 // The probe pipeline's storage and lookups on the GPU (renderer/probes/): the twin of
-// renderer/probes/probe_math.{h,cpp} (same constants and layouts). One or more grids (one per
-// cascade for SDF GI, one fitted to the scene for probe GI), their probes numbered one grid after
-// the other, finest first. Buffers (std430): irradiance (one vec4 per SH coefficient or
+// renderer/probes/probe_math.{h,cpp} (same constants and layouts). One grid per cascade of the
+// scene volume, their probes numbered one grid after the other, finest first. Buffers (std430): irradiance (one vec4 per SH coefficient or
 // octahedral texel, per probe), distance moments (vec2 per texel of a 14x14 octahedral map), state
 // (two vec4 per probe: relocation offset + state 0 active / 1 relocated / 2 off; update count,
 // last relative change).

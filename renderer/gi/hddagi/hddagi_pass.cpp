@@ -84,15 +84,9 @@ void HddagiPass::invalidate(Changes c) {
     changed_ = true;
 }
 
-// The probes follow their cascades: a grid whose cascade moved is classified again and restarts.
-void HddagiPass::placeProbes() {
-    for (int i = 0; i < volume_->cascadeCount(); ++i)
-        field_->place(i, probes::cascadeProbeGrid(*volume_, sceneBounds_, built_.probeSpacing, i));
-}
-
 void HddagiPass::run(Frame& frame) {
     const HddagiSettings live = hddagiParams().read("hddagi", frame.settings.params);
-    placeProbes();
+    probes::followCascades(*field_, *volume_, sceneBounds_, built_.probeSpacing);
     field_->update(frame, live.field());
     {
         auto t = frame.step("gather");

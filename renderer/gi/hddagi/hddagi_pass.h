@@ -51,7 +51,6 @@ public:
     const HddagiSettings& rebuildSettings() const { return built_; }
 
 private:
-    void placeProbes();
     HddagiSettings built_;
     Aabb sceneBounds_;
     std::unique_ptr<probes::ProbeField> field_;

@@ -16,7 +16,7 @@ const ParamTable<HddagiSettings>& hddagiParams() {
         t.integer(&S::resolution, "resolution", "Resolution", "voxels per edge of every cascade (a power of two)", 16,
                  256, U::Rebuild);
         addCascadeRows(t, "hddagi");
-        probes::addGridRows(t, "", probes::SpacingOf::Cascade, {&S::probeSpacing, &S::rays, &S::rayBudget, &S::storage});
+        probes::addGridRows(t, "", {&S::probeSpacing, &S::rays, &S::rayBudget, &S::storage});
         t.boolean(&S::halfResolution, "half-res", "Half resolution",
                  "gather the probes at every 2x2 block's first pixel and upsample (pixels on an edge gather their own)",
                  U::Rebuild);

@@ -12,7 +12,7 @@ const ParamTable<ProbeSettings>& probeParams() {
     using U = ParamUpdate;
     static const ParamTable<S> table = [] {
         ParamTable<S> t;
-        probes::addGridRows(t, "", probes::SpacingOf::Scene, {&S::spacing, &S::rays, &S::rayBudget, &S::storage});
+        probes::addGridRows(t, "", {&S::spacing, &S::rays, &S::rayBudget, &S::storage});
         t.integer(&S::sdfResolution, "sdf-resolution", "SDF resolution",
                  "voxels and distance-field cells per edge of each cascade (a power of two)", 8, 256, U::Rebuild);
         addCascadeRows(t, "probes");

@@ -11,19 +11,21 @@ namespace gis {
 
 // Its reflection members (probes.reflection*) come from probes::ReflectionSettings.
 struct ProbeSettings : probes::ReflectionSettings {
-    float spacing = 0.25f;      // probes.spacing: cell width as a fraction of the scene's largest extent (rebuild)
-    int rays = 128;             // probes.rays: rays per probe per update (rebuild: sizes the ray buffer)
+    // probes.spacing (rebuild): cell width as a fraction of each cascade's extent (the coarsest: the
+    // scene's); an eighth, as SDF GI's since issue #39: a quarter of the building's finest cascade
+    // put its probes 1.36 m apart, in and behind the corridor's walls. probes.rays (rebuild: sizes
+    // the ray buffer): 32 pay for the eighth's 8x the probes at about the quarter's cost.
+    float spacing = 0.125f;
+    int rays = 32;
     int storage = 1;            // probes.storage: sh1 | sh2 | octahedral (rebuild)
     bool visibility = true;     // probes.visibility: Chebyshev visibility from the distance moments (live)
-    // probes.path-test (live): off, as measured: one grid at the scene's scale puts no probe in a
-    // building's rooms, so it blacks out galleries and leaves the closed room's leak where it was.
-    bool pathTest = false;
+    // probes.path-test (live): on; with a grid per cascade a room near the camera holds probes of
+    // its own, and the probes outside it no longer light it through its walls.
+    bool pathTest = true;
     int rayBudget = 0;          // probes.ray-budget: probe rays per frame, most urgent probes first, 0 = all due (rebuild)
     int sdfResolution = 64;     // probes.sdf-resolution: voxels and distance-field cells per edge of each cascade (rebuild)
-    // probes.cascades, probes.cascade-extent (rebuild): the rays' volume in cascades around the
-    // camera, as SDF GI's, so a 20 cm wall near the camera is resolved (the probe grid stays one,
-    // fitted to the scene): builtin:building's closed room leaked 0.20 of the corridor's light
-    // through 0.68 m cells of one scene-wide volume, 0.11 with them.
+    // probes.cascades, probes.cascade-extent (rebuild): the volume in cascades around the camera,
+    // each with its probe grid, so a 20 cm wall near the camera is resolved by both.
     int cascades = 0;
     float cascadeExtent = 8.0f;
     int inside = 0;             // probes.inside: relocate | off, for probes inside solid geometry (rebuild)

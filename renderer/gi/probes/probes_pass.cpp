@@ -52,9 +52,10 @@ std::vector<ProgramDesc> ProbesPass::programs() {
 ProbesPass::ProbesPass(SceneServices& services, const RenderSettings& settings)
     : VolumePass(services.volume(checkedVolumeRequest(settings))), built_(probeParams().read("probes", settings.params)) {
     const gl::MemoryScope scope{&services.ledger, name()};
-    // The volume was fitted to the scene's air (SceneServices::airBounds): the grid gets a layer in it.
-    const ProbeGrid grid = fitProbeGrid(services.bounds(), built_.spacing, services.airBounds());
-    field_ = std::make_unique<ProbeField>(scope, *volume_, std::vector<ProbeGrid>{grid}, built_.field());
+    // The volume was fitted to the scene's air (SceneServices::airBounds): the coarsest grid gets a
+    // layer in it.
+    sceneBounds_ = services.bounds();
+    field_ = std::make_unique<ProbeField>(scope, *volume_, cascadeProbeGrids(*volume_, sceneBounds_, built_.spacing), built_.field());
     gather_ = std::make_unique<ScreenGather>(scope, settings.width, settings.height, built_.gatherPixels(), field_->tracer());
     reflection_ = std::make_unique<ScreenReflection>(scope, settings.width, settings.height, field_->tracer());
 }
@@ -70,6 +71,7 @@ Pass::Progress ProbesPass::progress() const { return reflection_->progress(field
 
 void ProbesPass::run(Frame& frame) {
     const ProbeSettings live = probeParams().read("probes", frame.settings.params);
+    followCascades(*field_, *volume_, sceneBounds_, built_.spacing);
     field_->update(frame, live.field());
     {
         auto t = frame.step("shade");
@@ -100,12 +102,11 @@ GiMethod probesMethod() {
         {"low", "SH L1, spacing 1/3, 64 rays, 32^3 field",
          {{"probes.spacing", {0.34}}, {"probes.rays", {64.0}}, {"probes.storage", choiceValue("sh1")},
           {"probes.sdf-resolution", {32.0}}}},
-        {"medium", "SH L2, spacing 1/4, 128 rays, 64^3 field", {}},
-        {"high", "octahedral maps, spacing 1/6, 256 rays, 64^3 field",
-         {{"probes.spacing", {0.167}}, {"probes.rays", {256.0}}, {"probes.storage", choiceValue("octahedral")}}},
-        {"realtime", "high's probes within 16384 rays per frame (64 probes), gathered every 4x4 pixels and upsampled",
-         {{"probes.spacing", {0.167}},
-          {"probes.rays", {256.0}},
+        {"medium", "SH L2, spacing 1/8, 32 rays, 64^3 field", {}},
+        {"high", "octahedral maps, spacing 1/8, 128 rays, 64^3 field",
+         {{"probes.rays", {128.0}}, {"probes.storage", choiceValue("octahedral")}}},
+        {"realtime", "high's probes within 16384 rays per frame (128 probes), gathered every 4x4 pixels and upsampled",
+         {{"probes.rays", {128.0}},
           {"probes.storage", choiceValue("octahedral")},
           {"probes.ray-budget", {16384.0}},
           {"probes.gather-scale", choiceValue("4")}}},
@@ -114,8 +115,9 @@ GiMethod probesMethod() {
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) {
         const ProbeSettings p = probeParams().read("probes", s.params);
         const VolumeRequest request = volumeRequest(p);
-        const int cascades = volumeLayout(sceneAirBounds(scene), request).count;  // as SceneServices fits it
-        const int probes = fitProbeGrid(scene.bounds, p.spacing, sceneAirBounds(scene)).count();
+        const CascadeLayout layout = volumeLayout(sceneAirBounds(scene), request);  // as SceneServices fits it
+        const int cascades = layout.count;
+        const int probes = cascadeProbeCount(scene.bounds, layout, p.spacing);
         return std::vector<std::pair<std::string, uint64_t>>{
             {"probe voxels and distance field", uint64_t(sceneVolumeBytes(request, cascades))},
             {"probes (irradiance, distance moments, state)", uint64_t(fieldStorageBytes(p.field(), probes))},

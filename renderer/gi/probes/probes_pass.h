@@ -1,12 +1,13 @@
-// Probe GI (`--gi probes`): one grid of irradiance probes fitted to the scene, kept by the shared
-// probe pipeline (renderer/probes/probe_field.h: rays sphere-traced through the scene volume's
+// Probe GI (`--gi probes`): a grid of irradiance probes per cascade of the scene volume (the
+// coarsest fitted to the scene, the finer ones following the camera), kept by the shared probe
+// pipeline (renderer/probes/probe_field.h: rays sphere-traced through the scene volume's
 // distance field, shaded from its voxels' light plus the probes' own irradiance, blended with
 // hysteresis within a per-frame ray budget). Per pixel, the 8 surrounding probes are interpolated
 // with normal-facing and Chebyshev-visibility weights into "indirect.diffuse"; reflection rays
 // walked and shaded as the probes' own give "indirect.specular" (probes/screen_reflection.h).
-// Volume and probes are view independent: a camera move costs the shading alone; converged probes
-// cost nothing, and a static view with converged probes costs nothing at all (settled()); a light
-// change relights the voxels (no voxelization, no flood) and restarts the probes.
+// A camera move that moves no cascade costs the shading alone; converged probes cost nothing, and a
+// static view with converged probes costs nothing at all (settled()); a light change relights the
+// voxels (no voxelization, no flood) and restarts the probes.
 #pragma once
 
 #include <memory>
@@ -45,7 +46,7 @@ public:
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     static std::vector<ProgramDesc> programs();
 
-    // What tests and the bench look at.
+    // What tests and the bench look at: the finest grid (the only one in a scene of one cascade).
     const probes::ProbeGrid& grid() const { return field_->grids()[0]; }
     const probes::ProbeField& field() const { return *field_; }
     int updates() const { return field_->updates(); }   // frames with a probe update since the last restart
@@ -59,6 +60,7 @@ public:
 
 private:
     ProbeSettings built_;
+    Aabb sceneBounds_;
     std::unique_ptr<probes::ProbeField> field_;
     std::unique_ptr<probes::ScreenGather> gather_;
     std::unique_ptr<probes::ScreenReflection> reflection_;

@@ -122,12 +122,6 @@ void SdfGiPass::invalidate(Changes c) {
     changed_ = true;
 }
 
-// The probes follow their cascades: a grid whose cascade moved is classified again and restarts.
-void SdfGiPass::placeProbes() {
-    for (int i = 0; i < volume_->cascadeCount(); ++i)
-        field_->place(i, probes::cascadeProbeGrid(*volume_, sceneBounds_, built_.probeSpacing, i));
-}
-
 // Probes: converged. Rays: the history has had its frames to converge (framesToConverge).
 bool SdfGiPass::settled() const {
     if (changed_) return false;
@@ -237,7 +231,7 @@ void SdfGiPass::filter(const Frame& frame, const SdfGiSettings& s) {
 void SdfGiPass::run(Frame& frame) {
     const SdfGiSettings live = sdfParams().read("sdf", frame.settings.params);
     if (field_) {
-        placeProbes();
+        probes::followCascades(*field_, *volume_, sceneBounds_, built_.probeSpacing);
         field_->update(frame, built_.probeField());
     }
     {

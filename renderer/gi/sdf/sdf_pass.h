@@ -72,7 +72,6 @@ private:
     void accumulate(const Frame& frame, const SdfGiSettings& s);
     void filter(const Frame& frame, const SdfGiSettings& s);
     void setCommonUniforms(GLuint program, const Frame& frame) const;
-    void placeProbes();
 
     SdfGiSettings built_;
     gl::MemoryScope scope_;

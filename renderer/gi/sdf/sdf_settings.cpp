@@ -53,7 +53,7 @@ const ParamTable<SdfGiSettings>& sdfParams() {
                 "probes = SDFGI: a probe grid per cascade, traced through the field and gathered per pixel; rays = "
                 "cosine rays per traced pixel, accumulated over frames and filtered",
                 {"probes", "rays"}, U::Rebuild);
-        probes::addGridRows(t, "probe-", probes::SpacingOf::Cascade, {&S::probeSpacing, &S::probeRays, &S::rayBudget});
+        probes::addGridRows(t, "probe-", {&S::probeSpacing, &S::probeRays, &S::rayBudget});
         t.boolean(&S::pathTest, "probe-path-test", "Probe path test", probes::kPathTestHelp, ParamUpdate::Rebuild);
         t.choice(&S::traceScale, "trace-scale", "Trace scale",
                 "full-resolution pixels per traced pixel per axis: the probe gather, mirror ray and occlusion (with "

@@ -12,6 +12,7 @@
 #include "gi/probes/probes_pass.h"
 #include "metrics.h"
 #include "render_test_util.h"
+#include "volume/scene_volume.h"
 #include "volume/volume_fit.h"
 #include "../vct/vct_test_util.h"
 
@@ -257,6 +258,39 @@ TEST(Probe, ASpacingLargerThanTheSceneIsOneProbe) {
     EXPECT_EQ(run.pass->grid().count(), 1);
     EXPECT_TRUE(allFinite(run.diffuse()));
     EXPECT_GT(meanRgb(run.diffuse()), 0.0);
+}
+
+// At building scale every cascade of the volume has its own grid (issue #39: one grid fitted to the
+// 43 m building put its probes 10 m apart, outside the rooms they lit): the finer grids lie in
+// their cascades' cubes, follow the camera, and stand closer than the corridor is wide.
+TEST(Probe, EachCascadeKeepsItsOwnGridAroundTheCamera) {
+    const Scene building = makeBuiltinScene("building");
+    glm::vec3 finestFirst[2];
+    for (int camera = 0; camera < 2; ++camera) {
+        RenderSettings s = small(16);
+        s.camera = camera;
+        ProbeRun run(building, s);
+        run.renderer->renderFrame();
+        const SceneVolume& volume = run.pass->volume();
+        const std::vector<ProbeGrid>& grids = run.pass->field().grids();
+        ASSERT_GT(volume.cascadeCount(), 1);
+        ASSERT_EQ(int(grids.size()), volume.cascadeCount());
+        for (int g = 0; g + 1 < int(grids.size()); ++g) {
+            const SdfVolume cube = volume.cascadeVolume(g);
+            const glm::vec3 last = grids[size_t(g)].first + glm::vec3(grids[size_t(g)].counts - 1) * grids[size_t(g)].step;
+            for (int a = 0; a < 3; ++a) {
+                EXPECT_GE(grids[size_t(g)].first[a], cube.origin[a]) << "grid " << g << " axis " << a;
+                EXPECT_LE(last[a], cube.origin[a] + cube.size) << "grid " << g << " axis " << a;
+            }
+        }
+        const glm::vec3 step = grids[0].step;
+        std::printf("PROBES-TABLE building camera %d: %zu grids, %d probes, the finest %.2f m apart\n", camera,
+                    grids.size(), run.pass->field().count(), step.x);
+        EXPECT_LT(std::max(step.x, std::max(step.y, step.z)), 1.0f) << "the corridor is about 3 m wide";
+        EXPECT_TRUE(allFinite(run.diffuse()));
+        finestFirst[camera] = grids[0].first;
+    }
+    EXPECT_GT(glm::length(finestFirst[1] - finestFirst[0]), 1.0f) << "the finest grid follows the camera";
 }
 
 // A closed cube of edge 2 around the origin, faces outward: one object under the sky.
