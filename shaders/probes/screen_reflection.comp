@@ -56,7 +56,7 @@ vec3 rayStart(vec3 P, vec3 N, vec3 V) {
 vec3 tracedRadiance(vec3 P, vec3 N, vec3 V, float roughness, ivec2 pixel) {
     vec3 origin = rayStart(P, N, V);
     float alpha = roughness * roughness;
-    if (alpha < 1e-4) return fieldRayRadiance(origin, reflect(-V, N)).rgb;
+    if (alpha < 1e-4) return fieldRayRadiance(origin, reflect(-V, N), 0.0).rgb;
     vec3 t, b;
     orthonormalBasis(N, t, b);
     vec3 vLocal = vec3(dot(V, t), dot(V, b), max(dot(V, N), 1e-4));
@@ -67,10 +67,10 @@ vec3 tracedRadiance(vec3 P, vec3 N, vec3 V, float roughness, ivec2 pixel) {
         vec3 h = sampleGgxVisibleNormal(vLocal, alpha, nextFloat2(rng));
         vec3 L = reflect(-V, normalize(h.x * t + h.y * b + h.z * N));
         if (dot(L, N) <= 0.0) continue;
-        sum += fieldRayRadiance(origin, L).rgb;
+        sum += fieldRayRadiance(origin, L, 0.0).rgb;
         kept += 1.0;
     }
-    return kept > 0.0 ? sum / kept : fieldRayRadiance(origin, reflect(-V, N)).rgb;
+    return kept > 0.0 ? sum / kept : fieldRayRadiance(origin, reflect(-V, N), 0.0).rgb;
 }
 #endif
 
