@@ -12,7 +12,8 @@
 #   - the reflection step's GPU ms per frame on builtin:mirror (--timings, every pass each frame).
 # Writes each method's table between the "reflection-table" markers of renderer/gi/METHOD/README.md.
 #
-# Usage (project root, after a build): bash scripts/reflection-table.sh [BIN (build/gisandbox)]
+# Usage (project root, after a build; needs `apt-get install python3-pil` for the spheres' mask):
+#   bash scripts/reflection-table.sh [BIN (build/gisandbox)]
 # Environment: METHODS (vct,sdf,probes,hddagi).
 set -euo pipefail
 case ${1:-} in -h|--help) sed -n '2,/^set -e/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;; esac
@@ -24,6 +25,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 source scripts/table_lib.sh
+/usr/bin/python3 -c 'import PIL' 2>/dev/null || { echo "reflection-table.sh: needs Debian's python3-pil (apt-get install python3-pil)" >&2; exit 1; }
 
 mirror=(--scene builtin:mirror --size 256x256)
 helmet=(--scene ../shared/assets/gltf/DamagedHelmet/glTF/DamagedHelmet.gltf --camera-pos 0 0 3.2 --look-at 0 0 0
