@@ -119,7 +119,7 @@ TEST_P(TermViews, AddUpToTheFinalImageBeforeToneMapping) {
 
 INSTANTIATE_TEST_SUITE_P(, TermViews,
                          ::testing::Values(Case{"builtin:cornell", "none", ""}, Case{"builtin:cornell", "ssao", ""},
-                                           Case{"builtin:cornell", "vct", ""}, Case{"builtin:cornell", "sdf", "--set sdf.ao=1"},
+                                           Case{"builtin:cornell", "vct", ""}, Case{"builtin:cornell", "sdf", "--preset low --set sdf.ao=1"},
                                            Case{"builtin:cornell", "probes", "--preset low --set probes.max-updates=8"},
                                            Case{"builtin:cornell-area", "vct", "--set emitters.accumulate=4"},
                                            Case{"builtin:brdf-gallery", "vct", ""}),
