@@ -208,6 +208,31 @@ glm::vec3 environmentToMap(glm::vec3 d, float rotationDegrees) {
 
 float texelSolidAngle(const EnvironmentMap& map, int y) { return wedgeSolidAngle(y, map.width, map.height); }
 
+EnvironmentMap nextMipLevel(const EnvironmentMap& level) {
+    EnvironmentMap next;
+    next.name = level.name;
+    next.width = std::max(1, level.width / 2);
+    next.height = std::max(1, level.height / 2);
+    next.texels.resize(size_t(next.width) * size_t(next.height));
+    // Texel (x, y) covers the finer columns [x W / w, (x + 1) W / w) and rows likewise: every finer
+    // texel once, an odd size's last one in the last coarse texel.
+    for (int y = 0; y < next.height; ++y) {
+        const int y0 = y * level.height / next.height, y1 = (y + 1) * level.height / next.height;
+        for (int x = 0; x < next.width; ++x) {
+            const int x0 = x * level.width / next.width, x1 = (x + 1) * level.width / next.width;
+            glm::dvec3 sum(0.0);
+            double weight = 0.0;
+            for (int fy = y0; fy < y1; ++fy) {
+                const double sr = texelSolidAngle(level, fy);
+                for (int fx = x0; fx < x1; ++fx) sum += sr * glm::dvec3(level.at(fx, fy));
+                weight += sr * double(x1 - x0);
+            }
+            next.texels[size_t(y) * size_t(next.width) + size_t(x)] = glm::vec3(weight > 0.0 ? sum / weight : glm::dvec3(0.0));
+        }
+    }
+    return next;
+}
+
 glm::vec3 sampleNearest(const EnvironmentMap& map, glm::vec3 direction) {
     const glm::vec2 uv = directionToEquirect(direction);
     return map.at(std::min(int(uv.x * float(map.width)), map.width - 1), std::min(int(uv.y * float(map.height)), map.height - 1));

@@ -46,6 +46,11 @@ glm::vec3 equirectToDirection(glm::vec2 uv);         // its inverse (unit length
 glm::vec3 environmentToMap(glm::vec3 d, float rotationDegrees);
 float texelSolidAngle(const EnvironmentMap& map, int y);  // steradians of any texel in row y
 glm::vec3 sampleNearest(const EnvironmentMap& map, glm::vec3 direction);  // in the map's frame
+// The map's next mip level (half each way, at least one texel): each texel the mean of the texels it
+// covers weighted by their solid angle, so every level keeps the map's mean radiance over the sphere.
+// A box filter (glGenerateMipmap) weighs a row near a pole as much as one at the horizon: a sun
+// high in the sky lost much of its light at the levels a wide cone or a sparse probe ray reads.
+EnvironmentMap nextMipLevel(const EnvironmentMap& level);
 
 // Radiance projected onto the real spherical harmonics up to band 2 (Y00, Y1-1, Y10, Y11, Y2-2,
 // Y2-1, Y20, Y21, Y22), integrated over every texel's solid angle; in the map's frame, as are the

@@ -140,9 +140,14 @@ void GpuEnvironment::uploadConstant(gl::MemoryScope scope) {
 void GpuEnvironment::upload(gl::MemoryScope scope, const EnvironmentMap& map) {
     const int w = map.width, h = map.height;
     const MapTextures t = mapTextures(w, h);
-    radiance_ = gl::createTexture2D(scope, kFormat, w, h, gl::mipLevelsFor(w, h));
+    const int levels = gl::mipLevelsFor(w, h);
+    radiance_ = gl::createTexture2D(scope, kFormat, w, h, levels);
     glTextureSubImage2D(radiance_.id(), 0, 0, 0, w, h, GL_RGB, GL_FLOAT, map.texels.data());
-    glGenerateTextureMipmap(radiance_.id());
+    EnvironmentMap level;  // the mips weighted by solid angle (nextMipLevel), not GL's box filter
+    for (int i = 1; i < levels; ++i) {
+        level = nextMipLevel(i == 1 ? map : level);
+        glTextureSubImage2D(radiance_.id(), i, 0, 0, level.width, level.height, GL_RGB, GL_FLOAT, level.texels.data());
+    }
     setLinearMipmapped(radiance_.id());
     specular_ = gl::createTexture2D(scope, kFormat, t.specularWidth, t.specularHeight, t.specularLevels);
     setLinearMipmapped(specular_.id());

@@ -50,8 +50,9 @@ vec3 environmentRadiance(vec3 d) {
 }
 
 // Mean radiance over a cone of solid angle `steradians` around d: the mip whose texels cover that
-// much (box-filtered in the equirectangular domain: near the poles a texel spans less, so wide
-// cones there are averaged over less than their solid angle).
+// much (each level weighs the finer texels by their solid angle, renderer/environment.h
+// nextMipLevel; a mip texel is still a rectangle in the equirectangular domain, so near the poles
+// it is narrower than the cone).
 vec3 environmentCone(vec3 d, float steradians) {
     if (!environmentIsMap()) return u_env.constant.rgb;
     float lod = 0.5 * log2(max(steradians / u_env.texelSteradians, 1.0));
