@@ -214,6 +214,8 @@ EnvironmentMap nextMipLevel(const EnvironmentMap& level) {
     next.width = std::max(1, level.width / 2);
     next.height = std::max(1, level.height / 2);
     next.texels.resize(size_t(next.width) * size_t(next.height));
+    std::vector<double> rowSteradians(size_t(level.height));
+    for (int y = 0; y < level.height; ++y) rowSteradians[size_t(y)] = texelSolidAngle(level, y);
     // Texel (x, y) covers the finer columns [x W / w, (x + 1) W / w) and rows likewise: every finer
     // texel once, an odd size's last one in the last coarse texel.
     for (int y = 0; y < next.height; ++y) {
@@ -223,7 +225,7 @@ EnvironmentMap nextMipLevel(const EnvironmentMap& level) {
             glm::dvec3 sum(0.0);
             double weight = 0.0;
             for (int fy = y0; fy < y1; ++fy) {
-                const double sr = texelSolidAngle(level, fy);
+                const double sr = rowSteradians[size_t(fy)];
                 for (int fx = x0; fx < x1; ++fx) sum += sr * glm::dvec3(level.at(fx, fy));
                 weight += sr * double(x1 - x0);
             }
