@@ -37,7 +37,19 @@ const ParamTable<EmitterLightSettings>& emitterLightParams() {
                  "frames a still view averages (0 = each frame its own estimate)", 0, 1 << 16, ParamUpdate::Live)
         .integer(&S::volumeSamples, "volume-samples", "Volume samples",
                  "emitter points per voxel when the voxel methods light their volume with the emitters (0 = none)", 0,
-                 256, ParamUpdate::Rebuild);
+                 256, ParamUpdate::Rebuild)
+        .boolean(&S::environment, "environment", "Environment as a light",
+                 "the environment (a map or a background) is a light of this pass too, with a visibility ray per "
+                 "sample, so it casts shadows under every method; the GI methods then carry only its indirect light",
+                 ParamUpdate::Rebuild)
+        .integer(&S::environmentCandidates, "environment-candidates", "Environment candidates",
+                 "initial candidates per pixel drawn from the environment (by luminance for a map, by cosine for a "
+                 "constant)",
+                 1, 64, ParamUpdate::Live)
+        .integer(&S::environmentVolumeSamples, "environment-volume-samples", "Environment volume samples",
+                 "environment directions per voxel (not on walls thinner than a voxel, README), a ray each, when the voxel methods light their volume with "
+                 "the environment",
+                 1, 1024, ParamUpdate::Rebuild);
     return table;
 }
 
@@ -66,6 +78,16 @@ bool emittersAreLights(const Scene& scene, const RenderSettings& settings) {
         case EmitterMode::Auto: return emissionLightsScene(scene);
         default: return false;
     }
+}
+
+bool environmentIsLight(const Scene& scene, const RenderSettings& settings) {
+    if (!emitterLightSettings(settings).environment) return false;
+    const glm::vec3 background = settings.background.value_or(scene.background);
+    return !settings.environment.empty() || std::max({background.r, background.g, background.b}) > 0.0f;
+}
+
+bool directPassHasLights(const Scene& scene, const RenderSettings& settings) {
+    return emittersAreLights(scene, settings) || environmentIsLight(scene, settings);
 }
 
 }  // namespace gis

@@ -27,6 +27,9 @@ struct EmitterLightSettings {
     int maxHistory = 20;      // the temporal M cap, in multiples of M
     int accumulate = 64;      // frames a still view averages (0: every frame shows its own estimate)
     int volumeSamples = 16;   // emitter points per voxel lighting the GI volume (voxel light injection)
+    bool environment = false; // the environment is a light of this pass too (environmentIsLight)
+    int environmentCandidates = 8;        // candidates per pixel drawn from the environment
+    int environmentVolumeSamples = 32;    // environment directions per voxel lighting the GI volume
 };
 const ParamTable<EmitterLightSettings>& emitterLightParams();
 EmitterLightSettings emitterLightSettings(const RenderSettings& settings);
@@ -38,5 +41,14 @@ bool sceneHasEmitters(const Scene& scene);
 // it, emission is a surface detail and ReSTIR would spend its frames for nothing). The direct
 // pass then runs ReSTIR and the voxel methods light their volume with the emitters.
 bool emittersAreLights(const Scene& scene, const RenderSettings& settings);
+
+// The environment is a light of the direct pass (emitters.environment, and a map or a background
+// above 0): ReSTIR draws candidates from it with a visibility ray each, so its sun and sky cast
+// shadows under every method; the GI methods' rays that leave the scene then see black
+// (environment.glsl's environmentMiss*) and their volume is lit by it through injection, so it
+// is counted once, as the emitters are under `lights`.
+bool environmentIsLight(const Scene& scene, const RenderSettings& settings);
+// The direct pass (ReSTIR) runs: emitters or the environment are its lights.
+bool directPassHasLights(const Scene& scene, const RenderSettings& settings);
 
 }  // namespace gis

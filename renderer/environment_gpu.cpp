@@ -186,9 +186,10 @@ void GpuEnvironment::buildBrdfTable() {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-void GpuEnvironment::bind(glm::vec3 constant, float rotationDegrees) {
+void GpuEnvironment::bind(glm::vec3 constant, float rotationDegrees, bool directLight) {
     if (values_.isMap == 0) values_.constant = glm::vec4(constant, 0.0f);
     values_.rotation = glm::radians(rotationDegrees);
+    values_.light = directLight ? 1 : 0;
     block_.set(values_);
     glBindTextureUnit(kEnvironmentBrdfUnit, brdf_.id());
     glBindTextureUnit(kEnvironmentRadianceUnit, radiance_.id());

@@ -35,6 +35,7 @@ namespace gis {
     M(float, cdfTotal)         /* the sampling CDFs' total weight */ \
     M(float, texelSteradians)  /* the mean solid angle of a level-0 texel */ \
     M(float, rotation)         /* radians the map is turned about +Y (environmentToMap in environment.h) */ \
+    M(int, light)              /* 1: a light of the direct pass (emitters.environment): GI rays miss into black */ \
     A(vec4, sh, 9)             /* rgb: the radiance's SH9 projection (environment.h's basis order) */
 GIS_UNIFORM_BLOCK(EnvironmentBlock, 11, GIS_ENVIRONMENT_BLOCK)
 
@@ -65,7 +66,9 @@ public:
     // (ignored for a map), `rotationDegrees` turns a map about +Y (RenderSettings::environmentRotation).
     // The textures stay in the map's frame, so a rotation needs no rebuild: the prefiltered chain
     // is a lobe symmetric about each texel's direction, and the CDFs' pdf is per steradian.
-    void bind(glm::vec3 constant, float rotationDegrees);
+    // `directLight`: the environment is a light of the direct pass (environmentIsLight), so the GI
+    // methods' rays that leave the scene see black (environment.glsl's environmentMiss*).
+    void bind(glm::vec3 constant, float rotationDegrees, bool directLight);
 
     static std::vector<ProgramDesc> programs();
     // GPU bytes a width x height map's textures take (the memory budget's estimate, before loading),

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "emitter_settings.h"
 #include "environment_gpu.h"
 
 namespace gis {
@@ -15,7 +16,9 @@ void Frame::checkDeclared(const std::string& name, bool write) const {
                 "', which its " + (write ? "outputs()" : "inputs()") + " do not declare");
 }
 
-void Frame::bindEnvironment() const { environment->bind(background(), settings.environmentRotation); }
+void Frame::bindEnvironment() const {
+    environment->bind(background(), settings.environmentRotation, environmentIsLight(scene.cpu, settings));
+}
 
 void Frame::put(const std::string& name, const gl::Texture& t) {
     checkDeclared(name, true);

@@ -91,9 +91,11 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     const bool gbufferView = settings_.view.rfind("gbuffer.", 0) == 0;
     if (deferred) passes_.push_back(std::make_unique<ShadowPass>(*gpuScene_, settings_, ledger_));
     if (deferred || gbufferView) passes_.push_back(std::make_unique<GBufferPass>(scene, w, h, ledger_));
-    // Emissive triangles as lights of the direct pass: only when there are any (no cost otherwise).
-    if (deferred && emittersAreLights(scene, settings_) && services_->rays().emitterCount > 0)
-        passes_.push_back(std::make_unique<EmitterLightPass>(services_->rays(), settings_, ledger_));
+    // Emissive triangles and the environment as lights of the direct pass: only when there are
+    // any (no cost otherwise).
+    const bool environmentLight = environmentIsLight(scene, settings_);
+    if (deferred && ((emittersAreLights(scene, settings_) && services_->rays().emitterCount > 0) || environmentLight))
+        passes_.push_back(std::make_unique<EmitterLightPass>(services_->rays(), settings_, environmentLight, ledger_));
     MethodBuild build{scene, settings_, *services_, ledger_, passes_};
     method.addPasses(build);
 

@@ -43,8 +43,25 @@ vec3 environmentDirectionAt(float u, float cosTheta) {
 
 vec3 environmentDirection(vec2 uv) { return environmentDirectionAt(uv.x, cos(uv.y * PI)); }
 
-// Radiance arriving along -d (d points away from the scene).
+// The level-0 texel direction d falls in.
+ivec2 environmentTexel(vec3 d) {
+    ivec2 size = ivec2(u_env.width, u_env.height);
+    return clamp(ivec2(environmentUv(d) * vec2(size)), ivec2(0), size - 1);
+}
+
+// Radiance arriving along -d (d points away from the scene) as a light: the texel's value, constant
+// over the texel as the importance sampler's density is (environmentPdf). Filtered between texels,
+// a small sun would shine into neighbours the sampler never draws: a light drawn by that density
+// (ReSTIR's candidates) would lose that part, up to half a one-texel sun's power, and a BSDF ray
+// that found it would count it at full weight (the path tracer's fireflies).
 vec3 environmentRadiance(vec3 d) {
+    if (!environmentIsMap()) return u_env.constant.rgb;
+    return texelFetch(s_envRadiance, environmentTexel(d), 0).rgb;
+}
+
+// What the camera sees of the environment: the map filtered between texels (a sky seen straight
+// on is not a mosaic); the same total over the sphere as environmentRadiance.
+vec3 environmentBackground(vec3 d) {
     if (!environmentIsMap()) return u_env.constant.rgb;
     return textureLod(s_envRadiance, environmentUv(d), 0.0).rgb;
 }
@@ -57,6 +74,16 @@ vec3 environmentCone(vec3 d, float steradians) {
     if (!environmentIsMap()) return u_env.constant.rgb;
     float lod = 0.5 * log2(max(steradians / u_env.texelSteradians, 1.0));
     return textureLod(s_envRadiance, environmentUv(d), lod).rgb;
+}
+
+// What a GI method's ray or cone that leaves the scene brings back: the environment, or black when
+// the environment is a light of the direct pass (u_env.light, emitters.environment), which then
+// gives the light it sends straight to a surface, with its shadows; the methods' volumes are lit
+// by it through injection, so what they carry is its indirect light alone.
+bool environmentIsDirectLight() { return u_env.light != 0; }
+vec3 environmentMiss(vec3 d) { return environmentIsDirectLight() ? vec3(0.0) : environmentRadiance(d); }
+vec3 environmentMissCone(vec3 d, float steradians) {
+    return environmentIsDirectLight() ? vec3(0.0) : environmentCone(d, steradians);
 }
 
 // Solid angle of a cone of half-angle atan(tanHalf): 2 pi (1 - cos).
@@ -111,8 +138,7 @@ float environmentTexelPdf(int x, int y) {
 }
 
 float environmentPdf(vec3 d) {
-    vec2 uv = environmentUv(d);
-    ivec2 t = min(ivec2(uv * vec2(u_env.width, u_env.height)), ivec2(u_env.width, u_env.height) - 1);
+    ivec2 t = environmentTexel(d);
     return environmentTexelPdf(t.x, t.y);
 }
 

@@ -84,6 +84,11 @@ vec3 addDirectLight(vec3 radiance, SurfaceBrdf surface, vec3 P, vec3 N, vec3 V, 
     return radiance;
 }
 
+// The baseline's unshadowed environment: a map's irradiance and prefiltered radiance, or the
+// constant ambient (which --background sets). None when the environment is a light of the direct
+// pass, which lights the surface there with its shadows.
+float baselineEnvironment() { return environmentIsDirectLight() ? 0.0 : 1.0; }
+
 // Indirect light before occlusion, by lobe. Without a method's terms each is the constant ambient
 // times the lobe's colour (diffuse colour, F0): the constant-ambient baseline; under an
 // environment map, the map's irradiance from its SH9 projection (Ramamoorthi and Hanrahan 2001)
@@ -97,7 +102,7 @@ void indirectLight(SurfaceBrdf surface, vec3 N, vec3 V, int specularModel, out v
 #if INDIRECT_DIFFUSE
     diffuse = texture(s_indirectDiffuse, v_uv).rgb * surface.diffuseColor;
 #else
-    diffuse = (environmentIsMap() ? environmentIrradiance(N) * INV_PI : u_ambient) * surface.diffuseColor;
+    diffuse = baselineEnvironment() * (environmentIsMap() ? environmentIrradiance(N) * INV_PI : u_ambient) * surface.diffuseColor;
 #endif
 #if INDIRECT_SPECULAR
     float NoV = max(dot(N, V), MIN_N_DOT_V);
@@ -106,6 +111,7 @@ void indirectLight(SurfaceBrdf surface, vec3 N, vec3 V, int specularModel, out v
     // A constant ambient is a uniform map: its prefiltered radiance is itself at every roughness.
     float NoV = max(dot(N, V), MIN_N_DOT_V);
     vec3 incoming = environmentIsMap() ? environmentSpecular(reflect(-V, N), surface.roughness) : u_ambient;
+    incoming *= baselineEnvironment();
     specular = incoming * environmentSpecularAlbedo(surface, NoV, specularModel);
 #endif
 }
@@ -124,7 +130,7 @@ void main() {
         // Along the pixel's ray: unprojecting two depths serves perspective and orthographic alike.
         vec4 near = u_invViewProj * vec4(v_uv * 2.0 - 1.0, -1.0, 1.0);
         vec4 far = u_invViewProj * vec4(v_uv * 2.0 - 1.0, 0.0, 1.0);
-        o_radiance = radianceOut(environmentRadiance(far.xyz / far.w - near.xyz / near.w));
+        o_radiance = radianceOut(environmentBackground(far.xyz / far.w - near.xyz / near.w));
 #endif
         return;
     }

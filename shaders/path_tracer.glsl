@@ -185,6 +185,13 @@ vec3 diffuseShareOf(SurfacePoint s, vec3 V, vec3 L, vec3 f) {
     return vec3(greaterThan(f, vec3(0.0))) * clamp(diffuse / max(f, vec3(1e-30)), 0.0, 1.0);
 }
 
+// The term of the environment's light reaching the surface at `depth`: indirect, as the lighting
+// pass splits it, unless it is a light of the direct pass (emitters.environment), which then
+// lights the first surface directly.
+vec3 environmentTerm(int depth, vec3 diffuseShare) {
+    return depth == 0 && environmentIsDirectLight() ? vec3(kept(TERM_DIRECT)) : keptIndirect(diffuseShare);
+}
+
 // The environment map as a light: one direction drawn from its luminance, weighted by MIS (power
 // heuristic) against the BSDF sampling the same direction (PBRT 3rd ed., 14.3.1). A constant
 // environment is reached by BSDF samples alone, as it always was, and draws no random numbers.
@@ -223,12 +230,15 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng, int firstDepth) {
         // The terms as the lighting pass splits them: the first surface's emission or the
         // background seen directly; the light reaching the first surface straight from a light
         // or an emitter (sampled there, or hit by its BSDF sample, the other half of the MIS);
-        // everything after is indirect, the environment lighting the first surface included.
+        // everything after is indirect, the environment lighting the first surface included
+        // (unless it is a light of the direct pass: environmentTerm).
         if (!traceRay(origin, dir, 1e30, false, depth == 0, hit)) {
             // A map was also sampled as a light at the vertex this ray left: the other half of the MIS.
             float weight = environmentIsMap() && u_sampleEnvironment != 0 && lastBsdfPdf > 0.0 ? powerHeuristic(lastBsdfPdf, environmentPdf(dir)) : 1.0;
-            radiance += throughput * environmentRadiance(dir) * weight *
-                        (depth == 0 ? vec3(kept(TERM_EMISSION)) : keptIndirect(diffuseShare));
+            // The camera sees the map filtered, as the lighting pass shows it; a light, by texel.
+            vec3 sky = depth == 0 ? environmentBackground(dir) : environmentRadiance(dir);
+            radiance += throughput * sky * weight *
+                        (depth == 0 ? vec3(kept(TERM_EMISSION)) : environmentTerm(depth - 1, diffuseShare));
             break;
         }
         SurfacePoint s = shade(hit, dir);
@@ -255,7 +265,7 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng, int firstDepth) {
         // The environment lights the first surface as indirect light, as the lighting pass splits it.
         vec3 environmentDiffuseShare;
         vec3 environment = environmentLight(s, V, pSpecular, specularModel, rng, depth == 0, environmentDiffuseShare);
-        radiance += throughput * environment * keptIndirect(depth == 0 ? environmentDiffuseShare : diffuseShare);
+        radiance += throughput * environment * environmentTerm(depth, depth == 0 ? environmentDiffuseShare : diffuseShare);
 
         vec3 L;
         bool specularLobe;

@@ -31,8 +31,9 @@ uint64_t EmitterLightPass::targetBytes(int width, int height) {
     return perPixel * uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0));
 }
 
-EmitterLightPass::EmitterLightPass(RayScene& rays, const RenderSettings& settings, gl::MemoryLedger& ledger)
-    : rays_(rays), reuse_(gl::MemoryScope{&ledger, name()}) {
+EmitterLightPass::EmitterLightPass(RayScene& rays, const RenderSettings& settings, bool environmentLight,
+                                   gl::MemoryLedger& ledger)
+    : rays_(rays), reuse_(gl::MemoryScope{&ledger, name()}), environmentLight_(environmentLight) {
     const gl::MemoryScope scope{&ledger, name()};
     const int w = settings.width, h = settings.height;
     static_assert(kReservoirSets == 2, "temporal_ and history_");
@@ -52,7 +53,8 @@ std::vector<std::string> EmitterLightPass::inputs() const {
 }
 
 std::vector<std::string> EmitterLightPass::stats() const {
-    return {std::to_string(rays_.emitterCount) + " emissive triangles as ReSTIR lights"};
+    std::string lights = std::to_string(rays_.emitterCount) + " emissive triangles";
+    return {lights + (environmentLight_ ? " and the environment" : "") + " as ReSTIR lights"};
 }
 
 void EmitterLightPass::invalidate(Changes c) {
@@ -63,6 +65,7 @@ void EmitterLightPass::invalidate(Changes c) {
 void EmitterLightPass::bindCommon(GLuint p, const Frame& frame, const EmitterLightSettings& s) {
     glUseProgram(p);
     rays_.bind();
+    frame.bindEnvironment();
     gl::bindTextures({{emitters::TE_DEPTH, frame.texture(resource::kGbufferDepth)},
                       {emitters::TE_BASE_COLOR, frame.texture(resource::kGbufferBaseColor)},
                       {emitters::TE_NORMAL, frame.texture(resource::kGbufferNormal)},
@@ -77,11 +80,13 @@ void EmitterLightPass::bindCommon(GLuint p, const Frame& frame, const EmitterLig
     emitters::RestirBlock reuse;
     reuse.candidates = s.candidates;
     reuse.bsdfCandidates = s.bsdfCandidates;
+    reuse.environmentCandidates = environmentLight_ ? s.environmentCandidates : 0;
     reuse.temporal = s.temporal ? 1 : 0;
     reuse.spatial = s.spatial;
     reuse.unbiased = s.unbiased ? 1 : 0;
     reuse.historyValid = historyValid_ ? 1 : 0;
-    reuse.maxM = float(s.maxHistory * s.candidates);
+    const int drawn = (rays_.emitterCount > 0 ? s.candidates : 0) + reuse.environmentCandidates;
+    reuse.maxM = float(s.maxHistory * drawn);
     reuse.radius = s.radius;
     reuse.framesAveraged = float(accumulated_);
     reuse.prevCameraPos = glm::vec4(previousCameraPos_, 0.0f);

@@ -9,9 +9,12 @@
 // other pixels' domains by their unshadowed target, the unbiased one by their target with
 // visibility, at one ray per reused reservoir.
 //
+// With emitters.environment the environment (a map or a constant) is a light of the pass too:
+// candidates drawn from it join the emitters' in the same reservoirs, each with its visibility.
+//
 // The pass writes "emitters.direct" (linear RGB radiance, averaged over frames while the view
-// stands still), which the lighting pass adds. It exists only with `emitters.mode=lights` and a
-// scene that has emitters: otherwise nothing runs and the lighting program is compiled without it.
+// stands still), which the lighting pass adds. It exists only when it has lights
+// (directPassHasLights): otherwise nothing runs and the lighting program is compiled without it.
 #pragma once
 
 #include "emitter_settings.h"
@@ -24,7 +27,8 @@ namespace gis {
 
 class EmitterLightPass final : public Pass {
 public:
-    EmitterLightPass(RayScene& rays, const RenderSettings& settings, gl::MemoryLedger& ledger);
+    // `environmentLight`: the environment is one of its lights (environmentIsLight).
+    EmitterLightPass(RayScene& rays, const RenderSettings& settings, bool environmentLight, gl::MemoryLedger& ledger);
     const char* name() const override { return "emitters"; }
     std::vector<std::string> inputs() const override;
     std::vector<std::string> outputs() const override { return {resource::kEmittersDirect}; }
@@ -53,6 +57,7 @@ private:
     gl::UniformBuffer<emitters::RestirBlock> reuse_;
     glm::mat4 previousViewProj_{1.0f};
     glm::vec3 previousCameraPos_{0.0f};
+    bool environmentLight_ = false;
     bool historyValid_ = false, idle_ = false;
     int accumulated_ = 0, target_ = 0;
     uint32_t frames_ = 0;

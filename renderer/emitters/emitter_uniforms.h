@@ -41,6 +41,7 @@ inline constexpr gl::BindingSlot kEmitterBindings[] = {GIS_EMITTER_BINDINGS(GIS_
 #define GIS_RESTIR_BLOCK(M, A) \
     M(int, candidates)          /* M: candidates drawn per pixel by power */ \
     M(int, bsdfCandidates)      /* candidates drawn per pixel along BSDF directions */ \
+    M(int, environmentCandidates) /* drawn per pixel from the environment; 0: it is not a light here */ \
     M(int, temporal)            /* 1: reuse the reprojected history */ \
     M(int, spatial)             /* k: neighbours combined */ \
     M(int, unbiased)            /* 1: the 1/Z weights, a visibility ray per reused reservoir */ \

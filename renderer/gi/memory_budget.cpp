@@ -38,7 +38,7 @@ MemoryEstimate estimateGpuMemory(const Scene& scene, const RenderSettings& s) {
     if (s.view != "final") e.parts.push_back({"debug view (RGBA16F)", pixels * 8});
     if (deferred) {
         e.parts.push_back({s.hdr32 ? "lighting (RGBA32F)" : "lighting (RGBA16F)", pixels * (s.hdr32 ? 16 : 8)});
-        if (emittersAreLights(scene, s))
+        if (directPassHasLights(scene, s))
             e.parts.push_back({"emitter lights (ReSTIR reservoirs)", EmitterLightPass::targetBytes(s.width, s.height)});
         if (s.shadows && !scene.draws.empty()) {
             uint64_t points = 0, flat = 0;

@@ -53,9 +53,9 @@ int64_t voxelFeedbackBytes(int resolution, bool anisotropic) {
 }
 
 const ProgramDesc kInjectProgram{"voxel_inject", {"volume/inject.comp"}, {}};
-// The same injection that also lights each voxel by the emitters (renderer/emitters), sampled
-// through the ray scene.
-const ProgramDesc kEmitterInjectProgram{"voxel_inject_emitters", {"volume/inject.comp"}, {{"EMITTER_LIGHT", "1"}}};
+// The same injection that also lights each voxel by the direct pass's lights (renderer/emitters:
+// the emitters, the environment), sampled through the ray scene.
+const ProgramDesc kTracedInjectProgram{"voxel_inject_traced", {"volume/inject.comp"}, {{"TRACED_LIGHT", "1"}}};
 const ProgramDesc kMipProgram{"voxel_mip", {"volume/voxel_mip.comp"}, {}};
 const ProgramDesc kBounceProgram{"voxel_bounce", {"volume/bounce.comp"}, {}};
 // The bounce whose cones cast rays through the ray scene (bounce.comp's BOUNCE_RAYS).
@@ -69,7 +69,7 @@ constexpr int kSweepGroup = 8;          // exterior.comp's SWEEP local size
 constexpr GLuint kChangedBinding = 0;    // exterior.comp's Changed
 
 std::vector<ProgramDesc> VoxelRadiance::programs() {
-    return {kInjectProgram, kMipProgram, kBounceProgram, kBounceRaysProgram, kEmitterInjectProgram, kExteriorProgram,
+    return {kInjectProgram, kMipProgram, kBounceProgram, kBounceRaysProgram, kTracedInjectProgram, kExteriorProgram,
             kExteriorSweepProgram};
 }
 
@@ -104,12 +104,15 @@ VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::Mem
 }
 
 void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
-    const bool emitterLight = lights.emitters && lights.emitters->emitterCount > 0 && lights.emitterSamples > 0;
-    if (emitterLight && !emitterInjectProgram_.id()) emitterInjectProgram_ = buildProgram(kEmitterInjectProgram);
-    const GLuint p = emitterLight ? emitterInjectProgram_.id() : injectProgram_.id();
-    if (emitterLight) {
-        lights.emitters->bind(7);  // inject.comp's RAY_SCENE_TEXTURE_UNIT; SSBOs 1-5 (0: the frame's lights, below)
-        glProgramUniform2i(p, UV_EMITTER_SAMPLES, int(lights.emitters->emitterCount), lights.emitterSamples);
+    const int emitterSamples = lights.rays && lights.rays->emitterCount > 0 ? lights.emitterSamples : 0;
+    const int environmentSamples = lights.rays ? lights.environmentSamples : 0;
+    const bool traced = emitterSamples > 0 || environmentSamples > 0;
+    if (traced && !tracedInjectProgram_.id()) tracedInjectProgram_ = buildProgram(kTracedInjectProgram);
+    const GLuint p = traced ? tracedInjectProgram_.id() : injectProgram_.id();
+    if (traced) {
+        lights.rays->bind(7);  // inject.comp's RAY_SCENE_TEXTURE_UNIT; SSBOs 1-5 (0: the frame's lights, below)
+        glProgramUniform2i(p, UV_EMITTER_SAMPLES, int(lights.rays->emitterCount), emitterSamples);
+        glProgramUniform1i(p, UV_ENVIRONMENT_SAMPLES, environmentSamples);
     }
     const int n = radiance_.width;
     const glm::mat4 voxelToWorld = grid.fit.voxelToWorldMatrix();
@@ -303,8 +306,13 @@ void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radia
     const EmitterLightSettings emitters = emitterLightSettings(frame.settings);
     lights.emission = EmitterMode(emitters.mode) == EmitterMode::Gi ? 1.0f : 0.0f;
     if (emittersAreLights(frame.scene.cpu, frame.settings)) {
-        lights.emitters = &rays();
+        lights.rays = &rays();
         lights.emitterSamples = emitters.volumeSamples;
+    }
+    if (environmentIsLight(frame.scene.cpu, frame.settings)) {
+        lights.rays = &rays();
+        lights.environmentSamples = emitters.environmentVolumeSamples;
+        frame.bindEnvironment();
     }
     auto t = frame.step(prefix + "inject");
     radiance.inject(grid, lights);

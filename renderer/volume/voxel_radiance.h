@@ -51,10 +51,12 @@ public:
         // 0 when the emitters are lights of the direct pass (emitters.mode=lights or off): the
         // volume then holds no emission, so no method counts an emitter's light twice.
         float emission = 1.0f;
-        // With emitters.mode=lights: the ray scene whose emissive triangles light the voxels too
-        // (inject.comp's EMITTER_LIGHT), `emitterSamples` points per voxel; null: none.
-        const RayScene* emitters = nullptr;
-        int emitterSamples = 0;
+        // The lights of the direct pass, traced through `rays` (inject.comp's TRACED_LIGHT; null:
+        // none): with emitters.mode=lights its emissive triangles, `emitterSamples` points per voxel;
+        // with emitters.environment the environment, `environmentSamples` directions per voxel
+        // face (the caller binds the environment).
+        const RayScene* rays = nullptr;
+        int emitterSamples = 0, environmentSamples = 0;
         // The environment sends light in from the volume's bounds (a map, or a background above 0).
         bool environmentLit = false;
     };
@@ -111,7 +113,7 @@ private:
     gl::Texture directional_[6];
     gl::Object injectProgram_, mipProgram_, bounceProgram_;
     gl::Object bounceRaysProgram_;  // built on first need
-    gl::Object emitterInjectProgram_;  // built on first need
+    gl::Object tracedInjectProgram_;  // built on first need
     gl::Object exteriorProgram_, sweepProgram_;  // with cullUnlitOutsides
     gl::Texture reach_;                          // R8UI: air that light reaches
     gl::Buffer changed_;                         // voxels a sweep round reached

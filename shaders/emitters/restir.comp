@@ -1,5 +1,6 @@
 // ReSTIR DI (Bitterli et al. 2020) over the ray scene's emissive triangles
-// (renderer/emitters/emitter_lights.h). Two stages, one program each:
+// (renderer/emitters/emitter_lights.h) and the environment when it is a light of this pass
+// (emitters.environment). Two stages, one program each:
 //   RESTIR_STAGE 0: M candidates by power, resampled against the unshadowed target
 //     p_hat = luminance(f * Le * G); a visibility ray for the survivor (its W is 0 when occluded);
 //     then the last frame's reservoir at the reprojected pixel, unless the surface there differs
@@ -7,7 +8,10 @@
 //   RESTIR_STAGE 1: k neighbours within a radius whose depth and normal are close, combined; the
 //     survivor shaded with a visibility ray and averaged over the frames of a still view.
 //     temporal -> history, accumulation.
-// A reservoir is (sample y = emitter triangle and barycentrics, W, M). Reservoirs are combined by
+// A reservoir is (sample y = emitter triangle and barycentrics, or an environment direction; W, M).
+// The two kinds of sample live in one domain, the emitters' area and the sphere of directions side
+// by side: each target and density is taken in its own sample's measure (per unit area, per
+// steradian), which RIS allows as long as a sample is always weighed in the one it was drawn in. Reservoirs are combined by
 // generalized RIS with bounded MIS weights (balance heuristics, see combine()); the target of a
 // domain other than this pixel is unshadowed (biased: darker wherever neighbours see the emitters
 // differently, README) or times the visibility from that domain's surface (unbiased: a ray per
@@ -18,6 +22,7 @@
 #include "random.glsl"
 #include "ray_scene.glsl"
 #include "bsdf_sampling.glsl"
+#include "environment.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -26,7 +31,8 @@ layout(binding = TE_BASE_COLOR) uniform sampler2D s_gbufBaseColor;
 layout(binding = TE_NORMAL) uniform sampler2D s_gbufNormal;
 layout(binding = TE_MATERIAL) uniform sampler2D s_gbufMaterial;
 
-// Reservoir images: sample = (emitter triangle + 1 (0: none), barycentrics of p1 and p2, W);
+// Reservoir images: sample = (emitter triangle + 1 (0: none, -1: the environment), barycentrics of
+// p1 and p2 (the environment: the direction's map coordinates, environmentUv), W);
 // surface = (world position, M); normal = (shading normal, 0). A stage reads the IN images and
 // writes the OUT ones (renderer/emitters/emitter_uniforms.h).
 layout(binding = IE_SAMPLE_IN, rgba32f) uniform readonly image2D i_sampleIn;
@@ -78,38 +84,44 @@ Surface loadSurface(ivec2 pixel, ivec2 size) {
 }
 
 struct Reservoir {
-    uint triangle;  // 0xFFFFFFFF: no sample
-    vec2 b;
+    uint triangle;  // NO_SAMPLE, ENVIRONMENT_SAMPLE or an emissive triangle
+    vec2 b;         // barycentrics of p1 and p2, or the environment direction's environmentUv
     float W, M;
 };
 
 const uint NO_SAMPLE = 0xFFFFFFFFu;
+const uint ENVIRONMENT_SAMPLE = 0xFFFFFFFEu;
 
 Reservoir emptyReservoir() { return Reservoir(NO_SAMPLE, vec2(0.0), 0.0, 0.0); }
 
 Reservoir loadReservoir(ivec2 pixel) {
     vec4 a = imageLoad(i_sampleIn, pixel);
     float M = imageLoad(i_surfaceIn, pixel).w;
-    uint t = uint(a.x + 0.5);
-    return Reservoir(t == 0u || M <= 0.0 ? NO_SAMPLE : t - 1u, a.yz, a.w, M);
+    uint y = a.x < -0.5 ? ENVIRONMENT_SAMPLE : a.x < 0.5 ? NO_SAMPLE : uint(a.x + 0.5) - 1u;
+    return Reservoir(M <= 0.0 ? NO_SAMPLE : y, a.yz, a.w, M);
 }
 
 void storeReservoir(ivec2 pixel, Reservoir r, vec3 P, vec3 N) {
-    float t = r.triangle == NO_SAMPLE ? 0.0 : float(r.triangle + 1u);
+    float t = r.triangle == NO_SAMPLE ? 0.0 : r.triangle == ENVIRONMENT_SAMPLE ? -1.0 : float(r.triangle + 1u);
     imageStore(i_sampleOut, pixel, vec4(t, r.b, finiteOrZero(vec3(r.W)).x));
     imageStore(i_surfaceOut, pixel, vec4(P, r.M));
     imageStore(i_normalOut, pixel, vec4(N, 0.0));
 }
 
-// The point y on its triangle, its normal, radiance towards `from` and per-area source density.
-struct EmitterPoint {
+// Sample y seen from `from`: the point on its triangle (or the environment's direction), the
+// radiance it sends towards `from` and the emitters' per-area source density.
+struct LightPoint {
     vec3 position, Le;
-    float cosLight;  // |cos| at the emitter where it emits towards `from`, else 0
-    float pdfArea;   // selection probability / area (ray_scene.glsl's attribute)
+    float cosLight;  // |cos| at the emitter where it emits towards `from`, else 0 (1: the environment)
+    float pdfArea;   // selection probability / area (ray_scene.glsl's attribute; 0: the environment)
+    bool environment;
+    vec3 direction;  // towards the environment sample
 };
 
-EmitterPoint emitterPoint(uint ti, vec2 b, vec3 from) {
-    EmitterPoint e;
+LightPoint emitterPoint(uint ti, vec2 b, vec3 from) {
+    LightPoint e;
+    e.environment = false;
+    e.direction = vec3(0.0);
     TraceTriangle tri = u_triangles[ti];
     TriangleAttributes a = u_attributes[ti];
     RayMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
@@ -124,8 +136,26 @@ EmitterPoint emitterPoint(uint ti, vec2 b, vec3 from) {
     return e;
 }
 
-// f * cos(theta) * Le * cos(theta_l) / d^2: the unshadowed contribution of y, per unit area.
-vec3 contribution(Surface s, EmitterPoint e, out vec3 L, out float dist) {
+LightPoint lightPoint(Reservoir r, vec3 from) {
+    if (r.triangle != ENVIRONMENT_SAMPLE) return emitterPoint(r.triangle, r.b, from);
+    LightPoint e;
+    e.environment = true;
+    e.direction = environmentDirection(r.b);
+    e.position = from + e.direction;
+    e.Le = environmentRadiance(e.direction);
+    e.cosLight = 1.0;
+    e.pdfArea = 0.0;
+    return e;
+}
+
+// f * cos(theta) * Le * cos(theta_l) / d^2: the unshadowed contribution of y, per unit area; of an
+// environment direction f * cos(theta) * Le, per steradian (dist: infinite).
+vec3 contribution(Surface s, LightPoint e, out vec3 L, out float dist) {
+    if (e.environment) {
+        L = e.direction;
+        dist = 1e30;  // beyond the scene
+        return dot(s.N, L) > 0.0 ? evaluateBrdfCosine(s.brdf, s.N, s.V, L, s.models.x, s.models.y) * e.Le : vec3(0.0);
+    }
     vec3 d = e.position - s.P;
     float d2 = dot(d, d);
     dist = sqrt(d2);
@@ -138,16 +168,18 @@ float targetAt(Surface s, Reservoir r) {
     if (r.triangle == NO_SAMPLE) return 0.0;
     vec3 L;
     float dist;
-    return luminance(contribution(s, emitterPoint(r.triangle, r.b, s.P), L, dist));
+    return luminance(contribution(s, lightPoint(r, s.P), L, dist));
 }
 
-// A ray from a G-buffer position (gbufferRayOrigin) to `target`.
-bool visible(vec3 P, vec3 N, vec3 target) {
+// A ray from a G-buffer position (gbufferRayOrigin) to the sample: to its point on an emitter, or
+// out of the scene along an environment direction.
+bool visible(vec3 P, vec3 N, LightPoint e) {
     vec3 origin = gbufferRayOrigin(P, N, u_cameraPos);
-    vec3 d = target - origin;
+    Hit h;
+    if (e.environment) return !traceRay(origin, e.direction, 1e30, true, h);
+    vec3 d = e.position - origin;
     float dist = length(d);
     if (!(dist > 0.0)) return false;
-    Hit h;
     return !traceRay(origin, d / dist, dist * (1.0 - 1e-4), true, h);
 }
 
@@ -158,9 +190,9 @@ float domainTarget(Surface d, Reservoir y) {
     if (y.triangle == NO_SAMPLE) return 0.0;
     vec3 L;
     float dist;
-    EmitterPoint e = emitterPoint(y.triangle, y.b, d.P);
+    LightPoint e = lightPoint(y, d.P);
     float p = luminance(contribution(d, e, L, dist));
-    if (p > 0.0 && u_reuse.unbiased != 0 && !visible(d.P, d.N, e.position)) p = 0.0;
+    if (p > 0.0 && u_reuse.unbiased != 0 && !visible(d.P, d.N, e)) p = 0.0;
     return p;
 }
 
@@ -216,30 +248,50 @@ Reservoir candidate(inout Rng rng) {
     return r;
 }
 
+// The environment as a light of this pass: candidates are drawn from it at each pixel.
+bool environmentLights() { return u_reuse.environmentCandidates > 0; }
+bool anyLight() { return u_emitterCount > 0 || environmentLights(); }
+
 #if RESTIR_STAGE == 0
-// How many candidates each strategy draws at a pixel: by power, and along BSDF directions. The
-// BSDF's are drawn only where there is a specular lobe: a diffuse surface gains little from them
-// and they cost a ray each.
+// How many candidates each strategy draws at a pixel: emitters by power, environment directions,
+// and along BSDF directions. The BSDF's are drawn only where there is a specular lobe: a diffuse
+// surface gains little from them and they cost a ray each.
 struct CandidateCounts {
-    float light, bsdf;
+    float light, environment, bsdf;
 };
 
+// An environment direction: a map's by its luminance (the path tracer's sampler), a constant's by
+// the cosine around the normal (the unshadowed target is then the same for every candidate).
+float environmentCandidatePdf(Surface s, vec3 L) {
+    return environmentIsMap() ? environmentPdf(L) : max(dot(s.N, L), 0.0) * INV_PI;
+}
+
+Reservoir environmentCandidate(Surface s, inout Rng rng) {
+    float pdf;
+    vec3 L = environmentIsMap() ? sampleEnvironment(nextFloat2(rng), pdf) : cosineDirection(s.N, nextFloat2(rng));
+    return Reservoir(ENVIRONMENT_SAMPLE, environmentUv(L), 0.0, 1.0);
+}
+
 // Streams candidate y (its target p at s, reached along L at distance dist) into c, weighed by
-// the balance heuristic over both strategies (Talbot et al. 2005, resampled importance sampling
-// with several source densities): p / (M_light p_light(y) + M_bsdf p_bsdf(y)), the densities per
-// unit emitter area. Light sampling alone spikes where the BRDF is a narrow lobe (a mirror); the
-// BSDF's density bounds the weight there by about Le times the lobe's albedo.
+// the balance heuristic over the strategies that can draw it (Talbot et al. 2005, resampled
+// importance sampling with several source densities): p / (M_light p_light(y) + M_bsdf p_bsdf(y)),
+// the densities per unit emitter area, or per steradian for an environment direction (drawn by
+// the environment's and the BSDF's strategies). Light sampling alone spikes where the BRDF is a
+// narrow lobe (a mirror); the BSDF's density bounds the weight there by about Le times the lobe's albedo.
 void streamCandidate(inout Combined c, Surface s, Reservoir x, CandidateCounts n, float pSpecular, inout Rng rng) {
-    EmitterPoint e = emitterPoint(x.triangle, x.b, s.P);
+    LightPoint e = lightPoint(x, s.P);
     vec3 L;
     float dist;
     float p = luminance(contribution(s, e, L, dist));
-    float bsdfDensity = n.bsdf > 0.0 && dist > 0.0 ? bsdfPdf(s.brdf, s.N, s.V, L, pSpecular) * e.cosLight / (dist * dist) : 0.0;
-    float denominator = n.light * e.pdfArea + n.bsdf * bsdfDensity;
+    float toMeasure = e.environment ? 1.0 : dist > 0.0 ? e.cosLight / (dist * dist) : 0.0;
+    float bsdfDensity = n.bsdf > 0.0 ? bsdfPdf(s.brdf, s.N, s.V, L, pSpecular) * toMeasure : 0.0;
+    float sourceDensity = e.environment ? n.environment * environmentCandidatePdf(s, L) : n.light * e.pdfArea;
+    float denominator = sourceDensity + n.bsdf * bsdfDensity;
     stream(c, x, denominator > 0.0 ? p / denominator : 0.0, p, rng);
 }
 
-// The emitter point a BSDF direction from s meets first, as a candidate (NO_SAMPLE if none).
+// The emitter point a BSDF direction from s meets first, or the environment direction when it
+// leaves the scene and the environment is a light, as a candidate (NO_SAMPLE if neither).
 Reservoir bsdfCandidate(Surface s, float pSpecular, inout Rng rng) {
     Reservoir r = emptyReservoir();
     vec3 L;
@@ -247,24 +299,31 @@ Reservoir bsdfCandidate(Surface s, float pSpecular, inout Rng rng) {
     if (!sampleBsdf(s.brdf, s.N, s.N, s.V, pSpecular, rng, L, specularLobe)) return r;
     Hit h;
     vec3 origin = gbufferRayOrigin(s.P, s.N, u_cameraPos);
-    if (!traceRay(origin, L, 1e30, false, h) || !(u_attributes[h.triangle].uv2MaterialEmitter.w > 0.0)) return r;
+    if (!traceRay(origin, L, 1e30, false, h)) {
+        if (environmentLights()) r = Reservoir(ENVIRONMENT_SAMPLE, environmentUv(L), 0.0, 0.0);
+        return r;
+    }
+    if (!(u_attributes[h.triangle].uv2MaterialEmitter.w > 0.0) || u_emitterCount <= 0) return r;
     r.triangle = h.triangle;
     r.b = h.barycentric;
     return r;
 }
 
-// Resampled importance sampling of M light candidates (by power) and the BSDF candidates.
+// Resampled importance sampling of the emitter candidates (by power), the environment's and the BSDF's.
 Combined initialCandidates(Surface s, inout Rng rng) {
     Combined c = Combined(emptyReservoir(), 0.0, 0.0);
     bool hasSpecular = s.models.y != SPECULAR_NONE && (any(greaterThan(s.brdf.f0, vec3(0.0))) || s.brdf.f90 > 0.0);
     float pSpecular = specularChoice(s.brdf, hasSpecular, max(dot(s.N, s.V), MIN_N_DOT_V));
-    CandidateCounts n = CandidateCounts(float(u_reuse.candidates), hasSpecular ? float(u_reuse.bsdfCandidates) : 0.0);
-    for (int i = 0; i < u_reuse.candidates; ++i) streamCandidate(c, s, candidate(rng), n, pSpecular, rng);
+    CandidateCounts n = CandidateCounts(u_emitterCount > 0 ? float(u_reuse.candidates) : 0.0,
+                                        float(u_reuse.environmentCandidates),
+                                        hasSpecular ? float(u_reuse.bsdfCandidates) : 0.0);
+    for (int i = 0; i < int(n.light); ++i) streamCandidate(c, s, candidate(rng), n, pSpecular, rng);
+    for (int i = 0; i < int(n.environment); ++i) streamCandidate(c, s, environmentCandidate(s, rng), n, pSpecular, rng);
     for (int i = 0; i < int(n.bsdf); ++i) {
         Reservoir x = bsdfCandidate(s, pSpecular, rng);
         if (x.triangle != NO_SAMPLE) streamCandidate(c, s, x, n, pSpecular, rng);
     }
-    c.r.M = n.light + n.bsdf;
+    c.r.M = n.light + n.environment + n.bsdf;
     finish(c);
     return c;
 }
@@ -300,14 +359,14 @@ void main() {
     ivec2 size = imageSize(i_sampleOut);
     if (pixel.x >= size.x || pixel.y >= size.y) return;
     Surface s = loadSurface(pixel, size);
-    if (!s.valid || u_emitterCount <= 0) {
+    if (!s.valid || !anyLight()) {
         storeReservoir(pixel, emptyReservoir(), s.P, vec3(0.0));
         return;
     }
     Rng rng = makeRng(uvec2(pixel), 2u * u_frame.x, u_frame.y);
     Combined c = initialCandidates(s, rng);
     // Visibility reuse (Bitterli et al. 4.4): an occluded survivor is worth nothing to reuse.
-    if (c.r.W > 0.0 && !visible(s.P, s.N, emitterPoint(c.r.triangle, c.r.b, s.P).position)) c.r.W = 0.0;
+    if (c.r.W > 0.0 && !visible(s.P, s.N, lightPoint(c.r, s.P))) c.r.W = 0.0;
 
     if (u_reuse.temporal != 0 && u_reuse.historyValid != 0) {
         vec4 clip = u_prevViewProj * vec4(s.P, 1.0);
@@ -382,15 +441,14 @@ void main() {
     if (pixel.x >= size.x || pixel.y >= size.y) return;
     Surface s = loadSurface(pixel, size);
     vec3 radiance = vec3(0.0);
-    if (s.valid && u_emitterCount > 0) {
+    if (s.valid && anyLight()) {
         Rng rng = makeRng(uvec2(pixel), 2u * u_frame.x + 1u, u_frame.y);
         Combined c = spatialReuse(s, pixel, size, loadReservoir(pixel), rng);
-        bool seen = c.r.triangle != NO_SAMPLE && c.r.W > 0.0 &&
-                    visible(s.P, s.N, emitterPoint(c.r.triangle, c.r.b, s.P).position);
+        bool seen = c.r.triangle != NO_SAMPLE && c.r.W > 0.0 && visible(s.P, s.N, lightPoint(c.r, s.P));
         if (seen) {
             vec3 L;
             float dist;
-            radiance = contribution(s, emitterPoint(c.r.triangle, c.r.b, s.P), L, dist) * c.r.W;
+            radiance = contribution(s, lightPoint(c.r, s.P), L, dist) * c.r.W;
         } else {
             c.r.W = 0.0;  // kept with W = 0: the visibility reuse of stage 0, for the next frame
         }

@@ -73,7 +73,7 @@ vec3 voxelAlbedoAt(int cascade, ivec3 v) {
 vec4 fieldRayRadiance(vec3 origin, vec3 dir, float missSteradians) {
     HddaCascades cs = HddaCascades(u_cascades, u_cascadeCount, u_sdfResolution);
     HddaHit h = hddaTraceCascades(cs, origin, dir, 0.0, u_update.missDistance, 4096);
-    if (!h.hit) return vec4(environmentCone(dir, missSteradians), u_update.missDistance);
+    if (!h.hit) return vec4(environmentMissCone(dir, missSteradians), u_update.missDistance);
     vec3 radiance = lightSeen(texelFetch(s_voxelRadiance, h.voxel + ivec3(0, 0, h.cascade * u_sdfResolution), 0),
                               h.cascade, h.voxel, origin);
     radiance += bounceLight(h.position, h.normal, dir, voxelAlbedoAt(h.cascade, h.voxel));
@@ -85,7 +85,7 @@ vec4 fieldRayRadiance(vec3 origin, vec3 dir, float missSteradians) {
     SdfMarchParams params = sdfDefaultParams(u_update.missDistance);
     params.maxSteps = 128;
     SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, dir, params);
-    if (!h.hit) return vec4(environmentCone(dir, missSteradians), u_update.missDistance);
+    if (!h.hit) return vec4(environmentMissCone(dir, missSteradians), u_update.missDistance);
     SdfVolume vol = sdfCascadeVolume(cs, h.cascade);
     vec3 radiance = sdfHitLight(s_voxelRadiance, s_voxelSides, cs, h, dir);
     radiance += bounceLight(h.position, h.normal, dir, voxelAlbedo(h.cascade, (h.position - vol.origin) / vol.size));

@@ -87,7 +87,9 @@ void main() {
     N = faceforward(N, -V, N);  // a normal seen from behind (a grazing normal map) reflects as its front
     float roughness = texelFetch(s_gbufMaterial, pixel, 0).y;
 #ifdef REFLECTION_ENVIRONMENT
-    imageStore(i_specular, pixel, vec4(environmentSpecular(reflect(-V, N), roughness), 1.0));
+    // Under an environment that is a light of the direct pass, ReSTIR reflects it (with its shadows).
+    vec3 reflected = environmentIsDirectLight() ? vec3(0.0) : environmentSpecular(reflect(-V, N), roughness);
+    imageStore(i_specular, pixel, vec4(reflected, 1.0));
 #else
     vec3 diffuse = imageLoad(i_diffuse, pixel).rgb;
     if (!(roughness < u_reflect.roughness)) {

@@ -30,7 +30,7 @@ vec3 aboveSurface(vec3 d) {
 vec4 rayLight(vec3 d, float steradians, vec3 from) {
     d = aboveSurface(d);
     Hit h;
-    if (!traceRay(g_coneRays.origin, d, 1e30, false, h)) return vec4(environmentCone(d, steradians), 0.0);
+    if (!traceRay(g_coneRays.origin, d, 1e30, false, h)) return vec4(environmentMissCone(d, steradians), 0.0);
     if (g_coneRays.mayStartInside && !hitGeometry(h, d).frontFace && bvhTriangleIsSingleSided(h.triangle))
         return vec4(0.0, 0.0, 0.0, 1.0);
     vec3 hit = (u_worldToVoxel * vec4(g_coneRays.origin + d * h.t, 1.0)).xyz;

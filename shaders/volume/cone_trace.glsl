@@ -164,7 +164,7 @@ vec4 traceCone(ConeTracer t, vec3 origin, vec3 dir, float tanHalf, float start, 
 // opacity) and the environment for what the voxels let through where the cone left the volume;
 // none where it ran out of distance inside (indoors, the environment would leak).
 vec3 coneRadiance(vec4 c, vec3 dir, float tanHalf, bool escaped) {
-    return c.rgb + (escaped ? 1.0 - c.a : 0.0) * environmentCone(dir, coneSteradians(tanHalf));
+    return c.rgb + (escaped ? 1.0 - c.a : 0.0) * environmentMissCone(dir, coneSteradians(tanHalf));
 }
 
 // The diffuse cone sets (vct.cones). Weights sum to 1: for uniform incoming radiance L the result

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <cstdlib>
+#include <fstream>
 
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "environment.h"
 
 namespace gis::test {
 
@@ -347,6 +349,28 @@ double blockRmse(const ImageF& a, const ImageF& b, const std::vector<bool>& inte
             weight += 3 * n;
         }
     return std::sqrt(sum / std::max(weight, 1));
+}
+
+void writeHdrTexels(const std::string& path, int width, int height, const std::function<glm::vec3(glm::vec2)>& radiance) {
+    std::ofstream f(path, std::ios::binary);
+    f << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " << height << " +X " << width << "\n";
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const glm::vec3 c = radiance({(x + 0.5f) / float(width), (y + 0.5f) / float(height)});
+            const float m = std::max(c.r, std::max(c.g, c.b));
+            unsigned char rgbe[4] = {0, 0, 0, 0};
+            if (m > 1e-32f) {
+                int e = 0;
+                const float scale = std::frexp(m, &e) * 256.0f / m;
+                rgbe[0] = (unsigned char)(c.r * scale), rgbe[1] = (unsigned char)(c.g * scale),
+                rgbe[2] = (unsigned char)(c.b * scale), rgbe[3] = (unsigned char)(e + 128);
+            }
+            f.write(reinterpret_cast<const char*>(rgbe), 4);
+        }
+}
+
+void writeHdr(const std::string& path, int width, int height, const std::function<glm::vec3(glm::vec3)>& radiance) {
+    writeHdrTexels(path, width, height, [&](glm::vec2 uv) { return radiance(equirectToDirection(uv)); });
 }
 
 }  // namespace gis::test

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -90,5 +91,11 @@ double darkOverLitRoom(const ImageF& img, double* litSum = nullptr);
 
 // Box-filter downsampling by an integer factor.
 ImageF downsample(const ImageF& img, int factor);
+
+// A flat-RGBE Radiance file (the layout stb_image reads without run-length encoding) of the
+// radiance at each texel centre's (u, v), u from the left, v from the top.
+void writeHdrTexels(const std::string& path, int width, int height, const std::function<glm::vec3(glm::vec2)>& radiance);
+// The same for radiance given by direction (through the CPU mapping, environment.h).
+void writeHdr(const std::string& path, int width, int height, const std::function<glm::vec3(glm::vec3)>& radiance);
 
 }  // namespace gis::test

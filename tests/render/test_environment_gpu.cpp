@@ -25,31 +25,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 const std::string kSky = std::string(GIS_SOURCE_DIR) + "/assets/environments/sky_sun.hdr";
 
-// A flat-RGBE Radiance file (the layout stb_image reads without run-length encoding) of the
-// radiance at each texel centre's (u, v), u from the left, v from the top.
-void writeHdrTexels(const std::string& path, int width, int height, const std::function<glm::vec3(glm::vec2)>& radiance) {
-    std::ofstream f(path, std::ios::binary);
-    f << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " << height << " +X " << width << "\n";
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            const glm::vec3 c = radiance({(x + 0.5f) / float(width), (y + 0.5f) / float(height)});
-            const float m = std::max(c.r, std::max(c.g, c.b));
-            unsigned char rgbe[4] = {0, 0, 0, 0};
-            if (m > 1e-32f) {
-                int e = 0;
-                const float scale = std::frexp(m, &e) * 256.0f / m;
-                rgbe[0] = (unsigned char)(c.r * scale), rgbe[1] = (unsigned char)(c.g * scale),
-                rgbe[2] = (unsigned char)(c.b * scale), rgbe[3] = (unsigned char)(e + 128);
-            }
-            f.write(reinterpret_cast<const char*>(rgbe), 4);
-        }
-}
-
-// The same for radiance given by direction (through the CPU mapping, environment.h).
-void writeHdr(const std::string& path, int width, int height, const std::function<glm::vec3(glm::vec3)>& radiance) {
-    writeHdrTexels(path, width, height, [&](glm::vec2 uv) { return radiance(equirectToDirection(uv)); });
-}
-
 // A white (or grey) sphere on a grey floor, the sky visible above: rays escape in every direction.
 Scene sphereScene(const Material& sphereLook, bool floor) {
     Scene s;

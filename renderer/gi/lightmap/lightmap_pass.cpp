@@ -116,8 +116,8 @@ void LightmapPass::bake(Frame& frame) {
     glProgramUniform1i(p, U_CAUSTICS, 1);
     glProgramUniform1i(p, U_ENV_SAMPLING, params_.environmentSampling ? 1 : 0);
     glProgramUniform1ui(p, U_SEED, s.seed);
-    // Emitters the direct pass lights with are its light; otherwise the bake carries theirs.
-    glProgramUniform1i(p, U_PT_TERM, emittersAreLights(scene_, s) ? kTermIndirect : kTermAll);
+    // The emitters and environment the direct pass lights with are its light; otherwise the bake carries theirs.
+    glProgramUniform1i(p, U_PT_TERM, directPassHasLights(scene_, s) ? kTermIndirect : kTermAll);
     const int batch = std::min(s.samplesPerFrame, params_.samples - done_);
     bake_->trace(done_, batch);
     done_ += batch;
@@ -195,7 +195,7 @@ std::string LightmapPass::cacheKey(const Frame& frame) const {
     }
     id.value(s.environmentRotation), id.value(frame.background());
     id.value(int(s.diffuse)), id.value(int(s.specular)), id.value(s.seed);
-    id.value(emittersAreLights(scene_, s));
+    id.value(emittersAreLights(scene_, s)), id.value(environmentIsLight(scene_, s));
     id.add(atlas_.hash);
     id.value(params_.samples), id.value(params_.bounces), id.value(params_.environmentSampling);
     return id.hex();

@@ -57,7 +57,7 @@ SdfMarchParams marchParams() {
 
 // What a ray along `dir` brings back: the voxel radiance around its hit, or the environment.
 vec3 rayRadiance(SdfHit h, vec3 dir) {
-    return h.hit ? sdfHitLight(s_radiance, s_sides, cascades(), h, dir) : environmentRadiance(dir);
+    return h.hit ? sdfHitLight(s_radiance, s_sides, cascades(), h, dir) : environmentMiss(dir);
 }
 
 // Occlusion closer than the rays' start offset, which the rays step over: the field a little way
