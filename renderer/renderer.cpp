@@ -5,6 +5,7 @@
 #include <set>
 
 #include "debug_view.h"
+#include "emitter_settings.h"
 #include "emitters/emitter_lights.h"
 #include "environment_gpu.h"
 #include "gi/method.h"
@@ -302,6 +303,10 @@ bool requiresRebuild(const RenderSettings& a, const RenderSettings& b) {
         a.shadowCubeSize != b.shadowCubeSize || a.shadows != b.shadows || a.hdr32 != b.hdr32 || a.seed != b.seed ||
         a.view != b.view || a.samplesPerFrame != b.samplesPerFrame || a.environment != b.environment ||
         a.environmentRotation != b.environmentRotation)
+        return true;
+    // A background that is a light of the direct pass decides whether that pass exists and lights
+    // the volume: a new one rebuilds, as a new map does.
+    if (a.background != b.background && (emitterLightSettings(a).environment || emitterLightSettings(b).environment))
         return true;
     // A rebuild parameter of the method or of a shared table whose value differs (defaults included).
     auto differs = [&a, &b](const std::string& prefix, const std::vector<ParamDesc>& rows) {

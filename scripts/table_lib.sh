@@ -9,8 +9,8 @@ render() {  # OUT flags...: renders or exits naming what failed
 compare() {  # TEST REF [diff flags] -> "PSNR / mean ratio"
   "$bin" diff "$@" | awk '/^PSNR sRGB/ {p = $3} /^mean ratio/ {m = $3} END {printf "%.1f dB / %.2f", p, m}'
 }
-ratio() {  # TEST REF -> the mean ratio alone
-  "$bin" diff "$1" "$2" | awk '/^mean ratio/ {printf "%.3f", $3}'
+ratio() {  # TEST REF [diff flags] -> the mean ratio alone
+  "$bin" diff "$@" | awk '/^mean ratio/ {printf "%.3f", $3}'
 }
 
 # The real-scale columns against Cycles at 256x256 (issue #39): cyclesRenders FLAGS... renders the

@@ -25,8 +25,8 @@ constexpr GLenum kAccumulationFormat = GL_RGBA32F;
 constexpr int kReservoirSets = 2;  // this frame's and the history
 }  // namespace
 
-uint64_t EmitterLightPass::targetBytes(int width, int height) {
-    uint64_t perPixel = uint64_t(gl::bytesPerTexel(kAccumulationFormat));
+uint64_t EmitterLightPass::targetBytes(int width, int height, bool environmentLight) {
+    uint64_t perPixel = uint64_t(gl::bytesPerTexel(kAccumulationFormat)) * (environmentLight ? 2 : 1);
     for (GLenum f : kReservoirFormats) perPixel += uint64_t(kReservoirSets) * uint64_t(gl::bytesPerTexel(f));
     return perPixel * uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0));
 }
@@ -43,6 +43,7 @@ EmitterLightPass::EmitterLightPass(RayScene& rays, const RenderSettings& setting
         r->normal = gl::createTexture2D(scope, kReservoirFormats[2], w, h);
     }
     accumulation_ = gl::createTexture2D(scope, kAccumulationFormat, w, h);
+    if (environmentLight_) environmentAccumulation_ = gl::createTexture2D(scope, kAccumulationFormat, w, h);
     candidates_ = buildProgram(kCandidatesProgram);
     spatial_ = buildProgram(kSpatialProgram);
     target_ = emitterLightSettings(settings).accumulate;
@@ -55,6 +56,21 @@ std::vector<std::string> EmitterLightPass::inputs() const {
 std::vector<std::string> EmitterLightPass::stats() const {
     std::string lights = std::to_string(rays_.emitterCount) + " emissive triangles";
     return {lights + (environmentLight_ ? " and the environment" : "") + " as ReSTIR lights"};
+}
+
+std::vector<DebugViewDesc> EmitterLightPass::debugViews() const {
+    if (!environmentLight_) return {};
+    return {{"emitters.environment", "radiance of the environment's direct light (emitters.environment), with its "
+                                     "shadows: the part of the direct view the environment gives"}};
+}
+
+// The environment's running mean, written as it is (a radiance view, as the lighting pass's terms).
+void EmitterLightPass::drawDebugView(const std::string&, const Frame& frame, GLuint target) {
+    if (!readFbo_) readFbo_ = gl::createFramebuffer(), drawFbo_ = gl::createFramebuffer();
+    glNamedFramebufferTexture(readFbo_.id(), GL_COLOR_ATTACHMENT0, environmentAccumulation_.id(), 0);
+    glNamedFramebufferTexture(drawFbo_.id(), GL_COLOR_ATTACHMENT0, target, 0);
+    const int w = frame.settings.width, h = frame.settings.height;
+    glBlitNamedFramebuffer(readFbo_.id(), drawFbo_.id(), 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
 void EmitterLightPass::invalidate(Changes c) {
@@ -123,7 +139,10 @@ void EmitterLightPass::execute(Frame& frame) {
         auto step = frame.step("spatial");
         bindCommon(spatial_.id(), frame, s);
         bindReservoirs(temporal_, history_);
-        gl::bindImages({{emitters::IE_ACCUMULATION, accumulation_.id()}});
+        // Without the environment as a light its part is never written: the unit holds the sum.
+        const GLuint environmentPart = environmentLight_ ? environmentAccumulation_.id() : accumulation_.id();
+        gl::bindImages({{emitters::IE_ACCUMULATION, accumulation_.id()},
+                        {emitters::IE_ENVIRONMENT_ACCUMULATION, environmentPart}});
         gl::dispatchCompute(groupsX, groupsY, 1, "emitters spatial");
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }

@@ -40,9 +40,12 @@ public:
     void invalidate(Changes c) override;
     Progress progress() const override { return {accumulated_, target_, "frames"}; }
     std::vector<std::string> stats() const override;
+    // "emitters.environment": the environment's part of the direct light (with emitters.environment).
+    std::vector<DebugViewDesc> debugViews() const override;
+    void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     static std::vector<ProgramDesc> programs();
     // GPU bytes of the targets the pass allocates at width x height (the memory budget's estimate).
-    static uint64_t targetBytes(int width, int height);
+    static uint64_t targetBytes(int width, int height, bool environmentLight);
 
 private:
     struct Reservoirs {
@@ -52,7 +55,8 @@ private:
     static void bindReservoirs(const Reservoirs& in, const Reservoirs& out);
     RayScene& rays_;
     Reservoirs temporal_, history_;
-    gl::Texture accumulation_;
+    gl::Texture accumulation_, environmentAccumulation_;  // the second with emitters.environment only
+    gl::Object readFbo_, drawFbo_;  // the environment view's copy
     gl::Object candidates_, spatial_;
     gl::UniformBuffer<emitters::RestirBlock> reuse_;
     glm::mat4 previousViewProj_{1.0f};

@@ -32,7 +32,8 @@ inline constexpr gl::UniformSlot kEmitterUniforms[] = {GIS_EMITTER_UNIFORMS(GIS_
     X(IE_SAMPLE_OUT, 3) \
     X(IE_SURFACE_OUT, 4) \
     X(IE_NORMAL_OUT, 5) \
-    X(IE_ACCUMULATION, 6)
+    X(IE_ACCUMULATION, 6) \
+    X(IE_ENVIRONMENT_ACCUMULATION, 7) /* the environment's part of it (emitters.environment) */
 
 enum EmitterBinding : int { GIS_EMITTER_BINDINGS(GIS_BINDING_ENUM) };
 inline constexpr gl::BindingSlot kEmitterBindings[] = {GIS_EMITTER_BINDINGS(GIS_BINDING_SLOT)};

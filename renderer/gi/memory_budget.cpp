@@ -39,7 +39,7 @@ MemoryEstimate estimateGpuMemory(const Scene& scene, const RenderSettings& s) {
     if (deferred) {
         e.parts.push_back({s.hdr32 ? "lighting (RGBA32F)" : "lighting (RGBA16F)", pixels * (s.hdr32 ? 16 : 8)});
         if (directPassHasLights(scene, s))
-            e.parts.push_back({"emitter lights (ReSTIR reservoirs)", EmitterLightPass::targetBytes(s.width, s.height)});
+            e.parts.push_back({"emitter lights (ReSTIR reservoirs)", EmitterLightPass::targetBytes(s.width, s.height, environmentIsLight(scene, s))});
         if (s.shadows && !scene.draws.empty()) {
             uint64_t points = 0, flat = 0;
             for (const Light& l : scene.lights) (l.type == LightType::Point ? points : flat) += 1;

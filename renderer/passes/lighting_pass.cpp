@@ -32,7 +32,8 @@ struct TermView {
 };
 constexpr TermView kTermViews[] = {
     {"direct", "TERM_DIRECT",
-     "radiance of the direct light: punctual lights with their shadows, emissive triangles as lights; "
+     "radiance of the direct light: punctual lights with their shadows, emissive triangles (and the environment "
+     "under emitters.environment) as lights; "
      "direct + indirect.diffuse + indirect.specular + emission = final before tone mapping"},
     {"indirect.diffuse", "TERM_INDIRECT_DIFFUSE",
      "indirect diffuse radiance as lit: the method's indirect.diffuse (or the ambient) x diffuse colour x ao"},

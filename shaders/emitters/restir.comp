@@ -43,6 +43,8 @@ layout(binding = IE_SURFACE_OUT, rgba32f) uniform writeonly image2D i_surfaceOut
 layout(binding = IE_NORMAL_OUT, rgba16f) uniform writeonly image2D i_normalOut;
 #if RESTIR_STAGE == 1
 layout(binding = IE_ACCUMULATION, rgba32f) uniform image2D i_accumulation;  // running mean over still frames
+// The environment's part of it (the emitters.environment debug view): written only when it is a light.
+layout(binding = IE_ENVIRONMENT_ACCUMULATION, rgba32f) uniform image2D i_environmentAccumulation;
 #endif
 
 layout(location = UE_VIEW_PROJ) uniform mat4 u_viewProj;
@@ -441,6 +443,7 @@ void main() {
     if (pixel.x >= size.x || pixel.y >= size.y) return;
     Surface s = loadSurface(pixel, size);
     vec3 radiance = vec3(0.0);
+    bool fromEnvironment = false;
     if (s.valid && anyLight()) {
         Rng rng = makeRng(uvec2(pixel), 2u * u_frame.x + 1u, u_frame.y);
         Combined c = spatialReuse(s, pixel, size, loadReservoir(pixel), rng);
@@ -449,6 +452,7 @@ void main() {
             vec3 L;
             float dist;
             radiance = contribution(s, lightPoint(c.r, s.P), L, dist) * c.r.W;
+            fromEnvironment = c.r.triangle == ENVIRONMENT_SAMPLE;
         } else {
             c.r.W = 0.0;  // kept with W = 0: the visibility reuse of stage 0, for the next frame
         }
@@ -462,5 +466,11 @@ void main() {
     vec4 mean = u_reuse.framesAveraged > 0.0 ? imageLoad(i_accumulation, pixel) : vec4(0.0);
     mean.rgb = min(mean.rgb + (radiance - mean.rgb) / n, vec3(MAX_RADIANCE));
     imageStore(i_accumulation, pixel, vec4(mean.rgb, 1.0));
+    if (environmentLights()) {
+        vec3 environment = fromEnvironment ? radiance : vec3(0.0);
+        vec4 part = u_reuse.framesAveraged > 0.0 ? imageLoad(i_environmentAccumulation, pixel) : vec4(0.0);
+        part.rgb = min(part.rgb + (environment - part.rgb) / n, vec3(MAX_RADIANCE));
+        imageStore(i_environmentAccumulation, pixel, vec4(part.rgb, 1.0));
+    }
 }
 #endif

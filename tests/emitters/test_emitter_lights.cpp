@@ -412,6 +412,15 @@ TEST(EmitterLights, ParametersAreOneListedTable) {
     other = s;
     setParam(other, "emitters.spatial", "5");
     EXPECT_FALSE(requiresRebuild(s, other));
+    // A new background is live, unless the environment is a light of the pass: it then decides
+    // whether the pass exists and lights the GI volume.
+    other = s;
+    other.background = glm::vec3(0.5f);
+    EXPECT_FALSE(requiresRebuild(s, other));
+    setParam(s, "emitters.environment", "true");
+    other = s;
+    other.background = glm::vec3(0.5f);
+    EXPECT_TRUE(requiresRebuild(s, other));
 }
 
 }  // namespace

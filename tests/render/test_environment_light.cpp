@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "cli_util.h"
@@ -77,6 +78,28 @@ TEST(EnvironmentLight, SkyShadowsAreThePathTracersDirectLight) {
         for (int x = 0; x < 2; ++x)
             for (int c = 0; c < 3; ++c)
                 EXPECT_NEAR(a.at(x, y)[c], b.at(x, y)[c], 0.03 * b.at(x, y)[c]) << "quadrant " << x << "," << y << " channel " << c;
+}
+
+// The environment's direct light has a view of its own: under a sky alone it is the whole direct
+// view, and it exists only when the environment is a light.
+TEST(EnvironmentLight, ItsDirectLightHasAViewOfItsOwn) {
+    const Scene scene = roofScene();
+    RenderSettings s = environmentLit("none");
+    s.background = glm::vec3(0.8f, 0.9f, 1.0f);
+    setParam(s, "emitters.accumulate", "4");
+    RenderSettings direct = s, environment = s;
+    direct.view = "direct";
+    environment.view = "emitters.environment";
+    const ImageF a = renderHdr(scene, direct), b = renderHdr(scene, environment);
+    double sum = 0, largest = 0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4) {
+        sum += b.rgba[i];
+        largest = std::max(largest, double(std::abs(a.rgba[i] - b.rgba[i])));
+    }
+    EXPECT_GT(sum, 0.0);
+    EXPECT_LE(largest, 1e-3);
+    setParam(environment, "emitters.environment", "false");
+    EXPECT_THROW(renderHdr(scene, environment), Error);
 }
 
 // A uniform map and a constant of the same value are the same light (drawn by luminance and by

@@ -13,11 +13,13 @@ namespace {
 // add up to the final image, and indirect.diffuse + indirect.specular to pathtrace.indirect.
 const std::vector<DebugViewDesc>& termViews() {
     static const std::vector<DebugViewDesc> views{
-        {"direct", "radiance the first surface receives straight from the lights and emitters (as the lighting "
-                   "pass's direct term); direct + emission + pathtrace.indirect = final before tone mapping"},
+        {"direct", "radiance the first surface receives straight from the lights and emitters, and from the "
+                   "environment under emitters.environment (as the lighting pass's direct term); direct + emission "
+                   "+ pathtrace.indirect = final before tone mapping"},
         {"emission", "emitted radiance seen directly: surfaces' emission, the background elsewhere"},
         {"pathtrace.indirect", "everything after the first bounce: final - direct - emission (indirect diffuse and "
-                               "specular together, the environment's light on the first surface included)"},
+                               "specular together, the environment's light on the first surface included unless it is a "
+                               "light of the direct pass)"},
         {"indirect.diffuse", "the indirect light the first surface's diffuse lobe reflects (pathtrace.indirect split by the "
                              "lobe of its first bounce, per channel)"},
         {"indirect.specular", "the indirect light the first surface's specular lobe reflects: indirect.diffuse + "
