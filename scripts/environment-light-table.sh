@@ -51,8 +51,7 @@ gl=$("$bin" render --scene builtin:cornell --size 8x8 --out "$tmp/gl.png" -v 2>&
       flags=(--gi "$m" --set "emitters.environment=$e")
       render "$tmp/maplit.exr" "${maplit[@]}" "${flags[@]}"
       render "$tmp/atrium.exr" "${atrium[@]}" "${flags[@]}"
-      ms=$(timeout 1800 "$bin" render --out "$tmp/t.png" "${maplit[@]}" "${flags[@]}" --timings --frames 20 2>&1 |
-           awk '$1 == "emitters" && !ms {ms = $2} END {print ms}')
+      ms=$(passMs emitters 20 "${maplit[@]}" "${flags[@]}")
       row="| $m | $e | $(compare "$tmp/maplit.exr" assets/reference/atrium_sky_sun/full.exr)"
       row+=" | $(ratio "$tmp/maplit.exr" assets/reference/atrium_sky_sun/full.exr --mask "$tmp/shade.png")"
       row+=" | $(compare "$tmp/atrium.exr" "$shared/refs/atrium/full.exr")"

@@ -64,8 +64,7 @@ for m in ${methods//,/ }; do
       render "$tmp/helmet.exr" "${helmet[@]}" "${flags[@]}"
       render "$tmp/cornell.exr" "${cornell[@]}" "${flags[@]}"
       render "$tmp/maplit.exr" "${maplit[@]}" "${flags[@]}"
-      ms=$(timeout 1800 "$bin" render --out "$tmp/t.png" "${mirror[@]}" "${flags[@]}" --timings --frames 30 2>&1 |
-           awk '$1 == "reflection" && !ms {ms = $2} END {print ms}')
+      ms=$(passMs reflection 30 "${mirror[@]}" "${flags[@]}")
       row="| $label | $(compare "$tmp/mirror.exr" assets/reference/mirror/full.exr)"
       row+=" | $(compare "$tmp/mirror.exr" assets/reference/mirror/full.exr --mask "$tmp/mask.png")"
       row+=" | $(compare "$tmp/helmet.exr" "$shared/refs/DamagedHelmet_sky/full.exr")"

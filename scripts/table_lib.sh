@@ -9,6 +9,11 @@ render() {  # OUT flags...: renders or exits naming what failed
 compare() {  # TEST REF [diff flags] -> "PSNR / mean ratio"
   "$bin" diff "$@" | awk '/^PSNR sRGB/ {p = $3} /^mean ratio/ {m = $3} END {printf "%.1f dB / %.2f", p, m}'
 }
+passMs() {  # PASS FRAMES render-flags... -> PASS's GPU ms per frame (--timings: every pass every frame), or nothing
+  local pass=$1 frames=$2; shift 2
+  timeout 1800 "$bin" render --out "$tmp/timings.png" "$@" --timings --frames "$frames" 2>&1 |
+    awk -v p="$pass" '$1 == p && !ms {ms = $2} END {print ms}'
+}
 ratio() {  # TEST REF [diff flags] -> the mean ratio alone
   "$bin" diff "$@" | awk '/^mean ratio/ {printf "%.3f", $3}'
 }

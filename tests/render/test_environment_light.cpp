@@ -168,7 +168,9 @@ TEST(EnvironmentLight, ASunInTheMapLightsTheSpotThroughTheRoofEveryMethod) {
         std::printf("[ measured ] %s: sunlit floor %.3f (path tracer %.3f), shaded floor %.4f (%.4f)\n", m.name.c_str(),
                     litMean, litReference, shadedMean, shadedReference);
         EXPECT_NEAR(litMean, litReference, (baseline ? 0.05 : 0.15) * litReference);
-        if (baseline) EXPECT_NEAR(shadedMean, shadedReference, 0.15 * shadedReference);
+        if (baseline) {
+            EXPECT_NEAR(shadedMean, shadedReference, 0.15 * shadedReference);
+        }
         EXPECT_LT(shadedMean, 0.25 * litMean);
     }
 }
@@ -191,8 +193,11 @@ TEST(EnvironmentLight, EveryMethodCountsTheSkyOnce) {
         s.gi = m.name;
         const double mean = channelMean(renderHdr(scene, s), all, true);
         std::printf("[ measured ] %s: mean %.4f, path tracer %.4f (%.3f)\n", m.name.c_str(), mean, target, mean / target);
-        if (m.name == "none" || m.name == "ssao") EXPECT_LT(mean, target);
-        else EXPECT_NEAR(mean, target, 0.1 * target);
+        if (m.name == "none" || m.name == "ssao") {
+            EXPECT_LT(mean, target);
+        } else {
+            EXPECT_NEAR(mean, target, 0.1 * target);
+        }
     }
 }
 
