@@ -80,10 +80,13 @@ bool emittersAreLights(const Scene& scene, const RenderSettings& settings) {
     }
 }
 
-bool environmentIsLight(const Scene& scene, const RenderSettings& settings) {
-    if (!emitterLightSettings(settings).environment) return false;
+bool environmentSendsLight(const Scene& scene, const RenderSettings& settings) {
     const glm::vec3 background = settings.background.value_or(scene.background);
     return !settings.environment.empty() || std::max({background.r, background.g, background.b}) > 0.0f;
+}
+
+bool environmentIsLight(const Scene& scene, const RenderSettings& settings) {
+    return emitterLightSettings(settings).environment && environmentSendsLight(scene, settings);
 }
 
 bool directPassHasLights(const Scene& scene, const RenderSettings& settings) {

@@ -42,8 +42,10 @@ bool sceneHasEmitters(const Scene& scene);
 // pass then runs ReSTIR and the voxel methods light their volume with the emitters.
 bool emittersAreLights(const Scene& scene, const RenderSettings& settings);
 
-// The environment is a light of the direct pass (emitters.environment, and a map or a background
-// above 0): ReSTIR draws candidates from it with a visibility ray each, so its sun and sky cast
+// The environment sends light into the scene: a map, or a background (the settings' or the scene's)
+// above 0.
+bool environmentSendsLight(const Scene& scene, const RenderSettings& settings);
+// The environment is a light of the direct pass (emitters.environment, and it sends light): ReSTIR draws candidates from it with a visibility ray each, so its sun and sky cast
 // shadows under every method; the GI methods' rays that leave the scene then see black
 // (environment.glsl's environmentMiss*) and their volume is lit by it through injection, so it
 // is counted once, as the emitters are under `lights`.

@@ -18,6 +18,12 @@ vec3 cosineDirection(vec3 n, vec2 u) {
     return t * (r * cos(phi)) + b * (r * sin(phi)) + n * sqrt(max(0.0, 1.0 - u.x));
 }
 
+// Uniform direction on the sphere (density 1 / 4 pi): z uniform in [-1, 1] (Archimedes).
+vec3 uniformSphereDirection(vec2 u) {
+    float z = 1.0 - 2.0 * u.x, r = sqrt(max(0.0, 1.0 - z * z)), phi = 2.0 * PI * u.y;
+    return vec3(r * cos(phi), r * sin(phi), z);
+}
+
 // Hammersley point i of n: i / n and the radical inverse of i in base 2 (a low-discrepancy set for
 // the prefiltering integrals, which must not flicker between runs).
 vec2 hammersley(uint i, uint n) { return vec2(float(i) / float(n), float(bitfieldReverse(i)) * 2.3283064365386963e-10); }

@@ -301,8 +301,7 @@ void injectFrameLights(Frame& frame, const VoxelGrid& grid, VoxelRadiance& radia
     lights.shadowCubes = frame.texture(resource::kShadowCubes);
     lights.count = int(frame.scene.cpu.lights.size());
     lights.shadows = frame.settings.shadows;
-    const glm::vec3 background = frame.background();
-    lights.environmentLit = !frame.settings.environment.empty() || glm::any(glm::greaterThan(background, glm::vec3(0.0f)));
+    lights.environmentLit = environmentSendsLight(frame.scene.cpu, frame.settings);
     const EmitterLightSettings emitters = emitterLightSettings(frame.settings);
     lights.emission = EmitterMode(emitters.mode) == EmitterMode::Gi ? 1.0f : 0.0f;
     if (emittersAreLights(frame.scene.cpu, frame.settings)) {

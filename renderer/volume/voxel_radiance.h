@@ -54,7 +54,7 @@ public:
         // The lights of the direct pass, traced through `rays` (inject.comp's TRACED_LIGHT; null:
         // none): with emitters.mode=lights its emissive triangles, `emitterSamples` points per voxel;
         // with emitters.environment the environment, `environmentSamples` directions per voxel
-        // face (the caller binds the environment).
+        // (the caller binds the environment).
         const RayScene* rays = nullptr;
         int emitterSamples = 0, environmentSamples = 0;
         // The environment sends light in from the volume's bounds (a map, or a background above 0).

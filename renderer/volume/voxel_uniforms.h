@@ -26,7 +26,7 @@ namespace gis::voxel {
     X(UV_NORMAL_WEIGHT, 119, 1) /* directional mip from level 0: 1 weigh voxels by |normal . axis|, 2 cull back faces */ \
     X(UV_EMISSION_WEIGHT, 120, 1) /* injection: 1 = emission is a light source of the volume, 0 = not (emitters.mode) */ \
     X(UV_EMITTER_SAMPLES, 121, 1) /* injection with emitter light: emitter count, samples per voxel */ \
-    X(UV_ENVIRONMENT_SAMPLES, 131, 1) /* injection with environment light: directions per face, 0 none */ \
+    X(UV_ENVIRONMENT_SAMPLES, 131, 1) /* injection with environment light: directions per voxel, 0 none */ \
     X(UV_TRACE_JITTER, 122, 1) /* VCT: full pixels per traced texel, the full pixel a texel traces this frame */ \
     X(UV_SPECULAR_ROUGHNESS, 123, 1) /* VCT: above it the specular term is the diffuse cones' */ \
     X(UV_PREV_VIEW_PROJ, 124, 1) \

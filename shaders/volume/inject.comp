@@ -45,7 +45,7 @@ layout(location = UV_EMISSION_WEIGHT) uniform float u_emissionWeight;
 #include "ray_scene.glsl"
 #include "environment.glsl"
 layout(location = UV_EMITTER_SAMPLES) uniform ivec2 u_emitterSamples;  // emitter count, samples per voxel
-layout(location = UV_ENVIRONMENT_SAMPLES) uniform int u_environmentSamples;  // per face; 0: not a light
+layout(location = UV_ENVIRONMENT_SAMPLES) uniform int u_environmentSamples;  // per voxel; 0: not a light
 
 vec3 emitterIrradiance(ivec3 v, vec3 P, vec3 N, bool oriented) {
     Rng rng = makeRng(uvec2(v.x + u_resolution * v.z, v.y), 0u, 0x9e3779b9u);
@@ -101,8 +101,7 @@ vec3 environmentIrradiance(ivec3 v, vec3 origin, vec3 N, bool oriented) {
         } else if (oriented) {
             L = cosineDirection(N, u);
         } else {
-            float z = 1.0 - 2.0 * u.x, r = sqrt(max(0.0, 1.0 - z * z)), phi = 2.0 * PI * u.y;
-            L = vec3(r * cos(phi), r * sin(phi), z);
+            L = uniformSphereDirection(u);
         }
         float cosine = oriented ? dot(N, L) : 0.25;
         float otherPdf = oriented ? max(cosine, 0.0) * INV_PI : 0.25 * INV_PI;
