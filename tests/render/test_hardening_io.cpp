@@ -207,12 +207,12 @@ TEST(Hardening, EveryMethodRendersWithoutAGlError) {
     const char* scenes[] = {"builtin:cornell", "builtin:cornell-area", "builtin:cornell-area --emitters gi"};
     for (const char* scene : scenes)
         for (const gis::GiMethod& m : gis::giMethods()) {
-            // Few samples and updates: the calls are what is checked, not convergence.
+            // Few frames, samples and updates: the calls are what is checked, not convergence.
             const std::string extra = m.name == "pathtrace" || m.name == "ao-reference" ? " --set " + m.name + ".spp=2"
                                       : m.name == "probes" || m.name == "hddagi" ? " --set " + m.name + ".max-updates=2"
                                                                                  : "";
             const gis::test::CliResult r = runCli(std::string("render --gl-debug --scene ") + scene +
-                                                  " --size 32x32 --set emitters.accumulate=2 --gi " + m.name + extra +
+                                                  " --size 32x32 --frames 4 --set emitters.accumulate=2 --gi " + m.name + extra +
                                                   " --out " + quoted(dir + "/" + m.name + ".exr"));
             EXPECT_EQ(r.status, 0) << scene << " " << m.name << ": " << r.err;
             EXPECT_EQ(r.err.find("GL debug [error"), std::string::npos) << scene << " " << m.name << ":\n" << r.err;
