@@ -112,6 +112,7 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
             {"VOLUME_RADIANCE_UNIT", std::to_string(kVolumeRadianceUnit)},
             {"VOLUME_ALBEDO_UNIT", std::to_string(kVolumeAlbedoUnit)},
             {"VOLUME_EMISSION_UNIT", std::to_string(kVolumeEmissionUnit)},
+            {"VOLUME_PUNCTUAL_UNIT", std::to_string(kVolumePunctualUnit)},
             {"ENV_BRDF_UNIT", std::to_string(kEnvironmentBrdfUnit)},
             {"ENV_RADIANCE_UNIT", std::to_string(kEnvironmentRadianceUnit)},
             {"ENV_SPECULAR_UNIT", std::to_string(kEnvironmentSpecularUnit)},

@@ -29,3 +29,21 @@ float spotCone(float cosAngle, float cosOuter, float cosInner) {
     float t = clamp((cosAngle - cosOuter) / max(cosInner - cosOuter, 1e-4), 0.0, 1.0);
     return t * t;
 }
+
+// Irradiance from `light` at P on a surface facing it, the direction towards it and its distance
+// (a directional light's is infinite).
+vec3 lightIrradiance(GpuLight light, vec3 P, out vec3 L, out float dist) {
+    int type = int(light.positionType.w);
+    if (type == LIGHT_DIRECTIONAL) {
+        L = -light.directionRange.xyz;
+        dist = 1e30;
+        return light.radiance.rgb;
+    }
+    vec3 toLight = light.positionType.xyz - P;
+    float d2 = max(dot(toLight, toLight), 1e-20);
+    dist = sqrt(d2);
+    L = toLight / dist;
+    vec3 e = light.radiance.rgb * rangeWindow(dist, light.directionRange.w) / d2;
+    if (type == LIGHT_SPOT) e *= spotCone(dot(-L, light.directionRange.xyz), light.cone.x, light.cone.y);
+    return e;
+}

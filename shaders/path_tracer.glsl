@@ -92,9 +92,7 @@ SurfacePoint shade(Hit hit, vec3 rayDir) {
     s.geometricNormal = g.geometricNormal;
     s.normal = g.normal;
 
-    vec4 color = a.c0 * w.x + a.c1 * w.y + a.c2 * w.z;
-    vec4 baseTex = sampleLayer(m.textures.x, uv);
-    vec3 baseColor = saturate(m.baseColor.rgb * color.rgb * srgbToLinear(baseTex.rgb));
+    vec3 baseColor = hitBaseColor(hit, g);
     vec4 mr = sampleLayer(m.textures.y, uv);
     s.brdf = makeSurfaceBrdf(baseColor, saturate(m.params.x * mr.b), saturate(m.params.y * mr.g), m.params.z);
     s.hasSpecular = u_brdfModels.y == SPECULAR_GGX && (any(greaterThan(s.brdf.f0, vec3(0.0))) || s.brdf.f90 > 0.0);
@@ -104,23 +102,6 @@ SurfacePoint shade(Hit hit, vec3 rayDir) {
     s.emission = emits ? m.emissive.rgb * emissiveTex : vec3(0.0);
     s.emitterPdfPerArea = a.uv2MaterialEmitter.w;
     return s;
-}
-
-// Irradiance at P (facing the light) and the direction/distance to a punctual light.
-vec3 punctualIrradiance(GpuLight light, vec3 P, out vec3 L, out float dist) {
-    int type = int(light.positionType.w);
-    if (type == LIGHT_DIRECTIONAL) {
-        L = -light.directionRange.xyz;
-        dist = 1e30;
-        return light.radiance.rgb;
-    }
-    vec3 toLight = light.positionType.xyz - P;
-    float d2 = max(dot(toLight, toLight), 1e-20);
-    dist = sqrt(d2);
-    L = toLight / dist;
-    vec3 e = light.radiance.rgb * rangeWindow(dist, light.directionRange.w) / d2;
-    if (type == LIGHT_SPOT) e *= spotCone(dot(-L, light.directionRange.xyz), light.cone.x, light.cone.y);
-    return e;
 }
 
 bool visible(vec3 from, vec3 dir, float dist) {
@@ -137,7 +118,7 @@ vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, ino
     for (int i = 0; i < u_lightCount; ++i) {
         vec3 L;
         float dist;
-        vec3 e = punctualIrradiance(u_lights[i], s.position, L, dist);
+        vec3 e = lightIrradiance(u_lights[i], s.position, L, dist);
         float NoL = dot(s.normal, L);
         if (NoL <= 0.0 || dot(s.geometricNormal, L) <= 0.0 || all(equal(e, vec3(0.0)))) continue;
         if (!visible(origin, L, dist * (1.0 - 1e-4))) continue;

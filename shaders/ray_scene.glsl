@@ -128,3 +128,10 @@ RayHitGeometry hitGeometry(Hit hit, vec3 rayDir) {
     return g;
 }
 
+// The base colour at a hit: the material's factor x the vertex colour x the texture.
+vec3 hitBaseColor(Hit hit, RayHitGeometry g) {
+    TriangleAttributes a = u_attributes[hit.triangle];
+    RayMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
+    vec4 color = a.c0 * g.weights.x + a.c1 * g.weights.y + a.c2 * g.weights.z;
+    return saturate(m.baseColor.rgb * color.rgb * srgbToLinear(sampleLayer(m.textures.x, g.uv).rgb));
+}

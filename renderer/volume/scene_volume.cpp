@@ -236,10 +236,11 @@ GLuint SceneVolume::sidesTexture() const {
 }
 
 void SceneVolume::bind() const {
-    glBindSamplers(kVolumeDistanceUnit, kVolumeEmissionUnit + 1 - kVolumeDistanceUnit, nullptr);
+    glBindSamplers(kVolumeDistanceUnit, kVolumePunctualUnit + 1 - kVolumeDistanceUnit, nullptr);
     if (layout_.count > 1) {
         glBindTextureUnit(kVolumeRadianceUnit, radianceAtlas_.id());
         glBindTextureUnit(kVolumeRadianceUnit + kVolumeRadianceUnits - 1, sidesAtlas_.id());
+        glBindTextureUnit(kVolumePunctualUnit, 0);  // the cascades' rays keep their voxels' light
     } else {
         tracedRadiance().bind();
     }

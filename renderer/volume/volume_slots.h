@@ -15,5 +15,6 @@ constexpr int kVolumeRadianceUnit = kVolumeCoarseUnit + 1;
 constexpr int kVolumeRadianceUnits = 8;
 constexpr int kVolumeAlbedoUnit = kVolumeRadianceUnit + kVolumeRadianceUnits;  // the voxels' albedo (a = occupancy)
 constexpr int kVolumeEmissionUnit = kVolumeAlbedoUnit + 1;
+constexpr int kVolumePunctualUnit = kVolumeEmissionUnit + 1;  // level 0's share of the punctual lights (VoxelRadiance::punctual)
 
 }  // namespace gis

@@ -40,8 +40,8 @@ int64_t chainTexels(int n) {
 }  // namespace
 
 int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces, bool unlitOutsides) {
-    // The chain, and the slab voxels' sides (level 0).
-    int64_t bytes = 8 * chainTexels(resolution) + 8 * int64_t(resolution) * resolution * resolution;
+    // The chain, and level 0's slab sides and punctual share.
+    int64_t bytes = 8 * chainTexels(resolution) + 16 * int64_t(resolution) * resolution * resolution;
     if (unlitOutsides) bytes += int64_t(resolution) * resolution * resolution + 4;
     if (anisotropic) bytes += 6 * 8 * chainTexels(resolution / 2);
     if (bounces > 1) bytes += 16 * int64_t(resolution) * resolution * resolution;  // direct light and its sides
@@ -88,6 +88,8 @@ VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::Mem
     sides_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n);
     const GLfloat none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearTexImage(sides_.id(), 0, GL_RGBA, GL_FLOAT, none);  // a feedback volume's: never injected
+    punctual_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n);
+    glClearTexImage(punctual_.id(), 0, GL_RGBA, GL_FLOAT, none);
     if (anisotropic_)
         for (gl::Texture& t : directional_) {
             t = gl::createTexture3D(scope, GL_RGBA16F, n / 2, n / 2, n / 2, levelsFor(n / 2));
@@ -132,6 +134,7 @@ void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
     const gl::Texture& target = bounces_ > 1 ? direct_ : radiance_;
     glBindImageTexture(0, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, (bounces_ > 1 ? directSides_ : sides_).id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(2, punctual_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch3D(n, n, n);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     if (reach_.id()) cullUnlitOutsides(grid, target, lights.environmentLit);
@@ -270,6 +273,7 @@ void VoxelRadiance::restartFeedback(const VoxelGrid& grid, const VoxelRadiance& 
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glCopyImageSubData(injected.radiance().id(), GL_TEXTURE_3D, 0, 0, 0, 0, direct_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
     glCopyImageSubData(injected.sides().id(), GL_TEXTURE_3D, 0, 0, 0, 0, directSides_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    glCopyImageSubData(injected.punctual().id(), GL_TEXTURE_3D, 0, 0, 0, 0, punctual_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
     copyDirectLight();
     buildMips(grid);
 }
@@ -286,6 +290,8 @@ void VoxelRadiance::bind() const {
     textures[7] = sides_.id();
     glBindTextures(kVolumeRadianceUnit, kVolumeRadianceUnits, textures);
     glBindSamplers(kVolumeRadianceUnit, kVolumeRadianceUnits, nullptr);
+    glBindTextureUnit(kVolumePunctualUnit, punctual_.id());
+    glBindSampler(kVolumePunctualUnit, 0);
 }
 
 void voxelizeFrame(Frame& frame, Voxelizer& voxelizer, const std::string& prefix) {

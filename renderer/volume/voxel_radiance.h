@@ -78,12 +78,16 @@ public:
     // counterpart of DDGI's recursive irradiance); it cannot diverge for albedo < 1, as each term
     // is the previous one scaled by albedo times the gathered fraction (at most 1).
     void feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones, const RayScene* rays = nullptr);
-    // At kVolumeRadianceUnit and the six units after it (shaders/volume/cone_trace.glsl's layout).
+    // At kVolumeRadianceUnit and the units after it (shaders/volume/cone_trace.glsl's layout), and
+    // the punctual lights' share at kVolumePunctualUnit.
     void bind() const;
     const gl::Texture& radiance() const { return radiance_; }
     // Level 0's slab voxels (walls thinner than a voxel, shaders/volume/inject.comp): rgb half the
     // difference of their two faces' light, a the slab's axis (1, 2, 3; 0: not a slab).
     const gl::Texture& sides() const { return sides_; }
+    // Level 0's share of the punctual lights (rgb; a 1 where a ray's hit may take it out and light
+    // itself, shaders/volume/cone_rays.glsl; 0 on slabs and empty voxels).
+    const gl::Texture& punctual() const { return punctual_; }
     bool anisotropic() const { return anisotropic_; }
     // UV_ANISOTROPIC for shaders/volume/cone_trace.glsl's makeConeTracer (VOXEL_ISOTROPIC ...).
     int mipMode() const { return !anisotropic_ ? 0 : cullBackfaces_ ? 2 : 1; }
@@ -107,7 +111,7 @@ private:
     void copyDirectLight();
     void downsample(const gl::Texture& source, int sourceLevel, const gl::Texture& target, int targetLevel, int direction,
                     GLuint normals = 0);
-    gl::Texture radiance_, direct_, sides_;
+    gl::Texture radiance_, direct_, sides_, punctual_;
     gl::Texture directSides_;  // with bounces: the sides of the direct light, which each bounce adds to
     Scratch feedbackScratch_;  // feedbackBounce()'s target, kept between updates (made on first need)
     gl::Texture directional_[6];

@@ -90,9 +90,9 @@ float boundaryCrossing(vec3 a, vec3 b, float lo, float hi) {
 // tiny upward part would pick). One voxel, not a blend: a trilinear blend reaches the voxels behind
 // a wall thinner than one. Where the surface's fragments went to the voxel in front (a surface on a
 // voxel boundary), that one.
-vec3 surfaceLight(float resolution, vec3 from, vec3 hit, vec3 dir) {
+vec3 surfaceLight(float resolution, vec3 from, vec3 hit, vec3 dir, out ivec3 v) {
     ivec3 last = ivec3(int(resolution) - 1);
-    ivec3 v = clamp(ivec3(floor(hit + dir * 0.05)), ivec3(0), last);
+    v = clamp(ivec3(floor(hit + dir * 0.05)), ivec3(0), last);
     vec4 light = texelFetch(s_voxelRadiance, v, 0);
     if (light.a <= 0.0) {
         v = clamp(ivec3(floor(hit - dir * 0.5)), ivec3(0), last);

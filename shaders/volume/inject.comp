@@ -17,6 +17,11 @@ layout(binding = 6) uniform sampler2DArrayShadow s_shadowCubes;  // cube faces, 
 layout(rgba16f, binding = 0) uniform writeonly image3D i_radiance;
 // Slab voxels: rgb = (L(+axis face) - L(-axis face)) / 2, a = the slab axis (1, 2, 3: x, y, z); 0 elsewhere.
 layout(rgba16f, binding = 1) uniform writeonly image3D i_sides;
+// The share of i_radiance the punctual lights gave (rgb; a = 1), for the tracers that light a ray's
+// hit with the punctual lights themselves (volume/cone_rays.glsl): a voxel lit as one surface lends
+// its light to every surface in it, the sunlit roof's to the shaded wall under its edge. A slab's
+// (its faces lit apart already) and an empty voxel's: 0.
+layout(rgba16f, binding = 2) uniform writeonly image3D i_punctual;
 
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_VOXEL_TO_WORLD) uniform mat4 u_voxelToWorld;
@@ -115,31 +120,16 @@ vec3 environmentIrradiance(ivec3 v, vec3 origin, vec3 N, bool oriented) {
 }
 #endif
 
-// Irradiance at normal incidence from `light` at P, and the direction towards it.
-vec3 lightIrradiance(GpuLight light, vec3 P, out vec3 L) {
-    int type = int(light.positionType.w);
-    if (type == LIGHT_DIRECTIONAL) {
-        L = -light.directionRange.xyz;
-        return light.radiance.rgb;
-    }
-    vec3 toLight = light.positionType.xyz - P;
-    float d2 = max(dot(toLight, toLight), 1e-30);
-    float d = sqrt(d2);
-    L = toLight / d;
-    vec3 e = light.radiance.rgb * rangeWindow(d, light.directionRange.w) / d2;
-    if (type == LIGHT_SPOT) e *= spotCone(dot(-L, light.directionRange.xyz), light.cone.x, light.cone.y);
-    return e;
-}
-
 // Irradiance from the punctual lights on a surface at P with normal N (oriented; else lit from
 // every side at half strength), the shadow looked up at Ps.
 vec3 punctualIrradiance(vec3 P, vec3 Ps, vec3 N, bool oriented) {
     vec3 irradiance = vec3(0.0);
     for (int i = 0; i < u_lightCount; ++i) {
         vec3 L;
+        float dist;
         // Irradiance at the centre (the surface is within a voxel of it; the shadow lookup point is
         // not, and near a light the inverse-square law would overshoot there).
-        vec3 e = lightIrradiance(u_lights[i], P, L);
+        vec3 e = lightIrradiance(u_lights[i], P, L, dist);
         float cosine = oriented ? max(dot(N, L), 0.0) : 0.5;
         if (cosine <= 0.0 || all(equal(e, vec3(0.0)))) continue;
         irradiance += e * cosine * shadowVisibility(u_lights[i], Ps, N, cosine);
@@ -154,6 +144,7 @@ void main() {
     if (albedo.a == 0.0) {
         imageStore(i_radiance, v, vec4(0.0));
         imageStore(i_sides, v, vec4(0.0));
+        imageStore(i_punctual, v, vec4(0.0));
         return;
     }
     vec3 meanNormal = texelFetch(s_normal, v, 0).xyz * 2.0 - 1.0;
@@ -165,7 +156,7 @@ void main() {
     bool oriented = len > VOXEL_TWO_SIDED && slab < 0;
     vec3 N = oriented ? meanNormal / len : vec3(0.0, 1.0, 0.0);
     vec3 P = (u_voxelToWorld * vec4(vec3(v) + 0.5, 1.0)).xyz;
-    vec3 irradiance, difference = vec3(0.0);
+    vec3 irradiance, difference = vec3(0.0), punctual = vec3(0.0);
     if (slab >= 0) {
         // Each face's shadow one voxel in front of it, on its own side of the wall.
         vec3 A = vec3(0.0);
@@ -181,7 +172,7 @@ void main() {
     } else {
         // Look the shadow up one voxel in front of the surface: the voxel centre may lie behind it.
         vec3 origin = P + N * (oriented ? u_voxelSize : 0.0);
-        irradiance = punctualIrradiance(P, origin, N, oriented);
+        irradiance = punctual = punctualIrradiance(P, origin, N, oriented);
 #if TRACED_LIGHT
         if (u_environmentSamples > 0) irradiance += environmentIrradiance(v, origin, N, oriented);
 #endif
@@ -193,4 +184,6 @@ void main() {
     imageStore(i_radiance, v, vec4(min(finiteOrZero(radiance), vec3(MAX_HALF_FLOAT)), 1.0));
     vec3 sides = clamp(finiteOrZero(albedo.rgb * INV_PI * difference), vec3(-MAX_HALF_FLOAT), vec3(MAX_HALF_FLOAT));
     imageStore(i_sides, v, vec4(sides, float(slab + 1)));
+    vec3 punctualRadiance = min(finiteOrZero(albedo.rgb * INV_PI * punctual), vec3(MAX_HALF_FLOAT));
+    imageStore(i_punctual, v, slab >= 0 ? vec4(0.0) : vec4(punctualRadiance, 1.0));
 }
