@@ -83,7 +83,6 @@ SurfacePoint shade(Hit hit, vec3 rayDir) {
     RayHitGeometry g = hitGeometry(hit, rayDir);
     TriangleAttributes a = u_attributes[hit.triangle];
     RayMaterial m = u_materials[int(a.uv2MaterialEmitter.z)];
-    vec3 w = g.weights;
     vec2 uv = g.uv;
     bool frontFace = g.frontFace;
 
