@@ -16,5 +16,12 @@ constexpr int kVolumeRadianceUnits = 8;
 constexpr int kVolumeAlbedoUnit = kVolumeRadianceUnit + kVolumeRadianceUnits;  // the voxels' albedo (a = occupancy)
 constexpr int kVolumeEmissionUnit = kVolumeAlbedoUnit + 1;
 constexpr int kVolumePunctualUnit = kVolumeEmissionUnit + 1;  // level 0's share of the punctual lights (VoxelRadiance::punctual)
+// The frame's shadow maps, by which the tracers light their hits (shaders/volume/hit_light.glsl).
+constexpr int kVolumeShadowMapsUnit = kVolumePunctualUnit + 1;
+constexpr int kVolumeShadowCubesUnit = kVolumeShadowMapsUnit + 1;
+// And the frame's lights, at a storage binding of their own: a ray scene binds its own copy of the
+// lights, without shadow maps, at the usual one. Above every other storage binding (the non-finite
+// counters' is 8).
+constexpr int kVolumeHitLightsBinding = 9;
 
 }  // namespace gis

@@ -1,5 +1,6 @@
 #include "volume/voxel_radiance.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "emitter_settings.h"
@@ -111,6 +112,7 @@ void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
     const bool traced = emitterSamples > 0 || environmentSamples > 0;
     if (traced && !tracedInjectProgram_.id()) tracedInjectProgram_ = buildProgram(kTracedInjectProgram);
     const GLuint p = traced ? tracedInjectProgram_.id() : injectProgram_.id();
+    hitLights_ = lights;
     if (traced) {
         lights.rays->bind(7);  // inject.comp's RAY_SCENE_TEXTURE_UNIT; SSBOs 1-5 (0: the frame's lights, below)
         glProgramUniform2i(p, UV_EMITTER_SAMPLES, int(lights.rays->emitterCount), emitterSamples);
@@ -274,6 +276,7 @@ void VoxelRadiance::restartFeedback(const VoxelGrid& grid, const VoxelRadiance& 
     glCopyImageSubData(injected.radiance().id(), GL_TEXTURE_3D, 0, 0, 0, 0, direct_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
     glCopyImageSubData(injected.sides().id(), GL_TEXTURE_3D, 0, 0, 0, 0, directSides_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
     glCopyImageSubData(injected.punctual().id(), GL_TEXTURE_3D, 0, 0, 0, 0, punctual_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    hitLights_ = injected.hitLights_;
     copyDirectLight();
     buildMips(grid);
 }
@@ -290,8 +293,18 @@ void VoxelRadiance::bind() const {
     textures[7] = sides_.id();
     glBindTextures(kVolumeRadianceUnit, kVolumeRadianceUnits, textures);
     glBindSamplers(kVolumeRadianceUnit, kVolumeRadianceUnits, nullptr);
-    glBindTextureUnit(kVolumePunctualUnit, punctual_.id());
-    glBindSampler(kVolumePunctualUnit, 0);
+    bindHitLights();
+}
+
+void VoxelRadiance::bindHitLights() const {
+    const GLuint textures[3] = {punctual_.id(), hitLights_.shadowMaps, hitLights_.shadowCubes};
+    glBindTextures(kVolumePunctualUnit, 3, textures);
+    glBindSamplers(kVolumePunctualUnit, 3, nullptr);
+    // The scene's lights alone (the buffer is padded for the lighting pass's uniform block): the
+    // hits' loop runs over u_hitLights.length(). With none, one padding light, which sends nothing.
+    if (hitLights_.buffer)
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kVolumeHitLightsBinding, hitLights_.buffer, 0,
+                          GLsizeiptr(std::max(hitLights_.count, 1) * sizeof(GpuLight)));
 }
 
 void voxelizeFrame(Frame& frame, Voxelizer& voxelizer, const std::string& prefix) {

@@ -79,8 +79,11 @@ public:
     // is the previous one scaled by albedo times the gathered fraction (at most 1).
     void feedbackBounce(const VoxelGrid& grid, const ConeSettings& cones, const RayScene* rays = nullptr);
     // At kVolumeRadianceUnit and the units after it (shaders/volume/cone_trace.glsl's layout), and
-    // the punctual lights' share at kVolumePunctualUnit.
+    // the hits' lights (bindHitLights).
     void bind() const;
+    // What shaders/volume/hit_light.glsl reads: the punctual share at kVolumePunctualUnit, and the
+    // lights and shadow maps of the last inject() (volume_slots.h).
+    void bindHitLights() const;
     const gl::Texture& radiance() const { return radiance_; }
     // Level 0's slab voxels (walls thinner than a voxel, shaders/volume/inject.comp): rgb half the
     // difference of their two faces' light, a the slab's axis (1, 2, 3; 0: not a slab).
@@ -112,6 +115,7 @@ private:
     void downsample(const gl::Texture& source, int sourceLevel, const gl::Texture& target, int targetLevel, int direction,
                     GLuint normals = 0);
     gl::Texture radiance_, direct_, sides_, punctual_;
+    Lights hitLights_;  // the last inject()'s, for bindHitLights
     gl::Texture directSides_;  // with bounces: the sides of the direct light, which each bounce adds to
     Scratch feedbackScratch_;  // feedbackBounce()'s target, kept between updates (made on first need)
     gl::Texture directional_[6];

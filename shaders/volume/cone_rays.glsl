@@ -8,17 +8,10 @@
 // neither the solid's far side nor the sky beyond it; from a pixel's surface it met the back of an
 // open surface, which the path tracer, as Cycles, lights from both sides. The includer defines
 // CONE_RAYS before volume/cone_trace.glsl, includes ray_scene.glsl, declares u_worldToVoxel and
-// u_resolution, binds the ray scene (its lights too) and sets g_coneRays before gathering.
-//
-// The punctual lights' share of a hit's light is the hit's own, not its voxel's: the voxel was lit
-// as one surface facing its mean normal, and lends that light to every surface in it, so a wall
-// facing away from the sun under a sunlit roof's edge, or a column's shaded side, showed sunlight
-// (the atrium's shaded floor took 1.3-1.8x the path tracer's first bounce with 64^3 voxels). The
-// hit takes the voxel's punctual share out (inject.comp's i_punctual) and lights itself with each
-// light and a shadow ray, as the path tracer does; the rest (emission, the direct pass's lights,
-// bounces) stays the voxel's. Slabs keep their voxel's light: their faces are lit apart already.
-#include "lights.glsl"
-layout(binding = VOLUME_PUNCTUAL_UNIT) uniform sampler3D s_voxelPunctual;
+// u_resolution, binds the ray scene and the volume, and sets g_coneRays before gathering. A hit
+// lights itself with the punctual lights (volume/hit_light.glsl) unless it lies in a slab, whose
+// faces are lit apart already.
+#include "volume/hit_light.glsl"
 struct ConeRaySource {
     vec3 origin;          // world, off the surface
     float rotation;       // every cone's turn of its rays, in [0, 1)
@@ -35,23 +28,6 @@ vec3 aboveSurface(vec3 d) {
     return below < 0.0 ? d - 2.0 * below * g_coneRays.geometricNormal : d;
 }
 
-// The punctual lights' light a hit reflects (Lambertian with its base colour, as a voxel's is),
-// each light with its shadow ray.
-vec3 hitPunctualLight(Hit h, RayHitGeometry g) {
-    vec3 origin = offsetRayOrigin(g.position, g.geometricNormal);
-    vec3 irradiance = vec3(0.0);
-    for (int i = 0; i < u_lights.length(); ++i) {
-        vec3 L;
-        float dist;
-        vec3 e = lightIrradiance(u_lights[i], g.position, L, dist);
-        float cosine = dot(g.normal, L);
-        if (cosine <= 0.0 || dot(g.geometricNormal, L) <= 0.0 || all(equal(e, vec3(0.0)))) continue;
-        Hit shadow;
-        if (!traceRay(origin, L, dist * (1.0 - 1e-4), true, shadow)) irradiance += e * cosine;
-    }
-    return hitBaseColor(h, g) * INV_PI * irradiance;
-}
-
 // What the ray along d brings: a surface's light, nothing where it started inside a solid, or the
 // environment (over `steradians` around d) where it leaves the scene; a = 1 where it met something.
 vec4 rayLight(vec3 d, float steradians, vec3 from) {
@@ -63,8 +39,11 @@ vec4 rayLight(vec3 d, float steradians, vec3 from) {
     vec3 hit = (u_worldToVoxel * vec4(g_coneRays.origin + d * h.t, 1.0)).xyz;
     ivec3 v;
     vec3 light = surfaceLight(float(u_resolution), from, hit, d, v);
-    vec4 punctual = texelFetch(s_voxelPunctual, v, 0);
-    if (punctual.a > 0.0) light = max(light - punctual.rgb, vec3(0.0)) + hitPunctualLight(h, hitGeometry(h, d));
+    if (voxelSlabAxis(texelFetch(s_voxelSides, v, 0)) < 0) {
+        RayHitGeometry g = hitGeometry(h, d);
+        light = withHitPunctualLight(light, texelFetch(s_voxelPunctual, v, 0), g.position, g.geometricNormal,
+                                     hitBaseColor(h, g));
+    }
     return vec4(light, 1.0);
 }
 

@@ -17,10 +17,8 @@ layout(binding = 6) uniform sampler2DArrayShadow s_shadowCubes;  // cube faces, 
 layout(rgba16f, binding = 0) uniform writeonly image3D i_radiance;
 // Slab voxels: rgb = (L(+axis face) - L(-axis face)) / 2, a = the slab axis (1, 2, 3: x, y, z); 0 elsewhere.
 layout(rgba16f, binding = 1) uniform writeonly image3D i_sides;
-// The share of i_radiance the punctual lights gave (rgb; a = 1), for the tracers that light a ray's
-// hit with the punctual lights themselves (volume/cone_rays.glsl): a voxel lit as one surface lends
-// its light to every surface in it, the sunlit roof's to the shaded wall under its edge. A slab's
-// (its faces lit apart already) and an empty voxel's: 0.
+// The share of i_radiance's mean the punctual lights gave (rgb; a = occupancy, as i_radiance), which
+// the tracers' hits take out to light themselves (volume/hit_light.glsl).
 layout(rgba16f, binding = 2) uniform writeonly image3D i_punctual;
 
 layout(location = UV_RESOLUTION) uniform int u_resolution;
@@ -167,7 +165,7 @@ void main() {
         // that blend a slab's faces (coarser levels and cascades, trilinear lookups) carried that
         // sky into the rooms behind (builtin:building's hall at 1.53-1.72 of Cycles' mean, 1.06-1.14
         // without it). What is lost is the sky's bounce off thin walls.
-        irradiance = 0.5 * (front + back);
+        irradiance = punctual = 0.5 * (front + back);
         difference = 0.5 * (front - back);
     } else {
         // Look the shadow up one voxel in front of the surface: the voxel centre may lie behind it.
@@ -185,5 +183,5 @@ void main() {
     vec3 sides = clamp(finiteOrZero(albedo.rgb * INV_PI * difference), vec3(-MAX_HALF_FLOAT), vec3(MAX_HALF_FLOAT));
     imageStore(i_sides, v, vec4(sides, float(slab + 1)));
     vec3 punctualRadiance = min(finiteOrZero(albedo.rgb * INV_PI * punctual), vec3(MAX_HALF_FLOAT));
-    imageStore(i_punctual, v, slab >= 0 ? vec4(0.0) : vec4(punctualRadiance, 1.0));
+    imageStore(i_punctual, v, vec4(punctualRadiance, 1.0));
 }
