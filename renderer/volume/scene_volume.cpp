@@ -11,8 +11,8 @@ namespace gis {
 namespace {
 auto tied(const VolumeRequest& r) {
     return std::tie(r.method, r.resolution, r.resolutionKey, r.conservative, r.conservativeKey, r.marginVoxels,
-                    r.anisotropic, r.cullBackfaces, r.cullUnlitOutsides, r.mips, r.bounces, r.distanceField, r.jfa, r.occupancy,
-                    r.scroll, r.feedback, r.cascades, r.cascadeExtent);
+                    r.anisotropic, r.cullBackfaces, r.cullUnlitOutsides, r.hitLights, r.mips, r.bounces, r.distanceField,
+                    r.jfa, r.occupancy, r.scroll, r.feedback, r.cascades, r.cascadeExtent);
 }
 
 // The members of an aggregate, counted as the most values it can be brace-initialised from (C++17
@@ -67,7 +67,7 @@ bool VolumeRequest::operator==(const VolumeRequest& o) const { return tied(*this
 
 int64_t sceneVolumeBytes(const VolumeRequest& r, int cascades) {
     const int n = r.resolution;
-    const int64_t perCascade = voxelGridBytes(n) + voxelRadianceBytes(n, r.anisotropic, r.bounces, r.cullUnlitOutsides);
+    const int64_t perCascade = voxelGridBytes(n) + voxelRadianceBytes(n, r.anisotropic, r.bounces, r.cullUnlitOutsides, r.hitLights);
     return cascades * perCascade + (r.distanceField ? distanceFieldBuildBytes(n, cascades) : 0) +
            (r.occupancy ? occupancyBytes(n, cascades) : 0) + radianceAtlasBytes(n, cascades);
 }
@@ -95,7 +95,7 @@ SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::M
         const SdfVolume v = layout_.volume(i, layout_.centredOffset(i, layout_.scene.origin + 0.5f * layout_.scene.size));
         c.voxelizer = std::make_unique<Voxelizer>(fitOf(v), mode_, scope_, request.conservativeKey);
         c.radiance = std::make_unique<VoxelRadiance>(n, request.anisotropic, request.bounces, scope_, request.cullBackfaces,
-                                                     request.cullUnlitOutsides);
+                                                     request.cullUnlitOutsides, request.hitLights);
     }
     if (request.distanceField)
         field_ = std::make_unique<DistanceField>(layout_.volume(count - 1, glm::ivec3(0)), scope_, count);
@@ -109,7 +109,8 @@ SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::M
         sidesAtlas_ = gl::createTexture3D(scope_, GL_RGBA16F, n, n, n * count);  // read by texelFetch
     }
     // Two bounces: the sums and the bounce targets, no more.
-    if (request.feedback) feedback_ = std::make_unique<VoxelRadiance>(n, request.anisotropic, 2, scope_, request.cullBackfaces);
+    if (request.feedback)
+        feedback_ = std::make_unique<VoxelRadiance>(n, request.anisotropic, 2, scope_, request.cullBackfaces, false, request.hitLights);
 }
 
 void SceneVolume::invalidate(Changes c) {

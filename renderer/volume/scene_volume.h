@@ -44,6 +44,9 @@ struct VolumeRequest {
     // The voxels' light: directional mips (cones), back faces left out of them, further bounces.
     bool anisotropic = false, cullBackfaces = false, mips = false;
     bool cullUnlitOutsides = false;   // surfaces facing air no light reaches leave the light (exterior.comp)
+    // The tracers' hits light themselves with the punctual lights (shaders/volume/hit_light.glsl):
+    // level 0 keeps the punctual lights' share of its light (VoxelRadiance::punctual).
+    bool hitLights = false;
     int bounces = 1;
     bool distanceField = false;
     JfaVariant jfa = JfaVariant::OnePlusJfa;

@@ -40,17 +40,18 @@ int64_t chainTexels(int n) {
 }
 }  // namespace
 
-int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces, bool unlitOutsides) {
-    // The chain, and level 0's slab sides and punctual share.
-    int64_t bytes = 8 * chainTexels(resolution) + 16 * int64_t(resolution) * resolution * resolution;
+int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces, bool unlitOutsides, bool hitLights) {
+    // The chain, and level 0's slab sides (and punctual share).
+    const int64_t level0 = int64_t(resolution) * resolution * resolution;
+    int64_t bytes = 8 * chainTexels(resolution) + (hitLights ? 16 : 8) * level0;
     if (unlitOutsides) bytes += int64_t(resolution) * resolution * resolution + 4;
     if (anisotropic) bytes += 6 * 8 * chainTexels(resolution / 2);
     if (bounces > 1) bytes += 16 * int64_t(resolution) * resolution * resolution;  // direct light and its sides
     return bytes;
 }
 
-int64_t voxelFeedbackBytes(int resolution, bool anisotropic) {
-    return voxelRadianceBytes(resolution, anisotropic, 2) + 16 * int64_t(resolution) * resolution * resolution;
+int64_t voxelFeedbackBytes(int resolution, bool anisotropic, bool hitLights) {
+    return voxelRadianceBytes(resolution, anisotropic, 2, false, hitLights) + 16 * int64_t(resolution) * resolution * resolution;
 }
 
 const ProgramDesc kInjectProgram{"voxel_inject", {"volume/inject.comp"}, {}};
@@ -75,9 +76,9 @@ std::vector<ProgramDesc> VoxelRadiance::programs() {
 }
 
 VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::MemoryScope& scope, bool cullBackfaces,
-                             bool cullUnlitOutsides)
+                             bool cullUnlitOutsides, bool hitLights)
     : coneBlock_(scope), scope_(scope), anisotropic_(anisotropic && n >= 2), cullBackfaces_(cullBackfaces && anisotropic_), bounces_(bounces) {
-    checkVoxelBudget(n, voxelRadianceBytes(n, anisotropic_, bounces, cullUnlitOutsides), scope.owner);
+    checkVoxelBudget(n, voxelRadianceBytes(n, anisotropic_, bounces, cullUnlitOutsides, hitLights), scope.owner);
     if (cullUnlitOutsides) {
         reach_ = gl::createTexture3D(scope, GL_R8UI, n, n, n);
         changed_ = gl::createBuffer(scope, 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -89,8 +90,10 @@ VoxelRadiance::VoxelRadiance(int n, bool anisotropic, int bounces, const gl::Mem
     sides_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n);
     const GLfloat none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearTexImage(sides_.id(), 0, GL_RGBA, GL_FLOAT, none);  // a feedback volume's: never injected
-    punctual_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n);
-    glClearTexImage(punctual_.id(), 0, GL_RGBA, GL_FLOAT, none);
+    if (hitLights) {
+        punctual_ = gl::createTexture3D(scope, GL_RGBA16F, n, n, n);
+        glClearTexImage(punctual_.id(), 0, GL_RGBA, GL_FLOAT, none);
+    }
     if (anisotropic_)
         for (gl::Texture& t : directional_) {
             t = gl::createTexture3D(scope, GL_RGBA16F, n / 2, n / 2, n / 2, levelsFor(n / 2));
@@ -136,7 +139,9 @@ void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
     const gl::Texture& target = bounces_ > 1 ? direct_ : radiance_;
     glBindImageTexture(0, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, (bounces_ > 1 ? directSides_ : sides_).id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(2, punctual_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    // No texture without hitLights: the image unit is unbound and the stores have no effect (GL 4.5, 8.26).
+    if (punctual_.id()) glBindImageTexture(2, punctual_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    else glBindImageTexture(2, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch3D(n, n, n);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     if (reach_.id()) cullUnlitOutsides(grid, target, lights.environmentLit);
@@ -275,7 +280,8 @@ void VoxelRadiance::restartFeedback(const VoxelGrid& grid, const VoxelRadiance& 
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glCopyImageSubData(injected.radiance().id(), GL_TEXTURE_3D, 0, 0, 0, 0, direct_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
     glCopyImageSubData(injected.sides().id(), GL_TEXTURE_3D, 0, 0, 0, 0, directSides_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
-    glCopyImageSubData(injected.punctual().id(), GL_TEXTURE_3D, 0, 0, 0, 0, punctual_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    if (punctual_.id() && injected.punctual().id())
+        glCopyImageSubData(injected.punctual().id(), GL_TEXTURE_3D, 0, 0, 0, 0, punctual_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
     hitLights_ = injected.hitLights_;
     copyDirectLight();
     buildMips(grid);

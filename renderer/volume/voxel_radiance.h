@@ -32,18 +32,20 @@ struct ConeSettings {
 
 // Bytes of the radiance chains at this resolution (for the budget check before allocating).
 // unlitOutsides: with the reach grid cullUnlitOutsides() floods (one byte a voxel).
-int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces, bool unlitOutsides = false);
+// hitLights: level 0's punctual share (punctual()).
+int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces, bool unlitOutsides = false, bool hitLights = false);
 // Bytes of a feedback volume (VoxelRadiance::feedbackBounce) at this resolution: its chains, its
 // direct light and its scratch level, each with its slab sides.
-int64_t voxelFeedbackBytes(int resolution, bool anisotropic);
+int64_t voxelFeedbackBytes(int resolution, bool anisotropic, bool hitLights = false);
 
 class VoxelRadiance {
 public:
     // cullBackfaces: the directional chains leave out the voxels a cone meets from behind, so a
     // cone never sees the surface it leaves (only with anisotropic). cullUnlitOutsides: inject()
     // leaves out the surfaces that face air no light reaches (shaders/volume/exterior.comp).
+    // hitLights: level 0 keeps its punctual share for tracers whose hits light themselves.
     VoxelRadiance(int resolution, bool anisotropic, int bounces, const gl::MemoryScope& scope,
-                  bool cullBackfaces = false, bool cullUnlitOutsides = false);
+                  bool cullBackfaces = false, bool cullUnlitOutsides = false, bool hitLights = false);
     struct Lights {
         GLuint buffer = 0, shadowMaps = 0, shadowCubes = 0;
         int count = 0;
@@ -88,8 +90,9 @@ public:
     // Level 0's slab voxels (walls thinner than a voxel, shaders/volume/inject.comp): rgb half the
     // difference of their two faces' light, a the slab's axis (1, 2, 3; 0: not a slab).
     const gl::Texture& sides() const { return sides_; }
-    // Level 0's share of the punctual lights (rgb; a 1 where a ray's hit may take it out and light
-    // itself, shaders/volume/cone_rays.glsl; 0 on slabs and empty voxels).
+    // Level 0's share of the punctual lights (rgb, premultiplied; a = occupancy), which a ray's hit
+    // takes out to light itself (shaders/volume/hit_light.glsl); with hitLights only (else no texture,
+    // and injection's stores to it do nothing).
     const gl::Texture& punctual() const { return punctual_; }
     bool anisotropic() const { return anisotropic_; }
     // UV_ANISOTROPIC for shaders/volume/cone_trace.glsl's makeConeTracer (VOXEL_ISOTROPIC ...).

@@ -320,9 +320,10 @@ GiMethod vctMethod() {
         const uint64_t n = uint64_t(v.resolution);
         std::vector<std::pair<std::string, uint64_t>> rows{
             {"VCT voxel grid and voxelization sums", uint64_t(voxelGridBytes(int(n)))},
-            {"VCT radiance mips", uint64_t(voxelRadianceBytes(int(n), v.anisotropic, v.feedback ? 1 : v.bounces, v.unlitOutsides == 0))},
+            {"VCT radiance mips",
+             uint64_t(voxelRadianceBytes(int(n), v.anisotropic, v.feedback ? 1 : v.bounces, v.unlitOutsides == 0, true))},
             {"VCT screen targets", screenTargetBytes(v, s.width, s.height)}};
-        if (v.feedback) rows.push_back({"VCT bounce feedback", uint64_t(voxelFeedbackBytes(int(n), v.anisotropic))});
+        if (v.feedback) rows.push_back({"VCT bounce feedback", uint64_t(voxelFeedbackBytes(int(n), v.anisotropic, true))});
         return rows;
     };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<VctPass>(b.services, b.settings)); };

@@ -19,6 +19,7 @@ VolumeRequest vctVolumeRequest(const VctSettings& s) {
     r.conservativeKey = s.conservativeAsked() ? "vct.conservative" : "";
     r.cullBackfaces = s.backfaces == 1;
     r.cullUnlitOutsides = s.unlitOutsides == 0;
+    r.hitLights = true;  // its rays' hits (vct.sky-rays, a live parameter)
     r.marginVoxels = r.cullBackfaces ? 0.5f : kVolumeMarginVoxels;
     r.anisotropic = s.anisotropic;
     r.mips = true;
