@@ -7,8 +7,12 @@
 // Receiver-side bias: move the lookup along the normal by a few shadow-map texels, more at grazing
 // light, so a lit plane never shadows itself (acne) and contact shadows stay (little peter-panning).
 const float SHADOW_NORMAL_OFFSET_TEXELS = 1.5;
-// 3x3 taps, each a hardware 2x2 comparison (bilinear PCF): a soft edge about 4 texels wide.
-const int PCF_RADIUS = 1;
+// 3x3 taps, each a hardware 2x2 comparison (bilinear PCF): a soft edge about 4 texels wide. An
+// includer whose lookups are averaged over many rays anyway may take one tap (SHADOW_PCF_RADIUS 0).
+#ifndef SHADOW_PCF_RADIUS
+#define SHADOW_PCF_RADIUS 1
+#endif
+const int PCF_RADIUS = SHADOW_PCF_RADIUS;
 // The kinds of light the including shader meets: point (cube maps) and directional or spot (2D
 // maps), both unless it says. The lighting pass compiles the mix the scene has, since on llvmpipe
 // even a branch no pixel takes costs a masked pass through its loop (~12% of that pass).

@@ -8,9 +8,10 @@
 // neither the solid's far side nor the sky beyond it; from a pixel's surface it met the back of an
 // open surface, which the path tracer, as Cycles, lights from both sides. The includer defines
 // CONE_RAYS before volume/cone_trace.glsl, includes ray_scene.glsl, declares u_worldToVoxel and
-// u_resolution, binds the ray scene and the volume, and sets g_coneRays before gathering. A hit
-// lights itself with the punctual lights (volume/hit_light.glsl) unless it lies in a slab, whose
-// faces are lit apart already.
+// u_resolution, binds the ray scene and the volume, and sets g_coneRays before gathering. A pixel's
+// ray's hit lights itself with the punctual lights (volume/hit_light.glsl) unless it lies in a slab,
+// whose faces are lit apart already; the voxels' bounces keep their voxels' light (lit there too,
+// the atrium measured the same and the bounces cost 40% more: renderer/gi/vct/README.md).
 #include "volume/hit_light.glsl"
 struct ConeRaySource {
     vec3 origin;          // world, off the surface
@@ -39,7 +40,8 @@ vec4 rayLight(vec3 d, float steradians, vec3 from) {
     vec3 hit = (u_worldToVoxel * vec4(g_coneRays.origin + d * h.t, 1.0)).xyz;
     ivec3 v;
     vec3 light = surfaceLight(float(u_resolution), from, hit, d, v);
-    if (voxelSlabAxis(texelFetch(s_voxelSides, v, 0)) < 0) {
+    bool fromPixel = !g_coneRays.mayStartInside;
+    if (fromPixel && voxelSlabAxis(texelFetch(s_voxelSides, v, 0)) < 0) {
         RayHitGeometry g = hitGeometry(h, d);
         light = withHitPunctualLight(light, texelFetch(s_voxelPunctual, v, 0), g.position, g.geometricNormal,
                                      hitBaseColor(h, g));

@@ -17,6 +17,9 @@ layout(binding = VOLUME_SHADOW_CUBES_UNIT) uniform sampler2DArrayShadow s_shadow
 // A light that casts no shadow has no shadow layer (shadowVisibility: lit); --no-shadows leaves
 // every light without one.
 const int u_shadowsEnabled = 1;
+// One tap (a hardware 2x2 comparison) a hit: the rays' many hits average the edges anyway, and the
+// 3x3 taps cost the pixels' trace as much again.
+#define SHADOW_PCF_RADIUS 0
 #include "shadows.glsl"
 
 // The punctual lights' light reflected at P (normal N facing where the ray came from) by albedo.
