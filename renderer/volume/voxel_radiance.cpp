@@ -44,9 +44,9 @@ int64_t voxelRadianceBytes(int resolution, bool anisotropic, int bounces, bool u
     // The chain, and level 0's slab sides (and punctual share).
     const int64_t level0 = int64_t(resolution) * resolution * resolution;
     int64_t bytes = 8 * chainTexels(resolution) + (hitLights ? 16 : 8) * level0;
-    if (unlitOutsides) bytes += int64_t(resolution) * resolution * resolution + 4;
+    if (unlitOutsides) bytes += level0 + 4;
     if (anisotropic) bytes += 6 * 8 * chainTexels(resolution / 2);
-    if (bounces > 1) bytes += 16 * int64_t(resolution) * resolution * resolution;  // direct light and its sides
+    if (bounces > 1) bytes += 16 * level0;  // direct light and its sides
     return bytes;
 }
 

@@ -197,7 +197,8 @@ TEST(Vct, ErrorFallsWithResolutionOnTheAtrium) {
 // is the path tracer's within 15%. A ray's hit read its voxel's light, lit as one surface facing
 // the voxel's mean normal: the shaded wall under a sunlit roof's edge and a column's shaded side
 // showed sunlight, and the first bounce came out at 1.30 of the path tracer's (README, "A ray's hit
-// lights itself with the punctual lights"); with each hit lit by the lights and a shadow ray, 1.09.
+// lights itself with the punctual lights"); with each hit lit by the lights and their shadow maps,
+// about 1.1.
 TEST(Vct, SunlitAtriumsFirstBounceThroughRaysIsThePathTracers) {
     const Scene scene = makeBuiltinScene("atrium");
     RenderSettings pt = baseSettings("pathtrace");
