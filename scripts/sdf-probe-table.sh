@@ -21,19 +21,10 @@ trap 'rm -rf "$tmp"' EXIT
 
 source scripts/table_lib.sh
 
-costs() {  # flags... -> "probes | probe ms | gather ms" of the corridor at 256x256
-  timeout 1800 "$bin" render --scene builtin:building --camera 0 --size 256x256 --timings --rerun-settled --frames 4 \
-    --warmup 1 --out "$tmp/timed.png" "$@" 2>/dev/null |
-    awk '/SDFGI probes/ {n = $NF; for (i = 1; i <= NF; ++i) if ($i == "=") n = $(i + 1); sub(",", "", n)}
-         $1 == "probe" && ($2 == "trace" || $2 == "blend") {p += ($2 == "trace") ? $3 : $4}
-         $1 == "trace" {g += $2} $1 == "filter" {g += $2}
-         END {printf "%s | %.0f | %.0f", n, p, g}'
-}
-
 row() {  # label flags... -> one table row
   local label=$1; shift
   cyclesRenders --gi sdf "$@"
-  echo "| $label$(cyclesColumns) | $(costs --gi sdf "$@") |"
+  echo "| $label$(cyclesColumns) | $(sdfCosts --gi sdf "$@") |"
 }
 
 gl=$("$bin" render --scene builtin:cornell --size 8x8 --out "$tmp/gl.png" -v 2>&1 | sed -n 's/^GL_RENDERER: //p')

@@ -40,3 +40,14 @@ cyclesColumns() {
   echo -n " | $(ratio "$tmp/closed.exr" "$tmp/corridor.exr")"
   echo -n " | $(compare "$tmp/cornell.exr" "$shared/reference/refs/cornell_point/full.exr" | sed 's| / .*||')"
 }
+
+sdfCosts() {  # flags... -> "probes | probe ms | gather ms": SDF GI's probes in builtin:building (every cascade)
+  # and the corridor's GPU ms at 256x256 for them (trace and blends) and for the gather (trace and
+  # filter), every pass executed each frame
+  timeout 1800 "$bin" render --scene builtin:building --camera 0 --size 256x256 --timings --rerun-settled --frames 4 \
+    --warmup 1 --out "$tmp/timed.png" "$@" 2>/dev/null |
+    awk '/SDFGI probes/ {n = $NF; for (i = 1; i <= NF; ++i) if ($i == "=") n = $(i + 1); sub(",", "", n)}
+         $1 == "probe" && ($2 == "trace" || $2 == "blend") {p += ($2 == "trace") ? $3 : $4}
+         $1 == "trace" {g += $2} $1 == "filter" {g += $2}
+         END {printf "%s | %.0f | %.0f", n, p, g}'
+}

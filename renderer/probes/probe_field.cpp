@@ -346,6 +346,7 @@ void ProbeField::setUpdateBlock(const FieldSettings& s) const {
     b.multiBounce = s.bounces ? 1 : 0;
     b.visibility = visibilityMode(s.visibility, s.pathTest);
     b.normalBias = s.normalBias;
+    b.hitThreshold = s.hitThreshold;
     update_.set(b);
 }
 

@@ -80,7 +80,8 @@ static_assert(TP_VOXEL_ALBEDO0 + kMaxGrids == TP_VOXEL_SIDES, "one albedo unit p
     M(float, missDistance)      /* what a ray that hits nothing records as its distance */ \
     M(int, multiBounce)         /* trace: 1 lights hits with the probes' irradiance (the next bounce) */ \
     M(int, visibility)          /* trace: that irradiance's visibility (probe_field.h, visibilityMode) */ \
-    M(float, normalBias)        /* trace: that lookup's offset along the normal, x the smallest probe step */
+    M(float, normalBias)        /* trace: that lookup's offset along the normal, x the smallest probe step */ \
+    M(float, hitThreshold)      /* trace through the distance field: |distance| below this many cells is a hit */
 GIS_UNIFORM_BLOCK(ProbeUpdateBlock, 6, GIS_PROBE_UPDATE_BLOCK)
 
 // The screen gather (screen_gather.glsl).

@@ -84,6 +84,7 @@ vec4 fieldRayRadiance(vec3 origin, vec3 dir, float missSteradians) {
     SdfCascades cs = SdfCascades(u_cascades, u_cascadeCount, u_sdfResolution);
     SdfMarchParams params = sdfDefaultParams(u_update.missDistance);
     params.maxSteps = 128;
+    params.hitThreshold = u_update.hitThreshold;
     SdfHit h = sdfMarchCascades(s_distance, s_coarse, cs, origin, dir, params);
     if (!h.hit) return vec4(environmentMissCone(dir, missSteradians), u_update.missDistance);
     SdfVolume vol = sdfCascadeVolume(cs, h.cascade);

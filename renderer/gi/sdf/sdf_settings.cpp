@@ -67,8 +67,10 @@ const ParamTable<SdfGiSettings>& sdfParams() {
                  U::Live)
         .real(&S::relaxation, "relaxation", "Relaxation", "over-relaxed steps of w x distance, undone when too long",
               1.0, 1.9, U::Live)
-        .real(&S::hitThreshold, "hit-threshold", "Hit threshold", "|distance| below this many cells is a hit", 0.05,
-              2.0, U::Live)
+        .real(&S::hitThreshold, "hit-threshold", "Hit threshold",
+              "|distance| below this many cells is a hit, for the pixels' and the probes' rays (the probes' path "
+              "test keeps half a cell): lower sees through narrower openings, and through more thin walls",
+              0.05, 2.0, U::Rebuild)
         .real(&S::offset, "offset", "Start offset", "rays start this many cells above the surface", 0.0, 8.0, U::Live)
         .real(&S::temporal, "temporal", "Temporal weight", "largest weight of the reprojected history while the camera moves (0 = none; a static view keeps averaging)", 0.0,
               0.99, U::Live)
@@ -94,6 +96,7 @@ probes::FieldSettings SdfGiSettings::probeField() const {
     f.rays = probeRays;
     f.rayBudget = rayBudget;
     f.pathTest = pathTest;
+    f.hitThreshold = hitThreshold;
     return f;
 }
 
