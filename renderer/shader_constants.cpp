@@ -95,6 +95,7 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
         std::vector<std::pair<std::string, std::string>> d{
             {"MAX_HALF_FLOAT", glslFloat(gl::kMaxHalfFloat)},
             {"SDF_MAX_CASCADES", std::to_string(kMaxCascades)},
+            {"SDF_HIT_THRESHOLD", glslFloat(sdf::kDefaultHitThreshold)},
             {"MAX_AO_KERNEL", std::to_string(kSsaoMaxKernel)},
             {"LIGHTS_BINDING", std::to_string(kLightsBinding)},
             {"BVH_NODES_BINDING", std::to_string(kBvhNodesBinding)},

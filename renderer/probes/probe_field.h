@@ -21,6 +21,7 @@
 #include "gl/shader.h"
 #include "probes/probe_math.h"
 #include "probes/probe_uniforms.h"
+#include "volume/sdf_uniforms.h"
 
 namespace gis {
 
@@ -48,7 +49,7 @@ struct FieldSettings {
     float threshold = 0.01f;  // live: relative change below which a probe has converged
     int maxUpdates = 100;     // live: updates per probe after which it stops anyway
     float normalBias = 0.1f;  // live: gather offset along the normal and view, x the probe step
-    float hitThreshold = 0.5f; // the probe rays through a distance field: |distance| below this many cells is a hit
+    float hitThreshold = sdf::kDefaultHitThreshold; // rays through a distance field: |distance| below this many cells is a hit
     int debugProbe = -1;      // live: the probe whose rays probes.rays draws, -1 the middle one
 };
 

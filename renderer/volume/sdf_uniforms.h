@@ -8,6 +8,11 @@
 #include "gl/uniform_table.h"
 
 namespace gis::sdf {
+// Sphere tracing's default hit threshold, in cells of the cascade marched in (SDF_HIT_THRESHOLD in
+// GLSL, sdf_march.glsl's sdfDefaultParams): the probe gathers' path test keeps it, the rays of SDF
+// GI's pixels and probes take `sdf.hit-threshold` (its default).
+inline constexpr float kDefaultHitThreshold = 0.5f;
+
 #define GIS_SDF_UNIFORMS(X) \
     X(US_RESOLUTION, 400, 1) /* cells per edge */ \
     X(US_JFA_STEP, 401, 1) /* the jump of this flood pass, in cells */ \

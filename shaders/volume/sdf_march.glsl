@@ -52,7 +52,7 @@ struct SdfHit {
 };
 
 SdfMarchParams sdfDefaultParams(float maxDistance) {
-    return SdfMarchParams(0.0, 0.5, 1.2, 96, maxDistance, 4);
+    return SdfMarchParams(0.0, SDF_HIT_THRESHOLD, 1.2, 96, maxDistance, 4);
 }
 
 float sdfCellSize(SdfVolume vol) { return vol.size / float(vol.resolution); }

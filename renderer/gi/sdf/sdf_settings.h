@@ -32,7 +32,7 @@ struct SdfGiSettings : probes::ReflectionSettings {
     int rays = 4;               // sdf.rays: cosine-distributed diffuse rays per traced pixel per frame (live)
     int maxSteps = 64;          // sdf.max-steps: marcher steps before a ray counts as a miss (live)
     float relaxation = 1.2f;    // sdf.relaxation: over-relaxed step factor (live)
-    float hitThreshold = 0.5f;  // sdf.hit-threshold: |distance| below this many cells is a hit, pixels' and probes' rays
+    float hitThreshold = sdf::kDefaultHitThreshold;  // sdf.hit-threshold: |distance| below this many cells is a hit, pixels' and probes' rays
     float offset = 1.5f;        // sdf.offset: rays start this many cells above the surface (live)
     float temporal = 0.9f;      // sdf.temporal: largest weight of the reprojected history (live)
     int filterRadius = 2;       // sdf.filter-radius: edge-aware filter half-width, traced pixels (live)
