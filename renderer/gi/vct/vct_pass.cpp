@@ -317,13 +317,15 @@ GiMethod vctMethod() {
     m.programs = &VctPass::programs;
     m.estimateMemory = [](const Scene&, const RenderSettings& s) {
         const VctSettings v = vctParams().read("vct", s.params);
-        const uint64_t n = uint64_t(v.resolution);
+        const VolumeRequest r = volumeRequest(v);
+        const int n = r.resolution;
         std::vector<std::pair<std::string, uint64_t>> rows{
-            {"VCT voxel grid and voxelization sums", uint64_t(voxelGridBytes(int(n)))},
+            {"VCT voxel grid and voxelization sums", uint64_t(voxelGridBytes(n))},
             {"VCT radiance mips",
-             uint64_t(voxelRadianceBytes(int(n), v.anisotropic, v.feedback ? 1 : v.bounces, v.unlitOutsides == 0, true))},
+             uint64_t(voxelRadianceBytes(n, r.anisotropic, r.bounces, r.cullUnlitOutsides, r.hitLights))},
             {"VCT screen targets", screenTargetBytes(v, s.width, s.height)}};
-        if (v.feedback) rows.push_back({"VCT bounce feedback", uint64_t(voxelFeedbackBytes(int(n), v.anisotropic, true))});
+        if (r.feedback)
+            rows.push_back({"VCT bounce feedback", uint64_t(voxelFeedbackBytes(n, r.anisotropic, r.hitLights))});
         return rows;
     };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<VctPass>(b.services, b.settings)); };

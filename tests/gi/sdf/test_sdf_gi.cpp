@@ -644,8 +644,7 @@ TEST(SdfGi, PixelsThatSeeNoProbeTakeTheirOwnRays) {
 // opposite roofline grow by up to a cell in the field, and a ray within `sdf.hit-threshold` cells
 // of it stops there, so the loggias see the sky through a narrower band (README, "What the hit
 // threshold trades at building scale"). The threshold holds for the probes' rays too: with the
-// probes gathered (the default) a lower one lets more sky in,
-// already within the first 24 frames.
+// probes gathered (the default) a lower one lets more sky in, already within the first 24 frames.
 TEST(SdfGi, TheProbesRaysTakeTheHitThreshold) {
     Scene atrium = makeBuiltinScene("atrium");
     atrium.lights.clear();
