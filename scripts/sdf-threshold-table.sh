@@ -20,6 +20,8 @@ cd "$(dirname "$0")/.."
 bin=${1:-build/gisandbox}
 thresholds=${THRESHOLDS:-1,0.5,0.25,0.1}
 loggia=${LOGGIA:-48,88,64,104}
+[[ $loggia =~ ^[0-9]+,[0-9]+,[0-9]+,[0-9]+$ ]] ||
+  { echo "sdf-threshold-table.sh: LOGGIA is x0,y0,x1,y1 (pixels of the 256x256 image), not '$loggia'" >&2; exit 1; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 /usr/bin/python3 -c 'import PIL' 2>/dev/null || { echo "sdf-threshold-table.sh: needs Debian's python3-pil (apt-get install python3-pil)" >&2; exit 1; }
