@@ -93,73 +93,242 @@ std::vector<size_t> paretoFront(const std::vector<ChartPoint>& points) {
     return front;
 }
 
+namespace {
+
+bool overlaps(const LabelBox& a, const LabelBox& b) {
+    return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
+bool coversDisc(const LabelBox& b, double cx, double cy, double r) {
+    const double nx = std::clamp(cx, double(b.x0), double(b.x1)), ny = std::clamp(cy, double(b.y0), double(b.y1));
+    return (nx - cx) * (nx - cx) + (ny - cy) * (ny - cy) < r * r;
+}
+
+// Whether the segment passes through the box (sampled every pixel: the chart's lines are short).
+bool crosses(const LabelBox& b, const Segment& s) {
+    const int steps = std::max(1, int(std::hypot(s.x1 - s.x0, s.y1 - s.y0)));
+    for (int i = 0; i <= steps; ++i) {
+        const double t = double(i) / steps, x = s.x0 + (s.x1 - s.x0) * t, y = s.y0 + (s.y1 - s.y0) * t;
+        if (x >= b.x0 && x < b.x1 && y >= b.y0 && y < b.y1) return true;
+    }
+    return false;
+}
+
+bool inside(const LabelBox& b, const LabelBox& bounds) {
+    return b.x0 >= bounds.x0 && b.y0 >= bounds.y0 && b.x1 <= bounds.x1 && b.y1 <= bounds.y1;
+}
+
+// Positions around a point, nearest first: right, left, above, below, then the diagonals, at
+// growing distances.
+std::vector<LabelBox> labelCandidates(const LabelRequest& q) {
+    std::vector<LabelBox> out;
+    const int w = q.width, h = q.height;
+    for (double d : {8.0, 16.0, 28.0, 44.0, 64.0, 90.0, 120.0, 160.0, 220.0}) {
+        const double e = 0.7 * d;
+        const double xy[8][2] = {{q.x + d, q.y - h / 2.0},     {q.x - d - w, q.y - h / 2.0},
+                                 {q.x - w / 2.0, q.y - d - h}, {q.x - w / 2.0, q.y + d},
+                                 {q.x + e, q.y - e - h},       {q.x + e, q.y + e},
+                                 {q.x - e - w, q.y - e - h},   {q.x - e - w, q.y + e}};
+        for (const auto& p : xy) {
+            const int x0 = int(std::lround(p[0])), y0 = int(std::lround(p[1]));
+            out.push_back({x0, y0, x0 + w, y0 + h});
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<LabelBox> placeLabels(const std::vector<LabelRequest>& labels,
+                                  const std::vector<std::pair<double, double>>& discs, double discRadius,
+                                  LabelBox bounds, const std::vector<Segment>& lines) {
+    constexpr int kHard = 1000;  // a covered point or label outweighs any number of crossed lines
+    std::vector<LabelBox> placed;
+    for (const LabelRequest& q : labels) {
+        LabelBox best{};
+        int bestConflicts = -1;
+        for (const LabelBox& b : labelCandidates(q)) {
+            if (!inside(b, bounds)) continue;
+            int conflicts = 0;
+            for (const auto& [x, y] : discs) conflicts += kHard * coversDisc(b, x, y, discRadius);
+            for (const LabelBox& p : placed) conflicts += kHard * overlaps(b, p);
+            for (const Segment& s : lines) conflicts += crosses(b, s);
+            if (bestConflicts < 0 || conflicts < bestConflicts) best = b, bestConflicts = conflicts;
+            if (conflicts == 0) break;
+        }
+        if (bestConflicts < 0) {  // no position fits the bounds: pinned inside them by its corner
+            const int x0 = std::clamp(int(q.x), bounds.x0, std::max(bounds.x0, bounds.x1 - q.width));
+            const int y0 = std::clamp(int(q.y), bounds.y0, std::max(bounds.y0, bounds.y1 - q.height));
+            best = {x0, y0, x0 + q.width, y0 + q.height};
+        }
+        placed.push_back(best);
+    }
+    return placed;
+}
+
+namespace {
+
+constexpr int kLabelHeight = 16;    // stb_easy_font at scale 2, with a pixel to spare
+constexpr double kDiscRadius = 7.0;
+constexpr double kDiscClearance = kDiscRadius + 2.0;
+
+// Log axes over whole decades around the data (at least one each way): the grid, tick labels kept
+// inside the image, the axis titles.
+struct LogAxes {
+    int left = 110, right = 0, top = 80, bottom = 0;
+    double xmin = 0, xmax = 1, ymin = 0, ymax = 1;
+    double px(double x) const { return left + (std::log10(x) - xmin) / (xmax - xmin) * (right - left); }
+    double py(double y) const { return bottom - (std::log10(y) - ymin) / (ymax - ymin) * (bottom - top); }
+};
+
+LogAxes drawLogAxes(Canvas& c, const std::vector<std::pair<double, double>>& xy, const std::string& title,
+                    const std::string& xLabel, const std::string& yLabel) {
+    const int width = c.image.width, height = c.image.height;
+    LogAxes a;
+    a.right = width - 30;
+    a.bottom = height - 80;
+    const int titleScale = Canvas::textWidth(title, 3) <= width - a.left - 10 ? 3 : 2;  // a long title fits
+    c.text(a.left, 12, title, kBlack, titleScale);
+    double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+    for (const auto& [x, y] : xy) {
+        xmin = std::min(xmin, std::log10(x)), xmax = std::max(xmax, std::log10(x));
+        ymin = std::min(ymin, std::log10(y)), ymax = std::max(ymax, std::log10(y));
+    }
+    a.xmin = std::floor(xmin), a.xmax = std::max(std::ceil(xmax), a.xmin + 1);
+    a.ymin = std::floor(ymin), a.ymax = std::max(std::ceil(ymax), a.ymin + 1);
+    for (double d = a.xmin; d <= a.xmax + 1e-9; d += 1.0) {
+        const double x = a.px(std::pow(10.0, d));
+        c.line(x, a.top, x, a.bottom, 1, kGrey);
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%g", std::pow(10.0, d));
+        const int w = Canvas::textWidth(buf);
+        c.text(std::clamp(int(x) - w / 2, 0, width - w - 2), a.bottom + 10, buf, kDark);
+    }
+    for (double d = a.ymin; d <= a.ymax + 1e-9; d += 1.0) {
+        const double y = a.py(std::pow(10.0, d));
+        c.line(a.left, y, a.right, y, 1, kGrey);
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%g", std::pow(10.0, d));
+        c.text(std::max(0, a.left - 10 - Canvas::textWidth(buf)), std::clamp(int(y) - 7, 0, height - kLabelHeight), buf,
+               kDark);
+    }
+    c.line(a.left, a.bottom, a.right, a.bottom, 2, kBlack);
+    c.line(a.left, a.top, a.left, a.bottom, 2, kBlack);
+    c.text(std::max(0, (a.left + a.right - Canvas::textWidth(xLabel)) / 2), a.bottom + 40, xLabel, kBlack);
+    c.text(10, a.top - 26, yLabel, kBlack);
+    return a;
+}
+
+// Labels beside their points (placeLabels), each in its colour; one placed away from its point is
+// joined to it by a thin line.
+void drawLabels(Canvas& c, const std::vector<std::string>& text, const std::vector<Rgba>& colours,
+                const std::vector<std::pair<double, double>>& anchors, const std::vector<std::pair<double, double>>& discs,
+                const std::vector<Segment>& lines, const LogAxes& a) {
+    std::vector<LabelRequest> requests;
+    for (size_t i = 0; i < text.size(); ++i)
+        requests.push_back({anchors[i].first, anchors[i].second, Canvas::textWidth(text[i]), kLabelHeight});
+    const LabelBox bounds{a.left + 2, a.top - 4, c.image.width, a.bottom - 2};
+    const std::vector<LabelBox> boxes = placeLabels(requests, discs, kDiscClearance, bounds, lines);
+    for (size_t i = 0; i < boxes.size(); ++i) {
+        const LabelBox& b = boxes[i];
+        const auto [x, y] = anchors[i];
+        const double nx = std::clamp(x, double(b.x0), double(b.x1)), ny = std::clamp(y, double(b.y0), double(b.y1));
+        if (std::hypot(nx - x, ny - y) > kDiscClearance + 12.0) c.line(x, y, nx, ny, 1, colours[i]);
+    }
+    for (const auto& [x, y] : discs) c.disc(x, y, kDiscRadius, kBlack);  // leader lines under the points
+    for (size_t i = 0; i < boxes.size(); ++i) c.text(boxes[i].x0, boxes[i].y0 + 1, text[i], colours[i]);
+}
+
+Rgba seriesColour(int series) { return kSeriesColors[size_t(std::max(series, 0)) % 8]; }
+
+}  // namespace
+
 ImageU8 drawTradeoffChart(const std::vector<ChartPoint>& points, const std::string& title, const std::string& xLabel,
                           const std::string& yLabel, int width, int height) {
     Canvas c(width, height, kWhite);
-    const int left = 110, right = width - 30, top = 80, bottom = height - 80;
-    c.text(left, 12, title, kBlack, 3);
     std::vector<ChartPoint> pts;
+    std::vector<std::pair<double, double>> xy;
     for (const ChartPoint& p : points)
-        if (p.x > 0.0 && p.y > 0.0 && std::isfinite(p.x) && std::isfinite(p.y)) pts.push_back(p);
+        if (p.x > 0.0 && p.y > 0.0 && std::isfinite(p.x) && std::isfinite(p.y)) pts.push_back(p), xy.emplace_back(p.x, p.y);
     if (pts.empty()) {
-        c.text(left, height / 2, "no points with positive, finite time and error", kBlack);
+        c.text(110, 12, title, kBlack, 3);
+        c.text(110, height / 2, "no points with positive, finite time and error", kBlack);
         return c.image;
     }
-    double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
-    for (const ChartPoint& p : pts) {
-        xmin = std::min(xmin, std::log10(p.x)), xmax = std::max(xmax, std::log10(p.x));
-        ymin = std::min(ymin, std::log10(p.y)), ymax = std::max(ymax, std::log10(p.y));
-    }
-    // Whole decades around the data, at least one decade wide.
-    xmin = std::floor(xmin), xmax = std::max(std::ceil(xmax), xmin + 1);
-    ymin = std::floor(ymin), ymax = std::max(std::ceil(ymax), ymin + 1);
-    auto px = [&](double x) { return left + (std::log10(x) - xmin) / (xmax - xmin) * (right - left); };
-    auto py = [&](double y) { return bottom - (std::log10(y) - ymin) / (ymax - ymin) * (bottom - top); };
-    for (double d = xmin; d <= xmax + 1e-9; d += 1.0) {
-        const double x = px(std::pow(10.0, d));
-        c.line(x, top, x, bottom, 1, kGrey);
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%g", std::pow(10.0, d));
-        c.text(int(x) - Canvas::textWidth(buf) / 2, bottom + 10, buf, kDark);
-    }
-    for (double d = ymin; d <= ymax + 1e-9; d += 1.0) {
-        const double y = py(std::pow(10.0, d));
-        c.line(left, y, right, y, 1, kGrey);
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%g", std::pow(10.0, d));
-        c.text(left - 10 - Canvas::textWidth(buf), int(y) - 7, buf, kDark);
-    }
-    c.line(left, bottom, right, bottom, 2, kBlack);
-    c.line(left, top, left, bottom, 2, kBlack);
-    c.text((left + right - Canvas::textWidth(xLabel)) / 2, bottom + 40, xLabel, kBlack);
-    c.text(10, top - 26, yLabel, kBlack);
-
+    const LogAxes a = drawLogAxes(c, xy, title, xLabel, yLabel);
     const std::vector<size_t> front = paretoFront(pts);
-    for (size_t i = 1; i < front.size(); ++i) {  // staircase: the best error reachable within a budget
-        const ChartPoint &a = pts[front[i - 1]], &b = pts[front[i]];
-        c.line(px(a.x), py(a.y), px(b.x), py(a.y), 3, {120, 120, 120});
-        c.line(px(b.x), py(a.y), px(b.x), py(b.y), 3, {120, 120, 120});
+    std::vector<Segment> stairs;  // the best error reachable within a budget
+    for (size_t i = 1; i < front.size(); ++i) {
+        const ChartPoint &p = pts[front[i - 1]], &q = pts[front[i]];
+        stairs.push_back({a.px(p.x), a.py(p.y), a.px(q.x), a.py(p.y)});
+        stairs.push_back({a.px(q.x), a.py(p.y), a.px(q.x), a.py(q.y)});
     }
-    std::vector<std::array<int, 4>> placed;  // label boxes already drawn: later labels move down
+    for (const Segment& s : stairs) c.line(s.x0, s.y0, s.x1, s.y1, 3, {120, 120, 120});
+    std::vector<std::string> text;
+    std::vector<Rgba> colours;
+    std::vector<std::pair<double, double>> at;
     for (const ChartPoint& p : pts) {
-        const Rgba col = kSeriesColors[size_t(std::max(p.series, 0)) % 8];
-        c.disc(px(p.x), py(p.y), 7, kBlack);
-        c.disc(px(p.x), py(p.y), 5.5, col);
-        const int w = Canvas::textWidth(p.label), h = 16;
-        int x = int(px(p.x)) + 10, y = int(py(p.y)) - 16;
-        if (x + w > width) x = int(px(p.x)) - 10 - w;
-        for (bool moved = true; moved;) {
-            moved = false;
-            for (const auto& b : placed)
-                if (x < b[2] && x + w > b[0] && y < b[3] && y + h > b[1]) {
-                    y = b[3] + 1;
-                    moved = true;
-                }
-        }
-        c.text(x, y, p.label, col);
-        placed.push_back({x, y, x + w, y + h});
+        text.push_back(p.label);
+        colours.push_back(seriesColour(p.series));
+        at.emplace_back(a.px(p.x), a.py(p.y));
     }
-    c.text(right - Canvas::textWidth("grey staircase: Pareto front"), top - 26, "grey staircase: Pareto front", kDark);
+    drawLabels(c, text, colours, at, at, stairs, a);
+    for (size_t i = 0; i < pts.size(); ++i) c.disc(at[i].first, at[i].second, kDiscRadius - 1.5, colours[i]);
+    c.text(a.right - Canvas::textWidth("grey staircase: Pareto front"), a.top - 26, "grey staircase: Pareto front", kDark);
+    return c.image;
+}
+
+ImageU8 drawCurvesChart(const std::vector<ChartCurve>& curves, const std::string& title, const std::string& xLabel,
+                        const std::string& yLabel, int width, int height) {
+    Canvas c(width, height, kWhite);
+    std::vector<ChartCurve> kept;
+    std::vector<std::pair<double, double>> xy;
+    for (const ChartCurve& curve : curves) {
+        ChartCurve k{curve.label, {}, curve.series};
+        for (const auto& [x, y] : curve.points)
+            if (x > 0.0 && y > 0.0 && std::isfinite(x) && std::isfinite(y)) k.points.emplace_back(x, y), xy.emplace_back(x, y);
+        if (!k.points.empty()) kept.push_back(k);
+    }
+    if (kept.empty()) {
+        c.text(110, 12, title, kBlack, 3);
+        c.text(110, height / 2, "no points with positive, finite time and error", kBlack);
+        return c.image;
+    }
+    const LogAxes a = drawLogAxes(c, xy, title, xLabel, yLabel);
+    std::vector<std::pair<double, double>> dots;
+    std::vector<Segment> lines;
+    for (const ChartCurve& k : kept) {
+        for (size_t i = 1; i < k.points.size(); ++i) {
+            lines.push_back({a.px(k.points[i - 1].first), a.py(k.points[i - 1].second), a.px(k.points[i].first),
+                             a.py(k.points[i].second)});
+            c.line(lines.back().x0, lines.back().y0, lines.back().x1, lines.back().y1, 2, seriesColour(k.series));
+        }
+        for (const auto& [x, y] : k.points) dots.emplace_back(a.px(x), a.py(y));
+    }
+    std::vector<std::string> text;
+    std::vector<Rgba> colours;
+    std::vector<std::pair<double, double>> ends;
+    for (const ChartCurve& k : kept) {
+        text.push_back(k.label);
+        colours.push_back(seriesColour(k.series));
+        ends.emplace_back(a.px(k.points.back().first), a.py(k.points.back().second));
+    }
+    drawLabels(c, text, colours, ends, dots, lines, a);
+    size_t d = 0;
+    for (const ChartCurve& k : kept)
+        for (size_t i = 0; i < k.points.size(); ++i, ++d) c.disc(dots[d].first, dots[d].second, kDiscRadius - 1.5, seriesColour(k.series));
+    return c.image;
+}
+
+ImageU8 stackImages(const std::vector<ImageU8>& images) {
+    int width = 0, height = 0;
+    for (const ImageU8& im : images) width = std::max(width, im.width), height += im.height;
+    Canvas c(std::max(width, 1), std::max(height, 1), kWhite);
+    int y = 0;
+    for (const ImageU8& im : images) {
+        c.blit(im, 0, y);
+        y += im.height;
+    }
     return c.image;
 }
 

@@ -38,6 +38,38 @@ std::vector<size_t> paretoFront(const std::vector<ChartPoint>& points);
 ImageU8 drawTradeoffChart(const std::vector<ChartPoint>& points, const std::string& title, const std::string& xLabel,
                           const std::string& yLabel, int width = 960, int height = 640);
 
+// A line per series on log axes (e.g. error against GPU ms spent since a camera cut), dots at its
+// points, its label at its last point.
+struct ChartCurve {
+    std::string label;
+    std::vector<std::pair<double, double>> points;  // x, y > 0
+    int series = 0;
+};
+ImageU8 drawCurvesChart(const std::vector<ChartCurve>& curves, const std::string& title, const std::string& xLabel,
+                        const std::string& yLabel, int width = 960, int height = 640);
+
+// Pixel boxes, half-open: [x0, x1) x [y0, y1).
+struct LabelBox {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+struct LabelRequest {
+    double x = 0.0, y = 0.0;  // the point it names, in pixels
+    int width = 0, height = 0;
+};
+struct Segment {
+    double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
+};
+// Where each label goes: the first of the positions around its point, nearest first, whose box
+// lies inside `bounds` and covers no disc (every point drawn, its own included), no label placed
+// before it and, where it can, no line. Where none is free, the position that covers the fewest
+// discs and labels.
+std::vector<LabelBox> placeLabels(const std::vector<LabelRequest>& labels,
+                                  const std::vector<std::pair<double, double>>& discs, double discRadius,
+                                  LabelBox bounds, const std::vector<Segment>& lines = {});
+
+// Images one above the other on white, left-aligned.
+ImageU8 stackImages(const std::vector<ImageU8>& images);
+
 // Images side by side, `columns` per row, each with a caption line under it.
 ImageU8 composeGrid(const std::vector<std::pair<std::string, ImageU8>>& tiles, int columns);
 

@@ -409,6 +409,19 @@ std::vector<PassTiming> Renderer::timings(int warmup) const {
     return out;
 }
 
+std::vector<double> Renderer::frameGpuMs() const {
+    glFinish();
+    std::vector<double> ms;
+    for (const auto& pass : passes_) {
+        pass->timer.collect(true);
+        const gl::GpuTimer& t = pass->timer;
+        if (ms.size() < t.samples.size()) ms.resize(t.samples.size(), 0.0);
+        for (size_t i = 0; i < t.samples.size(); ++i)
+            if (i >= t.worked.size() || t.worked[i]) ms[i] += t.samples[i];
+    }
+    return ms;
+}
+
 ProgramDesc brdfProbeProgram() { return {"brdf_probe", {"brdf_probe.comp"}, {}}; }
 
 std::vector<ProgramDesc> allPrograms() {

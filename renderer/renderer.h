@@ -31,6 +31,8 @@ public:
     ImageU8 readLdr() const;     // tonemapped sRGB RGBA8 (debug views: their values), rows top to bottom
     // Per pass (and its steps), in execution order; `warmup` first frames are left out of the median.
     std::vector<PassTiming> timings(int warmup) const;
+    // GPU ms of each frame rendered so far: the passes' work that frame (a cached pass adds none).
+    std::vector<double> frameGpuMs() const;
     const gl::MemoryLedger& memory() const { return ledger_; }
     const RenderSettings& settings() const { return settings_; }
     const std::vector<std::unique_ptr<Pass>>& passes() const { return passes_; }

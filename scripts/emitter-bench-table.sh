@@ -4,8 +4,9 @@
 # Markdown table of renderer/emitters/README.md.
 #   bash scripts/emitter-bench-table.sh [build/gisandbox]
 # METHODS / PRESETS / SIZE (default none,vct,sdf,probes / medium / 128x128) choose the cells, OUT the
-# bench's directory (default a temporary one; its cache keeps the reference between runs). GPU ms
-# is per frame, or the total to converge for progressive cells (marked).
+# bench's directory (default a temporary one; its cache keeps the reference between runs). Each GPU
+# figure is a frame's cost (bench's chart: the dearer of a converging and a steady frame) and, after
+# the slash, the total from a camera cut until final.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${1:-build/gisandbox}
@@ -16,9 +17,10 @@ python3 - "$out/bench.json" <<'PY'
 import json, sys
 rows = json.load(open(sys.argv[1]))["results"]
 by = {(r["method"], r["preset"], r.get("emitters", "")): r for r in rows}
-def ms(r):  # progressive cells (ReSTIR's accumulation, probe updates): the total to converge
-    return "%.1f%s" % (r["gpu_ms"], " (to converge)" if r.get("gpu_ms_to_converge") else "")
-print("| method | preset | GPU ms lights | GPU ms gi | PSNR sRGB lights | PSNR sRGB gi | FLIP lights | FLIP gi |")
+def ms(r):  # a frame / from a cut until final
+    return "%.1f / %.0f" % (max(r["gpu_ms"], r["converge"]["frame_gpu_ms"]), r["converge"]["gpu_ms"])
+print("| method | preset | GPU ms lights (frame / to final) | GPU ms gi (frame / to final) | PSNR sRGB lights "
+      "| PSNR sRGB gi | FLIP lights | FLIP gi |")
 print("|---|---|---|---|---|---|---|---|")
 for key in dict.fromkeys((r["method"], r["preset"]) for r in rows):
     l, g = by[key + ("lights",)], by[key + ("gi",)]

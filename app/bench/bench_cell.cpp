@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 
 #include "cli/flythrough.h"
 #include "bench/bench_record.h"
@@ -19,41 +20,81 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Renders until the image is final; returns the GPU ms and per-pass figures. Progressive methods
-// (the path tracer): every frame's work summed, until converged. Methods that accumulate over
-// frames (framesToConverge, from the registry): the median per frame of `frames` frames after
-// warm-up, measured once converged, and the image scored is the converged one.
-void measure(Renderer& renderer, const GiMethod& method, int frames, int warmup, BenchRow& row) {
-    renderer.setSkipSettled(false);  // the cost of a frame that runs, as the peers' frames do
-    const bool progressive = !renderer.converged();
-    row.msToConverge = progressive;
-    const int converge = method.framesToConverge ? std::max(1, method.framesToConverge(renderer.settings())) : 1;
+// Frames a static view needs after a cut or an edit, as the registry declares them (progressive
+// passes report their own progress besides).
+int declaredFrames(const GiMethod& method, const RenderSettings& settings) {
+    return method.framesToConverge ? std::max(1, method.framesToConverge(settings)) : 1;
+}
+
+// Renders from now until the image is final: at least `declared` frames and until every
+// progressive pass has converged. `onFrame(n, gpuMsSoFar)` runs after the n-th frame.
+BenchRow::Convergence renderUntilFinal(Renderer& renderer, int declared,
+                                       const std::function<void(int, double)>& onFrame) {
+    const size_t before = renderer.frameGpuMs().size();
+    BenchRow::Convergence c;
+    std::vector<double> gpu;
+    do {
+        const auto t0 = std::chrono::steady_clock::now();
+        renderer.renderFrame();
+        glFinish();
+        c.wallMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        ++c.frames;
+        const std::vector<double> all = renderer.frameGpuMs();
+        gpu.assign(all.begin() + std::ptrdiff_t(before), all.end());
+        c.gpuMs = 0.0;
+        for (double ms : gpu) c.gpuMs += ms;
+        if (onFrame) onFrame(c.frames, c.gpuMs);
+    } while (c.frames < declared || !renderer.converged());
+    c.frameMs = c.frames > 1 ? medianAfter(gpu, 1) : gpu.front();
+    return c;
+}
+
+// A cell's measurements on a still camera, in the order a user meets them:
+// - the cut: a renderer with nothing accumulated rendered until its image is final, scored against
+//   the reference at 1, 2, 4, ... frames and at the last (the time-to-quality curve);
+// - the steady frame: `frames` more, every pass executed (render --rerun-settled), medians after
+//   `warmup`; the image scored is this final one.
+// Every pass executes every frame throughout, as the peers' frames do.
+void measure(Renderer& renderer, const GiMethod& method, const ImageF& reference, int frames, int warmup,
+             BenchRow& row) {
+    renderer.setSkipSettled(false);
+    row.cut = renderUntilFinal(renderer, declaredFrames(method, renderer.settings()), [&](int n, double gpuMs) {
+        if ((n & (n - 1)) == 0 || (renderer.converged() && n >= declaredFrames(method, renderer.settings())))
+            row.quality.push_back({n, gpuMs, compareImages(renderer.readHdr(), reference)});
+    });
+    for (const PassTiming& t : renderer.timings(0))
+        if (t.rays) row.megaRaysPerSecond = t.megaRaysPerSecond();  // over the samples the cut traced
     std::vector<double> wall;
-    auto frame = [&] {
+    for (int i = 0; i < frames; ++i) {
         const auto t0 = std::chrono::steady_clock::now();
         renderer.renderFrame();
         glFinish();
         wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    };
-    if (progressive) {
-        do frame();
-        while (!renderer.converged());
-        for (double w : wall) row.wallMs += w;
-    } else {
-        for (int i = 0; i < converge - 1 + frames; ++i) frame();
-        row.wallMs = medianAfter(wall, converge - 1 + warmup);
     }
-    for (const PassTiming& t : renderer.timings(progressive ? 0 : converge - 1 + warmup)) {
-        const double ms = progressive ? t.totalMs : t.medianMs;
+    row.wallMs = medianAfter(wall, warmup);
+    const bool oneFrame = row.cut.frames == 1;
+    for (const PassTiming& t : renderer.timings(row.cut.frames + warmup)) {
         if (t.step) {  // listed apart: the pass's own figure already holds its steps
-            row.steps.push_back({t.pass, ms, t.firstMs});
+            row.steps.push_back({t.pass, t.medianMs, t.firstMs});
             continue;
         }
-        row.passMs.emplace_back(t.pass, ms);
-        row.ms += ms;
-        if (t.rays) row.megaRaysPerSecond = t.megaRaysPerSecond();
+        row.passMs.emplace_back(t.pass, t.medianMs);
+        row.ms += t.medianMs;
     }
+    if (oneFrame) row.cut.frameMs = row.ms;  // no frame after the first: the steady one is its frame
     row.bytes = renderer.memory().total();
+}
+
+// After the steady frames: the first punctual light's intensity halved (as a light edit in the
+// viewer) and the frames until the image is final again. Restores the light; nothing for a scene
+// without one.
+void measureLightEdit(Renderer& renderer, Scene& scene, const GiMethod& method, BenchRow& row) {
+    if (scene.lights.empty()) return;
+    const float intensity = scene.lights.front().intensity;
+    scene.lights.front().intensity = 0.5f * intensity;
+    renderer.lightsChanged();
+    row.edit = renderUntilFinal(renderer, declaredFrames(method, renderer.settings()), nullptr);
+    scene.lights.front().intensity = intensity;
 }
 
 // A fly-through cell: the path's frames (after the warm-up frame), summarised; the passes' and
@@ -77,7 +118,7 @@ void measureFlythrough(Renderer& renderer, const Aabb& bounds, int frames, Bench
 double convergedMean(const Scene& scene, RenderSettings settings, const GiMethod& method, int camera) {
     settings.camera = camera;
     Renderer renderer(scene, settings);
-    const int frames = method.framesToConverge ? std::max(1, method.framesToConverge(settings)) : 1;
+    const int frames = declaredFrames(method, settings);
     for (int f = 0; f < frames || !renderer.converged(); ++f) renderer.renderFrame();
     return meanRadiance(renderer.readHdr());
 }
@@ -170,9 +211,16 @@ void runCell(const BenchJob& job, const SweepDirs& dirs, const GlOpener& openGl)
     row.preset = job.preset;
     row.emitters = job.setup.emitters;
     row.description = method.preset(job.preset).description;
+    {  // compiles the cell's programs (a process-wide cache): the cut measures rendering, not the compiler
+        Renderer warm(prepared.scene, settings);
+        warm.renderFrame();
+    }
     Renderer renderer(prepared.scene, settings);
-    measure(renderer, method, job.frames, job.warmup, row);
+    measure(renderer, method, reference, job.frames, job.warmup, row);
     row.error = compareImages(renderer.readHdr(), reference);
+    const std::string png = imagePath(dirs, job);
+    writePng(png, renderer.readLdr());
+    measureLightEdit(renderer, prepared.scene, method, row);
     row.leak = leakNumber(prepared.scene, settings, method);
     if (!aoReference.rgba.empty()) {
         RenderSettings aoView = settings;
@@ -181,12 +229,16 @@ void runCell(const BenchJob& job, const SweepDirs& dirs, const GlOpener& openGl)
         aoRenderer.renderFrame();
         row.aoRmse = rmse(aoRenderer.readHdr(), aoReference);
     }
-    const std::string png = imagePath(dirs, job);
-    writePng(png, renderer.readLdr());
     std::fprintf(stderr, "%-14s %-10s %-8s %10.2f ms GPU %10.2f ms wall %8.2f MiB  FLIP %.4f  RMSE %.5f  SSIM %.4f%s\n",
                  row.scene.c_str(), row.method.c_str(), row.preset.c_str(), row.ms, row.wallMs,
                  double(row.bytes) / (1 << 20), row.error.flip, row.error.rmse, row.error.ssim,
                  row.aoRmse >= 0.0 ? ("  AO RMSE " + std::to_string(row.aoRmse)).c_str() : "");
+    std::fprintf(stderr, "%-14s %-10s %-8s after a cut: final in %d frames, %.1f ms GPU (%.2f a frame), FLIP %.4f at the first\n",
+                 row.scene.c_str(), row.method.c_str(), row.preset.c_str(), row.cut.frames, row.cut.gpuMs,
+                 row.cut.frameMs, row.quality.front().error.flip);
+    if (row.edit)
+        std::fprintf(stderr, "%-14s %-10s %-8s after a light edit: final in %d frames, %.1f ms GPU\n", row.scene.c_str(),
+                     row.method.c_str(), row.preset.c_str(), row.edit->frames, row.edit->gpuMs);
     if (row.leak >= 0.0) std::fprintf(stderr, "%-14s %-10s %-8s leak number %.4f\n", row.scene.c_str(), row.method.c_str(), row.preset.c_str(), row.leak);
     nlohmann::ordered_json body{{"id", job.id}, {"kind", "cell"}, {"machine", machine}, {"row", rowToJson(row)}};
     writeRecord(recordPath(dirs, job), body, {fs::path(png).filename().string()});

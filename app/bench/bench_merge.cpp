@@ -18,14 +18,7 @@
 
 namespace gis {
 
-std::string timeAxisLabel(const std::string& glRenderer, const std::vector<std::string>& totals) {
-    std::string label = "GPU ms on " + glRenderer.substr(0, glRenderer.find(" (")) + " (per frame";
-    if (!totals.empty()) {
-        label += "; until converged: ";
-        for (size_t i = 0; i < totals.size(); ++i) label += (i ? ", " : "") + totals[i];
-    }
-    return label + ")";
-}
+std::string rendererName(const std::string& glRenderer) { return glRenderer.substr(0, glRenderer.find(" (")); }
 
 namespace {
 
@@ -139,14 +132,34 @@ void verifyManifest(const std::vector<BenchJob>& jobs, std::vector<std::string>&
     }
 }
 
-double chartError(const BenchRow& row, ErrorMetric metric) {
-    return metric == ErrorMetric::Flip     ? row.error.flip
-           : metric == ErrorMetric::Rmse   ? row.error.rmse
-           : metric == ErrorMetric::RelMse ? row.error.relMse
-                                           : 1.0 - row.error.ssim;
+double chartError(const ImageMetrics& e, ErrorMetric metric) {
+    return metric == ErrorMetric::Flip     ? e.flip
+           : metric == ErrorMetric::Rmse   ? e.rmse
+           : metric == ErrorMetric::RelMse ? e.relMse
+                                           : 1.0 - e.ssim;
 }
 
-// One scene's grid (reference first, then every cell labelled with ms and error) and chart.
+std::string cellLabel(const BenchRow& row) {
+    return row.method + "/" + row.preset + (row.emitters.empty() ? "" : " emitters=" + row.emitters);
+}
+
+// The cell whose time-to-quality curve stands for its method (and emitter mode) on the scene:
+// the medium preset where it was run, else the first one.
+const MergedCell* curveCell(const std::vector<MergedCell>& cells, const MergedCell& of) {
+    const MergedCell* first = nullptr;
+    for (const MergedCell& c : cells) {
+        if (c.job->sceneName != of.job->sceneName || c.row.method != of.row.method || c.row.emitters != of.row.emitters)
+            continue;
+        if (c.row.preset == "medium") return &c;
+        if (!first) first = &c;
+    }
+    return first;
+}
+
+// One scene's grid (reference first, then every cell labelled with its costs and error), its
+// trade-off chart (error against a frame's cost, and against the GPU time from a camera cut until
+// final) and its time-to-quality chart (each method's error after 1, 2, 4, ... frames from a cut,
+// at its medium preset).
 void addSceneImages(OutputSet& out, const std::string& sceneName, const BenchJob& referenceJob,
                     const std::vector<MergedCell>& cells, const SweepDirs& dirs, const std::string& metricName,
                     const std::string& glRenderer) {
@@ -154,31 +167,42 @@ void addSceneImages(OutputSet& out, const std::string& sceneName, const BenchJob
     std::vector<std::pair<std::string, ImageU8>> tiles;
     tiles.emplace_back("reference  path traced, " + std::to_string(referenceJob.referenceSpp) + " spp",
                        toLdrImage(readExr(imagePath(dirs, referenceJob)), DisplaySettings{}));
-    std::vector<ChartPoint> points;
+    std::vector<ChartPoint> perFrame, toFinal;
+    std::vector<ChartCurve> curves;
     std::vector<std::string> methods;  // chart colour: the method's place in the selection
     for (const MergedCell& c : cells) {
         if (c.job->sceneName != sceneName) continue;
         if (std::find(methods.begin(), methods.end(), c.row.method) == methods.end()) methods.push_back(c.row.method);
         const int methodIndex = int(std::find(methods.begin(), methods.end(), c.row.method) - methods.begin());
-        const double y = chartError(c.row, metric);
-        const std::string label =
-            c.row.method + "/" + c.row.preset + (c.row.emitters.empty() ? "" : " emitters=" + c.row.emitters);
-        points.push_back({label, c.row.ms, y, methodIndex});
+        const double y = chartError(c.row.error, metric);
+        const std::string label = cellLabel(c.row);
+        perFrame.push_back({label, frameCostMs(c.row), y, methodIndex});
+        toFinal.push_back({label, c.row.cut.gpuMs, y, methodIndex});
+        if (&c == curveCell(cells, c)) {
+            ChartCurve curve{label, {}, methodIndex};
+            for (const BenchRow::QualityPoint& q : c.row.quality) curve.points.emplace_back(q.gpuMs, chartError(q.error, metric));
+            curves.push_back(curve);
+        }
         char caption[200];
-        std::snprintf(caption, sizeof caption, "%s  %.1f ms, %s %.4f", label.c_str(), c.row.ms, metricName.c_str(), y);
+        std::snprintf(caption, sizeof caption, "%s  %.1f ms/frame, %.0f ms to final, %s %.4f", label.c_str(),
+                      frameCostMs(c.row), c.row.cut.gpuMs, metricName.c_str(), y);
         tiles.emplace_back(caption, readPng(imagePath(dirs, *c.job)));
     }
     const std::string stem = dirs.outDir + "/" + fileSafeName(sceneName);
     out.emplace_back(stem + "_grid.png", encodePng(composeGrid(tiles, std::min<int>(4, int(tiles.size())))));
     const std::string yLabel = metricName == "ssim" ? "1 - SSIM vs reference" : metricName + " vs reference";
-    std::vector<std::string> totals;
-    for (const MergedCell& c : cells)
-        if (c.job->sceneName == sceneName && c.row.msToConverge &&
-            std::find(totals.begin(), totals.end(), c.row.method) == totals.end())
-            totals.push_back(c.row.method);
-    out.emplace_back(stem + "_chart.png",
-                     encodePng(drawTradeoffChart(points, sceneName + ": error vs GPU time, " + referenceJob.size,
-                                                 timeAxisLabel(glRenderer, totals), yLabel)));
+    const std::string gpu = rendererName(glRenderer);
+    const std::string title = sceneName + ", " + referenceJob.size + ": ";
+    const ImageU8 framePanel = drawTradeoffChart(
+        perFrame, title + "error vs a frame's cost",
+        "GPU ms per frame on " + gpu + " (converging or steady, the dearer)", yLabel);
+    const ImageU8 finalPanel = drawTradeoffChart(toFinal, title + "error vs time to converge",
+                                                 "GPU ms on " + gpu + " from a camera cut until final", yLabel);
+    out.emplace_back(stem + "_chart.png", encodePng(stackImages({framePanel, finalPanel})));
+    out.emplace_back(stem + "_quality.png",
+                     encodePng(drawCurvesChart(curves, title + "time to quality after a cut (medium presets)",
+                                               "GPU ms on " + gpu + " since the cut (points: 1, 2, 4, ... frames)",
+                                               yLabel)));
 }
 
 // A fly-through scene's grid: every cell's last frame, labelled with its median and worst frame.
@@ -266,7 +290,7 @@ int mergeBench(const std::vector<BenchJob>& jobs, const SweepDirs& dirs, const s
     addTables(out, cells, machine, dirs);
     writeFilesAtomically(out);
     std::printf("wrote %s/bench.json, %s/bench.csv and a grid%s per scene (%zu cells)\n", dirs.outDir.c_str(),
-                dirs.outDir.c_str(), cells.front().job->flythrough ? "" : " and chart", cells.size());
+                dirs.outDir.c_str(), cells.front().job->flythrough ? "" : ", a chart and a quality chart", cells.size());
     return 0;
 }
 

@@ -1,6 +1,6 @@
-// `bench --merge DIR`: the cells' results gathered into bench.json, bench.csv and a grid and chart
-// per scene, in manifest order. All or nothing: any cell or reference whose result is missing,
-// failed, cut short or altered is reported by id and nothing is written.
+// `bench --merge DIR`: the cells' results gathered into bench.json, bench.csv and per scene a grid,
+// a chart and a quality chart, in manifest order. All or nothing: any cell or reference whose
+// result is missing, failed, cut short or altered is reported by id and nothing is written.
 #pragma once
 
 #include <string>
@@ -13,10 +13,6 @@ namespace gis {
 
 // A scene name as a file name: anything but letters, digits, - and _ becomes _.
 std::string fileSafeName(std::string s);
-
-// The chart's time axis: per frame, except the methods in `totals` whose figure is the total
-// until converged.
-std::string timeAxisLabel(const std::string& glRenderer, const std::vector<std::string>& totals);
 
 // Returns 0, or throws gis::Error after listing every problem on stderr, one line each.
 int mergeBench(const std::vector<BenchJob>& jobs, const SweepDirs& dirs, const std::string& metric);

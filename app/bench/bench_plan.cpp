@@ -225,6 +225,7 @@ std::string contentId(const BenchJob& job, const RenderSettings& settings) {
         key["environment_mapping"] = "blender";
     }
     if (job.kind == JobKind::Cell) {
+        key["measures"] = kCellMeasuresVersion;
         key["frames"] = job.frames;
         key["warmup"] = job.warmup;
         key["reference"] = job.reference;

@@ -20,6 +20,9 @@ namespace gis {
 // Bumped when what a job's id covers changes meaning (not when a scene or setting changes: those
 // change the id by themselves).
 constexpr int kBenchIdVersion = 1;
+// What a cell measures (part of cell ids only, so cached references keep theirs): 2 = the steady
+// frame, convergence after a cut and a light edit, and the time-to-quality curve.
+constexpr int kCellMeasuresVersion = 2;
 
 enum class JobKind { Reference, Cell };
 

@@ -1,5 +1,6 @@
 #include "bench/bench_row.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -34,6 +35,27 @@ void optionalMs(std::ostream& f, double ms) {  // -1: no such frame
     if (ms >= 0.0) f << ms;
 }
 
+// A column of the convergence after a cut: empty for a fly-through.
+CsvWriter cut(std::function<void(std::ostream&, const BenchRow::Convergence&)> write) {
+    return [write](std::ostream& f, const BenchRow& r) {
+        if (!r.flythrough && r.cut.frames > 0) write(f, r.cut);
+    };
+}
+
+// A column of the convergence after a light edit: empty where no light was edited.
+CsvWriter edited(std::function<void(std::ostream&, const BenchRow::Convergence&)> write) {
+    return [write](std::ostream& f, const BenchRow& r) {
+        if (r.edit) write(f, *r.edit);
+    };
+}
+
+// A column of the first frame's error after the cut.
+CsvWriter first(std::function<void(std::ostream&, const ImageMetrics&)> write) {
+    return [write](std::ostream& f, const BenchRow& r) {
+        if (!r.quality.empty()) write(f, r.quality.front().error);
+    };
+}
+
 // bench.csv, left to right. Numbers print with the stream's default precision (as they always
 // have); PSNR through formatMetric so +inf (identical images) reads "inf".
 const std::vector<CsvColumn>& csvColumns() {
@@ -44,6 +66,12 @@ const std::vector<CsvColumn>& csvColumns() {
         {"emitters", false, [](std::ostream& f, const BenchRow& r) { f << r.emitters; }},
         {"gpu_ms", true, [](std::ostream& f, const BenchRow& r) { f << r.ms; }},
         {"wall_ms", true, [](std::ostream& f, const BenchRow& r) { f << r.wallMs; }},
+        {"converge_frames", false, cut([](std::ostream& f, const BenchRow::Convergence& c) { f << c.frames; })},
+        {"converge_gpu_ms", true, cut([](std::ostream& f, const BenchRow::Convergence& c) { f << c.gpuMs; })},
+        {"converge_wall_ms", true, cut([](std::ostream& f, const BenchRow::Convergence& c) { f << c.wallMs; })},
+        {"converge_frame_gpu_ms", true, cut([](std::ostream& f, const BenchRow::Convergence& c) { f << c.frameMs; })},
+        {"edit_frames", false, edited([](std::ostream& f, const BenchRow::Convergence& c) { f << c.frames; })},
+        {"edit_gpu_ms", true, edited([](std::ostream& f, const BenchRow::Convergence& c) { f << c.gpuMs; })},
         {"gpu_bytes", false, [](std::ostream& f, const BenchRow& r) { f << r.bytes; }},
         {"rmse", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.rmse; })},
         {"relmse", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.relMse; })},
@@ -51,6 +79,8 @@ const std::vector<CsvColumn>& csvColumns() {
         {"psnr_srgb", false, scored([](std::ostream& f, const BenchRow& r) { f << formatMetric(r.error.psnrSrgb); })},
         {"ssim", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.ssim; })},
         {"flip", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.flip; })},
+        {"first_rmse", false, first([](std::ostream& f, const ImageMetrics& m) { f << m.rmse; })},
+        {"first_flip", false, first([](std::ostream& f, const ImageMetrics& m) { f << m.flip; })},
         {"mean_ratio", false, scored([](std::ostream& f, const BenchRow& r) {
              if (r.error.meanReference > 0.0) f << r.error.meanTest / r.error.meanReference;
          })},
@@ -119,7 +149,35 @@ FlythroughStats flythroughFromJson(const nlohmann::ordered_json& j) {
     return s;
 }
 
+nlohmann::ordered_json convergenceToJson(const BenchRow::Convergence& c) {
+    return {{"frames", c.frames}, {"gpu_ms", c.gpuMs}, {"wall_ms", c.wallMs}, {"frame_gpu_ms", c.frameMs}};
+}
+
+BenchRow::Convergence convergenceFromJson(const nlohmann::ordered_json& j) {
+    return {j.at("frames").get<int>(), j.at("gpu_ms").get<double>(), j.at("wall_ms").get<double>(),
+            j.at("frame_gpu_ms").get<double>()};
+}
+
+nlohmann::ordered_json qualityToJson(const std::vector<BenchRow::QualityPoint>& points) {
+    nlohmann::ordered_json a = nlohmann::ordered_json::array();
+    for (const BenchRow::QualityPoint& p : points) {
+        nlohmann::ordered_json e{{"frames", p.frames}, {"gpu_ms", p.gpuMs}};
+        const nlohmann::ordered_json error = errorToJson(p.error);  // items() of a temporary would dangle
+        for (const auto& [key, value] : error.items()) e[key] = value;
+        a.push_back(e);
+    }
+    return a;
+}
+
+std::vector<BenchRow::QualityPoint> qualityFromJson(const nlohmann::ordered_json& a) {
+    std::vector<BenchRow::QualityPoint> points;
+    for (const auto& e : a) points.push_back({e.at("frames").get<int>(), e.at("gpu_ms").get<double>(), errorFromJson(e)});
+    return points;
+}
+
 }  // namespace
+
+double frameCostMs(const BenchRow& row) { return std::max(row.ms, row.cut.frameMs); }
 
 nlohmann::ordered_json rowToJson(const BenchRow& r) {
     nlohmann::ordered_json e{{"scene", r.scene}, {"method", r.method}, {"preset", r.preset},
@@ -136,7 +194,9 @@ nlohmann::ordered_json rowToJson(const BenchRow& r) {
     if (r.aoRmse >= 0.0) e["ao_rmse_vs_raytraced"] = r.aoRmse;
     if (r.leak >= 0.0) e["leak"] = r.leak;
     if (r.megaRaysPerSecond >= 0.0) e["mrays_per_s"] = r.megaRaysPerSecond;
-    if (r.msToConverge) e["gpu_ms_to_converge"] = true;
+    if (r.cut.frames > 0) e["converge"] = convergenceToJson(r.cut);
+    if (r.edit) e["light_edit"] = convergenceToJson(*r.edit);
+    if (!r.quality.empty()) e["quality"] = qualityToJson(r.quality);
     return e;
 }
 
@@ -154,7 +214,10 @@ BenchRow rowFromJson(const nlohmann::ordered_json& j) {
         r.flythrough = flythroughFromJson(j.at("flythrough"));
     else
         r.error = errorFromJson(j);
-    r.msToConverge = j.value("gpu_ms_to_converge", false);  // absent in rows of per-frame methods
+    // Absent in fly-throughs and in results recorded before they were measured.
+    if (j.contains("converge")) r.cut = convergenceFromJson(j.at("converge"));
+    if (j.contains("light_edit")) r.edit = convergenceFromJson(j.at("light_edit"));
+    if (j.contains("quality")) r.quality = qualityFromJson(j.at("quality"));
     if (j.contains("pass_ms"))
         for (const auto& [pass, ms] : j.at("pass_ms").items()) r.passMs.emplace_back(pass, ms.get<double>());
     if (j.contains("step_ms"))

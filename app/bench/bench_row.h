@@ -20,10 +20,28 @@ namespace gis {
 struct BenchRow {
     std::string scene, method, preset, description;
     std::string emitters;                     // --emitters the cell ran with; "" = the default
-    double ms = 0.0;                          // per frame; for progressive methods, to converge
-    bool msToConverge = false;                // ms is that total (the path tracer, probes), not per frame
+    // A static view's steady cost per frame once the image is final, every pass executed as an
+    // engine re-renders it (render --rerun-settled): medians after warm-up.
+    double ms = 0.0;
     double wallMs = 0.0;                      // wall clock with glFinish, the same way
-    std::vector<std::pair<std::string, double>> passMs;
+    // From a camera cut (a renderer with nothing accumulated) or a light edit until the image is
+    // final: frames, their GPU and wall ms together, and the median GPU ms of those after the first
+    // (a frame while the method still works; after a cut final in one frame, the steady frame).
+    struct Convergence {
+        int frames = 0;
+        double gpuMs = 0.0, wallMs = 0.0, frameMs = 0.0;
+    };
+    Convergence cut;
+    std::optional<Convergence> edit;          // scenes with a punctual light to edit
+    // Time to quality after the cut: the error at 1, 2, 4, ... frames and at the last, with the GPU
+    // ms spent until then. The first point is the first frame's error.
+    struct QualityPoint {
+        int frames = 0;
+        double gpuMs = 0.0;
+        ImageMetrics error;
+    };
+    std::vector<QualityPoint> quality;
+    std::vector<std::pair<std::string, double>> passMs;  // steady, as ms
     // A pass's steps ("sdf/c0.jfa.1.16"), within passMs: per measured frame (0 when cached then) and
     // in the first frame, which builds what later frames reuse.
     struct StepTime {
@@ -39,6 +57,11 @@ struct BenchRow {
     // A fly-through (bench --flythrough): ms and wallMs are its medians, passMs and steps too.
     std::optional<FlythroughStats> flythrough;
 };
+
+// What a frame costs a real-time user: the dearer of a frame while the method converges and a
+// static view's steady frame (a converged path tracer re-shows its image for nothing, but every
+// frame of a moving camera pays for samples). The trade-off chart's first panel.
+double frameCostMs(const BenchRow& row);
 
 nlohmann::ordered_json rowToJson(const BenchRow& row);
 // Throws gis::Error (via nlohmann) when a field is missing or of the wrong type.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
 
 #include "cli_util.h"
@@ -42,6 +43,27 @@ TEST(Bench, RunsEndToEndAndCachesTheReference) {
             EXPECT_GT(row["ao_rmse_vs_raytraced"].get<double>(), 0.0);
             EXPECT_LT(row["ao_rmse_vs_raytraced"].get<double>(), 0.5);
         }
+        // Both costs: after a cut, the frames until final (the path tracer's are its samples: 4 at
+        // low, 64 at high) and their GPU ms, and the error at 1, 2, 4, ... frames and the last.
+        const auto& cut = row["converge"];
+        const int frames = cut["frames"].get<int>();
+        EXPECT_EQ(frames, row["method"] != "pathtrace" ? 1 : row["preset"] == "low" ? 4 : 64) << row.dump();
+        EXPECT_GE(cut["gpu_ms"].get<double>(), cut["frame_gpu_ms"].get<double>() * (frames > 1 ? 1.0 : 0.0));
+        const auto& quality = row["quality"];
+        ASSERT_FALSE(quality.empty());
+        EXPECT_EQ(quality.front()["frames"], 1);
+        EXPECT_EQ(quality.back()["frames"], frames);
+        for (size_t i = 1; i < quality.size(); ++i) {
+            EXPECT_EQ(quality[i]["frames"].get<int>(), std::min(2 * quality[i - 1]["frames"].get<int>(), frames));
+            EXPECT_GE(quality[i]["gpu_ms"].get<double>(), quality[i - 1]["gpu_ms"].get<double>());
+        }
+        if (row["method"] == "none")  // final in its first frame: the curve's one point is the image scored
+            EXPECT_NEAR(quality.back()["flip"].get<double>(), row["flip"].get<double>(), 1e-9);
+        if (row["method"] == "pathtrace" && row["preset"] == "high")
+            EXPECT_GT(quality.front()["rmse"].get<double>(), 1.5 * quality.back()["rmse"].get<double>()) << row.dump();
+        // The Cornell box's point light, halved: the path tracer starts its samples over.
+        ASSERT_TRUE(row.contains("light_edit")) << row.dump();
+        EXPECT_EQ(row["light_edit"]["frames"].get<int>(), row["method"] == "pathtrace" ? frames : 1) << row.dump();
     }
     std::ifstream cf(dir + "/bench.csv");
     std::string line;
@@ -50,7 +72,9 @@ TEST(Bench, RunsEndToEndAndCachesTheReference) {
     EXPECT_EQ(lines, 7);  // header + 6 rows
     const ImageU8 chart = readPng(dir + "/cornell_chart.png"), grid = readPng(dir + "/cornell_grid.png");
     EXPECT_GT(chart.width, 100);
+    EXPECT_GT(chart.height, chart.width) << "two panels, one above the other";
     EXPECT_GT(grid.width, 100);
+    EXPECT_GT(readPng(dir + "/cornell_quality.png").width, 100);
 
     r = runCli(args);  // second run: the reference comes from the cache
     ASSERT_EQ(r.status, 0) << r.err;
@@ -68,6 +92,7 @@ TEST(Bench, EmitterModesGiveARowEach) {
     ASSERT_EQ(j["results"].size(), 2u);
     EXPECT_EQ(j["results"][0]["emitters"], "lights");
     EXPECT_EQ(j["results"][1]["emitters"], "gi");
+    EXPECT_FALSE(j["results"][0].contains("light_edit")) << "cornell-area has no punctual light to edit";
     // ReSTIR lights the room only with lights: the two images differ.
     EXPECT_NE(j["results"][0]["rmse"].get<double>(), j["results"][1]["rmse"].get<double>());
     for (const char* bad : {"lights,lights", "lights,", "candle"}) {

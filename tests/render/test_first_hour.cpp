@@ -200,18 +200,27 @@ TEST(FirstHour, BackgroundReachesTheConstantAmbient) {
     EXPECT_GT(meanRadiance(readExr(dir + "/bg.exr")), meanRadiance(readExr(dir + "/explicit.exr")) + 0.05);
 }
 
-TEST(FirstHour, BenchChartSaysWhichTimesAreTotals) {
-    // probes' figure is its total until converged, like the path tracer's: the axis names both,
-    // from the rows (the label said "path tracer: all samples" whatever was measured).
-    EXPECT_EQ(timeAxisLabel("llvmpipe (LLVM 15.0.6, 256 bits)", {"pathtrace", "probes"}),
-              "GPU ms on llvmpipe (per frame; until converged: pathtrace, probes)");
-    EXPECT_EQ(timeAxisLabel("llvmpipe", {}), "GPU ms on llvmpipe (per frame)");
+TEST(FirstHour, BenchRowsKeepBothCostsThroughTheirJson) {
+    // A row carries the steady frame, the convergence after a cut and after a light edit, and the
+    // time-to-quality curve; each survives the cell's record, and the chart's frame cost is the
+    // dearer of a converging and a steady frame (a converged path tracer's frame costs nothing).
     BenchRow row;
-    row.scene = "s", row.method = "probes", row.preset = "low", row.description = "d";
-    row.msToConverge = true;
-    EXPECT_TRUE(rowFromJson(rowToJson(row)).msToConverge);
-    row.msToConverge = false;
-    EXPECT_FALSE(rowToJson(row).contains("gpu_ms_to_converge")) << "rows of per-frame methods read as before";
+    row.scene = "s", row.method = "pathtrace", row.preset = "low", row.description = "d";
+    row.ms = 0.01;
+    row.cut = {4, 20.0, 25.0, 4.5};
+    row.quality = {{1, 5.0, {}}, {2, 10.0, {}}, {4, 20.0, {}}};
+    row.quality.back().error.flip = 0.125;
+    const BenchRow back = rowFromJson(rowToJson(row));
+    EXPECT_EQ(back.cut.frames, 4);
+    EXPECT_DOUBLE_EQ(back.cut.gpuMs, 20.0);
+    EXPECT_DOUBLE_EQ(back.cut.frameMs, 4.5);
+    EXPECT_FALSE(back.edit.has_value()) << "no light edited, no figure";
+    ASSERT_EQ(back.quality.size(), 3u);
+    EXPECT_EQ(back.quality[2].frames, 4);
+    EXPECT_DOUBLE_EQ(back.quality[2].error.flip, 0.125);
+    EXPECT_DOUBLE_EQ(frameCostMs(back), 4.5);
+    row.edit = BenchRow::Convergence{2, 8.0, 9.0, 4.0};
+    EXPECT_EQ(rowFromJson(rowToJson(row)).edit->frames, 2);
 }
 
 }  // namespace
