@@ -19,8 +19,9 @@ namespace {
 using namespace detail;
 
 // emitterSize: the area light's edge in metres, its radiance scaled to keep its power; 0 = the
-// reference glTF's 0.5 m quad of radiance 15.
-Scene makeCornell(bool areaLight, float emitterSize = 0.0f) {
+// reference glTF's 0.5 m quad of radiance 15. emitterTiles: the quad cut into tiles x tiles quads
+// (2 tiles^2 emissive triangles, the same light): what the emitters' cost grows with.
+Scene makeCornell(bool areaLight, float emitterSize = 0.0f, int emitterTiles = 1) {
     Scene s;
     s.name = areaLight ? "cornell-area" : "cornell";
     s.background = glm::vec3(0.0f);
@@ -57,7 +58,13 @@ Scene makeCornell(bool areaLight, float emitterSize = 0.0f) {
         Primitive quad;
         quad.material = kLight;
         const float y = 1.999f, e = emitterSize > 0.0f ? 0.5f * emitterSize : 0.25f;
-        addQuad(quad, {{-e, y, -e}, {e, y, -e}, {e, y, e}, {-e, y, e}}, {0, -1, 0});
+        const float step = 2.0f * e / float(emitterTiles);
+        for (int i = 0; i < emitterTiles; ++i)
+            for (int k = 0; k < emitterTiles; ++k) {
+                const float x0 = -e + step * float(i), z0 = -e + step * float(k);
+                const float x1 = i + 1 == emitterTiles ? e : x0 + step, z1 = k + 1 == emitterTiles ? e : z0 + step;
+                addQuad(quad, {{x0, y, z0}, {x1, y, z0}, {x1, y, z1}, {x0, y, z1}}, {0, -1, 0});
+            }
         s.primitives.push_back(quad);
         s.draws.push_back(DrawItem{static_cast<int>(s.primitives.size()) - 1, glm::mat4(1.0f)});
     }
@@ -216,13 +223,18 @@ Scene makeBuiltinScene(const std::string& spec) {
     if (name == "building") return detail::makeBuildingScene(options);
     if (name == "cornell-area") {
         for (const auto& [key, value] : options)
-            if (key != "emitter-size")
-                throw Error("builtin:cornell-area: unknown option '" + detail::oneLine(key, 40) + "' (expected emitter-size)");
-        auto it = options.find("emitter-size");
-        if (it != options.end() && !(it->second >= 0.01 && it->second <= 2.0))
-            throw Error("builtin:cornell-area: emitter-size " + detail::oneLine(std::to_string(it->second), 40) +
+            if (key != "emitter-size" && key != "emitter-tiles")
+                throw Error("builtin:cornell-area: unknown option '" + detail::oneLine(key, 40) +
+                            "' (expected emitter-size or emitter-tiles)");
+        auto size = options.find("emitter-size"), tiles = options.find("emitter-tiles");
+        if (size != options.end() && !(size->second >= 0.01 && size->second <= 2.0))
+            throw Error("builtin:cornell-area: emitter-size " + detail::oneLine(std::to_string(size->second), 40) +
                         " is out of range [0.01, 2] (metres)");
-        return makeCornell(true, it == options.end() ? 0.0f : float(it->second));
+        if (tiles != options.end() && !(tiles->second >= 1 && tiles->second <= 100 && tiles->second == std::floor(tiles->second)))
+            throw Error("builtin:cornell-area: emitter-tiles " + detail::oneLine(std::to_string(tiles->second), 40) +
+                        " is not a whole number in [1, 100]");
+        return makeCornell(true, size == options.end() ? 0.0f : float(size->second),
+                           tiles == options.end() ? 1 : int(tiles->second));
     }
     if (!options.empty()) throw Error("built-in scene '" + detail::oneLine(name, 80) + "' takes no options");
     if (name == "cornell") return makeCornell(false);

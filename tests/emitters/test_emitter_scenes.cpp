@@ -53,6 +53,24 @@ TEST(EmitterScenes, CornellAreaEmitterSizeKeepsThePower) {
     EXPECT_THROW(makeBuiltinScene("cornell-area?size=1"), Error);
 }
 
+TEST(EmitterScenes, CornellAreaEmitterTilesKeepTheLightAndCountTheTriangles) {
+    // emitter-tiles=K: the bench's emissive-triangle sweep (2 K^2 triangles) over the same light.
+    const EmitterSum reference = emitters(makeBuiltinScene("cornell-area"));
+    for (int tiles : {1, 7, 71}) {
+        const Scene s = makeBuiltinScene("cornell-area?emitter-tiles=" + std::to_string(tiles));
+        const EmitterSum e = emitters(s);
+        EXPECT_NEAR(e.area, 0.25, 1e-5) << tiles;
+        EXPECT_NEAR(e.power, reference.power, 1e-4 * reference.power) << tiles;
+        size_t triangles = 0;
+        for (const DrawItem& d : s.draws)
+            if (s.materials[s.primitives[d.primitive].material].emissive.r > 0.0f)
+                triangles += s.primitives[d.primitive].indices.size() / 3;
+        EXPECT_EQ(triangles, size_t(2 * tiles * tiles)) << tiles;
+    }
+    for (const char* bad : {"0", "101", "2.5"})
+        EXPECT_THROW(makeBuiltinScene(std::string("cornell-area?emitter-tiles=") + bad), Error) << bad;
+}
+
 TEST(EmitterScenes, RoomPanelHasTheLampsPower) {
     const Scene point = makeBuiltinScene("room");
     ASSERT_EQ(point.lights.size(), 1u);
