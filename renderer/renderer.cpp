@@ -119,14 +119,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     }
     passes_.push_back(std::make_unique<TonemapPass>(w, h, ledger_));
     declare(*passes_.back());
-    bool viewFound = settings_.view == "final";
-    for (const DebugViewDesc& v : views()) viewFound = viewFound || v.name == settings_.view;
-    if (!viewFound) {
-        std::string names;
-        for (const DebugViewDesc& v : views()) names += (names.empty() ? "" : ", ") + v.name;
-        throw Error("--view '" + settings_.view + "' is not produced by --gi " + settings_.gi + " (available: " +
-                    names + ")");
-    }
+    checkViewOffered(settings_.view);
     if (settings_.view != "final")
         debugTarget_ = gl::createTexture2D({&ledger_, "debug view"}, GL_RGBA16F, w, h);
     // One counter per pass and one for the debug view drawn after them.
@@ -136,6 +129,15 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
 }
 
 Renderer::~Renderer() = default;
+
+void Renderer::checkViewOffered(const std::string& view) const {
+    bool found = view == "final";
+    for (const DebugViewDesc& v : views()) found = found || v.name == view;
+    if (found) return;
+    std::string names;
+    for (const DebugViewDesc& v : views()) names += (names.empty() ? "" : ", ") + v.name;
+    throw Error("--view '" + view + "' is not produced by --gi " + settings_.gi + " (available: " + names + ")");
+}
 
 std::vector<DebugViewDesc> Renderer::views() const {
     std::vector<DebugViewDesc> all{{"final", "the lit, tone-mapped image"}};
@@ -166,7 +168,8 @@ bool Renderer::converged() const {
 }
 
 bool Renderer::settled() const {
-    return frameIndex_ > 0 && std::all_of(passes_.begin(), passes_.end(), [](const auto& p) { return p->settled(); });
+    return frameIndex_ > 0 && !redrawPending_ &&
+           std::all_of(passes_.begin(), passes_.end(), [](const auto& p) { return p->settled(); });
 }
 
 // A settled pass is skipped only when no pass before it executed this frame that outputs one of its
@@ -183,8 +186,8 @@ bool Renderer::canSkip(const Pass& pass, const std::set<std::string>& reproduced
 // frame without work, so --timings and the panel show it cached.
 void Renderer::keepOutputs(Pass& pass, Frame& frame) const {
     for (const std::string& out : pass.outputs()) {
-        const auto it = frameResources_.find(out);
-        if (it != frameResources_.end()) frame.resources[out] = it->second;
+        const auto it = passResources_.find(out);
+        if (it != passResources_.end()) frame.resources[out] = it->second;
     }
     pass.timer.begin();
     pass.timer.end(false);
@@ -220,9 +223,11 @@ void Renderer::renderFrame() {
     frame.pass = nullptr;
     if (nonFinite_) nonFinite_->collect();
     ++frameIndex_;
+    redrawPending_ = false;
     hdr_ = frame.texture(resource::kRadiance);
     ldr_ = frame.texture(resource::kDisplay);
     if (nonFinite_) nonFinite_->bind(int(passes_.size()));
+    passResources_ = frame.resources;  // before a debug view takes "display" over
     if (settings_.view != "final") drawDebugView(frame);
     frameResources_ = frame.resources;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -281,6 +286,14 @@ void Renderer::setLiveSettings(const RenderSettings& live) {
     if (live.params != settings_.params || live.ambient != settings_.ambient || live.exposureEV != settings_.exposureEV ||
         live.tonemap != settings_.tonemap || live.background != settings_.background)
         changes |= ChangeLiveParams;
+    if (live.view != settings_.view) {
+        // Another debug view of the same passes: drawn from what they hold, nothing they
+        // accumulated starts over (the probes keep converging); the next frame draws it.
+        checkViewOffered(live.view);
+        if (live.view != "final" && !debugTarget_.id())
+            debugTarget_ = gl::createTexture2D({&ledger_, "debug view"}, GL_RGBA16F, settings_.width, settings_.height);
+        redrawPending_ = true;
+    }
     const int camera = settings_.camera;
     settings_ = live;
     settings_.camera = camera;
@@ -301,9 +314,13 @@ void Renderer::invalidate(Changes changes) {
 bool requiresRebuild(const RenderSettings& a, const RenderSettings& b) {
     if (a.width != b.width || a.height != b.height || a.gi != b.gi || a.shadowMapSize != b.shadowMapSize ||
         a.shadowCubeSize != b.shadowCubeSize || a.shadows != b.shadows || a.hdr32 != b.hdr32 || a.seed != b.seed ||
-        a.view != b.view || a.samplesPerFrame != b.samplesPerFrame || a.environment != b.environment ||
+        a.samplesPerFrame != b.samplesPerFrame || a.environment != b.environment ||
         a.environmentRotation != b.environmentRotation)
         return true;
+    // A deferred method's views are drawn from its passes' outputs and its G-buffer: switching
+    // between them is live. A standalone method renders its term views itself (the path tracer's
+    // `direct` traces other paths), and builds a G-buffer only for a G-buffer view.
+    if (a.view != b.view && giMethod(a.gi).pipeline != MethodPipeline::Deferred) return true;
     // A background that is a light of the direct pass decides whether that pass exists and lights
     // the volume: a new one rebuilds, as a new map does.
     if (a.background != b.background && (emitterLightSettings(a).environment || emitterLightSettings(b).environment))

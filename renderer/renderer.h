@@ -71,6 +71,7 @@ public:
 
 private:
     void drawDebugView(Frame& frame);
+    void checkViewOffered(const std::string& view) const;  // throws naming the views there are
     bool canSkip(const Pass& pass, const std::set<std::string>& reproduced) const;
     void keepOutputs(Pass& pass, Frame& frame) const;
     RenderSettings settings_;
@@ -85,7 +86,9 @@ private:
     gl::Texture debugTarget_;          // RGBA16F, when settings.view is not "final"
     uint64_t frameIndex_ = 0;
     std::map<std::string, FrameResource> frameResources_;  // the last frame's named resources
+    std::map<std::string, FrameResource> passResources_;   // the same as the passes wrote them: what a skipped pass keeps
     bool skipSettled_ = true;
+    bool redrawPending_ = false;  // the debug view changed: the next frame draws it, settled or not
     std::vector<bool> skipped_;
     std::unique_ptr<NonFiniteCounter> nonFinite_;  // with GIS_CHECK_FINITE=1 only
 };
@@ -93,7 +96,8 @@ private:
 // True when going from `built` to `wanted` needs a new Renderer: anything baked into GPU
 // resources differs (size, method, a rebuild parameter, shadows ...), or the environment map or its
 // rotation (what every method has accumulated of the sky: probes, voxel light, the path tracer's
-// samples). Camera, BRDFs, tone mapping, exposure, ambient and live parameters never do.
+// samples). Camera, BRDFs, tone mapping, exposure, ambient, live parameters and a deferred
+// method's debug view never do.
 bool requiresRebuild(const RenderSettings& built, const RenderSettings& wanted);
 
 // shaders/brdf_probe.comp: evaluates brdf.glsl at a list of points (the BRDF tests use it).
