@@ -128,6 +128,7 @@ struct ViewOptions {
     std::string size = "1280x720";       // window
     std::string script;
     std::string screenshotDir = "screenshots";
+    std::string frameLog;                // --frame-log FILE: a line per window frame
     std::string environment;             // --environment FILE.hdr
     float environmentRotation = 0.0f;    // --environment-rotation DEG
     SceneSetupOptions setup;

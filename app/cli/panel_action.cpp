@@ -187,6 +187,12 @@ void applyRenderScale(ViewState& s, const PanelAction& a) {
     s.renderScale = a.value;
 }
 
+void applyFrameBudget(ViewState& s, const PanelAction& a) {
+    checkFinite("frame budget", a.value);
+    if (a.value < 0.0f || a.value > 60000.0f) throw Error("frame budget must be in [0, 60000] ms (0: the renderer's default)");
+    s.frameBudgetMs = a.value;
+}
+
 void applyHeatmapMetric(ViewState& s, const PanelAction& a) { s.heatmapMetric = parseErrorMetric(a.text); }
 
 void applyReferenceSpp(ViewState& s, const PanelAction& a) {

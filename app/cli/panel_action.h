@@ -40,6 +40,7 @@ namespace gis::view {
       applyEnvironmentRotation)                                                                                       \
     X(SetMaxBounces, View, "max-bounces", "max-bounces N", readNumber, applyMaxBounces)                                 \
     X(SetRenderScale, View, "render-scale", "render-scale S", readNumber, applyRenderScale)                             \
+    X(SetFrameBudget, View, "frame-budget", "frame-budget MS (0: the renderer's default)", readNumber, applyFrameBudget) \
     X(SetHeatmapMetric, View, "metric", "metric flip|rmse|relmse|ssim", readText, applyHeatmapMetric)                   \
     X(SetReferenceSpp, View, "reference-spp", "reference-spp N", readNumber, applyReferenceSpp)                         \
     X(SetCameraMode, View, "camera mode", "camera mode orbit|fly", readText, applyCameraMode)                           \

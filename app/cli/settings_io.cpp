@@ -164,6 +164,7 @@ ojson viewStateToJson(const ViewState& s) {
     if (s.environmentRotation != 0.0f) j["environment_rotation"] = s.environmentRotation;
     j["max_bounces"] = s.maxBounces;
     j["render_scale"] = s.renderScale;
+    j["frame_budget_ms"] = s.frameBudgetMs;
     j["heatmap_metric"] = errorMetricName(s.heatmapMetric);
     j["reference_spp"] = s.referenceSpp;
     const ViewCamera& c = s.camera;
@@ -336,6 +337,7 @@ bool applyActionKey(const std::string& k, const json& v, ViewState& s) {
     else if (k == "environment_rotation") a = PanelAction::withValue(PanelAction::SetEnvironmentRotation, number(v, k));
     else if (k == "max_bounces") a = PanelAction::withValue(PanelAction::SetMaxBounces, number(v, k));
     else if (k == "render_scale") a = PanelAction::withValue(PanelAction::SetRenderScale, number(v, k));
+    else if (k == "frame_budget_ms") a = PanelAction::withValue(PanelAction::SetFrameBudget, number(v, k));
     else if (k == "reference_spp") a = PanelAction::withValue(PanelAction::SetReferenceSpp, number(v, k));
     else if (k == "heatmap_metric") a = PanelAction::withText(PanelAction::SetHeatmapMetric, text(v, k));
     else return false;

@@ -93,6 +93,10 @@ struct ViewState {
     float environmentRotation = 0.0f;     // degrees about +Y (RenderSettings::environmentRotation)
     int maxBounces = 16;                  // path tracer
     float renderScale = 1.0f;             // render at this fraction of the view's pixels, [0.125, 1]
+    // GPU ms a pane's full frame may take before the pane renders at a lower scale while its
+    // camera moves or its method converges (ViewSession: budgetScale); 0 = the machine's default
+    // (kCpuFrameBudgetMs on a CPU renderer, kGpuFrameBudgetMs on a GPU).
+    float frameBudgetMs = 0.0f;
 
     // Error heatmap against the path-traced reference at the current camera.
     ErrorMetric heatmapMetric = ErrorMetric::Flip;

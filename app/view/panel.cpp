@@ -15,6 +15,13 @@ namespace gis::view {
 
 namespace {
 
+// Greyed text wrapped at the panel's edge (TextDisabled cuts a long line off).
+void greyWrapped(const std::string& text) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("%s", text.c_str());
+    ImGui::PopStyleColor();
+}
+
 constexpr float kDegrees = 57.29577951308232f;
 
 // A combo over names; calls `choose` with the one picked.
@@ -141,9 +148,15 @@ void paneControls(PanelContext& ctx, int i) {
     bool direct = p.directOnly;
     if (ImGui::Checkbox("Direct light only", &direct)) act(ctx, PanelAction::directOnly(i, direct));
     const PaneView& pv = ctx.session.pane(i);
-    if (!pv.status.empty()) ImGui::TextDisabled("%s", pv.status.c_str());
+    if (pv.fullFrameMs > 0.0) {
+        char line[160];
+        std::snprintf(line, sizeof line, "render scale in use 1/%d: a full frame %.0f ms, budget %.0f ms",
+                      int(std::lround(1.0f / pv.scale)), pv.fullFrameMs, ctx.session.frameBudgetMs(ctx.state));
+        greyWrapped(line);
+    }
+    if (!pv.status.empty()) greyWrapped(pv.status);
     if (pv.heatmapReady) {
-        ImGui::Text("%s vs reference: %s", pv.metricName.c_str(), formatMetric(pv.metricValue, 4).c_str());
+        ImGui::Text("%s vs reference: %s", pv.metricName.c_str(), formatPaneMetric(pv.metricValue).c_str());
         ImGui::Text("colour bar (pane's bottom): 0 to %s", formatMetric(pv.heatmapMax, 3).c_str());
     }
     ImGui::PopID();
@@ -205,7 +218,7 @@ void timingControls(PanelContext& ctx) {
     const FrameTimes& t = ctx.times;
     ImGui::Text("frame %.1f ms = GPU passes %.1f + CPU and waits %.1f", t.frameMs, t.gpuMs,
                 std::max(0.0f, t.frameMs - t.gpuMs));
-    ImGui::TextDisabled("on %s; a settled view renders nothing", ctx.glRenderer.c_str());
+    greyWrapped("on " + ctx.glRenderer + "; a settled view renders nothing");
     ImGui::Text("GPU memory, all panes and references: %.2f MiB", mib(session.gpuBytes()));
     for (int i = 0; i < session.visiblePanes(); ++i) {
         const PaneView& p = session.pane(i);
@@ -403,6 +416,13 @@ void viewControls(PanelContext& ctx) {
     float scale = s.renderScale;
     if (ImGui::SliderFloat("Render scale", &scale, 0.125f, 1.0f, "%.3f"))
         act(ctx, PanelAction::withValue(PanelAction::SetRenderScale, scale));
+    float budget = s.frameBudgetMs;
+    if (ImGui::InputFloat("Frame budget ms", &budget, 0.0f, 0.0f, "%.0f", ImGuiInputTextFlags_EnterReturnsTrue))
+        act(ctx, PanelAction::withValue(PanelAction::SetFrameBudget, budget));
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("a pane whose full frame takes longer renders at a lower scale while its camera moves or its "
+                          "method converges, and climbs back to full scale when the view settles (0: %.0f ms here)",
+                          defaultFrameBudgetMs(ctx.glRenderer));
     cameraControls(ctx);
 }
 
@@ -484,8 +504,11 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
     messageLines(ctx);
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) sceneControls(ctx);
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) viewControls(ctx);
+    // A single pane's section starts open; with two or four they start closed (their titles differ
+    // per mode), or they would push the timings below a 720-pixel window.
+    const ImGuiTreeNodeFlags paneOpen = ctx.state.mode == ViewMode::Single ? ImGuiTreeNodeFlags_DefaultOpen : 0;
     for (int i = 0; i < paneCount(ctx.state.mode); ++i)
-        if (ImGui::CollapsingHeader(paneTitle(ctx.state.mode, i), ImGuiTreeNodeFlags_DefaultOpen)) paneControls(ctx, i);
+        if (ImGui::CollapsingHeader(paneTitle(ctx.state.mode, i), paneOpen)) paneControls(ctx, i);
     // Right after the panes it times, so it is on screen at the default 720-pixel height.
     if (ImGui::CollapsingHeader("Timings and memory", ImGuiTreeNodeFlags_DefaultOpen)) timingControls(ctx);
     if (ImGui::CollapsingHeader("Display and lighting", ImGuiTreeNodeFlags_DefaultOpen)) displayControls(ctx);
@@ -533,7 +556,7 @@ void drawViewOverlay(const ViewState& state, const ViewSession& session, float x
         std::string text = paneLabel(state, pane);
         const PaneView& p = session.pane(pane);
         if (!p.status.empty()) text += "  " + p.status;
-        if (p.heatmapReady) text += "  " + p.metricName + " " + formatMetric(p.metricValue, 4);
+        if (p.heatmapReady) text += "  " + p.metricName + " " + formatPaneMetric(p.metricValue);
         const ImVec2 size = ImGui::CalcTextSize(text.c_str());
         const float x0 = alignRight ? lx - size.x - 8.0f : lx;
         dl->AddRectFilled(ImVec2(x0, ly), ImVec2(x0 + size.x + 8.0f, ly + size.y + 4.0f), IM_COL32(0, 0, 0, 170));

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
+#include <iomanip>
 #include <cmath>
 #include <cstdio>
 #include <utility>
@@ -30,9 +32,6 @@ namespace {
 using namespace gis::view;
 
 constexpr float kPanelWidth = 420.0f;  // window pixels; less on narrow windows
-// GPU ms a full-scale frame may take before a moving camera renders at a lower scale: about 30
-// frames a second while dragging.
-constexpr double kMotionBudgetMs = 33.0;
 
 // A key or mouse button going down or up, as GLFW's callbacks report it: queued until the next
 // frame reads them, so a press shorter than a frame still counts.
@@ -108,6 +107,7 @@ private:
     void openDroppedScene();
     void drawFrame(std::chrono::steady_clock::time_point& last, FrameTimes& times);
     void drawViewAndPanel(int fbw, int fbh, int ww, int wh, float dt, FrameTimes& times);
+    void logFrame(float frameMs);
 
     ViewOptions options_;
     std::chrono::steady_clock::time_point start_;
@@ -121,6 +121,7 @@ private:
     std::string capturePath_;
     std::string message_, scenePath_, settingsPath_ = "gisandbox_view.json", environmentPath_;
     std::string droppedPath_;
+    std::ofstream frameLog_;  // --frame-log
     double scroll_ = 0.0;
     std::vector<InputEvent> events_;  // since the last frame, in order
     bool inspect_ = false;  // I: the pixel inspector's tooltip follows the cursor
@@ -270,7 +271,6 @@ void ViewApp::applyEnvironmentFlag() {
 // The scene (CPU only) before the window, so the script is checked against the view it will drive.
 void ViewApp::openStartState(int width, int height) {
     session_ = std::make_unique<ViewSession>();
-    session_->setMotionBudget(kMotionBudgetMs);
     state_.viewWidth = std::max(1, width - int(kPanelWidth));
     state_.viewHeight = height;
     state_.lighting = lightingModeName(parseLightingMode(options_.setup.lighting));
@@ -312,6 +312,7 @@ void ViewApp::openWindow(int width, int height) {
                     " (the sandbox needs a display: run it under `xvfb-run -a`, or render headless with `gisandbox render`)");
     }
     window_ = ctx_->window();
+    session_->setDefaultFrameBudget(defaultFrameBudgetMs(ctx_->renderer));
     if (options_.verbose)
         std::fprintf(stderr, "backend: glfw (%s)\nGL_RENDERER: %s\nGL_VERSION: %s\n", ctx_->detail.c_str(),
                      ctx_->renderer.c_str(), ctx_->version.c_str());
@@ -412,14 +413,36 @@ void ViewApp::drawFrame(std::chrono::steady_clock::time_point& last, FrameTimes&
     glfwSwapBuffers(window_);
     // From after the event wait to after the swap, smoothed alike so the parts still add up.
     const float frameMs = 1000.0f * std::chrono::duration<float>(std::chrono::steady_clock::now() - now).count();
-    times.frameMs = 0.9f * times.frameMs + 0.1f * frameMs;
-    times.gpuMs = 0.9f * times.gpuMs + 0.1f * float(session_->gpuMsCollected());
+    // Smoothed from the first frame's own figures, not from 0: the line agrees with the pane graph
+    // from the start.
+    const bool first = times.frameMs == 0.0f;
+    times.frameMs = first ? frameMs : 0.9f * times.frameMs + 0.1f * frameMs;
+    times.gpuMs = first ? float(session_->gpuMsCollected()) : 0.9f * times.gpuMs + 0.1f * float(session_->gpuMsCollected());
+    if (frameLog_.is_open()) logFrame(frameMs);
+}
+
+// --frame-log: the frame's wall ms (event wait excluded, swap included), the GPU ms of the
+// timings that arrived in it, and per visible pane its render scale, the GPU ms of its last full
+// frame (what the frame budget is held against) and its status.
+void ViewApp::logFrame(float frameMs) {
+    frameLog_ << std::fixed << std::setprecision(2) << seconds() << '\t' << frameMs << '\t'
+              << session_->gpuMsCollected();
+    for (int i = 0; i < session_->visiblePanes(); ++i)
+        frameLog_ << '\t' << session_->pane(i).scale << '\t' << session_->pane(i).fullFrameMs << '\t'
+                  << session_->pane(i).status;
+    frameLog_ << '\n';
+    if (!frameLog_) throw Error("cannot write the frame log " + options_.frameLog + " (disk full?)");
 }
 
 int ViewApp::run() {
     int width = 0, height = 0;
     parseRenderSize(options_.size, width, height);
     openStartState(width, height);
+    if (!options_.frameLog.empty()) {
+        frameLog_.open(options_.frameLog);
+        if (!frameLog_) throw Error("cannot write the frame log '" + options_.frameLog + "' (--frame-log)");
+        frameLog_ << "seconds\tframe_ms\tgpu_ms\tper pane: scale, full_frame_gpu_ms, status\n";
+    }
     openWindow(width, height);
     startImGui();
     auto last = std::chrono::steady_clock::now();
@@ -439,6 +462,9 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
     cmd.add_option("--script", o.script, "Run timed actions from FILE (see docs/viewer.md)");
     addEnvironmentOptions(cmd, o.environment, o.environmentRotation);
     cmd.add_option("--screenshot-dir", o.screenshotDir, "Where screenshots (F12) go")->capture_default_str();
+    cmd.add_option("--frame-log", o.frameLog,
+                   "Write a line per window frame to FILE: seconds, wall ms, GPU ms, each pane's render scale, full "
+                   "frame GPU ms and status (what a scripted orbit costs: scripts/viewer-budget-table.sh)");
     cmd.add_flag("--gl-debug", o.glDebug, "Debug context; print KHR_debug messages");
     cmd.add_flag("-v,--verbose", o.verbose, "Print the backend, GL_RENDERER and GL_VERSION");
     o.given = [&cmd](const std::string& flag) { return cmd.count(flag) > 0; };

@@ -58,7 +58,7 @@ std::string progressText(const Renderer& r) {
     return "";
 }
 
-// Nearest-neighbour resampling: a motion frame read back at the pane's size.
+// Nearest-neighbour resampling: a reduced frame read back at the pane's size.
 ImageU8 resizeNearest(const ImageU8& src, int width, int height) {
     ImageU8 out;
     out.width = width;
@@ -83,9 +83,23 @@ LightingMode lightingFor(const ViewState& state) {
 
 }  // namespace
 
-float motionScale(double lastFullFrameMs, double budgetMs) {
-    if (budgetMs <= 0.0 || lastFullFrameMs <= budgetMs) return 1.0f;
-    return lastFullFrameMs <= 4.0 * budgetMs ? 0.5f : 0.25f;
+float budgetScale(double fullFrameMs, double budgetMs) {
+    float scale = 1.0f;
+    while (budgetMs > 0.0 && scale > 0.125f && fullFrameMs * scale * scale > budgetMs) scale *= 0.5f;
+    return scale;
+}
+
+std::string formatPaneMetric(double value) {
+    if (!std::isfinite(value)) return formatMetric(value);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.4f", value);
+    return buf;
+}
+
+double defaultFrameBudgetMs(const std::string& glRenderer) {
+    for (const char* cpu : {"llvmpipe", "softpipe", "SwiftShader", "swrast"})
+        if (glRenderer.find(cpu) != std::string::npos) return kCpuFrameBudgetMs;
+    return kGpuFrameBudgetMs;
 }
 
 std::string structuralKey(const RenderSettings& settings) {
@@ -214,7 +228,7 @@ void ViewSession::syncLights(const ViewState& state) {
     lightsKey_ = key;
     for (PaneView& p : panes_) {
         if (p.renderer) p.renderer->lightsChanged();
-        if (p.motion) p.motion->lightsChanged();
+        if (p.reduced) p.reduced->lightsChanged();
     }
     for (auto& [refKey, ref] : references_) {
         ref.renderer->lightsChanged();
@@ -277,19 +291,18 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
         const PaneDisplay display = state.panes[index].display;
         p.movingFrames = p.cameraSet && !sameCamera(p.lastCamera, camera) ? p.movingFrames + 1 : 0;
         p.lastCamera = camera;
-        // From the second frame of a move on (a single step renders at full scale); heatmaps
-        // compare full frames only.
-        const float scale = p.movingFrames >= 2 && display != PaneDisplay::Heatmap
-                                ? motionScale(p.fullFrameMs, motionBudgetMs_) : 1.0f;
-        if (scale < 1.0f) {
-            renderMotionFrame(state, index, camera, scale);
-            return;
-        }
         r.setLiveSettings(want);
         if (!p.cameraSet || !sameCamera(p.camera, camera)) {
             r.setCamera(camera);
             p.camera = camera;
             p.cameraSet = true;
+        }
+        // Heatmaps compare full frames only.
+        const float scale = display == PaneDisplay::Heatmap ? 1.0f : budgetScale(p.fullFrameMs, frameBudgetMs(state));
+        const bool moving = p.movingFrames > 0, converging = !r.settled();
+        if (scale < 1.0f && (moving || (converging && !reducedSettled(p, scale, camera)))) {
+            renderReducedFrame(state, index, camera, scale);
+            return;
         }
         if (!r.settled()) {  // a settled renderer would reproduce the frame it shows
             r.renderFrame();
@@ -297,12 +310,20 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
         }
         collectTimings(p);
         p.status = progressText(r);
-        p.scale = 1.0f;
-        p.shownSize = paneSize_;
         p.heatmapWanted = display == PaneDisplay::Heatmap;
         if (display == PaneDisplay::Heatmap) {
+            p.scale = 1.0f;
+            p.shownSize = paneSize_;
             updateHeatmap(state, index, camera);
+        } else if (scale < 1.0f && !r.settled() && reducedSettled(p, scale, camera)) {
+            // Refining: the settled reduced image stays on show until the full one has settled.
+            p.shown = p.reduced->frameTexture("display");
+            p.shownSize = glm::ivec2(p.reduced->settings().width, p.reduced->settings().height);
+            p.scale = scale;
+            p.status = "refining at full scale" + (p.status.empty() ? "" : ": " + p.status);
         } else {
+            p.scale = 1.0f;
+            p.shownSize = paneSize_;
             p.shown = r.frameTexture("display");
         }
     } catch (const std::exception& e) {
@@ -314,22 +335,36 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
     }
 }
 
-// The pane's settings at `scale` of its size, through the pane's motion renderer (built on the
-// first move, kept for the next). Its timings count in the frame's GPU time, not in the pass table.
-void ViewSession::renderMotionFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale) {
+// Whether the pane's reduced renderer holds a finished image of this camera at this scale.
+bool ViewSession::reducedSettled(const PaneView& p, float scale, const CameraMatrices& camera) const {
+    if (!p.reduced || !sameCamera(p.reducedCamera, camera)) return false;
+    const glm::ivec2 size = glm::max(glm::ivec2(glm::round(glm::vec2(paneSize_) * scale)), glm::ivec2(1));
+    return p.reduced->settings().width == size.x && p.reduced->settings().height == size.y && p.reduced->settled();
+}
+
+// The pane's settings at `scale` of its size, through the pane's reduced renderer (built on the
+// first reduced frame, kept for the next). Its timings count in the frame's GPU time, not in the
+// pass table.
+void ViewSession::renderReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale) {
     PaneView& p = panes_[index];
     const glm::ivec2 size = glm::max(glm::ivec2(glm::round(glm::vec2(paneSize_) * scale)), glm::ivec2(1));
     const RenderSettings want = paneSettings(state, index, size);
-    if (!p.motion || requiresRebuild(p.motion->settings(), want)) {
-        p.motion.reset();  // never two motion renderers of one pane in GPU memory
-        p.motion = std::make_unique<Renderer>(*scene_, want);
+    if (!p.reduced || requiresRebuild(p.reduced->settings(), want)) {
+        p.reduced.reset();  // never two reduced renderers of one pane in GPU memory
+        p.reduced = std::make_unique<Renderer>(*scene_, want);
+        p.reducedCamera = CameraMatrices{};
         ++rebuilds_;
     }
-    Renderer& m = *p.motion;
+    Renderer& m = *p.reduced;
     m.setLiveSettings(want);
-    m.setCamera(camera);
-    m.renderFrame();
-    ++framesRendered_;
+    if (!sameCamera(p.reducedCamera, camera)) {  // a camera set again would restart its convergence
+        m.setCamera(camera);
+        p.reducedCamera = camera;
+    }
+    if (!m.settled()) {
+        m.renderFrame();
+        ++framesRendered_;
+    }
     for (const auto& pass : m.passes()) {
         for (double ms : pass->timer.samples) gpuMsCollected_ += ms;
         pass->timer.clear();
@@ -337,7 +372,9 @@ void ViewSession::renderMotionFrame(const ViewState& state, int index, const Cam
     p.shown = m.frameTexture("display");
     p.shownSize = size;
     p.scale = scale;
-    p.status = "moving: " + std::string(scale == 0.5f ? "1/2" : "1/4") + " scale";
+    const std::string progress = progressText(m);
+    p.status = "1/" + std::to_string(int(std::lround(1.0f / scale))) + " scale (" +
+               (p.movingFrames > 0 ? "moving" : "converging") + ")" + (progress.empty() ? "" : ": " + progress);
 }
 
 void ViewSession::collectTimings(PaneView& p) {
@@ -348,8 +385,8 @@ void ViewSession::collectTimings(PaneView& p) {
     }
     bool fresh = false;
     float total = 0.0f;
+    double working = 0.0;  // the passes that worked in the last frame: what the next one costs
     const auto& owners = p.renderer->memory().bytesByOwner;
-    p.fullFrameMs = 0.0;
     for (size_t k = 0; k < passes.size(); ++k) {
         gl::GpuTimer& timer = passes[k]->timer;  // read and cleared: bounded memory
         for (size_t i = 0; i < timer.samples.size(); ++i) {
@@ -360,13 +397,16 @@ void ViewSession::collectTimings(PaneView& p) {
         fresh = fresh || !timer.samples.empty();
         timer.clear();
         for (auto& step : passes[k]->steps.steps) step.second->clear();
-        p.fullFrameMs += p.passes[k].workedMs;
         if (!p.passes[k].ms.empty()) total += p.passes[k].ms.back();
         auto it = owners.find(p.passes[k].pass);
         p.passes[k].bytes = it == owners.end() ? 0 : it->second;
         p.passes[k].cached = p.renderer->skippedLastFrame()[k] || passes[k]->reusedLastFrame();
+        if (!p.passes[k].cached) working += p.passes[k].workedMs;
     }
-    if (fresh) push(p.totalMs, total);
+    if (fresh) {
+        push(p.totalMs, total);
+        p.fullFrameMs = working;
+    }
 }
 
 GLuint ViewSession::ensureDisplay(PaneView& p) {
@@ -479,7 +519,7 @@ void ViewSession::updateHeatmap(const ViewState& state, int index, const CameraM
 void ViewSession::drawToFramebuffer(const ViewState& state, int x, int y, int w, int h) const {
     if (visible_ == 0 || w <= 0 || h <= 0) return;
     const int sw = paneSize_.x, sh = paneSize_.y;
-    // Source rectangles in pane pixels; a motion frame's texture is smaller by its scale.
+    // Source rectangles in pane pixels; a reduced frame's texture is smaller by its scale.
     if (!readFbo_) readFbo_ = gl::createFramebuffer();  // not in the constructor: a session opens its scene before GL
     auto blit = [&](const PaneView& p, int sx0, int sy0, int sx1, int sy1, int dx0, int dy0, int dx1, int dy1) {
         if (!p.shown || sx1 <= sx0 || dx1 <= dx0) return;
@@ -538,7 +578,7 @@ ImageU8 ViewSession::readPane(int index) const {
     if (tex) {
         const glm::ivec2 shown = panes_[index].shownSize;
         const ImageU8 img = readTextureBytes(tex, shown.x, shown.y);
-        return shown == paneSize_ ? img : resizeNearest(img, paneSize_.x, paneSize_.y);  // a motion frame
+        return shown == paneSize_ ? img : resizeNearest(img, paneSize_.x, paneSize_.y);  // a reduced frame
     }
     ImageU8 img;  // a pane with nothing shown yet: opaque black
     img.width = paneSize_.x;
@@ -554,7 +594,7 @@ ImageU8 ViewSession::composite(const ViewState& state, bool labels) const {
         if (!labels) return;
         std::string text = paneLabel(state, pane);
         const PaneView& p = panes_[pane];
-        if (p.heatmapReady) text += "  " + p.metricName + " " + formatMetric(p.metricValue, 4);
+        if (p.heatmapReady) text += "  " + p.metricName + " " + formatPaneMetric(p.metricValue);
         // Twice the font size where it fits in the pane's share of the width.
         const int room = state.mode == ViewMode::Split ? w / 2 : w;
         const int scale = Canvas::textWidth(text, 2) + 8 <= room ? 2 : 1;
@@ -657,7 +697,7 @@ int64_t ViewSession::gpuBytes() const {
     int64_t sum = 0;
     for (const PaneView& p : panes_) {
         if (p.renderer) sum += p.renderer->memory().total();
-        if (p.motion) sum += p.motion->memory().total();
+        if (p.reduced) sum += p.reduced->memory().total();
         if (p.display.id()) sum += int64_t(p.display.width) * p.display.height * 4;
     }
     for (const auto& [key, ref] : references_) sum += ref.renderer->memory().total();

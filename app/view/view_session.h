@@ -6,15 +6,16 @@
 // changes (method, preset, size, shadows, ambient/background/bounces, the lights, the scene) and
 // kept otherwise. BRDF models, tone mapper and exposure are uniforms read every frame
 // (Renderer::setLiveSettings): switching them costs nothing, and the path tracer restarts its
-// accumulation. A camera move never rebuilds either (Renderer::setCamera). A rebuild costs what
+// accumulation; a deferred method's debug view switches live too (nothing restarts). A camera move never rebuilds either (Renderer::setCamera). A rebuild costs what
 // `gisandbox render` pays before its first frame: the scene upload, shader compilation and, for the
 // path tracer, the BVH build (docs/viewer.md has llvmpipe numbers).
 //
 // Frame policy: a pane whose renderer is settled (Renderer::settled: nothing changed and every
-// pass converged) is not rendered at all; it shows its last frame. While the camera moves (two
-// session frames in a row with a new camera) and the pane's last full frame took longer than the
-// motion budget, the pane renders through a second renderer at half or quarter scale
-// (motionScale), and at full scale again once the camera stops.
+// pass converged) is not rendered at all; it shows its last frame. While the pane's last full
+// frame took longer than the frame budget and the camera moves (two session frames in a row with
+// a new camera) or the method converges, the pane renders through a second renderer at the scale
+// that fits the budget (budgetScale). Once that reduced view has settled and the camera is still,
+// full-scale frames resume (the reduced image stays on show until the full one has settled).
 #pragma once
 
 #include <deque>
@@ -35,10 +36,18 @@ namespace gis::view {
 
 constexpr int kHistoryFrames = 240;  // frames of GPU timings kept for the live graph
 
-// The render scale of a frame while the camera moves, from the last full-scale frame's GPU time:
-// 1 within the budget, else 1/2, or 1/4 past four budgets (a frame's cost follows its pixels).
-// A budget of 0 or less keeps full scale.
-float motionScale(double lastFullFrameMs, double budgetMs);
+// The render scale that brings a frame of `fullFrameMs` GPU ms within `budgetMs`, a frame's cost
+// following its pixels: 1, 1/2, 1/4, or 1/8 at the least. A budget of 0 or less keeps full scale.
+float budgetScale(double fullFrameMs, double budgetMs);
+
+// A pane's heatmap figure as the panel and the pane labels show it: four decimals for every
+// pane and metric, so two panes line up (significant digits gave 0.123 beside 0.0456).
+std::string formatPaneMetric(double value);
+
+// The frame budget where the view state leaves it to the machine: about 10 frames a second on a
+// CPU renderer (llvmpipe, softpipe, SwiftShader), 60 on a GPU.
+constexpr double kCpuFrameBudgetMs = 100.0, kGpuFrameBudgetMs = 16.0;
+double defaultFrameBudgetMs(const std::string& glRenderer);
 
 struct PassHistory {
     std::string pass;
@@ -56,13 +65,18 @@ struct PaneView {
     bool cameraSet = false;
     gl::Texture display;              // RGBA8: debug and heatmap displays
     GLuint shown = 0;                 // the texture this pane shows this frame
-    glm::ivec2 shownSize{0, 0};       // its pixels: the pane's size, less for a motion frame
-    // While the camera moves: the same settings at motionScale, shown instead of `renderer`.
-    std::unique_ptr<Renderer> motion;
-    float scale = 1.0f;               // of the frame shown: 1, or the motion frame's scale
+    glm::ivec2 shownSize{0, 0};       // its pixels: the pane's size, less for a reduced frame
+    // Over the frame budget: the same settings at budgetScale, shown instead of `renderer` while
+    // the camera moves or the method converges.
+    std::unique_ptr<Renderer> reduced;
+    CameraMatrices reducedCamera;     // what `reduced` was last given
+    float scale = 1.0f;               // of the frame shown: 1, or the reduced frame's scale
     CameraMatrices lastCamera;        // the session's previous frame's camera
     int movingFrames = 0;             // session frames in a row with a new camera
-    double fullFrameMs = 0.0;         // GPU ms of a full-scale frame: each pass's last worked time
+    // GPU ms of a full-scale frame while the image changes: the last worked time of each pass that
+    // worked in the last frame (a settled one, a shadow map or a voxel volume built once, costs a
+    // camera move nothing). What the frame budget is held against.
+    double fullFrameMs = 0.0;
     std::vector<PassHistory> passes;
     std::deque<float> totalMs;
     std::string status;               // "12/64 spp", "reference 5/64 spp", errors
@@ -122,16 +136,20 @@ public:
     int visiblePanes() const { return visible_; }
     const PaneView& pane(int i) const { return panes_[i]; }
     glm::ivec2 paneSize() const { return paneSize_; }
-    // Every visible pane finished (progressive methods converged, heatmaps computed, no motion
+    // Every visible pane finished (progressive methods converged, heatmaps computed, no reduced
     // frame waiting for its full-scale refinement).
     bool settled() const;
     // Frames the panes' renderers rendered so far (a settled pane's frames are not rendered).
     int framesRendered() const { return framesRendered_; }
-    // GPU ms of the pass timings that arrived during the last renderFrame, every pane and motion
+    // GPU ms of the pass timings that arrived during the last renderFrame, every pane and reduced
     // renderer: the GPU share of the app's frame time.
     double gpuMsCollected() const { return gpuMsCollected_; }
-    // GPU ms a full-scale frame may take before a moving camera renders at a lower scale (0: never).
-    void setMotionBudget(double ms) { motionBudgetMs_ = ms; }
+    // The frame budget (GPU ms) where the state's is 0: the app sets defaultFrameBudgetMs of its
+    // GL renderer; 0 (the default, for tests) keeps full scale.
+    void setDefaultFrameBudget(double ms) { defaultBudgetMs_ = ms; }
+    double frameBudgetMs(const ViewState& state) const {
+        return state.frameBudgetMs > 0.0f ? double(state.frameBudgetMs) : defaultBudgetMs_;
+    }
     ImageU8 readPane(int pane) const;             // what the pane shows, rows top to bottom
     // The pixel inspector: pane `index`'s linear radiance (or its debug view's values) at pane
     // pixel `pixel` (x right, y down, render pixels), and the path-traced reference's radiance
@@ -167,7 +185,8 @@ private:
     void updateHeatmap(const ViewState& state, int index, const CameraMatrices& camera);
     Reference* reference(const ViewState& state, int index, const CameraMatrices& camera);
     void collectTimings(PaneView& pane);
-    void renderMotionFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale);
+    void renderReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale);
+    bool reducedSettled(const PaneView& pane, float scale, const CameraMatrices& camera) const;
     GLuint ensureDisplay(PaneView& pane);
 
     std::unique_ptr<Scene> scene_;
@@ -183,7 +202,7 @@ private:
     int rebuilds_ = 0;
     int framesRendered_ = 0;
     double gpuMsCollected_ = 0.0;
-    double motionBudgetMs_ = 0.0;
+    double defaultBudgetMs_ = 0.0;
     uint64_t frame_ = 0;
     std::string lastError_;
 };

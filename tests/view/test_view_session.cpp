@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -70,42 +71,113 @@ TEST(Session, AStaticViewRendersNoFrame) {
     EXPECT_GT(meanAbsDiff(before, sb.session->readPane(0)), 0.0);
 }
 
-// While the camera moves and full frames are over the budget, the pane renders at a lower scale
-// (shown and read back at the pane's size); when it stops, the full-scale frame is back: the same
-// pixels a session that never moved renders there (#24).
+// While the camera moves and full frames are over the frame budget, the pane renders at the scale
+// that fits it (shown and read back at the pane's size); when it stops, the full-scale frame is
+// back: the same pixels a session that never moved renders there (#24, #42).
 TEST(Session, AMovingCameraRendersAtALowerScaleAndRefines) {
-    EXPECT_EQ(motionScale(20.0, 33.0), 1.0f);
-    EXPECT_EQ(motionScale(60.0, 33.0), 0.5f);
-    EXPECT_EQ(motionScale(200.0, 33.0), 0.25f);
-    EXPECT_EQ(motionScale(200.0, 0.0), 1.0f) << "no budget: always full scale";
+    EXPECT_EQ(budgetScale(20.0, 33.0), 1.0f);
+    EXPECT_EQ(budgetScale(60.0, 33.0), 0.5f);
+    EXPECT_EQ(budgetScale(200.0, 33.0), 0.25f);
+    EXPECT_EQ(budgetScale(1000.0, 33.0), 0.125f);
+    EXPECT_EQ(budgetScale(1e9, 33.0), 0.125f) << "an eighth per side at the least";
+    EXPECT_EQ(budgetScale(200.0, 0.0), 1.0f) << "no budget: always full scale";
+    EXPECT_EQ(defaultFrameBudgetMs("llvmpipe (LLVM 15.0.6, 256 bits)"), kCpuFrameBudgetMs);
+    EXPECT_EQ(defaultFrameBudgetMs("NVIDIA H100 80GB HBM3/PCIe/SSE2"), kGpuFrameBudgetMs);
     Sandbox sb;
-    sb.session->setMotionBudget(1e-9);  // every full frame is over it
+    sb.session->setDefaultFrameBudget(1e-9);  // every full frame is over it
     const int w = 64, h = 48;
-    sb.session->renderFrame(sb.state, w, h);
-    glFinish();  // its timer results are there for the next frame to collect
-    sb.act("camera orbit 5 0");
-    sb.session->renderFrame(sb.state, w, h);  // the first frame of a move: full scale
+    sb.session->renderFrame(sb.state, w, h);  // no full frame measured yet: full scale
     EXPECT_EQ(sb.session->pane(0).shownSize, sb.session->paneSize());
+    glFinish();  // its timer results are there for the next frame to collect
+    sb.session->renderFrame(sb.state, w, h);
     ASSERT_GT(sb.session->pane(0).fullFrameMs, 0.0) << "no GPU time collected";
     const int builds = sb.session->rebuilds();
     sb.act("camera orbit 5 0");
-    sb.session->renderFrame(sb.state, w, h);  // still moving: a quarter of the pixels per side
+    sb.session->renderFrame(sb.state, w, h);  // moving: an eighth of the pixels per side
     const PaneView& pane = sb.session->pane(0);
-    EXPECT_EQ(pane.scale, 0.25f);
-    EXPECT_EQ(pane.shownSize, glm::ivec2(16, 12));
-    EXPECT_EQ(sb.session->rebuilds(), builds + 1) << "the motion renderer is built on the first move";
-    EXPECT_FALSE(sb.session->settled()) << "a motion frame waits for its refinement";
+    EXPECT_EQ(pane.scale, 0.125f);
+    EXPECT_EQ(pane.shownSize, glm::ivec2(8, 6));
+    EXPECT_EQ(sb.session->rebuilds(), builds + 1) << "the reduced renderer is built on the first move";
+    EXPECT_FALSE(sb.session->settled()) << "a reduced frame waits for its refinement";
     const ImageU8 moving = sb.session->readPane(0);
     EXPECT_EQ(moving.width, w);
     EXPECT_EQ(moving.height, h);
-    sb.session->renderFrame(sb.state, w, h);  // stopped: full scale again
+    sb.session->renderFrame(sb.state, w, h);  // stopped, the reduced view settled: full scale again
     EXPECT_EQ(pane.scale, 1.0f);
     EXPECT_EQ(pane.shownSize, sb.session->paneSize());
     Sandbox still;
     still.state.camera = sb.state.camera;
     still.session->renderFrame(still.state, w, h);
     EXPECT_EQ(meanAbsDiff(sb.session->readPane(0), still.session->readPane(0)), 0.0);
-    EXPECT_GT(meanAbsDiff(moving, still.session->readPane(0)), 0.0) << "the motion frame was not reduced";
+    EXPECT_GT(meanAbsDiff(moving, still.session->readPane(0)), 0.0) << "the moving frame was not reduced";
+}
+
+// A method that converges over frames, over the budget, converges at the reduced scale first; once
+// that view has settled the pane climbs back: full-scale frames refine behind the reduced image,
+// which stays on show until the full one has settled, the same image as without a budget. The
+// state's budget overrides the machine's (#42).
+TEST(Session, AConvergingPaneOverTheBudgetSettlesReducedThenClimbsToFullScale) {
+    Sandbox sb;
+    sb.act("method 0 pathtrace");
+    sb.act("preset 0 medium");
+    sb.act("frame-budget 0.000001");
+    EXPECT_EQ(sb.session->frameBudgetMs(sb.state), double(1e-6f));
+    const int w = 64, h = 48;
+    sb.session->renderFrame(sb.state, w, h);  // measures a full frame
+    glFinish();
+    const PaneView& pane = sb.session->pane(0);
+    bool reduced = false, refining = false;
+    for (int i = 0; i < 400 && !sb.session->settled(); ++i) {
+        sb.session->renderFrame(sb.state, w, h);
+        reduced |= pane.scale == 0.125f && pane.status.find("converging") != std::string::npos;
+        if (pane.status.find("refining at full scale") != std::string::npos) {
+            EXPECT_TRUE(reduced) << "refined before the reduced view settled";
+            EXPECT_EQ(pane.scale, 0.125f) << "the settled reduced image is what shows while refining";
+            refining = true;
+        }
+    }
+    ASSERT_TRUE(sb.session->settled());
+    EXPECT_TRUE(reduced);
+    EXPECT_TRUE(refining);
+    EXPECT_EQ(pane.scale, 1.0f);
+    Sandbox unbudgeted;
+    unbudgeted.act("method 0 pathtrace");
+    unbudgeted.act("preset 0 medium");
+    EXPECT_EQ(meanAbsDiff(sb.session->readPane(0), unbudgeted.view(w, h)), 0.0);
+    EXPECT_THROW(sb.act("frame-budget -1"), Error);
+}
+
+// A deferred method's debug views are drawn from what its passes hold: switching a pane's display
+// to one and back rebuilds nothing, and the probes go on converging where they were (#42 item 11:
+// the switch restarted the probe updates).
+TEST(Session, SwitchingToADebugViewKeepsTheProbesConverging) {
+    Sandbox sb;
+    sb.act("method 0 probes");
+    const int w = 32, h = 24;
+    for (int i = 0; i < 5; ++i) sb.session->renderFrame(sb.state, w, h);
+    const int done = sb.session->pane(0).renderer->samplesDone();
+    ASSERT_GT(done, 1);
+    const ImageU8 lit = sb.session->readPane(0);
+    const int builds = sb.session->rebuilds();
+    sb.act("display 0 probes.spheres");
+    sb.session->renderFrame(sb.state, w, h);
+    EXPECT_EQ(sb.session->rebuilds(), builds) << "the display switch built a new renderer";
+    EXPECT_GT(sb.session->pane(0).renderer->samplesDone(), done) << "the probe updates started over";
+    EXPECT_GT(meanAbsDiff(lit, sb.session->readPane(0)), 1.0) << "the debug view is not on show";
+    sb.act("display 0 lit");
+    sb.settle(w, h);
+    EXPECT_EQ(sb.session->rebuilds(), builds);
+    Sandbox fresh;
+    fresh.act("method 0 probes");
+    EXPECT_EQ(meanAbsDiff(fresh.view(w, h), sb.session->readPane(0)), 0.0) << "back to lit: not the converged image";
+}
+
+// Two panes' heatmap figures line up: the same four decimals whatever their size (#42 item 11:
+// one pane read 0.123, the other 0.0456).
+TEST(Session, PaneMetricsShowFourDecimals) {
+    EXPECT_EQ(formatPaneMetric(0.123), "0.1230");
+    EXPECT_EQ(formatPaneMetric(0.0456), "0.0456");
+    EXPECT_EQ(formatPaneMetric(std::numeric_limits<double>::infinity()), "inf");
 }
 
 TEST(Session, PanelActionsChangeTheRenderedImage) {
