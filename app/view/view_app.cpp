@@ -423,13 +423,13 @@ void ViewApp::drawFrame(std::chrono::steady_clock::time_point& last, FrameTimes&
 
 // --frame-log: the frame's wall ms (event wait excluded, swap included), the GPU ms of the
 // timings that arrived in it, and per visible pane its render scale, the GPU ms of its last full
-// frame (what the frame budget is held against) and its status.
+// frame (what the frame budget is held against), whether its camera moved and its status.
 void ViewApp::logFrame(float frameMs) {
     frameLog_ << std::fixed << std::setprecision(2) << seconds() << '\t' << frameMs << '\t'
               << session_->gpuMsCollected();
     for (int i = 0; i < session_->visiblePanes(); ++i)
         frameLog_ << '\t' << session_->pane(i).scale << '\t' << session_->pane(i).fullFrameMs << '\t'
-                  << session_->pane(i).status;
+                  << (session_->pane(i).movingFrames > 0) << '\t' << session_->pane(i).status;
     frameLog_ << '\n';
     if (!frameLog_) throw Error("cannot write the frame log " + options_.frameLog + " (disk full?)");
 }
@@ -441,7 +441,7 @@ int ViewApp::run() {
     if (!options_.frameLog.empty()) {
         frameLog_.open(options_.frameLog);
         if (!frameLog_) throw Error("cannot write the frame log '" + options_.frameLog + "' (--frame-log)");
-        frameLog_ << "seconds\tframe_ms\tgpu_ms\tper pane: scale, full_frame_gpu_ms, status\n";
+        frameLog_ << "seconds\tframe_ms\tgpu_ms\tper pane: scale, full_frame_gpu_ms, moving, status\n";
     }
     openWindow(width, height);
     startImGui();
@@ -464,7 +464,7 @@ void addViewOptions(CLI::App& cmd, ViewOptions& o) {
     cmd.add_option("--screenshot-dir", o.screenshotDir, "Where screenshots (F12) go")->capture_default_str();
     cmd.add_option("--frame-log", o.frameLog,
                    "Write a line per window frame to FILE: seconds, wall ms, GPU ms, each pane's render scale, full "
-                   "frame GPU ms and status (what a scripted orbit costs: scripts/viewer-budget-table.sh)");
+                   "frame GPU ms, whether its camera moved and its status (what a scripted orbit costs: scripts/viewer-budget-table.sh)");
     cmd.add_flag("--gl-debug", o.glDebug, "Debug context; print KHR_debug messages");
     cmd.add_flag("-v,--verbose", o.verbose, "Print the backend, GL_RENDERER and GL_VERSION");
     o.given = [&cmd](const std::string& flag) { return cmd.count(flag) > 0; };

@@ -298,10 +298,11 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
             p.cameraSet = true;
         }
         // Heatmaps compare full frames only.
-        const float scale = display == PaneDisplay::Heatmap ? 1.0f : budgetScale(p.fullFrameMs, frameBudgetMs(state));
+        const float scale =
+            display == PaneDisplay::Heatmap ? 1.0f : std::min(budgetScale(p.fullFrameMs, frameBudgetMs(state)), p.scaleCap);
         const bool moving = p.movingFrames > 0, converging = !r.settled();
         if (scale < 1.0f && (moving || (converging && !reducedSettled(p, scale, camera)))) {
-            renderReducedFrame(state, index, camera, scale);
+            renderReducedFrame(state, index, camera, scale, frameBudgetMs(state));
             return;
         }
         if (!r.settled()) {  // a settled renderer would reproduce the frame it shows
@@ -345,7 +346,8 @@ bool ViewSession::reducedSettled(const PaneView& p, float scale, const CameraMat
 // The pane's settings at `scale` of its size, through the pane's reduced renderer (built on the
 // first reduced frame, kept for the next). Its timings count in the frame's GPU time, not in the
 // pass table.
-void ViewSession::renderReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale) {
+void ViewSession::renderReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale,
+                                     double budgetMs) {
     PaneView& p = panes_[index];
     const glm::ivec2 size = glm::max(glm::ivec2(glm::round(glm::vec2(paneSize_) * scale)), glm::ivec2(1));
     const RenderSettings want = paneSettings(state, index, size);
@@ -365,10 +367,16 @@ void ViewSession::renderReducedFrame(const ViewState& state, int index, const Ca
         m.renderFrame();
         ++framesRendered_;
     }
+    double frames = 0.0, ms = 0.0;  // the reduced frames whose timings arrived now, and their GPU ms
     for (const auto& pass : m.passes()) {
-        for (double ms : pass->timer.samples) gpuMsCollected_ += ms;
+        frames = std::max(frames, double(pass->timer.samples.size()));
+        for (double t : pass->timer.samples) ms += t;
         pass->timer.clear();
     }
+    gpuMsCollected_ += ms;
+    // Part of a frame does not shrink with its pixels (probe updates, a volume's light): a reduced
+    // frame still over the budget lowers the scale the pane may use, down to an eighth.
+    if (frames > 0.0 && ms / frames > budgetMs && budgetMs > 0.0) p.scaleCap = std::max(0.125f, 0.5f * scale);
     p.shown = m.frameTexture("display");
     p.shownSize = size;
     p.scale = scale;

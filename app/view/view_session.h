@@ -71,6 +71,7 @@ struct PaneView {
     std::unique_ptr<Renderer> reduced;
     CameraMatrices reducedCamera;     // what `reduced` was last given
     float scale = 1.0f;               // of the frame shown: 1, or the reduced frame's scale
+    float scaleCap = 1.0f;            // lowered when a reduced frame was over the budget anyway
     CameraMatrices lastCamera;        // the session's previous frame's camera
     int movingFrames = 0;             // session frames in a row with a new camera
     // GPU ms of a full-scale frame while the image changes: the last worked time of each pass that
@@ -185,7 +186,8 @@ private:
     void updateHeatmap(const ViewState& state, int index, const CameraMatrices& camera);
     Reference* reference(const ViewState& state, int index, const CameraMatrices& camera);
     void collectTimings(PaneView& pane);
-    void renderReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale);
+    void renderReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale,
+                            double budgetMs);
     bool reducedSettled(const PaneView& pane, float scale, const CameraMatrices& camera) const;
     GLuint ensureDisplay(PaneView& pane);
 
