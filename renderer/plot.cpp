@@ -221,22 +221,26 @@ LogAxes drawLogAxes(Canvas& c, const std::vector<std::pair<double, double>>& xy,
 
 // Labels beside their points (placeLabels), each in its colour; one placed away from its point is
 // joined to it by a thin line.
-void drawLabels(Canvas& c, const std::vector<std::string>& text, const std::vector<Rgba>& colours,
-                const std::vector<std::pair<double, double>>& anchors, const std::vector<std::pair<double, double>>& discs,
+struct ChartLabel {
+    std::string text;
+    Rgba colour;
+    double x = 0.0, y = 0.0;  // the point it names, in pixels
+};
+
+void drawLabels(Canvas& c, const std::vector<ChartLabel>& labels, const std::vector<std::pair<double, double>>& discs,
                 const std::vector<Segment>& lines, const LogAxes& a) {
     std::vector<LabelRequest> requests;
-    for (size_t i = 0; i < text.size(); ++i)
-        requests.push_back({anchors[i].first, anchors[i].second, Canvas::textWidth(text[i]), kLabelHeight});
+    for (const ChartLabel& l : labels) requests.push_back({l.x, l.y, Canvas::textWidth(l.text), kLabelHeight});
     const LabelBox bounds{a.left + 2, a.top - 4, c.image.width, a.bottom - 2};
     const std::vector<LabelBox> boxes = placeLabels(requests, discs, kDiscClearance, bounds, lines);
     for (size_t i = 0; i < boxes.size(); ++i) {
         const LabelBox& b = boxes[i];
-        const auto [x, y] = anchors[i];
-        const double nx = std::clamp(x, double(b.x0), double(b.x1)), ny = std::clamp(y, double(b.y0), double(b.y1));
-        if (std::hypot(nx - x, ny - y) > kDiscClearance + 12.0) c.line(x, y, nx, ny, 1, colours[i]);
+        const ChartLabel& l = labels[i];
+        const double nx = std::clamp(l.x, double(b.x0), double(b.x1)), ny = std::clamp(l.y, double(b.y0), double(b.y1));
+        if (std::hypot(nx - l.x, ny - l.y) > kDiscClearance + 12.0) c.line(l.x, l.y, nx, ny, 1, l.colour);
     }
     for (const auto& [x, y] : discs) c.disc(x, y, kDiscRadius, kBlack);  // leader lines under the points
-    for (size_t i = 0; i < boxes.size(); ++i) c.text(boxes[i].x0, boxes[i].y0 + 1, text[i], colours[i]);
+    for (size_t i = 0; i < boxes.size(); ++i) c.text(boxes[i].x0, boxes[i].y0 + 1, labels[i].text, labels[i].colour);
 }
 
 Rgba seriesColour(int series) { return kSeriesColors[size_t(std::max(series, 0)) % 8]; }
@@ -264,16 +268,14 @@ ImageU8 drawTradeoffChart(const std::vector<ChartPoint>& points, const std::stri
         stairs.push_back({a.px(q.x), a.py(p.y), a.px(q.x), a.py(q.y)});
     }
     for (const Segment& s : stairs) c.line(s.x0, s.y0, s.x1, s.y1, 3, {120, 120, 120});
-    std::vector<std::string> text;
-    std::vector<Rgba> colours;
+    std::vector<ChartLabel> labels;
     std::vector<std::pair<double, double>> at;
     for (const ChartPoint& p : pts) {
-        text.push_back(p.label);
-        colours.push_back(seriesColour(p.series));
-        at.emplace_back(a.px(p.x), a.py(p.y));
+        labels.push_back({p.label, seriesColour(p.series), a.px(p.x), a.py(p.y)});
+        at.emplace_back(labels.back().x, labels.back().y);
     }
-    drawLabels(c, text, colours, at, at, stairs, a);
-    for (size_t i = 0; i < pts.size(); ++i) c.disc(at[i].first, at[i].second, kDiscRadius - 1.5, colours[i]);
+    drawLabels(c, labels, at, stairs, a);
+    for (const ChartLabel& l : labels) c.disc(l.x, l.y, kDiscRadius - 1.5, l.colour);
     c.text(a.right - Canvas::textWidth("grey staircase: Pareto front"), a.top - 26, "grey staircase: Pareto front", kDark);
     return c.image;
 }
@@ -305,15 +307,10 @@ ImageU8 drawCurvesChart(const std::vector<ChartCurve>& curves, const std::string
         }
         for (const auto& [x, y] : k.points) dots.emplace_back(a.px(x), a.py(y));
     }
-    std::vector<std::string> text;
-    std::vector<Rgba> colours;
-    std::vector<std::pair<double, double>> ends;
-    for (const ChartCurve& k : kept) {
-        text.push_back(k.label);
-        colours.push_back(seriesColour(k.series));
-        ends.emplace_back(a.px(k.points.back().first), a.py(k.points.back().second));
-    }
-    drawLabels(c, text, colours, ends, dots, lines, a);
+    std::vector<ChartLabel> ends;  // each curve named at its last point
+    for (const ChartCurve& k : kept)
+        ends.push_back({k.label, seriesColour(k.series), a.px(k.points.back().first), a.py(k.points.back().second)});
+    drawLabels(c, ends, dots, lines, a);
     size_t d = 0;
     for (const ChartCurve& k : kept)
         for (size_t i = 0; i < k.points.size(); ++i, ++d) c.disc(dots[d].first, dots[d].second, kDiscRadius - 1.5, seriesColour(k.series));
