@@ -26,25 +26,31 @@ int declaredFrames(const GiMethod& method, const RenderSettings& settings) {
     return method.framesToConverge ? std::max(1, method.framesToConverge(settings)) : 1;
 }
 
+// One frame, waited for: its wall-clock ms.
+double timedFrame(Renderer& renderer) {
+    const auto t0 = std::chrono::steady_clock::now();
+    renderer.renderFrame();
+    glFinish();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
 // Renders from now until the image is final: at least `declared` frames and until every
-// progressive pass has converged. `onFrame(n, gpuMsSoFar)` runs after the n-th frame.
+// progressive pass has converged. `onFrame(n, gpuMsSoFar, last)` runs after the n-th frame.
 BenchRow::Convergence renderUntilFinal(Renderer& renderer, int declared,
-                                       const std::function<void(int, double)>& onFrame) {
+                                       const std::function<void(int, double, bool)>& onFrame) {
     const size_t before = renderer.frameGpuMs().size();
     BenchRow::Convergence c;
     std::vector<double> gpu;
-    do {
-        const auto t0 = std::chrono::steady_clock::now();
-        renderer.renderFrame();
-        glFinish();
-        c.wallMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    for (bool last = false; !last;) {
+        c.wallMs += timedFrame(renderer);
         ++c.frames;
+        last = c.frames >= declared && renderer.converged();
         const std::vector<double> all = renderer.frameGpuMs();
         gpu.assign(all.begin() + std::ptrdiff_t(before), all.end());
         c.gpuMs = 0.0;
         for (double ms : gpu) c.gpuMs += ms;
-        if (onFrame) onFrame(c.frames, c.gpuMs);
-    } while (c.frames < declared || !renderer.converged());
+        if (onFrame) onFrame(c.frames, c.gpuMs, last);
+    }
     c.frameMs = c.frames > 1 ? medianAfter(gpu, 1) : gpu.front();
     return c;
 }
@@ -58,21 +64,14 @@ BenchRow::Convergence renderUntilFinal(Renderer& renderer, int declared,
 void measure(Renderer& renderer, const GiMethod& method, const ImageF& reference, int frames, int warmup,
              BenchRow& row) {
     renderer.setSkipSettled(false);
-    row.cut = renderUntilFinal(renderer, declaredFrames(method, renderer.settings()), [&](int n, double gpuMs) {
-        if ((n & (n - 1)) == 0 || (renderer.converged() && n >= declaredFrames(method, renderer.settings())))
-            row.quality.push_back({n, gpuMs, compareImages(renderer.readHdr(), reference)});
+    row.cut = renderUntilFinal(renderer, declaredFrames(method, renderer.settings()), [&](int n, double gpuMs, bool last) {
+        if ((n & (n - 1)) == 0 || last) row.quality.push_back({n, gpuMs, compareImages(renderer.readHdr(), reference)});
     });
     for (const PassTiming& t : renderer.timings(0))
         if (t.rays) row.megaRaysPerSecond = t.megaRaysPerSecond();  // over the samples the cut traced
     std::vector<double> wall;
-    for (int i = 0; i < frames; ++i) {
-        const auto t0 = std::chrono::steady_clock::now();
-        renderer.renderFrame();
-        glFinish();
-        wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    }
+    for (int i = 0; i < frames; ++i) wall.push_back(timedFrame(renderer));
     row.wallMs = medianAfter(wall, warmup);
-    const bool oneFrame = row.cut.frames == 1;
     for (const PassTiming& t : renderer.timings(row.cut.frames + warmup)) {
         if (t.step) {  // listed apart: the pass's own figure already holds its steps
             row.steps.push_back({t.pass, t.medianMs, t.firstMs});
@@ -81,7 +80,7 @@ void measure(Renderer& renderer, const GiMethod& method, const ImageF& reference
         row.passMs.emplace_back(t.pass, t.medianMs);
         row.ms += t.medianMs;
     }
-    if (oneFrame) row.cut.frameMs = row.ms;  // no frame after the first: the steady one is its frame
+    if (row.cut.frames == 1) row.cut.frameMs = row.ms;  // no frame after the first: the steady one is its frame
     row.bytes = renderer.memory().total();
 }
 
