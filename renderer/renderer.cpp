@@ -120,8 +120,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     passes_.push_back(std::make_unique<TonemapPass>(w, h, ledger_));
     declare(*passes_.back());
     checkViewOffered(settings_.view);
-    if (settings_.view != "final")
-        debugTarget_ = gl::createTexture2D({&ledger_, "debug view"}, GL_RGBA16F, w, h);
+    ensureDebugTarget();
     // One counter per pass and one for the debug view drawn after them.
     if (countingNonFinite())
         nonFinite_ = std::make_unique<NonFiniteCounter>(int(passes_.size()) + 1, gl::MemoryScope{&ledger_, "checks"});
@@ -131,12 +130,19 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
 Renderer::~Renderer() = default;
 
 void Renderer::checkViewOffered(const std::string& view) const {
-    bool found = view == "final";
-    for (const DebugViewDesc& v : views()) found = found || v.name == view;
-    if (found) return;
+    const std::vector<DebugViewDesc> offered = views();  // "final" first
     std::string names;
-    for (const DebugViewDesc& v : views()) names += (names.empty() ? "" : ", ") + v.name;
+    for (const DebugViewDesc& v : offered) {
+        if (v.name == view) return;
+        names += (names.empty() ? "" : ", ") + v.name;
+    }
     throw Error("--view '" + view + "' is not produced by --gi " + settings_.gi + " (available: " + names + ")");
+}
+
+// The debug view's target, made for the first view that is not "final" (at build or on a switch).
+void Renderer::ensureDebugTarget() {
+    if (settings_.view != "final" && !debugTarget_.id())
+        debugTarget_ = gl::createTexture2D({&ledger_, "debug view"}, GL_RGBA16F, settings_.width, settings_.height);
 }
 
 std::vector<DebugViewDesc> Renderer::views() const {
@@ -290,14 +296,13 @@ void Renderer::setLiveSettings(const RenderSettings& live) {
         // Another debug view of the same passes: drawn from what they hold, nothing they
         // accumulated starts over (the probes keep converging); the next frame draws it.
         checkViewOffered(live.view);
-        if (live.view != "final" && !debugTarget_.id())
-            debugTarget_ = gl::createTexture2D({&ledger_, "debug view"}, GL_RGBA16F, settings_.width, settings_.height);
         redrawPending_ = true;
     }
     const int camera = settings_.camera;
     settings_ = live;
     settings_.camera = camera;
     checkSettings(settings_);
+    ensureDebugTarget();
     if (changes) invalidate(changes);
 }
 

@@ -72,6 +72,7 @@ public:
 private:
     void drawDebugView(Frame& frame);
     void checkViewOffered(const std::string& view) const;  // throws naming the views there are
+    void ensureDebugTarget();
     bool canSkip(const Pass& pass, const std::set<std::string>& reproduced) const;
     void keepOutputs(Pass& pass, Frame& frame) const;
     RenderSettings settings_;
