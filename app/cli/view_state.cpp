@@ -154,7 +154,11 @@ std::vector<PaneRect> paneRects(ViewMode mode, int w, int h) {
 
 glm::ivec2 paneRenderSize(const ViewState& state, int viewWidth, int viewHeight) {
     const PaneRect r = paneRects(state.mode, viewWidth, viewHeight)[0];
-    return glm::max(glm::ivec2(glm::round(glm::vec2(r.w, r.h) * state.renderScale)), glm::ivec2(1));
+    return scaledSize({r.w, r.h}, state.renderScale);
+}
+
+glm::ivec2 scaledSize(glm::ivec2 size, float scale) {
+    return glm::max(glm::ivec2(glm::round(glm::vec2(size) * scale)), glm::ivec2(1));
 }
 
 namespace {

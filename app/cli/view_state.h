@@ -143,6 +143,8 @@ struct PaneRect {
 };
 std::vector<PaneRect> paneRects(ViewMode mode, int viewWidth, int viewHeight);
 glm::ivec2 paneRenderSize(const ViewState& state, int viewWidth, int viewHeight);
+// `size` at `scale`, rounded, at least one pixel each way (the render scale, a reduced frame).
+glm::ivec2 scaledSize(glm::ivec2 size, float scale);
 
 // Everything a Renderer needs for pane `pane` at `size`: the shared settings, the pane's method,
 // preset, parameter edits, BRDFs and debug view. In the view the path tracer adds one sample per frame.

@@ -150,8 +150,8 @@ void paneControls(PanelContext& ctx, int i) {
     const PaneView& pv = ctx.session.pane(i);
     if (pv.fullFrameMs > 0.0) {
         char line[160];
-        std::snprintf(line, sizeof line, "render scale in use 1/%d: a full frame %.0f ms, budget %.0f ms",
-                      int(std::lround(1.0f / pv.scale)), pv.fullFrameMs, ctx.session.frameBudgetMs(ctx.state));
+        std::snprintf(line, sizeof line, "render scale in use %s: a full frame %.0f ms, budget %.0f ms",
+                      scaleLabel(pv.scale).c_str(), pv.fullFrameMs, ctx.session.frameBudgetMs(ctx.state));
         greyWrapped(line);
     }
     if (!pv.status.empty()) greyWrapped(pv.status);

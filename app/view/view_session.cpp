@@ -89,6 +89,10 @@ float budgetScale(double fullFrameMs, double budgetMs) {
     return scale;
 }
 
+std::string scaleLabel(float scale) {
+    return scale >= 1.0f ? "1" : "1/" + std::to_string(int(std::lround(1.0f / scale)));
+}
+
 std::string formatPaneMetric(double value) {
     if (!std::isfinite(value)) return formatMetric(value);
     char buf[64];
@@ -339,7 +343,7 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
 // Whether the pane's reduced renderer holds a finished image of this camera at this scale.
 bool ViewSession::reducedSettled(const PaneView& p, float scale, const CameraMatrices& camera) const {
     if (!p.reduced || !sameCamera(p.reducedCamera, camera)) return false;
-    const glm::ivec2 size = glm::max(glm::ivec2(glm::round(glm::vec2(paneSize_) * scale)), glm::ivec2(1));
+    const glm::ivec2 size = scaledSize(paneSize_, scale);
     return p.reduced->settings().width == size.x && p.reduced->settings().height == size.y && p.reduced->settled();
 }
 
@@ -349,7 +353,7 @@ bool ViewSession::reducedSettled(const PaneView& p, float scale, const CameraMat
 void ViewSession::renderReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale,
                                      double budgetMs) {
     PaneView& p = panes_[index];
-    const glm::ivec2 size = glm::max(glm::ivec2(glm::round(glm::vec2(paneSize_) * scale)), glm::ivec2(1));
+    const glm::ivec2 size = scaledSize(paneSize_, scale);
     const RenderSettings want = paneSettings(state, index, size);
     if (!p.reduced || requiresRebuild(p.reduced->settings(), want)) {
         p.reduced.reset();  // never two reduced renderers of one pane in GPU memory
@@ -381,8 +385,8 @@ void ViewSession::renderReducedFrame(const ViewState& state, int index, const Ca
     p.shownSize = size;
     p.scale = scale;
     const std::string progress = progressText(m);
-    p.status = "1/" + std::to_string(int(std::lround(1.0f / scale))) + " scale (" +
-               (p.movingFrames > 0 ? "moving" : "converging") + ")" + (progress.empty() ? "" : ": " + progress);
+    p.status = scaleLabel(scale) + " scale (" + (p.movingFrames > 0 ? "moving" : "converging") + ")" +
+               (progress.empty() ? "" : ": " + progress);
 }
 
 void ViewSession::collectTimings(PaneView& p) {

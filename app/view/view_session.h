@@ -40,6 +40,9 @@ constexpr int kHistoryFrames = 240;  // frames of GPU timings kept for the live 
 // following its pixels: 1, 1/2, 1/4, or 1/8 at the least. A budget of 0 or less keeps full scale.
 float budgetScale(double fullFrameMs, double budgetMs);
 
+// A render scale as the panel and the pane's status show it: "1", "1/2", ... "1/8".
+std::string scaleLabel(float scale);
+
 // A pane's heatmap figure as the panel and the pane labels show it: four decimals for every
 // pane and metric, so two panes line up (significant digits gave 0.123 beside 0.0456).
 std::string formatPaneMetric(double value);
