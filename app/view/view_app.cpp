@@ -439,6 +439,7 @@ int ViewApp::run() {
     parseRenderSize(options_.size, width, height);
     openStartState(width, height);
     if (!options_.frameLog.empty()) {
+        checkNotAnOpenFile(state_, options_.frameLog, options_.script);  // as save-settings and capture do
         frameLog_.open(options_.frameLog);
         if (!frameLog_) throw Error("cannot write the frame log '" + options_.frameLog + "' (--frame-log)");
         frameLog_ << "seconds\tframe_ms\tgpu_ms\tper pane: scale, full_frame_gpu_ms, moving, status\n";

@@ -105,6 +105,16 @@ TEST(RenderSettings, BadInputFailsCleanly) {
     EXPECT_NE(r.status, 0);
     EXPECT_EQ(countLines(r.err), 1) << r.err;
     EXPECT_NE(r.err.find("bad.txt:2:"), std::string::npos) << r.err;
+    // --frame-log never replaces a file the viewer has open (here its own script), as
+    // save-settings and capture do not; refused before any window opens.
+    const std::string script = "wait 1\nquit\n";
+    { std::ofstream(dir + "/good.txt") << script; }
+    r = runCli("view --script " + dir + "/good.txt --frame-log " + dir + "/good.txt");
+    EXPECT_NE(r.status, 0);
+    EXPECT_EQ(countLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("the running script"), std::string::npos) << r.err;
+    std::ifstream kept(dir + "/good.txt");
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(kept)), std::istreambuf_iterator<char>()), script);
 }
 
 // A pane's display reaches `render --pane`: a method's view is rendered (it came out as the lit
