@@ -356,7 +356,9 @@ std::string contextError(const std::string& lines, const ViewState& state, int* 
 
 // What `render` says about the same settings (its one error line, without "gisandbox: error: ").
 std::string cliError(const std::string& args) {
-    const std::string dir = tempDir("view_context_cli");
+    // A directory per test: two tests calling this at once under ctest -j2 emptied each other's.
+    const std::string dir =
+        tempDir(std::string("view_context_cli_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     const CliResult r = runCli("render --scene builtin:cornell --size 8x8 --out " + dir + "/x.png " + args);
     EXPECT_NE(r.status, 0) << args;
     const std::string prefix = "gisandbox: error: ";
