@@ -34,13 +34,45 @@ double timedFrame(Renderer& renderer) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// A frame's image stops changing, for the bench, once it and every later frame stay within this
+// fraction of the final image's mean radiance in RMS: about the smallest change of brightness a
+// viewer notices (Weber's fraction for luminance is one to two percent).
+constexpr double kSettledFraction = 0.01;
+// Images are compared box-filtered by this factor: what a viewer sees change, less the per-pixel
+// sample noise of a single frame.
+constexpr int kSettledShrink = 4;
+
+ImageF boxShrink(const ImageF& image, int factor) {
+    ImageF out;
+    out.width = std::max(1, image.width / factor);
+    out.height = std::max(1, image.height / factor);
+    out.rgba.assign(size_t(out.width) * out.height * 4, 0.0f);
+    for (int y = 0; y < out.height * factor && y < image.height; ++y)
+        for (int x = 0; x < out.width * factor && x < image.width; ++x)
+            for (int c = 0; c < 4; ++c) out.at(x / factor, y / factor)[c] += image.at(x, y)[c];
+    const float n = float(factor * factor);
+    for (float& v : out.rgba) v /= n;
+    return out;
+}
+
+// The first frame from which every frame's image stays within kSettledFraction of the last one's.
+int firstSettledFrame(const std::vector<ImageF>& frames) {
+    const ImageF& last = frames.back();
+    const double tolerance = kSettledFraction * meanRadiance(last);
+    size_t settled = frames.size();
+    while (settled > 1 && rmse(frames[settled - 2], last) <= tolerance) --settled;
+    return int(settled);
+}
+
 // Renders from now until the image is final: at least `declared` frames and until every
-// progressive pass has converged. `onFrame(n, gpuMsSoFar, last)` runs after the n-th frame.
+// progressive pass has converged, and measures when the image actually stopped changing.
+// `onFrame(n, gpuMsSoFar, last)` runs after the n-th frame.
 BenchRow::Convergence renderUntilFinal(Renderer& renderer, int declared,
                                        const std::function<void(int, double, bool)>& onFrame) {
     const size_t before = renderer.frameGpuMs().size();
     BenchRow::Convergence c;
     std::vector<double> gpu;
+    std::vector<ImageF> images;
     for (bool last = false; !last;) {
         c.wallMs += timedFrame(renderer);
         ++c.frames;
@@ -49,9 +81,12 @@ BenchRow::Convergence renderUntilFinal(Renderer& renderer, int declared,
         gpu.assign(all.begin() + std::ptrdiff_t(before), all.end());
         c.gpuMs = 0.0;
         for (double ms : gpu) c.gpuMs += ms;
+        images.push_back(boxShrink(renderer.readHdr(), kSettledShrink));
         if (onFrame) onFrame(c.frames, c.gpuMs, last);
     }
     c.frameMs = c.frames > 1 ? medianAfter(gpu, 1) : gpu.front();
+    c.settledFrames = firstSettledFrame(images);
+    for (int i = 0; i < c.settledFrames; ++i) c.settledGpuMs += gpu[size_t(i)];
     return c;
 }
 
@@ -232,12 +267,13 @@ void runCell(const BenchJob& job, const SweepDirs& dirs, const GlOpener& openGl)
                  row.scene.c_str(), row.method.c_str(), row.preset.c_str(), row.ms, row.wallMs,
                  double(row.bytes) / (1 << 20), row.error.flip, row.error.rmse, row.error.ssim,
                  row.aoRmse >= 0.0 ? ("  AO RMSE " + std::to_string(row.aoRmse)).c_str() : "");
-    std::fprintf(stderr, "%-14s %-10s %-8s after a cut: final in %d frames, %.1f ms GPU (%.2f a frame), FLIP %.4f at the first\n",
-                 row.scene.c_str(), row.method.c_str(), row.preset.c_str(), row.cut.frames, row.cut.gpuMs,
+    std::fprintf(stderr, "%-14s %-10s %-8s after a cut: final in %d frames (settled at %d), %.1f ms GPU (%.2f a frame), FLIP %.4f at the first\n",
+                 row.scene.c_str(), row.method.c_str(), row.preset.c_str(), row.cut.frames, row.cut.settledFrames, row.cut.gpuMs,
                  row.cut.frameMs, row.quality.front().error.flip);
     if (row.edit)
-        std::fprintf(stderr, "%-14s %-10s %-8s after a light edit: final in %d frames, %.1f ms GPU\n", row.scene.c_str(),
-                     row.method.c_str(), row.preset.c_str(), row.edit->frames, row.edit->gpuMs);
+        std::fprintf(stderr, "%-14s %-10s %-8s after a light edit: settled at frame %d of %d, %.1f ms GPU until then\n",
+                     row.scene.c_str(), row.method.c_str(), row.preset.c_str(), row.edit->settledFrames,
+                     row.edit->frames, row.edit->settledGpuMs);
     if (row.leak >= 0.0) std::fprintf(stderr, "%-14s %-10s %-8s leak number %.4f\n", row.scene.c_str(), row.method.c_str(), row.preset.c_str(), row.leak);
     nlohmann::ordered_json body{{"id", job.id}, {"kind", "cell"}, {"machine", machine}, {"row", rowToJson(row)}};
     writeRecord(recordPath(dirs, job), body, {fs::path(png).filename().string()});

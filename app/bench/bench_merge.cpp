@@ -158,7 +158,7 @@ const MergedCell* curveCell(const std::vector<MergedCell>& cells, const MergedCe
 
 // One scene's grid (reference first, then every cell labelled with its costs and error), its
 // trade-off chart (error against a frame's cost, and against the GPU time from a camera cut until
-// final) and its time-to-quality chart (each method's error after 1, 2, 4, ... frames from a cut,
+// the image stopped changing) and its time-to-quality chart (each method's error after 1, 2, 4, ... frames from a cut,
 // at its medium preset).
 void addSceneImages(OutputSet& out, const std::string& sceneName, const BenchJob& referenceJob,
                     const std::vector<MergedCell>& cells, const SweepDirs& dirs, const std::string& metricName,
@@ -167,7 +167,7 @@ void addSceneImages(OutputSet& out, const std::string& sceneName, const BenchJob
     std::vector<std::pair<std::string, ImageU8>> tiles;
     tiles.emplace_back("reference  path traced, " + std::to_string(referenceJob.referenceSpp) + " spp",
                        toLdrImage(readExr(imagePath(dirs, referenceJob)), DisplaySettings{}));
-    std::vector<ChartPoint> perFrame, toFinal;
+    std::vector<ChartPoint> perFrame, toSettled;
     std::vector<ChartCurve> curves;
     std::vector<std::string> methods;  // chart colour: the method's place in the selection
     for (const MergedCell& c : cells) {
@@ -177,15 +177,15 @@ void addSceneImages(OutputSet& out, const std::string& sceneName, const BenchJob
         const double y = chartError(c.row.error, metric);
         const std::string label = cellLabel(c.row);
         perFrame.push_back({label, frameCostMs(c.row), y, methodIndex});
-        toFinal.push_back({label, c.row.cut.gpuMs, y, methodIndex});
+        toSettled.push_back({label, c.row.cut.settledGpuMs, y, methodIndex});
         if (&c == curveCell(cells, c)) {
             ChartCurve curve{label, {}, methodIndex};
             for (const BenchRow::QualityPoint& q : c.row.quality) curve.points.emplace_back(q.gpuMs, chartError(q.error, metric));
             curves.push_back(curve);
         }
         char caption[200];
-        std::snprintf(caption, sizeof caption, "%s  %.1f ms/frame, %.0f ms to final, %s %.4f", label.c_str(),
-                      frameCostMs(c.row), c.row.cut.gpuMs, metricName.c_str(), y);
+        std::snprintf(caption, sizeof caption, "%s  %.1f ms/frame, %.0f ms to settle, %s %.4f", label.c_str(),
+                      frameCostMs(c.row), c.row.cut.settledGpuMs, metricName.c_str(), y);
         tiles.emplace_back(caption, readPng(imagePath(dirs, *c.job)));
     }
     const std::string stem = dirs.outDir + "/" + fileSafeName(sceneName);
@@ -196,9 +196,10 @@ void addSceneImages(OutputSet& out, const std::string& sceneName, const BenchJob
     const ImageU8 framePanel = drawTradeoffChart(
         perFrame, title + "error vs a frame's cost",
         "GPU ms per frame on " + gpu + " (converging or steady, the dearer)", yLabel);
-    const ImageU8 finalPanel = drawTradeoffChart(toFinal, title + "error vs time to converge",
-                                                 "GPU ms on " + gpu + " from a camera cut until final", yLabel);
-    out.emplace_back(stem + "_chart.png", encodePng(stackImages({framePanel, finalPanel})));
+    const ImageU8 settledPanel = drawTradeoffChart(
+        toSettled, title + "error vs time to converge",
+        "GPU ms on " + gpu + " from a camera cut until the image stops changing", yLabel);
+    out.emplace_back(stem + "_chart.png", encodePng(stackImages({framePanel, settledPanel})));
     out.emplace_back(stem + "_quality.png",
                      encodePng(drawCurvesChart(curves, title + "time to quality after a cut (medium presets)",
                                                "GPU ms on " + gpu + " since the cut (points: 1, 2, 4, ... frames)",

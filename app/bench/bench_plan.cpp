@@ -182,6 +182,10 @@ RenderSettings jobSettings(const BenchJob& job, const RenderSettings& sceneBase)
         // A scene's base is prepared once for all its cells; --emitters A,B gives cells their own mode.
         if (!job.setup.emitters.empty()) setParam(s, "emitters.mode", job.setup.emitters);
         applyPreset(s, job.method, job.preset);
+        // A cell measures what a first run pays: a method's disk cache of finished work (the
+        // lightmap's bake, row "cache") would make its cut and its light edit a file read.
+        for (const ParamDesc& p : giMethod(job.method).params)
+            if (p.key == "cache") setParam(s, job.method + "." + p.key, "false");
     } else if (job.method == methodInRole(MethodRole::Reference).name) {
         s.gi = job.method;
         setParam(s, roleParamKey(MethodRole::Reference, "spp"), std::to_string(job.referenceSpp));

@@ -21,8 +21,9 @@ namespace gis {
 // change the id by themselves).
 constexpr int kBenchIdVersion = 1;
 // What a cell measures (part of cell ids only, so cached references keep theirs): 2 = the steady
-// frame, convergence after a cut and a light edit, and the time-to-quality curve.
-constexpr int kCellMeasuresVersion = 2;
+// frame, convergence after a cut and a light edit, and the time-to-quality curve; 3 = the frame
+// from which the image stopped changing, measured.
+constexpr int kCellMeasuresVersion = 3;
 
 enum class JobKind { Reference, Cell };
 

@@ -70,8 +70,12 @@ const std::vector<CsvColumn>& csvColumns() {
         {"converge_gpu_ms", true, cut([](std::ostream& f, const BenchRow::Convergence& c) { f << c.gpuMs; })},
         {"converge_wall_ms", true, cut([](std::ostream& f, const BenchRow::Convergence& c) { f << c.wallMs; })},
         {"converge_frame_gpu_ms", true, cut([](std::ostream& f, const BenchRow::Convergence& c) { f << c.frameMs; })},
+        {"converge_settled_frames", false, cut([](std::ostream& f, const BenchRow::Convergence& c) { f << c.settledFrames; })},
+        {"converge_settled_gpu_ms", true, cut([](std::ostream& f, const BenchRow::Convergence& c) { f << c.settledGpuMs; })},
         {"edit_frames", false, edited([](std::ostream& f, const BenchRow::Convergence& c) { f << c.frames; })},
         {"edit_gpu_ms", true, edited([](std::ostream& f, const BenchRow::Convergence& c) { f << c.gpuMs; })},
+        {"edit_settled_frames", false, edited([](std::ostream& f, const BenchRow::Convergence& c) { f << c.settledFrames; })},
+        {"edit_settled_gpu_ms", true, edited([](std::ostream& f, const BenchRow::Convergence& c) { f << c.settledGpuMs; })},
         {"gpu_bytes", false, [](std::ostream& f, const BenchRow& r) { f << r.bytes; }},
         {"rmse", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.rmse; })},
         {"relmse", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.relMse; })},
@@ -150,12 +154,15 @@ FlythroughStats flythroughFromJson(const nlohmann::ordered_json& j) {
 }
 
 nlohmann::ordered_json convergenceToJson(const BenchRow::Convergence& c) {
-    return {{"frames", c.frames}, {"gpu_ms", c.gpuMs}, {"wall_ms", c.wallMs}, {"frame_gpu_ms", c.frameMs}};
+    return {{"frames", c.frames},        {"gpu_ms", c.gpuMs},
+            {"wall_ms", c.wallMs},       {"frame_gpu_ms", c.frameMs},
+            {"settled_frames", c.settledFrames}, {"settled_gpu_ms", c.settledGpuMs}};
 }
 
 BenchRow::Convergence convergenceFromJson(const nlohmann::ordered_json& j) {
-    return {j.at("frames").get<int>(), j.at("gpu_ms").get<double>(), j.at("wall_ms").get<double>(),
-            j.at("frame_gpu_ms").get<double>()};
+    return {j.at("frames").get<int>(),        j.at("gpu_ms").get<double>(),
+            j.at("wall_ms").get<double>(),     j.at("frame_gpu_ms").get<double>(),
+            j.at("settled_frames").get<int>(), j.at("settled_gpu_ms").get<double>()};
 }
 
 nlohmann::ordered_json qualityToJson(const std::vector<BenchRow::QualityPoint>& points) {

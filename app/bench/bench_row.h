@@ -26,10 +26,14 @@ struct BenchRow {
     double wallMs = 0.0;                      // wall clock with glFinish, the same way
     // From a camera cut (a renderer with nothing accumulated) or a light edit until the image is
     // final: frames, their GPU and wall ms together, and the median GPU ms of those after the first
-    // (a frame while the method still works; after a cut final in one frame, the steady frame).
+    // (a frame while the method still works; after a cut final in one frame, the steady frame);
+    // and, measured on the images, the frame from which the image stopped changing and the GPU ms
+    // until then.
     struct Convergence {
         int frames = 0;
         double gpuMs = 0.0, wallMs = 0.0, frameMs = 0.0;
+        int settledFrames = 0;
+        double settledGpuMs = 0.0;
     };
     Convergence cut;
     std::optional<Convergence> edit;          // scenes with a punctual light to edit

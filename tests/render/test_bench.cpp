@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <fstream>
 
+#include "bench/bench_plan.h"
 #include "cli_util.h"
+#include "gi/method.h"
 #include "image.h"
 
 namespace gis::test {
@@ -57,13 +59,29 @@ TEST(Bench, RunsEndToEndAndCachesTheReference) {
             EXPECT_EQ(quality[i]["frames"].get<int>(), std::min(2 * quality[i - 1]["frames"].get<int>(), frames));
             EXPECT_GE(quality[i]["gpu_ms"].get<double>(), quality[i - 1]["gpu_ms"].get<double>());
         }
-        if (row["method"] == "none")  // final in its first frame: the curve's one point is the image scored
+        if (row["method"] == "none") {  // final in its first frame: the curve's one point is the image scored
             EXPECT_NEAR(quality.back()["flip"].get<double>(), row["flip"].get<double>(), 1e-9);
-        if (row["method"] == "pathtrace" && row["preset"] == "high")
+        }
+        if (row["method"] == "pathtrace" && row["preset"] == "high") {
             EXPECT_GT(quality.front()["rmse"].get<double>(), 1.5 * quality.back()["rmse"].get<double>()) << row.dump();
+        }
         // The Cornell box's point light, halved: the path tracer starts its samples over.
         ASSERT_TRUE(row.contains("light_edit")) << row.dump();
         EXPECT_EQ(row["light_edit"]["frames"].get<int>(), row["method"] == "pathtrace" ? frames : 1) << row.dump();
+        // When the image stopped changing, measured on the images: at once for a method final in one
+        // frame; not before the path tracer's image has lost its first frames' noise.
+        for (const auto* c : {&cut, &row["light_edit"]}) {
+            const int settled = (*c)["settled_frames"].get<int>(), run = (*c)["frames"].get<int>();
+            EXPECT_GE(settled, 1) << row.dump();
+            EXPECT_LE(settled, run) << row.dump();
+            EXPECT_LE((*c)["settled_gpu_ms"].get<double>(), (*c)["gpu_ms"].get<double>()) << row.dump();
+            if (run == 1) {
+                EXPECT_EQ(settled, 1) << row.dump();
+            }
+            if (row["method"] == "pathtrace" && row["preset"] == "high") {
+                EXPECT_GT(settled, 4) << row.dump();
+            }
+        }
     }
     std::ifstream cf(dir + "/bench.csv");
     std::string line;
@@ -79,6 +97,18 @@ TEST(Bench, RunsEndToEndAndCachesTheReference) {
     r = runCli(args);  // second run: the reference comes from the cache
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find("reference from cache"), std::string::npos) << r.err;
+}
+
+// A cell measures what a user's first run pays: the lightmap's bake, not its disk cache (the
+// 2026-12-06 table read every bake from the cache the previous run had left: final at frame 1).
+TEST(Bench, CellsMeasureTheBakeNotItsDiskCache) {
+    BenchJob job;
+    job.kind = JobKind::Cell;
+    job.method = "lightmap";
+    job.preset = "low";
+    EXPECT_EQ(getParam(jobSettings(job, RenderSettings{}), "lightmap.cache").number, 0.0);
+    job.method = "vct";  // a method without a disk cache keeps its settings
+    EXPECT_NO_THROW(jobSettings(job, RenderSettings{}));
 }
 
 // --emitters lights,gi: each cell once per mode, against one reference, the mode in its row.

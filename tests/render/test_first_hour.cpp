@@ -210,20 +210,23 @@ TEST(FirstHour, BenchRowsKeepBothCostsThroughTheirJson) {
     BenchRow row;
     row.scene = "s", row.method = "pathtrace", row.preset = "low", row.description = "d";
     row.ms = 0.01;
-    row.cut = {4, 20.0, 25.0, 4.5};
+    row.cut = {4, 20.0, 25.0, 4.5, 3, 15.0};
     row.quality = {{1, 5.0, {}}, {2, 10.0, {}}, {4, 20.0, {}}};
     row.quality.back().error.flip = 0.125;
     const BenchRow back = rowFromJson(rowToJson(row));
     EXPECT_EQ(back.cut.frames, 4);
     EXPECT_DOUBLE_EQ(back.cut.gpuMs, 20.0);
     EXPECT_DOUBLE_EQ(back.cut.frameMs, 4.5);
+    EXPECT_EQ(back.cut.settledFrames, 3);
+    EXPECT_DOUBLE_EQ(back.cut.settledGpuMs, 15.0);
     EXPECT_FALSE(back.edit.has_value()) << "no light edited, no figure";
     ASSERT_EQ(back.quality.size(), 3u);
     EXPECT_EQ(back.quality[2].frames, 4);
     EXPECT_DOUBLE_EQ(back.quality[2].error.flip, 0.125);
     EXPECT_DOUBLE_EQ(frameCostMs(back), 4.5);
-    row.edit = BenchRow::Convergence{2, 8.0, 9.0, 4.0};
+    row.edit = BenchRow::Convergence{2, 8.0, 9.0, 4.0, 1, 4.0};
     EXPECT_EQ(rowFromJson(rowToJson(row)).edit->frames, 2);
+    EXPECT_EQ(rowFromJson(rowToJson(row)).edit->settledFrames, 1);
 }
 
 // The README's first commands as it writes them (#42): the split-view script, with the screenshot
