@@ -26,10 +26,12 @@ namespace {
 const ProgramDesc kApplyPrograms[2] = {
     {"lightmap-apply", {"gi/lightmap/apply.vert", "gi/lightmap/apply.frag"}, {{"RAY_FALLBACK", "0"}}},
     {"lightmap-apply-rays", {"gi/lightmap/apply.vert", "gi/lightmap/apply.frag"}, {{"RAY_FALLBACK", "1"}}}};
+// lightmap.atlas: the atlas's texels across the image.
+const ProgramDesc kAtlasProgram = {"lightmap-atlas", {"fullscreen.vert", "gi/lightmap/atlas.frag"}, {}};
 // path_tracer.glsl's u_term: the indirect term, or everything (emitters' direct light included).
 constexpr int kTermAll = 0, kTermIndirect = 3;
-// apply.frag's u_mode: the lightmap, or the texels view's checker.
-constexpr int kShowLight = 0, kShowTexels = 1;
+// apply.frag's u_mode: the lightmap, the texels view's checker, or the seams view's chart edges.
+constexpr int kShowLight = 0, kShowTexels = 1, kShowSeams = 2;
 // The cache file's first line, also in the key: a change of the file format or of the bake's C++
 // (its shaders are in the key themselves) bumps it, and old files are then never read.
 constexpr char kCacheMagic[] = "gisandbox lightmap 2\n";
@@ -52,6 +54,7 @@ std::string cacheFolder() {
 std::vector<ProgramDesc> LightmapPass::programs() {
     std::vector<ProgramDesc> out = lightmapBakePrograms();
     out.insert(out.end(), std::begin(kApplyPrograms), std::end(kApplyPrograms));
+    out.push_back(kAtlasProgram);
     return out;
 }
 
@@ -76,6 +79,8 @@ LightmapPass::LightmapPass(const Scene& scene, RayScene& rays, const RenderSetti
     gbufferFbo_ = gl::createFramebuffer();
     glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
     for (int i = 0; i < 2; ++i) applyPrograms_[i] = buildProgram(kApplyPrograms[i]);
+    atlasProgram_ = buildProgram(kAtlasProgram);
+    atlasVao_ = gl::createVertexArray();
     rayCounts_ = createRayCounts({&ledger, kName});
 }
 
@@ -168,13 +173,43 @@ void LightmapPass::draw(const Frame& frame, GLuint target, int mode) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-std::vector<DebugViewDesc> LightmapPass::debugViews() const {
-    return {{"lightmap.texels", "the lightmap's texels on the surfaces as a checker (one square per texel), tinted "
-                                "by the baked light: the density each surface got"}};
+// The atlas's texels across the target (atlas.frag), drawn without the G-buffer.
+void LightmapPass::drawAtlas(const Frame& frame, GLuint target) {
+    const GLuint f = fbo_.id();
+    glNamedFramebufferTexture(f, GL_COLOR_ATTACHMENT0, target, 0);
+    glNamedFramebufferDrawBuffer(f, GL_COLOR_ATTACHMENT0);
+    const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    glClearNamedFramebufferfv(f, GL_COLOR, 0, black);
+    if (bake_->empty()) return;
+    glBindFramebuffer(GL_FRAMEBUFFER, f);
+    glViewport(0, 0, frame.settings.width, frame.settings.height);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    const GLuint p = atlasProgram_.id();
+    glUseProgram(p);
+    glProgramUniform1i(p, UL_STEP, bake_->mesh().side);
+    glProgramUniform1i(p, UL_LAYERS, bake_->mesh().layers);
+    glProgramUniform2f(p, UL_TARGET_SIZE, float(frame.settings.width), float(frame.settings.height));
+    glBindTextureUnit(TL_LIGHTMAP, bake_->result().id());
+    glBindTextureUnit(TL_TEXELS, bake_->positions().id());
+    glBindVertexArray(atlasVao_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-void LightmapPass::drawDebugView(const std::string&, const Frame& frame, GLuint target) {
-    draw(frame, target, kShowTexels);
+std::vector<DebugViewDesc> LightmapPass::debugViews() const {
+    return {{"lightmap.texels", "the lightmap's texels on the surfaces as a checker (one square per texel), tinted "
+                                "by the baked light: the density each surface got"},
+            {"lightmap.seams", "the charts' edges in magenta on the surfaces (grey): where two charts of one "
+                               "surface meet, a seam would show"},
+            {"lightmap.atlas", "the atlas itself, its layers side by side: each texel's baked light (normalised), "
+                               "chart borders magenta, texels inside geometry cyan, the dilated gutter dimmed"}};
+}
+
+void LightmapPass::drawDebugView(const std::string& view, const Frame& frame, GLuint target) {
+    if (view == "lightmap.atlas") return drawAtlas(frame, target);
+    draw(frame, target, view == "lightmap.seams" ? kShowSeams : kShowTexels);
 }
 
 std::string LightmapPass::cacheKey(const Frame& frame) const {

@@ -39,6 +39,7 @@ public:
 private:
     void bake(Frame& frame);
     void draw(const Frame& frame, GLuint target, int mode);
+    void drawAtlas(const Frame& frame, GLuint target);
     std::string cacheKey(const Frame& frame) const;
     void readCache(const Frame& frame);
     void writeCache();
@@ -49,7 +50,7 @@ private:
     lightmap::Atlas atlas_;
     std::unique_ptr<LightmapBake> bake_;
     gl::Texture indirect_, depth_;
-    gl::Object fbo_, gbufferFbo_, applyPrograms_[2];
+    gl::Object fbo_, gbufferFbo_, applyPrograms_[2], atlasProgram_, atlasVao_;
     gl::Buffer rayCounts_;
     int done_ = 0;
     bool changed_ = true;           // something since the last execute() asks for a redraw

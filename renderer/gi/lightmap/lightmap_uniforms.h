@@ -11,7 +11,9 @@ namespace gis::lightmap {
     X(UL_STEP, 901, 1)        /* the denoiser's a-trous step, texels */ \
     X(UL_SAMPLES, 902, 1)     /* paths in each texel's mean so far */ \
     X(UL_MODE, 903, 1)        /* filter: 0 copy, 1 denoise step, 2 dilate */ \
-    X(UL_TEXEL_SIZE, 904, 1)  /* world units per texel */
+    X(UL_TEXEL_SIZE, 904, 1)  /* world units per texel */ \
+    X(UL_LAYERS, 905, 1)      /* lightmap.atlas: the atlas array's layers */ \
+    X(UL_TARGET_SIZE, 906, 1) /* lightmap.atlas: the view's pixels */
 
 enum LightmapUniform : int { GIS_LIGHTMAP_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kLightmapUniforms[] = {GIS_LIGHTMAP_UNIFORMS(GIS_UNIFORM_SLOT)};

@@ -22,7 +22,7 @@ flat in float v_doubleSided;
 
 layout(binding = TL_LIGHTMAP) uniform sampler2DArray s_lightmap;
 layout(binding = TL_TEXELS) uniform sampler2DArray s_texels;    // position, w = 1 + flags
-layout(location = UL_MODE) uniform int u_mode;  // 0 the light, 1 lightmap.texels' checker
+layout(location = UL_MODE) uniform int u_mode;  // 0 the light, 1 lightmap.texels' checker, 2 lightmap.seams
 layout(location = UL_STEP) uniform int u_side;  // the atlas array's side, texels
 layout(location = UL_TEXEL_SIZE) uniform float u_texelSize;
 layout(location = 0) out vec4 o_indirect;
@@ -70,13 +70,29 @@ vec3 lightmapLight(vec2 uv, int layer) {
     return any.w > 0.0 ? any.rgb / any.w : vec3(0.0);
 }
 
+// Whether the pixel's bilinear footprint reaches a texel on no chart (the gutter): a chart's edge,
+// where two charts of one surface meet in the image and a seam would show.
+bool atChartEdge(vec2 uv, int layer) {
+    ivec2 corner = ivec2(floor(uv * float(u_side) - 0.5));
+    for (int k = 0; k < 4; ++k) {
+        ivec3 tap = ivec3(clamp(corner + ivec2(k & 1, k >> 1), ivec2(0), ivec2(u_side - 1)), layer);
+        if (texelFetch(s_texels, tap, 0).w <= 0.0) return true;
+    }
+    return false;
+}
+
 void main() {
     if (!gl_FrontFacing && v_doubleSided < 0.5) discard;
-    vec3 light = lightmapLight(v_uvLayer.xy, int(v_uvLayer.z + 0.5));
+    int layer = int(v_uvLayer.z + 0.5);
+    vec3 light = lightmapLight(v_uvLayer.xy, layer);
+    float peak = max(max(light.r, max(light.g, light.b)), 1e-30);
     if (u_mode == 1) {
         vec2 texel = floor(v_uvLayer.xy * float(u_side));
         float square = mod(texel.x + texel.y, 2.0) < 0.5 ? 0.25 : 0.75;
-        light = square * (0.5 + 0.5 * light / max(max(light.r, max(light.g, light.b)), 1e-30));
+        light = square * (0.5 + 0.5 * light / peak);
+    } else if (u_mode == 2) {  // the surfaces' light in grey, the charts' edges in magenta
+        light = atChartEdge(v_uvLayer.xy, layer) ? vec3(1.0, 0.0, 1.0)
+                                                  : vec3(0.25 + 0.5 * dot(light / peak, vec3(1.0 / 3.0)));
     }
     o_indirect = vec4(light, 1.0);
 }
