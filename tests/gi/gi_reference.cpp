@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 
 #include "gi/method.h"
@@ -41,7 +42,10 @@ const ImageF& GiReference::render(const std::string& what, const RenderSettings&
         return *slot;
     }
     slot = std::make_unique<ImageF>(renderHdr(scene_, settings));
-    if (dir) writeExr(path, *slot);
+    if (dir) {  // written whole and renamed: a process reading it at once sees all of it or nothing
+        std::filesystem::create_directories(dir);
+        writeExr(path, *slot);
+    }
     return *slot;
 }
 

@@ -3,7 +3,10 @@
 // when a test asks for it, with the pixels that see each face; and the one switch that turns on
 // the slow measurement tests.
 //
-//   GIS_REF_CACHE=DIR      keeps the rendered references between runs (tuning by hand)
+//   GIS_REF_CACHE=DIR      shares the rendered references between processes: ctest sets it to a
+//                          folder it empties at the start of each run (tests/CMakeLists.txt); set
+//                          by hand, it keeps them between runs (tuning, at your own risk of an
+//                          older build's images)
 //   GIS_MEASURE=vct,sdf    runs those methods' measurement tests (`all`: every method's)
 #pragma once
 
