@@ -330,6 +330,7 @@ void ViewSession::renderPane(const ViewState& state, int index, const CameraMatr
             p.scale = 1.0f;
             p.shownSize = paneSize_;
             p.shown = r.frameTexture("display");
+            if (scale < 1.0f && r.settled()) prepareReducedFrame(state, index, camera, scale);
         }
     } catch (const std::exception& e) {
         PaneView failed;
@@ -347,14 +348,11 @@ bool ViewSession::reducedSettled(const PaneView& p, float scale, const CameraMat
     return p.reduced->settings().width == size.x && p.reduced->settings().height == size.y && p.reduced->settled();
 }
 
-// The pane's settings at `scale` of its size, through the pane's reduced renderer (built on the
-// first reduced frame, kept for the next). Its timings count in the frame's GPU time, not in the
-// pass table.
-void ViewSession::renderReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale,
-                                     double budgetMs) {
+// The pane's reduced renderer at `scale` of its size (built on first use or at another scale,
+// kept for the next), given the camera.
+Renderer& ViewSession::reducedRenderer(const ViewState& state, int index, const CameraMatrices& camera, float scale) {
     PaneView& p = panes_[index];
-    const glm::ivec2 size = scaledSize(paneSize_, scale);
-    const RenderSettings want = paneSettings(state, index, size);
+    const RenderSettings want = paneSettings(state, index, scaledSize(paneSize_, scale));
     if (!p.reduced || requiresRebuild(p.reduced->settings(), want)) {
         p.reduced.reset();  // never two reduced renderers of one pane in GPU memory
         p.reduced = std::make_unique<Renderer>(*scene_, want);
@@ -367,6 +365,12 @@ void ViewSession::renderReducedFrame(const ViewState& state, int index, const Ca
         m.setCamera(camera);
         p.reducedCamera = camera;
     }
+    return m;
+}
+
+// One frame of the reduced renderer unless it has settled; its timings count in the frame's GPU
+// time, not in the pass table. Returns the GPU ms per frame of the timings that arrived (0: none).
+double ViewSession::renderReduced(Renderer& m) {
     if (!m.settled()) {
         m.renderFrame();
         ++framesRendered_;
@@ -378,15 +382,33 @@ void ViewSession::renderReducedFrame(const ViewState& state, int index, const Ca
         pass->timer.clear();
     }
     gpuMsCollected_ += ms;
+    return frames > 0.0 ? ms / frames : 0.0;
+}
+
+// The pane's settings at `scale` of its size, through its reduced renderer, shown.
+void ViewSession::renderReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale,
+                                     double budgetMs) {
+    PaneView& p = panes_[index];
+    Renderer& m = reducedRenderer(state, index, camera, scale);
+    const double frameMs = renderReduced(m);
     // Part of a frame does not shrink with its pixels (probe updates, a volume's light): a reduced
     // frame still over the budget lowers the scale the pane may use, down to an eighth.
-    if (frames > 0.0 && ms / frames > budgetMs && budgetMs > 0.0) p.scaleCap = std::max(0.125f, 0.5f * scale);
+    if (frameMs > budgetMs && budgetMs > 0.0) p.scaleCap = std::max(0.125f, 0.5f * scale);
     p.shown = m.frameTexture("display");
-    p.shownSize = size;
+    p.shownSize = scaledSize(paneSize_, scale);
     p.scale = scale;
     const std::string progress = progressText(m);
     p.status = scaleLabel(scale) + " scale (" + (p.movingFrames > 0 ? "moving" : "converging") + ")" +
                (progress.empty() ? "" : ": " + progress);
+}
+
+// A pane at rest over the budget gets its reduced renderer, and that renderer its first frame (vct
+// voxelizes in it), before the first move: the move then starts within the budget. Once per scale.
+void ViewSession::prepareReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale) {
+    PaneView& p = panes_[index];
+    if (p.reduced && !requiresRebuild(p.reduced->settings(), paneSettings(state, index, scaledSize(paneSize_, scale))))
+        return;
+    renderReduced(reducedRenderer(state, index, camera, scale));
 }
 
 void ViewSession::collectTimings(PaneView& p) {

@@ -189,8 +189,11 @@ private:
     void updateHeatmap(const ViewState& state, int index, const CameraMatrices& camera);
     Reference* reference(const ViewState& state, int index, const CameraMatrices& camera);
     void collectTimings(PaneView& pane);
+    Renderer& reducedRenderer(const ViewState& state, int index, const CameraMatrices& camera, float scale);
+    double renderReduced(Renderer& reduced);
     void renderReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale,
                             double budgetMs);
+    void prepareReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale);
     bool reducedSettled(const PaneView& pane, float scale, const CameraMatrices& camera) const;
     GLuint ensureDisplay(PaneView& pane);
 
