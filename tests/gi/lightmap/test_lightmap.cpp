@@ -2,6 +2,7 @@
 // side of a wall, the cache, the atlas at every scale and a density past the atlases refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
@@ -215,6 +216,16 @@ TEST(Lightmap, TheTexelsAndTheirRegionsDoNotDependOnTheUnitOfLength) {
 namespace {
 bool isMagenta(const float* p) { return p[0] == 1.0f && p[1] == 0.0f && p[2] == 1.0f; }
 bool isCyan(const float* p) { return p[0] == 0.0f && p[1] == 1.0f && p[2] == 1.0f; }
+bool isBlack(const float* p) { return p[0] == 0.0f && p[1] == 0.0f && p[2] == 0.0f; }
+float brightest(const float* p) { return std::max(p[0], std::max(p[1], p[2])); }
+
+template <typename Test>
+int countPixels(const ImageF& image, Test test) {
+    int n = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) n += test(image.at(x, y)) ? 1 : 0;
+    return n;
+}
 }  // namespace
 
 // lightmap.seams: the charts' edges in magenta, the rest grey. On the Cornell box every wall is one
@@ -223,19 +234,14 @@ TEST(Lightmap, TheSeamsViewMarksTheChartsEdgesOnly) {
     RenderSettings s = lightmapSettings(64, 1024, 4);
     s.view = "lightmap.seams";
     const ImageF image = renderHdr(makeBuiltinScene("cornell"), s);
-    int edges = 0, grey = 0, other = 0;
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) {
-            const float* p = image.at(x, y);
-            if (isMagenta(p)) ++edges;
-            else if (p[0] == p[1] && p[1] == p[2] && p[0] >= 0.25f && p[0] <= 0.75f) ++grey;
-            else if (p[0] != 0.0f || p[1] != 0.0f || p[2] != 0.0f) ++other;  // 0: no surface
-        }
-    const int pixels = image.width * image.height;
+    const auto isGrey = [](const float* p) { return p[0] == p[1] && p[1] == p[2] && p[0] >= 0.25f && p[0] <= 0.75f; };
+    const int pixels = image.width * image.height, edges = countPixels(image, isMagenta),
+              grey = countPixels(image, isGrey);
     EXPECT_GT(edges, pixels / 50) << "the walls' rims are chart edges";
     EXPECT_LT(edges, pixels / 2);
-    EXPECT_EQ(other, 0) << "every surface pixel an edge or the grey light";
     EXPECT_GT(grey, pixels / 2);
+    EXPECT_EQ(countPixels(image, [&](const float* p) { return !isMagenta(p) && !isGrey(p) && !isBlack(p); }), 0)
+        << "every surface pixel an edge or the grey light (black: no surface)";
     EXPECT_FALSE(isMagenta(image.at(image.width / 2, image.height / 4))) << "the back wall's middle is one chart";
 }
 
@@ -245,14 +251,9 @@ TEST(Lightmap, TheAtlasViewShowsTheChartsTheirBordersAndTheTexelsInsideGeometry)
     RenderSettings s = lightmapSettings(128, 4096, 4);
     s.view = "lightmap.atlas";
     const ImageF image = renderHdr(makeBuiltinScene("cornell"), s);
-    int borders = 0, inside = 0, lit = 0;
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) {
-            const float* p = image.at(x, y);
-            if (isMagenta(p)) ++borders;
-            else if (isCyan(p)) ++inside;
-            else if (std::max(p[0], std::max(p[1], p[2])) > 0.99f) ++lit;  // normalised: the brightest channel is 1
-        }
+    const int borders = countPixels(image, isMagenta), inside = countPixels(image, isCyan);
+    // Normalised light: its brightest channel is 1.
+    const int lit = countPixels(image, [](const float* p) { return !isMagenta(p) && !isCyan(p) && brightest(p) > 0.99f; });
     EXPECT_GT(borders, 100);
     EXPECT_GT(inside, 10) << "the blocks stand on the floor's texels";
     EXPECT_GT(lit, borders) << "the charts' insides show their light";
