@@ -86,7 +86,7 @@ BenchRow::Convergence renderUntilFinal(Renderer& renderer, int declared,
     }
     c.frameMs = c.frames > 1 ? medianAfter(gpu, 1) : gpu.front();
     c.settledFrames = firstSettledFrame(images);
-    for (int i = 0; i < c.settledFrames; ++i) c.settledGpuMs += gpu[size_t(i)];
+    for (size_t i = 0; i < std::min(gpu.size(), size_t(c.settledFrames)); ++i) c.settledGpuMs += gpu[i];
     return c;
 }
 
