@@ -492,6 +492,12 @@ void settingsControls(PanelContext& ctx) {
     if (ImGui::Button("Screenshot (F12)")) ctx.screenshotRequested = true;
 }
 
+// A collapsing section of the panel, its header's top recorded (PanelContext::sectionTops).
+bool section(PanelContext& ctx, const char* title, ImGuiTreeNodeFlags flags = 0) {
+    ctx.sectionTops.emplace_back(title, ImGui::GetCursorScreenPos().y);
+    return ImGui::CollapsingHeader(title, flags);
+}
+
 }  // namespace
 
 void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
@@ -501,20 +507,22 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
                  ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                      ImGuiWindowFlags_NoSavedSettings);
     ImGui::PushItemWidth(-130.0f);
+    ctx.sectionTops.clear();
     messageLines(ctx);
-    if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) sceneControls(ctx);
-    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) viewControls(ctx);
+    const ImGuiTreeNodeFlags open = ImGuiTreeNodeFlags_DefaultOpen;
+    if (section(ctx, "Scene", open)) sceneControls(ctx);
+    if (section(ctx, "View", open)) viewControls(ctx);
     // A single pane's section starts open; with two or four they start closed (their titles differ
     // per mode), or they would push the timings below a 720-pixel window.
-    const ImGuiTreeNodeFlags paneOpen = ctx.state.mode == ViewMode::Single ? ImGuiTreeNodeFlags_DefaultOpen : 0;
+    const ImGuiTreeNodeFlags paneOpen = ctx.state.mode == ViewMode::Single ? open : 0;
     for (int i = 0; i < paneCount(ctx.state.mode); ++i)
-        if (ImGui::CollapsingHeader(paneTitle(ctx.state.mode, i), paneOpen)) paneControls(ctx, i);
+        if (section(ctx, paneTitle(ctx.state.mode, i), paneOpen)) paneControls(ctx, i);
     // Right after the panes it times, so it is on screen at the default 720-pixel height.
-    if (ImGui::CollapsingHeader("Timings and memory", ImGuiTreeNodeFlags_DefaultOpen)) timingControls(ctx);
-    if (ImGui::CollapsingHeader("Display and lighting", ImGuiTreeNodeFlags_DefaultOpen)) displayControls(ctx);
-    if (ImGui::CollapsingHeader("Lights")) lightControls(ctx);
-    if (ImGui::CollapsingHeader("BRDF lobe")) lobePlot(ctx);
-    if (ImGui::CollapsingHeader("Settings and screenshots", ImGuiTreeNodeFlags_DefaultOpen)) settingsControls(ctx);
+    if (section(ctx, "Timings and memory", open)) timingControls(ctx);
+    if (section(ctx, "Display and lighting", open)) displayControls(ctx);
+    if (section(ctx, "Lights")) lightControls(ctx);
+    if (section(ctx, "BRDF lobe")) lobePlot(ctx);
+    if (section(ctx, "Settings and screenshots", open)) settingsControls(ctx);
     ImGui::PopItemWidth();
     ImGui::End();
 }

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "view/view_session.h"
 #include "cli/panel_action.h"
@@ -27,6 +29,9 @@ struct PanelContext {
     std::string glRenderer;
     FrameTimes times;
     bool screenshotRequested = false;  // set by the button
+    // Each section header's top (window y) as drawPanel last drew them, in order: the layout the
+    // panel test checks against the window's height.
+    std::vector<std::pair<std::string, float>> sectionTops;
 };
 
 // Applies an action, turning a gis::Error into the panel's message.

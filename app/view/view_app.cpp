@@ -369,7 +369,7 @@ void ViewApp::drawViewAndPanel(int fbw, int fbh, int ww, int wh, float dt, Frame
     drawViewOverlay(state_, *session_, 0.0f, 0.0f, viewW, viewH);
     if (inspect_ && !ImGui::GetIO().WantCaptureMouse)
         drawPixelInspector(state_, *session_, float(lastX_), float(lastY_), viewW, viewH);
-    view::PanelContext panel{state_, *session_, message_, scenePath_, settingsPath_, environmentPath_, ctx_->renderer, times};
+    view::PanelContext panel{state_, *session_, message_, scenePath_, settingsPath_, environmentPath_, ctx_->renderer, times, false, {}};
     drawPanel(panel, viewW, 0.0f, float(ww) - viewW, viewH);
     if (panel.screenshotRequested) screenshot_ = true;
     ImGui::Render();
