@@ -76,7 +76,7 @@ bool atChartEdge(vec2 uv, int layer) {
     ivec2 corner = ivec2(floor(uv * float(u_side) - 0.5));
     for (int k = 0; k < 4; ++k) {
         ivec3 tap = ivec3(clamp(corner + ivec2(k & 1, k >> 1), ivec2(0), ivec2(u_side - 1)), layer);
-        if (texelFetch(s_texels, tap, 0).w <= 0.0) return true;
+        if (!texelOnChart(texelFetch(s_texels, tap, 0).w)) return true;
     }
     return false;
 }

@@ -15,7 +15,7 @@ layout(location = 0) out vec4 o_colour;
 
 bool onChart(ivec2 texel, int layer) {
     if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(u_side)))) return false;
-    return texelFetch(s_texels, ivec3(texel, layer), 0).w > 0.0;
+    return texelOnChart(texelFetch(s_texels, ivec3(texel, layer), 0).w);
 }
 
 void main() {
@@ -32,7 +32,7 @@ void main() {
     vec4 light = texelFetch(s_lightmap, ivec3(texel, layer), 0);
     vec3 shown = light.rgb / max(max(light.r, max(light.g, light.b)), 1e-30);
     vec4 position = texelFetch(s_texels, ivec3(texel, layer), 0);
-    if (position.w <= 0.0) {
+    if (!texelOnChart(position.w)) {
         shown *= 0.15;  // the gutter: what dilation spread, dimmed
     } else if ((texelFlags(position.w) & TEXEL_INSIDE) != 0) {
         shown = vec3(0.0, 1.0, 1.0);

@@ -3,8 +3,11 @@
 const ivec2 TEXEL_NEIGHBOURS[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
 const int TEXEL_INSIDE = 16;
 
+// Whether a texel lies on a chart, from its position's w (0 in the gutter between charts).
+bool texelOnChart(float w) { return w > 0.0; }
+
 // The flags of a texel from its position's w (0 for a texel on no chart).
-int texelFlags(float w) { return w > 0.0 ? int(w) - 1 : 0; }
+int texelFlags(float w) { return texelOnChart(w) ? int(w) - 1 : 0; }
 
 // The bit of the neighbour at `offset` (one of TEXEL_NEIGHBOURS; 0 for any other).
 int neighbourBit(ivec2 offset) {
