@@ -66,9 +66,9 @@ int firstSettledFrame(const std::vector<ImageF>& frames) {
 
 // Renders from now until the image is final: at least `declared` frames and until every
 // progressive pass has converged, and measures when the image actually stopped changing.
-// `onFrame(n, gpuMsSoFar, last)` runs after the n-th frame.
+// `onFrame(n, gpuMsSoFar, last, image)` runs after the n-th frame, with its HDR image.
 BenchRow::Convergence renderUntilFinal(Renderer& renderer, int declared,
-                                       const std::function<void(int, double, bool)>& onFrame) {
+                                       const std::function<void(int, double, bool, const ImageF&)>& onFrame) {
     const size_t before = renderer.frameGpuMs().size();
     BenchRow::Convergence c;
     std::vector<double> gpu;
@@ -81,8 +81,9 @@ BenchRow::Convergence renderUntilFinal(Renderer& renderer, int declared,
         gpu.assign(all.begin() + std::ptrdiff_t(before), all.end());
         c.gpuMs = 0.0;
         for (double ms : gpu) c.gpuMs += ms;
-        images.push_back(boxShrink(renderer.readHdr(), kSettledShrink));
-        if (onFrame) onFrame(c.frames, c.gpuMs, last);
+        const ImageF image = renderer.readHdr();
+        images.push_back(boxShrink(image, kSettledShrink));
+        if (onFrame) onFrame(c.frames, c.gpuMs, last, image);
     }
     c.frameMs = c.frames > 1 ? medianAfter(gpu, 1) : gpu.front();
     c.settledFrames = firstSettledFrame(images);
@@ -99,9 +100,10 @@ BenchRow::Convergence renderUntilFinal(Renderer& renderer, int declared,
 void measure(Renderer& renderer, const GiMethod& method, const ImageF& reference, int frames, int warmup,
              BenchRow& row) {
     renderer.setSkipSettled(false);
-    row.cut = renderUntilFinal(renderer, declaredFrames(method, renderer.settings()), [&](int n, double gpuMs, bool last) {
-        if ((n & (n - 1)) == 0 || last) row.quality.push_back({n, gpuMs, compareImages(renderer.readHdr(), reference)});
-    });
+    row.cut = renderUntilFinal(renderer, declaredFrames(method, renderer.settings()),
+                               [&](int n, double gpuMs, bool last, const ImageF& image) {
+                                   if ((n & (n - 1)) == 0 || last) row.quality.push_back({n, gpuMs, compareImages(image, reference)});
+                               });
     for (const PassTiming& t : renderer.timings(0))
         if (t.rays) row.megaRaysPerSecond = t.megaRaysPerSecond();  // over the samples the cut traced
     std::vector<double> wall;
