@@ -348,12 +348,17 @@ bool ViewSession::reducedSettled(const PaneView& p, float scale, const CameraMat
     return p.reduced->settings().width == size.x && p.reduced->settings().height == size.y && p.reduced->settled();
 }
 
+// Whether the pane's reduced renderer is missing or was built for other settings than `want`.
+bool ViewSession::reducedNeedsBuild(const PaneView& p, const RenderSettings& want) const {
+    return !p.reduced || requiresRebuild(p.reduced->settings(), want);
+}
+
 // The pane's reduced renderer at `scale` of its size (built on first use or at another scale,
 // kept for the next), given the camera.
 Renderer& ViewSession::reducedRenderer(const ViewState& state, int index, const CameraMatrices& camera, float scale) {
     PaneView& p = panes_[index];
     const RenderSettings want = paneSettings(state, index, scaledSize(paneSize_, scale));
-    if (!p.reduced || requiresRebuild(p.reduced->settings(), want)) {
+    if (reducedNeedsBuild(p, want)) {
         p.reduced.reset();  // never two reduced renderers of one pane in GPU memory
         p.reduced = std::make_unique<Renderer>(*scene_, want);
         p.reducedCamera = CameraMatrices{};
@@ -405,9 +410,7 @@ void ViewSession::renderReducedFrame(const ViewState& state, int index, const Ca
 // A pane at rest over the budget gets its reduced renderer, and that renderer its first frame (vct
 // voxelizes in it), before the first move: the move then starts within the budget. Once per scale.
 void ViewSession::prepareReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale) {
-    PaneView& p = panes_[index];
-    if (p.reduced && !requiresRebuild(p.reduced->settings(), paneSettings(state, index, scaledSize(paneSize_, scale))))
-        return;
+    if (!reducedNeedsBuild(panes_[index], paneSettings(state, index, scaledSize(paneSize_, scale)))) return;
     renderReduced(reducedRenderer(state, index, camera, scale));
 }
 

@@ -189,6 +189,7 @@ private:
     void updateHeatmap(const ViewState& state, int index, const CameraMatrices& camera);
     Reference* reference(const ViewState& state, int index, const CameraMatrices& camera);
     void collectTimings(PaneView& pane);
+    bool reducedNeedsBuild(const PaneView& pane, const RenderSettings& want) const;
     Renderer& reducedRenderer(const ViewState& state, int index, const CameraMatrices& camera, float scale);
     double renderReduced(Renderer& reduced);
     void renderReducedFrame(const ViewState& state, int index, const CameraMatrices& camera, float scale,
