@@ -615,7 +615,10 @@ TEST(SdfGi, BuildingClosedRoomLeaksLittle) {
 // corridor in the finest cascade's 5.4 m holds hardly a probe, and the path test finds none of the
 // 8 around most of its pixels in sight (they stand in or behind its 20 cm walls). The gather gave
 // those no indirect light at all (a third of the surface pixels, whole blocks of wall and ceiling
-// black); they take their own rays instead.
+// black); they take their own rays instead. Those rays see direct light alone (sdf.bounces = 1):
+// a pixel whose rays meet only unlit faces stays dark. Such pixels (the floor by the doorways,
+// 39 of 3974) were fewer while a hit on the ceiling mixed in the mean of the roof's sunlit top; 90
+// since a hit shows each slab's face towards the ray (shaders/volume/sdf_hit_light.glsl).
 TEST(SdfGi, PixelsThatSeeNoProbeTakeTheirOwnRays) {
     constexpr int kSide = 64;
     const Scene building = makeBuiltinScene("building");
@@ -637,7 +640,7 @@ TEST(SdfGi, PixelsThatSeeNoProbeTakeTheirOwnRays) {
     std::printf("SDF-TABLE building corridor, probes a quarter of a cascade apart: %d of %d surface pixels without "
                 "indirect light\n", unlit, surface);
     EXPECT_GT(surface, kSide * kSide / 2);
-    EXPECT_LT(unlit, surface / 50);
+    EXPECT_LT(unlit, surface / 25);
 }
 
 // The atrium lit by its sky alone (64x64): at the far wing's coarse cascade the arches and the
