@@ -46,6 +46,24 @@ const char* paneTitle(ViewMode mode, int i) {
 
 double mib(int64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 
+// A parameter row's label in the panel: a rebuild row is marked.
+std::string paramLabel(const ParamDesc& d) { return d.label + (d.update == ParamUpdate::Rebuild ? " *" : ""); }
+
+// The panel's own labels ("Reference spp", "Tone mapper", ...) fit in this many pixels (the panel test
+// checks that no row runs past the panel's edge).
+constexpr float kOwnLabelColumn = 130.0f;
+
+// The width kept right of the widgets for their labels: the widest label of the parameter rows the
+// panes show, and the panel's own, so no label runs past the panel's edge (#42 item 11).
+float labelColumn(const PanelContext& ctx) {
+    float widest = 0.0f;
+    for (int i = 0; i < paneCount(ctx.state.mode); ++i)
+        for (const ParamTableView& table : paneParamTables(ctx.state.panes[i]))
+            for (const ParamDesc& d : *table.params)
+                widest = std::max(widest, ImGui::CalcTextSize(paramLabel(d).c_str()).x);
+    return std::max(kOwnLabelColumn, widest + ImGui::GetStyle().ItemInnerSpacing.x);
+}
+
 // One widget per row of a parameter table the pane reads (its method's, the shared emitters.*),
 // with the row's range; a change is a SetParam action (live rows never rebuild the pane's renderer).
 void paramTableControls(PanelContext& ctx, int pane, const ParamTableView& table) {
@@ -60,7 +78,7 @@ void paramTableControls(PanelContext& ctx, int pane, const ParamTableView& table
         const std::string key = prefix + d.key;
         const ParamValue v = paneParam(ctx.state, pane, table.name, d);
         auto set = [&](const ParamValue& nv) { act(ctx, PanelAction::param(pane, key, formatParamValue(d, nv))); };
-        const std::string label = d.label + (d.update == ParamUpdate::Rebuild ? " *" : "");
+        const std::string label = paramLabel(d);
         ParamValue nv = v;
         switch (d.type) {
             case ParamType::Int: {
@@ -456,7 +474,7 @@ void referenceControls(PanelContext& ctx) {
     ImGui::Separator();
     ImGui::TextDisabled("Path tracer and reference");
     int bounces = s.maxBounces;
-    if (ImGui::DragInt("Path tracer bounces", &bounces, 0.2f, int(bouncesRow.min), int(bouncesRow.max)))
+    if (ImGui::DragInt("Bounces", &bounces, 0.2f, int(bouncesRow.min), int(bouncesRow.max)))
         act(ctx, PanelAction::withValue(PanelAction::SetMaxBounces, float(bounces)));
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("path tracer: %s", bouncesRow.help.c_str());
     int spp = s.referenceSpp;
@@ -506,7 +524,7 @@ void drawPanel(PanelContext& ctx, float x, float y, float width, float height) {
     ImGui::Begin("gisandbox", nullptr,
                  ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                      ImGuiWindowFlags_NoSavedSettings);
-    ImGui::PushItemWidth(-130.0f);
+    ImGui::PushItemWidth(-labelColumn(ctx));
     ctx.sectionTops.clear();
     messageLines(ctx);
     const ImGuiTreeNodeFlags open = ImGuiTreeNodeFlags_DefaultOpen;

@@ -1,8 +1,10 @@
 // The panel laid out headless (Dear ImGui without a backend: its font atlas built, no drawing): in
 // every view mode, at the window the viewer opens by default, the timings are on screen (#42 item
-// 11: in split and grid modes the pane sections pushed "Timings and memory" below the window).
+// 11: in split and grid modes the pane sections pushed "Timings and memory" below the window), and
+// no row runs past the panel's right edge with any method's parameters open.
 #include <gtest/gtest.h>
 #include <imgui.h>
+#include <imgui_internal.h>
 
 #include <memory>
 
@@ -14,6 +16,30 @@ namespace gis::view {
 namespace {
 
 using test::viewContext;
+
+// Lays the panel out twice (the second frame with the first's sizes) at the viewer's default
+// window (1280x720) and panel (420 pixels at the right).
+constexpr float kPanelX = 860.0f, kPanelWidth = 420.0f, kHeight = 720.0f;
+void layOut(PanelContext& ctx) {
+    for (int frame = 0; frame < 2; ++frame) {
+        ImGui::NewFrame();
+        drawPanel(ctx, kPanelX, 0.0f, kPanelWidth, kHeight);
+        ImGui::Render();
+    }
+}
+
+// Opens the parameter tables' tree nodes of the first pane as a click would (their state lives in
+// the panel window's storage, under the pane's ID).
+void openParameterTables(const PaneState& pane) {
+    ImGui::NewFrame();
+    ImGui::Begin("gisandbox");
+    ImGui::PushID(0);
+    for (const ParamTableView& table : paneParamTables(pane))
+        ImGui::GetStateStorage()->SetInt(ImGui::GetID(table.name.c_str()), 1);
+    ImGui::PopID();
+    ImGui::End();
+    ImGui::Render();
+}
 
 struct ImGuiFrames {
     ImGuiFrames() {
@@ -37,21 +63,38 @@ TEST(Panel, TheTimingsAreOnScreenInEveryMode) {
     std::string message, scenePath = "builtin:cornell", settingsPath, environmentPath;
     PanelContext ctx{state, session, message, scenePath, settingsPath, environmentPath, "llvmpipe", {}, false, {}};
     ImGuiFrames imgui;
-    // The viewer's default window (1280x720) and panel (420 pixels at the right).
-    const float panelX = 860.0f, panelW = 420.0f, height = 720.0f;
     for (const char* mode : {"single", "split", "grid"}) {
         applyPanelAction(state, parsePanelAction({"mode", mode}));
         session.renderFrame(state, 64, 48);  // the panes' status lines and timings exist
-        for (int frame = 0; frame < 2; ++frame) {  // the second frame lays out with the first's sizes
-            ImGui::NewFrame();
-            drawPanel(ctx, panelX, 0.0f, panelW, height);
-            ImGui::Render();
-        }
+        layOut(ctx);
         float timings = -1.0f;
         for (const auto& [title, top] : ctx.sectionTops)
             if (title == "Timings and memory") timings = top;
         ASSERT_GE(timings, 0.0f) << mode;
-        EXPECT_LT(timings + ImGui::GetFrameHeight(), height) << mode << ": the timings header is below the window";
+        EXPECT_LT(timings + ImGui::GetFrameHeight(), kHeight) << mode << ": the timings header is below the window";
+    }
+}
+
+// Every method's parameter table open in the single pane (the tree nodes opened as a user would):
+// the widest label decides the label column. With a fixed column the SDF and probe methods'
+// reflection rows and the path tracer's bounces ran past the edge (the text cut: "a settled view
+// rende...").
+TEST(Panel, NoRowRunsPastThePanelsEdge) {
+    viewContext();
+    ViewState state;
+    ViewSession session;
+    ASSERT_TRUE(session.openScene(state, "builtin:cornell")) << session.lastError();
+    std::string message, scenePath = "builtin:cornell", settingsPath, environmentPath;
+    PanelContext ctx{state, session, message, scenePath, settingsPath, environmentPath, "llvmpipe", {}, false, {}};
+    ImGuiFrames imgui;
+    for (const GiMethod& m : giMethods()) {
+        applyPanelAction(state, PanelAction::method(0, m.name));
+        openParameterTables(state.panes[0]);
+        layOut(ctx);
+        const ImGuiWindow* panel = ImGui::FindWindowByName("gisandbox");
+        ASSERT_NE(panel, nullptr);
+        EXPECT_LE(panel->DC.CursorMaxPos.x, panel->WorkRect.Max.x + 0.5f)
+            << m.name << ": a row reaches " << panel->DC.CursorMaxPos.x - panel->WorkRect.Max.x << " pixels past the panel";
     }
 }
 
