@@ -88,10 +88,14 @@ TEST_F(Panel, TheTimingsAreOnScreenInEveryMode) {
 TEST_F(Panel, NoRowRunsPastThePanelsEdge) {
     for (const GiMethod& m : giMethods()) {
         applyPanelAction(state, PanelAction::method(0, m.name));
-        openParameterTables(state.panes[0]);
         layOut(ctx);
         const ImGuiWindow* panel = ImGui::FindWindowByName("gisandbox");
         ASSERT_NE(panel, nullptr);
+        const float closedBottom = panel->DC.CursorMaxPos.y;
+        openParameterTables(state.panes[0]);
+        layOut(ctx);
+        // The tables' rows were laid out: the tree nodes' IDs above are the panel's.
+        ASSERT_GT(panel->DC.CursorMaxPos.y, closedBottom) << m.name << ": its parameter tables did not open";
         EXPECT_LE(panel->DC.CursorMaxPos.x, panel->WorkRect.Max.x + 0.5f)
             << m.name << ": a row reaches " << panel->DC.CursorMaxPos.x - panel->WorkRect.Max.x << " pixels past the panel";
     }
