@@ -21,6 +21,7 @@
 #include "volume/volume_cascades.h"
 #include "volume/volume_slots.h"
 #include "volume/voxel_uniforms.h"
+#include "volume/voxelizer.h"
 
 namespace gis {
 
@@ -108,6 +109,10 @@ const std::vector<std::pair<std::string, std::string>>& sharedShaderDefines() {
             {"OCC_REGION", std::to_string(kOccupancyRegion)},
             {"OCC_BLOCKS_BINDING", std::to_string(kOccupancyBlocksBinding)},
             {"OCC_REGIONS_BINDING", std::to_string(kOccupancyRegionsBinding)},
+            {"VOXEL_CHANNELS", std::to_string(kVoxelSumChannels)},
+            {"VOXEL_PLACE_CHANNELS", std::to_string(kVoxelPlaceChannels)},
+            {"VOXEL_SUMS_BINDING", std::to_string(kVoxelSumsBinding)},
+            {"VOXEL_PLACES_BINDING", std::to_string(kVoxelPlacesBinding)},
             {"VOLUME_DISTANCE_UNIT", std::to_string(kVolumeDistanceUnit)},
             {"VOLUME_COARSE_UNIT", std::to_string(kVolumeCoarseUnit)},
             {"VOLUME_RADIANCE_UNIT", std::to_string(kVolumeRadianceUnit)},

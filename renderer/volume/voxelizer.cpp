@@ -11,8 +11,6 @@ namespace gis {
 using namespace voxel;
 
 namespace {
-constexpr int kChannels = 14;  // shaders/volume/voxel_sums.glsl: VOXEL_CHANNELS
-
 bool hasExtension(const char* name) {
     GLint n = 0;
     glGetIntegerv(GL_NUM_EXTENSIONS, &n);
@@ -39,7 +37,7 @@ const char* conservativeModeName(ConservativeMode m) {
 
 int64_t voxelGridBytes(int resolution) {
     const int64_t voxels = int64_t(resolution) * resolution * resolution;
-    return voxels * (4 + 4 + 8 + kChannels * 4);
+    return voxels * (4 + 4 + 8 + (kVoxelSumChannels + kVoxelPlaceChannels) * 4);
 }
 
 void checkVoxelBudget(int resolution, int64_t bytes, const std::string& what) {
@@ -122,11 +120,14 @@ int64_t Voxelizer::scroll(const VolumeFit& fit, const glm::ivec3& shift, const G
 
 void Voxelizer::voxelizeAround(const GpuScene& scene, const glm::ivec3& keepLo, const glm::ivec3& keepHi) {
     const int n = grid_.fit.resolution;
-    // The sums live only while voxelizing: at 256^3 they are 640 MiB that nothing else needs.
-    gl::Buffer sums = gl::createStorageBuffer(scope_, int64_t(n) * n * n * kChannels * 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    // The sums live only while voxelizing: they are most of a grid's bytes, and nothing else needs them.
+    const int64_t voxels = int64_t(n) * n * n;
+    gl::Buffer sums = gl::createStorageBuffer(scope_, voxels * kVoxelSumChannels * 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gl::Buffer places = gl::createStorageBuffer(scope_, voxels * kVoxelPlaceChannels * 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
     const GLuint zero = 0;
-    glClearNamedBufferData(sums.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, sums.id());
+    for (const gl::Buffer* b : {&sums, &places}) glClearNamedBufferData(b->id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVoxelSumsBinding, sums.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVoxelPlacesBinding, places.id());
 
     const float emissionMax = maxEmission(scene);
     const GLuint p = voxelizeProgram_.id();

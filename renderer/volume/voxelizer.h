@@ -14,6 +14,15 @@
 
 namespace gis {
 
+// The fixed-point sums voxelization keeps per voxel (shaders/volume/voxel_sums.glsl names them;
+// GLSL's VOXEL_CHANNELS) and, in a buffer of their own, where in the voxel its surface samples lie
+// (VOXEL_PLACE_CHANNELS): two buffers, each within a driver's limit on one storage block (llvmpipe's
+// 128 MiB holds 128^3 voxels of either, not of both together).
+constexpr int kVoxelSumChannels = 14;
+constexpr int kVoxelPlaceChannels = 3;
+constexpr int kVoxelSumsBinding = 0;
+constexpr int kVoxelPlacesBinding = 1;
+
 enum class ConservativeMode { Hardware, Geometry, Off };
 const char* conservativeModeName(ConservativeMode m);
 
@@ -29,8 +38,8 @@ constexpr int64_t kVoxelBudgetBytes = int64_t(8) << 30;
 struct VoxelGrid {
     VolumeFit fit;
     gl::Texture albedo;    // RGBA8: linear albedo, a = occupancy (1 where any surface touched)
-    gl::Texture normal;    // RGBA8: mean normal * 0.5 + 0.5 (shorter than 1 where normals disagree)
-    gl::Texture emission;  // RGBA16F: emitted radiance; a: the axis of a slab voxel (1, 2, 3; 0 none, voxel_resolve.comp)
+    gl::Texture normal;    // RGBA8: mean normal * 0.5 + 0.5 (shorter than 1 where normals disagree); a: a slab's junction (0 none)
+    gl::Texture emission;  // RGBA16F: emitted radiance; a: a slab voxel's mark, its axis and place (0 none; voxel_resolve.comp)
 };
 
 class Voxelizer {

@@ -51,8 +51,9 @@ vec3 bounceLight(vec3 P, vec3 N, vec3 dir, vec3 albedo) {
 // slab (a wall thinner than a voxel) shows the face on the ray's side, not its other face's sunlit mean.
 vec3 lightSeen(vec4 light, int cascade, ivec3 v, vec3 origin) {
     v = clamp(v, ivec3(0), ivec3(u_sdfResolution - 1));
-    vec3 centre = u_cascades[cascade].xyz + (vec3(v) + 0.5) * (u_cascades[cascade].w / float(u_sdfResolution));
-    return unpremultiply(voxelLightSeen(light, texelFetch(s_voxelSides, v + ivec3(0, 0, cascade * u_sdfResolution), 0), origin - centre));
+    vec4 sides = texelFetch(s_voxelSides, v + ivec3(0, 0, cascade * u_sdfResolution), 0);
+    vec3 centre = u_cascades[cascade].xyz + voxelSlabCentre(v, sides) * (u_cascades[cascade].w / float(u_sdfResolution));
+    return unpremultiply(voxelLightSeen(light, sides, origin - centre));
 }
 
 // The hit voxel's own light and albedo (one voxel, no filtering: its neighbours may be empty).

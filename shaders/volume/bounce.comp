@@ -35,8 +35,9 @@ layout(location = UV_WORLD_TO_VOXEL) uniform mat4 u_worldToVoxel;
 #include "volume/cone_rays.glsl"
 #endif
 
-// The diffuse cones' gather for a face through `centre` (voxel units) facing n.
-vec3 gatherAround(vec3 centre, vec3 n) {
+// The diffuse cones' gather for a face through `centre` (voxel units) facing n: E / pi, and the
+// share of its rays or cones that met something (1 - what reached the sky).
+vec4 gatherAround(vec3 centre, vec3 n) {
 #if BOUNCE_RAYS
     // Half a voxel out along an axis clears both faces of a slab; sqrt(3)/2 clears any plane
     // through the voxel facing n.
@@ -46,7 +47,37 @@ vec3 gatherAround(vec3 centre, vec3 n) {
                                vec3(0.0));
 #endif
     ConeTracer t = makeConeTracer(u_resolution, u_cones.stepFactor, u_cones.maxDistance, u_anisotropic);
-    return traceDiffuse(t, centre + n * u_cones.offset, n, u_coneSet, 1.0, 0.0).rgb;
+    return traceDiffuse(t, centre + n * u_cones.offset, n, u_coneSet, 1.0, 0.0);
+}
+
+// Closer than this in the share of rays that met something, two sides are as enclosed.
+#define JUNCTION_ENCLOSURE_TIE 0.1
+
+// A slab face's gather. Where a junction's wall crosses the slab (volume/voxel_faces.glsl), the
+// voxel's centre may lie beyond that wall from where the face is seen: the floor or the ceiling at
+// a room's outer wall, gathered from outside it, showed the room the sky. There the face gathers on
+// both sides of the junction's wall and keeps the side that sees less sky (a building's inside,
+// whose floor and ceiling are what the rays that meet them see); between two rooms, each as
+// enclosed as the other, the mean of the two. A side where most rays start inside a solid (a wall's
+// face below the floor it stands on) is no side: the other one's.
+vec3 faceGather(ivec3 v, vec4 normalTexel, vec3 centre, vec3 n) {
+    if (voxelJunctionAxis(normalTexel) < 0) return gatherAround(centre, n).rgb;
+    vec4 side[2];
+    bool inside[2];
+    for (int i = 0; i < 2; ++i) {
+#if BOUNCE_RAYS
+        g_raysStartedInside = 0;
+#endif
+        side[i] = gatherAround(voxelJunctionSide(v, normalTexel, centre, i == 0 ? 1.0 : -1.0), n);
+#if BOUNCE_RAYS
+        inside[i] = 2 * g_raysStartedInside > g_coneRays.count * diffuseConeCount(u_coneSet);
+#else
+        inside[i] = false;
+#endif
+    }
+    if (inside[0] != inside[1]) return inside[0] ? side[1].rgb : side[0].rgb;
+    if (abs(side[0].a - side[1].a) < JUNCTION_ENCLOSURE_TIE) return 0.5 * (side[0].rgb + side[1].rgb);
+    return side[0].a > side[1].a ? side[0].rgb : side[1].rgb;
 }
 
 void main() {
@@ -55,7 +86,8 @@ void main() {
     vec4 direct = texelFetch(s_direct, v, 0);
     vec4 sides = texelFetch(s_directSides, v, 0);
     vec4 albedo = texelFetch(s_albedo, v, 0);
-    vec3 meanNormal = texelFetch(s_normal, v, 0).xyz * 2.0 - 1.0;
+    vec4 normalTexel = texelFetch(s_normal, v, 0);
+    vec3 meanNormal = normalTexel.xyz * 2.0 - 1.0;
     float len = length(meanNormal);
     int slab = voxelSlabAxis(sides);
     // direct.a 0 on a surface voxel: an unlit outside left out of the volume (exterior.comp).
@@ -69,11 +101,12 @@ void main() {
     if (slab >= 0) {
         vec3 axis = vec3(0.0);
         axis[slab] = 1.0;
-        vec3 front = albedo.rgb * gatherAround(centre, axis), back = albedo.rgb * gatherAround(centre, -axis);
+        vec3 front = albedo.rgb * faceGather(v, normalTexel, centre, axis);
+        vec3 back = albedo.rgb * faceGather(v, normalTexel, centre, -axis);
         radiance += 0.5 * (front + back);
         sides.rgb += 0.5 * (front - back);
     } else {
-        radiance += albedo.rgb * gatherAround(centre, meanNormal / len);
+        radiance += albedo.rgb * gatherAround(centre, meanNormal / len).rgb;
     }
     imageStore(i_radiance, v, vec4(min(finiteOrZero(radiance), vec3(MAX_HALF_FLOAT)), direct.a));
     imageStore(i_sides, v, vec4(clamp(finiteOrZero(sides.rgb), vec3(-MAX_HALF_FLOAT), vec3(MAX_HALF_FLOAT)), sides.a));

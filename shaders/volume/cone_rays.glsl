@@ -23,6 +23,9 @@ struct ConeRaySource {
     vec3 geometricNormal;
 };
 ConeRaySource g_coneRays;
+// The rays since the includer last reset it that started inside a solid (mayStartInside; what
+// they brought is no light of the place they were cast for).
+int g_raysStartedInside = 0;
 
 vec3 aboveSurface(vec3 d) {
     float below = dot(d, g_coneRays.geometricNormal);
@@ -35,8 +38,10 @@ vec4 rayLight(vec3 d, float steradians, vec3 from) {
     d = aboveSurface(d);
     Hit h;
     if (!traceRay(g_coneRays.origin, d, 1e30, false, h)) return vec4(environmentMissCone(d, steradians), 0.0);
-    if (g_coneRays.mayStartInside && !hitGeometry(h, d).frontFace && bvhTriangleIsSingleSided(h.triangle))
+    if (g_coneRays.mayStartInside && !hitGeometry(h, d).frontFace && bvhTriangleIsSingleSided(h.triangle)) {
+        ++g_raysStartedInside;
         return vec4(0.0, 0.0, 0.0, 1.0);
+    }
     vec3 hit = (u_worldToVoxel * vec4(g_coneRays.origin + d * h.t, 1.0)).xyz;
     ivec3 v;
     vec3 light = surfaceLight(float(u_resolution), from, hit, d, v);

@@ -85,9 +85,9 @@ float boundaryCrossing(vec3 a, vec3 b, float lo, float hi) {
 
 // The light a surface that a ray from `from` travelling `dir` met at `hit` (voxel units) sends
 // back along the ray: the voxel that holds the surface, if a slab the face on the side of it the ray
-// came from (judged from the voxel's centre: a ray from the room that meets the wall just under the
-// roof, in the voxel that holds both, gets the roof's underside, not the sunlit top its direction's
-// tiny upward part would pick). One voxel, not a blend: a trilinear blend reaches the voxels behind
+// came from (judged from where the slab lies in the voxel, voxelSlabCentre: a ray from the room
+// that meets the wall just under the roof, in the voxel that holds both, gets the roof's underside,
+// not the sunlit top its direction's tiny upward part would pick). One voxel, not a blend: a trilinear blend reaches the voxels behind
 // a wall thinner than one. Where the surface's fragments went to the voxel in front (a surface on a
 // voxel boundary), that one.
 vec3 surfaceLight(float resolution, vec3 from, vec3 hit, vec3 dir, out ivec3 v) {
@@ -98,7 +98,8 @@ vec3 surfaceLight(float resolution, vec3 from, vec3 hit, vec3 dir, out ivec3 v) 
         v = clamp(ivec3(floor(hit - dir * 0.5)), ivec3(0), last);
         light = texelFetch(s_voxelRadiance, v, 0);
     }
-    light = voxelLightSeen(light, texelFetch(s_voxelSides, v, 0), from - (vec3(v) + 0.5));
+    vec4 sides = texelFetch(s_voxelSides, v, 0);
+    light = voxelLightSeen(light, sides, from - voxelSlabCentre(v, sides));
     return light.a > 1e-6 ? light.rgb / light.a : vec3(0.0);
 }
 

@@ -15,7 +15,7 @@ layout(binding = 2) uniform sampler3D s_emission;
 layout(binding = 5) uniform sampler2DArrayShadow s_shadowMaps;
 layout(binding = 6) uniform sampler2DArrayShadow s_shadowCubes;  // cube faces, 6 layers per cube
 layout(rgba16f, binding = 0) uniform writeonly image3D i_radiance;
-// Slab voxels: rgb = (L(+axis face) - L(-axis face)) / 2, a = the slab axis (1, 2, 3: x, y, z); 0 elsewhere.
+// Slab voxels: rgb = (L(+axis face) - L(-axis face)) / 2, a = the slab's mark (volume/voxel_faces.glsl); 0 elsewhere.
 layout(rgba16f, binding = 1) uniform writeonly image3D i_sides;
 // The share of i_radiance's mean the punctual lights gave (rgb; a = occupancy, as i_radiance), which
 // the tracers' hits take out to light themselves (volume/hit_light.glsl).
@@ -181,7 +181,7 @@ void main() {
     vec3 radiance = albedo.rgb * INV_PI * irradiance + emission.rgb * u_emissionWeight;
     imageStore(i_radiance, v, vec4(min(finiteOrZero(radiance), vec3(MAX_HALF_FLOAT)), 1.0));
     vec3 sides = clamp(finiteOrZero(albedo.rgb * INV_PI * difference), vec3(-MAX_HALF_FLOAT), vec3(MAX_HALF_FLOAT));
-    imageStore(i_sides, v, vec4(sides, float(slab + 1)));
+    imageStore(i_sides, v, vec4(sides, slab >= 0 ? emission.a : 0.0));
     vec3 punctualRadiance = min(finiteOrZero(albedo.rgb * INV_PI * punctual), vec3(MAX_HALF_FLOAT));
     imageStore(i_punctual, v, vec4(punctualRadiance, 1.0));
 }

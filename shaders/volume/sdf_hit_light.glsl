@@ -28,9 +28,9 @@ vec3 sdfHitLight(sampler3D radiance, sampler3D sides, SdfCascades cs, SdfHit h, 
         ivec3 v = clamp(base + o, ivec3(0), ivec3(cs.resolution - 1));
         vec3 w3 = mix(1.0 - f, f, vec3(o));
         ivec3 texel = v + ivec3(0, 0, h.cascade * cs.resolution);
-        vec3 towardOrigin = rayOrigin - (vol.origin + (vec3(v) + 0.5) * cell);
-        r += w3.x * w3.y * w3.z *
-             voxelLightSeen(texelFetch(radiance, texel, 0), texelFetch(sides, texel, 0), towardOrigin);
+        vec4 slab = texelFetch(sides, texel, 0);
+        vec3 towardOrigin = rayOrigin - (vol.origin + voxelSlabCentre(v, slab) * cell);
+        r += w3.x * w3.y * w3.z * voxelLightSeen(texelFetch(radiance, texel, 0), slab, towardOrigin);
     }
     return r.a > 1e-3 ? r.rgb / r.a : vec3(0.0);
 }

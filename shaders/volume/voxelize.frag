@@ -28,6 +28,7 @@ layout(location = UV_KEEP_LO) uniform ivec3 u_keepLo;   // a scrolled grid's mov
 layout(location = UV_KEEP_HI) uniform ivec3 u_keepHi;
 
 ivec3 unswizzleFromAxis(ivec3 s, int axis) { return axis == 0 ? s.zxy : axis == 1 ? s.yzx : s; }
+vec3 unswizzleFromAxis(vec3 s, int axis) { return axis == 0 ? s.zxy : axis == 1 ? s.yzx : s; }
 
 uint fixedPoint(float x) { return uint(clamp(x, 0.0, 1.0) * VOXEL_FIXED_ONE + 0.5); }
 
@@ -98,6 +99,11 @@ void main() {
         ivec3 voxel = unswizzleFromAxis(ivec3(ivec2(c), k), g_axis);
         if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(u_resolution)))) continue;
         if (all(greaterThanEqual(voxel, u_keepLo)) && all(lessThan(voxel, u_keepHi))) continue;
+        // Where in the voxel the sample lies along each axis, weighted by how squarely it faces that
+        // axis: where a slab's faces lie (voxel_resolve.comp), the side of it a ray comes from.
+        vec3 inVoxel = unswizzleFromAxis(vec3(fract(c), clamp(depth, max(lo, float(k)), min(hi, float(k + 1))) - float(k)), g_axis);
+        for (int axis = 0; axis < 3; ++axis)
+            atomicAdd(u_voxelPlaces[voxelPlaceIndex(voxel, u_resolution, axis)], fixedPoint(abs(n[axis]) * inVoxel[axis]));
         if (emissive) {
             // The pixel's coverage is its column's: a tilted emitter crosses up to three voxels of
             // it, each taking the share of the plane's depth range [lo, hi] that lies within it

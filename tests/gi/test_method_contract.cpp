@@ -45,8 +45,11 @@ double leakBound(const std::string& method) { return method == "vct" ? 0.5 : 0.1
 // 24 frames) bounds them, so what was gained is kept: vct's slab voxels (0.70 before), its sky
 // rays (0.55 before: the cones' transmittance through the coarse cells let the sky in) and its
 // rays in place of the cones' march, pixels' and bounces' (0.16 before: the sun's light beyond the
-// walls gathered through the cones' footprints; 0.06 is left, the voxels where two walls or a wall
-// and the roof meet, one light for faces on both sides); sdf's probe gather, now path-tested through the distance field (0.5 before), leaks
+// walls gathered through the cones' footprints), then (0.060 before, 0.012 after) a slab judged
+// from where its wall lies in the voxel, not from the voxel's centre (a ray leaving the room's
+// east wall started past the centre and saw the sunlit outside), and a slab's faces gathered on
+// the room's side of a second wall across the voxel (the ceiling at the north wall had gathered
+// outside it; shaders/volume/bounce.comp, faceGather); sdf's probe gather, now path-tested through the distance field (0.5 before), leaks
 // where a coarse cascade's field does not stop the path through a 20 cm wall; the probe method's
 // rays, now traced through cascades around the camera (0.20 through one scene-wide volume of
 // 0.68 m cells), brought light round the walls through its scene-wide grid's probes, 10 m apart
@@ -59,7 +62,7 @@ double leakBound(const std::string& method) { return method == "vct" ? 0.5 : 0.1
 // voxels next to the one it met (shaders/volume/sdf_hit_light.glsl: the sunlit roof above the
 // room's wall, in a coarse cascade).
 double buildingLeakBound(const std::string& method) {
-    static const std::map<std::string, double> bound{{"vct", 0.1}, {"sdf", 0.015}, {"probes", 0.012}, {"hddagi", 0.01}};
+    static const std::map<std::string, double> bound{{"vct", 0.015}, {"sdf", 0.015}, {"probes", 0.012}, {"hddagi", 0.01}};
     return bound.count(method) ? bound.at(method) : 0.01;
 }
 

@@ -299,5 +299,59 @@ TEST(Voxelizer, EmptySceneGivesAnEmptyGrid) {
     for (uint8_t o : occ) EXPECT_EQ(o, 0);
 }
 
+// A face of a box: the square [lo, hi]^2 across `axis` at `at`, wound to face +axis (side 1) or -axis.
+void addFace(std::vector<Triangle>& tris, int axis, float at, glm::vec2 lo, glm::vec2 hi, int side) {
+    auto point = [&](float u, float w) {
+        glm::vec3 p;
+        p[axis] = at;
+        p[(axis + 1) % 3] = u;
+        p[(axis + 2) % 3] = w;
+        return p;
+    };
+    const glm::vec3 a = point(lo.x, lo.y), b = point(hi.x, lo.y), c = point(hi.x, hi.y), d = point(lo.x, hi.y);
+    if (side > 0) tris.insert(tris.end(), {{a, b, c}, {a, c, d}});
+    else tris.insert(tris.end(), {{a, c, b}, {a, d, c}});
+}
+
+// A slab's mark says where in its voxel the wall lies, and a second thin wall across it is marked
+// as its junction (shaders/volume/voxel_resolve.comp): a floor 0.2 voxels thick whose faces lie
+// in the lower part of voxel row y = 5, and a wall standing on it in the upper part of column
+// x = 10. Rays and gathers judge a slab's sides from these places: judged from the voxel's centre,
+// a ray leaving the wall's face started on its far side (builtin:building's closed room).
+TEST(Voxelizer, SlabsMarkWhereTheirWallLiesAndTheWallAcrossThem) {
+    std::vector<Triangle> tris;
+    addFace(tris, 1, 5.2f, {4, 4}, {28, 28}, -1);  // the floor's underside ...
+    addFace(tris, 1, 5.4f, {4, 4}, {28, 28}, 1);   // ... and top: its middle 0.2 below the centre
+    addFace(tris, 0, 10.6f, {5.4f, 4}, {28, 28}, -1);  // the wall's faces (y from the floor up, z):
+    addFace(tris, 0, 10.9f, {5.4f, 4}, {28, 28}, 1);   // its middle 0.25 past the voxel's centre
+    const Scene scene = triangleScene(tris);
+    context();
+    gl::MemoryLedger ledger;
+    GpuScene gpu(scene, ledger);
+    Voxelizer v(unitVoxels(kN), ConservativeMode::Geometry, {&ledger, "test.voxels"});
+    v.voxelize(gpu);
+    const std::vector<float> emission = readVoxelsRgba16f(v.grid().emission);
+    const std::vector<uint8_t> normal = readVoxelsRgba8(v.grid().normal);
+    auto at = [](int x, int y, int z) { return size_t((z * kN + y) * kN + x); };
+    auto slab = [&](size_t i) { return emission[4 * i + 3]; };     // voxelSlabMark: axis + 1 + offset / 2
+    auto junction = [&](size_t i) { return normal[4 * i + 3] / 255.0f * 3.0f; };  // axis + 0.5 + 0.9 offset
+    const size_t wall = at(10, 15, 15), floor = at(20, 5, 15), corner = at(10, 5, 15);
+    std::printf("marks: wall %.3f, floor %.3f, where they meet %.3f and junction %.3f\n", slab(wall), slab(floor),
+                slab(corner), junction(corner));
+    EXPECT_NEAR(slab(wall), 1.0f + 0.5f * 0.25f, 0.02f);   // x, 0.25 past the centre
+    EXPECT_NEAR(slab(floor), 2.0f - 0.5f * 0.2f, 0.02f);   // y, 0.2 below it
+    EXPECT_EQ(normal[4 * wall + 3], 0);                    // no wall across a plain wall or floor
+    EXPECT_EQ(normal[4 * floor + 3], 0);
+    // Where they meet, each covers the voxel's cross-section (the voxelization is conservative):
+    // either is the slab, and the other its junction.
+    if (slab(corner) < 1.5f) {
+        EXPECT_NEAR(slab(corner), 1.0f + 0.5f * 0.25f, 0.02f);
+        EXPECT_NEAR(junction(corner), 1.5f - 0.9f * 0.2f, 0.04f);
+    } else {
+        EXPECT_NEAR(slab(corner), 2.0f - 0.5f * 0.2f, 0.02f);
+        EXPECT_NEAR(junction(corner), 0.5f + 0.9f * 0.25f, 0.04f);
+    }
+}
+
 }  // namespace
 }  // namespace gis::test
