@@ -59,8 +59,10 @@ vec4 gatherAround(vec3 centre, vec3 n) {
 // both sides of the junction's wall and keeps the side that sees less sky (a building's inside,
 // whose floor and ceiling are what the rays that meet them see); between two rooms, each as
 // enclosed as the other, the mean of the two. A side where most rays start inside a solid (a wall's
-// face below the floor it stands on) is no side: the other one's.
-vec3 faceGather(ivec3 v, vec4 normalTexel, vec3 centre, vec3 n) {
+// face below the floor it stands on) is no side: the other one's. `plusShare`: how much of the
+// result is the + side's (1 without a junction).
+vec3 faceGather(ivec3 v, vec4 normalTexel, vec3 centre, vec3 n, out float plusShare) {
+    plusShare = 1.0;
     if (voxelJunctionAxis(normalTexel) < 0) return gatherAround(centre, n).rgb;
     vec4 side[2];
     bool inside[2];
@@ -75,10 +77,36 @@ vec3 faceGather(ivec3 v, vec4 normalTexel, vec3 centre, vec3 n) {
         inside[i] = false;
 #endif
     }
-    if (inside[0] != inside[1]) return inside[0] ? side[1].rgb : side[0].rgb;
-    if (abs(side[0].a - side[1].a) < JUNCTION_ENCLOSURE_TIE) return 0.5 * (side[0].rgb + side[1].rgb);
-    return side[0].a > side[1].a ? side[0].rgb : side[1].rgb;
+    if (inside[0] != inside[1]) plusShare = inside[0] ? 0.0 : 1.0;
+    else if (abs(side[0].a - side[1].a) < JUNCTION_ENCLOSURE_TIE) plusShare = 0.5;
+    else plusShare = side[0].a > side[1].a ? 1.0 : 0.0;
+    return mix(side[1].rgb, side[0].rgb, plusShare);
 }
+
+#if BOUNCE_RAYS
+// The punctual lights' light on a junction slab's face facing n where it gathered (plusShare of it
+// on the junction's + side), lit as injection lights a face, its shadow one voxel in front: lit at
+// the voxel's centre, the wall under a sunlit roof's edge took the roof top's sun and showed it to
+// the hall below (builtin:building).
+vec3 junctionFacePunctual(ivec3 v, vec4 normalTexel, vec3 centre, vec3 n, float plusShare, vec3 albedo) {
+    vec3 irradiance = vec3(0.0);
+    for (int s = 0; s < 2; ++s) {
+        float share = s == 0 ? plusShare : 1.0 - plusShare;
+        if (share <= 0.0) continue;
+        vec3 c = voxelJunctionSide(v, normalTexel, centre, s == 0 ? 1.0 : -1.0);
+        vec3 P = (u_voxelToWorld * vec4(c, 1.0)).xyz, Ps = (u_voxelToWorld * vec4(c + n, 1.0)).xyz;
+        for (int i = 0; i < u_hitLights.length(); ++i) {
+            vec3 L;
+            float dist;
+            vec3 e = lightIrradiance(u_hitLights[i], P, L, dist);
+            float cosine = dot(n, L);
+            if (cosine <= 0.0 || all(equal(e, vec3(0.0)))) continue;
+            irradiance += share * e * cosine * shadowVisibility(u_hitLights[i], Ps, n, cosine);
+        }
+    }
+    return albedo * INV_PI * irradiance;
+}
+#endif
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
@@ -101,8 +129,23 @@ void main() {
     if (slab >= 0) {
         vec3 axis = vec3(0.0);
         axis[slab] = 1.0;
-        vec3 front = albedo.rgb * faceGather(v, normalTexel, centre, axis);
-        vec3 back = albedo.rgb * faceGather(v, normalTexel, centre, -axis);
+        float frontPlus, backPlus;
+        vec3 front = albedo.rgb * faceGather(v, normalTexel, centre, axis, frontPlus);
+        vec3 back = albedo.rgb * faceGather(v, normalTexel, centre, -axis, backPlus);
+#if BOUNCE_RAYS
+        if (voxelJunctionAxis(normalTexel) >= 0) {
+            // The punctual share relit where the faces gathered, where that is darker: the light
+            // carried across the junction's wall goes, and none comes in that the shadow looked up
+            // a coarse voxel in front lets through a window beside the face.
+            vec3 punctual = texelFetch(s_voxelPunctual, v, 0).rgb;
+            vec3 frontLit = junctionFacePunctual(v, normalTexel, centre, axis, frontPlus, albedo.rgb);
+            vec3 backLit = junctionFacePunctual(v, normalTexel, centre, -axis, backPlus, albedo.rgb);
+            if (luminance(frontLit) > luminance(punctual + sides.rgb)) frontLit = punctual + sides.rgb;
+            if (luminance(backLit) > luminance(punctual - sides.rgb)) backLit = punctual - sides.rgb;
+            radiance += 0.5 * (frontLit + backLit) - punctual;
+            sides.rgb = 0.5 * (frontLit - backLit);
+        }
+#endif
         radiance += 0.5 * (front + back);
         sides.rgb += 0.5 * (front - back);
     } else {
