@@ -50,36 +50,59 @@ vec4 gatherAround(vec3 centre, vec3 n) {
     return traceDiffuse(t, centre + n * u_cones.offset, n, u_coneSet, 1.0, 0.0);
 }
 
-// Closer than this in the share of rays that met something, two sides are as enclosed.
-#define JUNCTION_ENCLOSURE_TIE 0.1
+// Closer than this in how much of the sky they see, two sides of a junction are as enclosed.
+#define JUNCTION_SKY_TIE 0.1
+#if BOUNCE_RAYS
+// The rays over the sphere by which a junction's side measures how much sky it sees.
+#define JUNCTION_SKY_RAYS 16
+
+// The share of JUNCTION_SKY_RAYS rays over the whole sphere (a spherical Fibonacci set) from p
+// (voxel units) that leave the scene. A face's own gather is no measure of it: a ceiling's gather
+// looks down, and beside a room, under the sky, it sees the ground as a room's floor.
+float skyShare(vec3 p) {
+    vec3 origin = (u_voxelToWorld * vec4(p, 1.0)).xyz;
+    int open = 0;
+    for (int i = 0; i < JUNCTION_SKY_RAYS; ++i) {
+        float z = 1.0 - (2.0 * float(i) + 1.0) / float(JUNCTION_SKY_RAYS);
+        float r = sqrt(max(1.0 - z * z, 0.0)), phi = float(i) * 2.39996323;
+        Hit h;
+        if (!traceRay(origin, vec3(r * cos(phi), z, r * sin(phi)), 1e30, true, h)) ++open;
+    }
+    return float(open) / float(JUNCTION_SKY_RAYS);
+}
+#endif
 
 // A slab face's gather. Where a junction's wall crosses the slab (volume/voxel_faces.glsl), the
 // voxel's centre may lie beyond that wall from where the face is seen: the floor or the ceiling at
 // a room's outer wall, gathered from outside it, showed the room the sky. There the face gathers on
 // both sides of the junction's wall and keeps the side that sees less sky (a building's inside,
-// whose floor and ceiling are what the rays that meet them see); between two rooms, each as
-// enclosed as the other, the mean of the two. A side where most rays start inside a solid (a wall's
-// face below the floor it stands on) is no side: the other one's. `plusShare`: how much of the
-// result is the + side's (1 without a junction).
+// whose floor and ceiling are what the rays that meet them see; with rays, measured over the whole
+// sphere, skyShare; with cones, the share of the gather's cones that met something); between two
+// rooms, each as enclosed as the other, the mean of the two. A side where most rays start inside a
+// solid (a wall's face below the floor it stands on) is no side: the other one's. `plusShare`: how
+// much of the result is the + side's (1 without a junction).
 vec3 faceGather(ivec3 v, vec4 normalTexel, vec3 centre, vec3 n, out float plusShare) {
     plusShare = 1.0;
     if (voxelJunctionAxis(normalTexel) < 0) return gatherAround(centre, n).rgb;
     vec4 side[2];
     bool inside[2];
+    float sky[2];
     for (int i = 0; i < 2; ++i) {
+        vec3 p = voxelJunctionSide(v, normalTexel, centre, i == 0 ? 1.0 : -1.0);
 #if BOUNCE_RAYS
         g_raysStartedInside = 0;
-#endif
-        side[i] = gatherAround(voxelJunctionSide(v, normalTexel, centre, i == 0 ? 1.0 : -1.0), n);
-#if BOUNCE_RAYS
+        side[i] = gatherAround(p, n);
         inside[i] = 2 * g_raysStartedInside > g_coneRays.count * diffuseConeCount(u_coneSet);
+        sky[i] = skyShare(p + n * 0.5);
 #else
+        side[i] = gatherAround(p, n);
         inside[i] = false;
+        sky[i] = 1.0 - side[i].a;
 #endif
     }
     if (inside[0] != inside[1]) plusShare = inside[0] ? 0.0 : 1.0;
-    else if (abs(side[0].a - side[1].a) < JUNCTION_ENCLOSURE_TIE) plusShare = 0.5;
-    else plusShare = side[0].a > side[1].a ? 1.0 : 0.0;
+    else if (abs(sky[0] - sky[1]) < JUNCTION_SKY_TIE) plusShare = 0.5;
+    else plusShare = sky[0] < sky[1] ? 1.0 : 0.0;
     return mix(side[1].rgb, side[0].rgb, plusShare);
 }
 
