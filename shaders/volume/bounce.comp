@@ -56,17 +56,16 @@ vec4 gatherAround(vec3 centre, vec3 n) {
 // The rays over the sphere by which a junction's side measures how much sky it sees.
 #define JUNCTION_SKY_RAYS 16
 
-// The share of JUNCTION_SKY_RAYS rays over the whole sphere (a spherical Fibonacci set) from p
-// (voxel units) that leave the scene. A face's own gather is no measure of it: a ceiling's gather
-// looks down, and beside a room, under the sky, it sees the ground as a room's floor.
+// The share of JUNCTION_SKY_RAYS rays over the whole sphere (a spherical Fibonacci set about +Y)
+// from p (voxel units) that leave the scene. A face's own gather is no measure of it: a ceiling's
+// gather looks down, and beside a room, under the sky, it sees the ground as a room's floor.
 float skyShare(vec3 p) {
     vec3 origin = (u_voxelToWorld * vec4(p, 1.0)).xyz;
     int open = 0;
     for (int i = 0; i < JUNCTION_SKY_RAYS; ++i) {
-        float z = 1.0 - (2.0 * float(i) + 1.0) / float(JUNCTION_SKY_RAYS);
-        float r = sqrt(max(1.0 - z * z, 0.0)), phi = float(i) * 2.39996323;
+        vec2 u = vec2((float(i) + 0.5) / float(JUNCTION_SKY_RAYS), fract(float(i) * 0.381966));  // golden angle
         Hit h;
-        if (!traceRay(origin, vec3(r * cos(phi), z, r * sin(phi)), 1e30, true, h)) ++open;
+        if (!traceRay(origin, uniformSphereDirection(u).xzy, 1e30, true, h)) ++open;
     }
     return float(open) / float(JUNCTION_SKY_RAYS);
 }
@@ -118,14 +117,7 @@ vec3 junctionFacePunctual(ivec3 v, vec4 normalTexel, vec3 centre, vec3 n, float 
         if (share <= 0.0) continue;
         vec3 c = voxelJunctionSide(v, normalTexel, centre, s == 0 ? 1.0 : -1.0);
         vec3 P = (u_voxelToWorld * vec4(c, 1.0)).xyz, Ps = (u_voxelToWorld * vec4(c + n, 1.0)).xyz;
-        for (int i = 0; i < u_hitLights.length(); ++i) {
-            vec3 L;
-            float dist;
-            vec3 e = lightIrradiance(u_hitLights[i], P, L, dist);
-            float cosine = dot(n, L);
-            if (cosine <= 0.0 || all(equal(e, vec3(0.0)))) continue;
-            irradiance += share * e * cosine * shadowVisibility(u_hitLights[i], Ps, n, cosine);
-        }
+        irradiance += share * hitPunctualIrradiance(P, Ps, n);
     }
     return albedo * INV_PI * irradiance;
 }

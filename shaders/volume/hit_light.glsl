@@ -22,8 +22,8 @@ const int u_shadowsEnabled = 1;
 #define SHADOW_PCF_RADIUS 0
 #include "shadows.glsl"
 
-// The punctual lights' light reflected at P (normal N facing where the ray came from) by albedo.
-vec3 hitPunctualLight(vec3 P, vec3 N, vec3 albedo) {
+// The punctual lights' irradiance at P on a surface facing N, each light's shadow looked up at Ps.
+vec3 hitPunctualIrradiance(vec3 P, vec3 Ps, vec3 N) {
     vec3 irradiance = vec3(0.0);
     for (int i = 0; i < u_hitLights.length(); ++i) {
         vec3 L;
@@ -31,10 +31,13 @@ vec3 hitPunctualLight(vec3 P, vec3 N, vec3 albedo) {
         vec3 e = lightIrradiance(u_hitLights[i], P, L, dist);
         float cosine = dot(N, L);
         if (cosine <= 0.0 || all(equal(e, vec3(0.0)))) continue;
-        irradiance += e * cosine * shadowVisibility(u_hitLights[i], P, N, cosine);
+        irradiance += e * cosine * shadowVisibility(u_hitLights[i], Ps, N, cosine);
     }
-    return albedo * INV_PI * irradiance;
+    return irradiance;
 }
+
+// The punctual lights' light reflected at P (normal N facing where the ray came from) by albedo.
+vec3 hitPunctualLight(vec3 P, vec3 N, vec3 albedo) { return albedo * INV_PI * hitPunctualIrradiance(P, P, N); }
 
 // A voxel's light `light` (unpremultiplied) with the punctual share `punctual` (premultiplied, a =
 // occupancy) taken out and the hit's own put in.

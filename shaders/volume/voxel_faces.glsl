@@ -8,19 +8,24 @@
 #define VOXEL_TWO_SIDED 0.3
 
 // A slab's mark: its axis (0, 1, 2) and `offset`, where its faces lie along the axis from the
-// voxel's centre (in voxels, within +-0.5), in one number: the axis + 1, plus half the offset.
-float voxelSlabMark(int axis, float offset) { return float(axis + 1) + 0.5 * clamp(offset, -0.5, 0.5); }
+// voxel's centre (in voxels, within +-0.5), in one number: the axis + 1, plus the offset scaled by
+// SLAB_MARK_PLACE (under a half, so that rounding gives the axis back).
+const float SLAB_MARK_PLACE = 0.5;
+float voxelSlabMark(int axis, float offset) { return float(axis + 1) + SLAB_MARK_PLACE * clamp(offset, -0.5, 0.5); }
 
 // A junction's mark (a second thin wall across a slab, kept in the voxel normals' alpha, RGBA8):
-// its axis and offset as voxelSlabMark's, scaled into (0, 1) so that 0 stays "none".
-float voxelJunctionMark(int axis, float offset) { return (float(axis) + 0.5 + 0.9 * clamp(offset, -0.5, 0.5)) / 3.0; }
+// its axis + 0.5 plus the offset scaled by JUNCTION_MARK_PLACE (under one, so that the integer
+// part gives the axis back), over the three axes, so that it lies in (0, 1) and 0 stays "none".
+const float JUNCTION_MARK_PLACE = 0.9;
+float voxelJunctionMark(int axis, float offset) {
+    return (float(axis) + 0.5 + JUNCTION_MARK_PLACE * clamp(offset, -0.5, 0.5)) / 3.0;
+}
 
 // The junction's axis (0, 1, 2; -1 for none) and where its wall lies along it (voxels from the
 // centre), from the normal texture's texel.
 int voxelJunctionAxis(vec4 normalTexel) { return normalTexel.a > 0.5 / 255.0 ? min(int(normalTexel.a * 3.0), 2) : -1; }
 float voxelJunctionOffset(vec4 normalTexel) {
-    float x = normalTexel.a * 3.0;
-    return (x - float(voxelJunctionAxis(normalTexel)) - 0.5) / 0.9;
+    return (normalTexel.a * 3.0 - float(voxelJunctionAxis(normalTexel)) - 0.5) / JUNCTION_MARK_PLACE;
 }
 
 // Where in voxel v (voxel units) a face of its slab gathers from, on `side` (+1 or -1) of the
@@ -48,7 +53,7 @@ int voxelSlabAxis(vec4 sides) { return int(sides.a + 0.5) - 1; }
 vec3 voxelSlabCentre(ivec3 v, vec4 sides) {
     vec3 centre = vec3(v) + 0.5;
     int axis = voxelSlabAxis(sides);
-    if (axis >= 0) centre[axis] += 2.0 * (sides.a - float(axis + 1));
+    if (axis >= 0) centre[axis] += (sides.a - float(axis + 1)) / SLAB_MARK_PLACE;
     return centre;
 }
 
