@@ -169,7 +169,7 @@ void GpuEnvironment::prefilterSpecular() {
         const int w = std::max(1, specular_.width >> level), h = std::max(1, specular_.height >> level);
         const float roughness = specular_.levels > 1 ? float(level) / float(specular_.levels - 1) : 0.0f;
         glProgramUniform1f(program.id(), U_ENV_ROUGHNESS, roughness);
-        glBindImageTexture(0, specular_.id(), level, GL_FALSE, 0, GL_WRITE_ONLY, kFormat);
+        glBindImageTexture(I_ENVIRONMENT_PREFILTER_LEVEL, specular_.id(), level, GL_FALSE, 0, GL_WRITE_ONLY, kFormat);
         gl::dispatchCompute(GLuint((w + kPrefilterGroup - 1) / kPrefilterGroup),
                         GLuint((h + kPrefilterGroup - 1) / kPrefilterGroup), 1, "environment prefilter");
     }
@@ -180,7 +180,7 @@ void GpuEnvironment::prefilterSpecular() {
 void GpuEnvironment::buildBrdfTable() {
     const gl::Object program = buildProgram(kBrdfTableProgram);
     glUseProgram(program.id());
-    glBindImageTexture(0, brdf_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    glBindImageTexture(I_ENVIRONMENT_BRDF_TABLE, brdf_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
     const GLuint groups = GLuint((kEnvironmentBrdfTableSize + kPrefilterGroup - 1) / kPrefilterGroup);
     gl::dispatchCompute(groups, groups, 1, "environment BRDF table");
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);

@@ -174,8 +174,8 @@ SampleAccumulator::SampleAccumulator(const gl::MemoryScope& scope, int width, in
 }
 
 void SampleAccumulator::runBatch(GLuint program) {
-    glBindImageTexture(0, sum.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-    glBindImageTexture(1, mean.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(I_ACCUMULATION_SUM, sum.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(I_ACCUMULATION_MEAN, mean.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     const int batch = std::min(perFrame, target - done);
     for (int i = 0; i < batch; ++i) {
         glProgramUniform1ui(program, U_SAMPLE_INDEX, GLuint(done));

@@ -57,6 +57,8 @@ const std::vector<gl::BindingSlot>& bindingSlots() {
         append(v, tableRows(kBindings));
         append(v, tableRows(emitters::kEmitterBindings));
         append(v, tableRows(probes::kProbeBindings));
+        append(v, tableRows(voxel::kVoxelBindings));
+        append(v, tableRows(sdf::kSdfBindings));
         for (const ShaderTables& t : methodShaderTables()) append(v, t.bindings);
         return v;
     }();

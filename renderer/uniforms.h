@@ -95,7 +95,13 @@ inline constexpr gl::UniformSlot kUniforms[] = {GIS_UNIFORMS(GIS_UNIFORM_SLOT)};
     X(T_DISPLAY_DEPTH, 1) \
     /* the BRDF probe (brdf_probe.comp, the BRDF tests) */ \
     X(B_BRDF_PROBE_POINTS, 0) \
-    X(B_BRDF_PROBE_RESULTS, 1)
+    X(B_BRDF_PROBE_RESULTS, 1) \
+    /* the progressive ray passes' running sum and mean (SampleAccumulator: pathtrace.comp, ao_reference.comp) */ \
+    X(I_ACCUMULATION_SUM, 0) \
+    X(I_ACCUMULATION_MEAN, 1) \
+    /* the environment's precomputation (environment_prefilter.comp, environment_brdf_lut.comp) */ \
+    X(I_ENVIRONMENT_PREFILTER_LEVEL, 0) \
+    X(I_ENVIRONMENT_BRDF_TABLE, 0)
 
 enum BindingPoint : int { GIS_BINDINGS(GIS_BINDING_ENUM) };
 inline constexpr gl::BindingSlot kBindings[] = {GIS_BINDINGS(GIS_BINDING_SLOT)};

@@ -7,7 +7,7 @@
 #include "sampling.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0, rg32f) uniform writeonly image2D u_table;
+layout(binding = I_ENVIRONMENT_BRDF_TABLE, rg32f) uniform writeonly image2D u_table;
 
 const uint SAMPLES = 1024u;
 

@@ -9,7 +9,7 @@
 #include "environment.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0, rgba32f) uniform writeonly image2D u_level;
+layout(binding = I_ENVIRONMENT_PREFILTER_LEVEL, rgba32f) uniform writeonly image2D u_level;
 layout(location = U_ENV_ROUGHNESS) uniform float u_roughness;
 
 const uint SAMPLES = 256u;

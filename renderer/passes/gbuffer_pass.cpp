@@ -128,7 +128,7 @@ void GBufferPass::antialiasEmission(const Frame& frame) {
         glUseProgram(resolve);
         glProgramUniform2i(resolve, U_EMISSION_PASS, k, kEmissionDraws);
         glBindTextureUnit(T_EMISSION_SAMPLES, multisampleEmissive_.id());
-        glBindSampler(0, 0);
+        glBindSampler(T_EMISSION_SAMPLES, 0);
         glBindImageTexture(I_EMISSION, emissive_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
         gl::dispatchCompute(gl::groupsFor(w, kResolveGroup), gl::groupsFor(h, kResolveGroup), 1, "G-buffer emission resolve");
     }

@@ -131,8 +131,8 @@ void DistanceField::build(const SdfSeeds& seeds, JfaVariant variant, StepTimers*
         auto t = timed(timers, prefix + "seed");
         glUseProgram(seedProgram_.id());
         glProgramUniform1i(seedProgram_.id(), US_RESOLUTION, n);
-        glBindTextureUnit(0, seeds.occupancy);
-        glBindImageTexture(0, ping.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+        glBindTextureUnit(TF_SEED_OCCUPANCY, seeds.occupancy);
+        glBindImageTexture(IF_SEED_SEEDS, ping.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
         dispatch(n);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
@@ -145,8 +145,8 @@ void DistanceField::build(const SdfSeeds& seeds, JfaVariant variant, StepTimers*
         // (scattered reads) cost more in practice.
         auto t = timed(timers, prefix + "jfa." + std::to_string(k + 1) + "." + std::to_string(steps[k]));
         glProgramUniform1i(stepProgram_.id(), US_JFA_STEP, steps[k]);
-        glBindImageTexture(0, ping.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-        glBindImageTexture(1, pong.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+        glBindImageTexture(IF_STEP_SOURCE, ping.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(IF_STEP_TARGET, pong.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
         dispatch(n);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         std::swap(ping, pong);  // the result is always in `ping`
@@ -160,14 +160,14 @@ void DistanceField::build(const SdfSeeds& seeds, JfaVariant variant, StepTimers*
         glProgramUniform1f(p, US_CELL_SIZE, volume.cellSize());
         glProgramUniform1f(p, US_FAR, volume.farValue());
         glProgramUniform1i(p, US_HAS_NORMALS, seeds.normals ? 1 : 0);
-        glBindTextureUnit(1, seeds.normals);
-        glBindImageTexture(0, ping.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-        glBindImageTexture(1, distance_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+        glBindTextureUnit(TF_RESOLVE_NORMALS, seeds.normals);
+        glBindImageTexture(IF_RESOLVE_SEEDS, ping.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(IF_RESOLVE_DISTANCE, distance_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
         dispatch(n);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         buildCoarse(layer);
     }
-    for (GLuint unit : {0u, 1u}) glBindImageTexture(unit, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    for (int unit : {IF_STEP_SOURCE, IF_STEP_TARGET}) glBindImageTexture(GLuint(unit), 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
 }
 
 void DistanceField::buildCoarse(int layer) {
@@ -178,8 +178,8 @@ void DistanceField::buildCoarse(int layer) {
     glProgramUniform1i(p, US_LAYER, layer);
     glProgramUniform1f(p, US_CELL_SIZE, volume.cellSize());
     glProgramUniform1i(p, US_COARSE_FACTOR, kSdfCoarseFactor);
-    glBindTextureUnit(0, distance_.id());
-    glBindImageTexture(0, coarse_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindTextureUnit(TF_COARSE_DISTANCE, distance_.id());
+    glBindImageTexture(IF_COARSE_TARGET, coarse_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
     dispatch(coarse_.width);  // one layer: the coarse texture is width^3 per layer
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }

@@ -57,7 +57,7 @@ void OccupancyHierarchy::build(const VoxelGrid& grid, int cascade) {
     glUseProgram(p);
     glProgramUniform1i(p, voxel::UV_RESOLUTION, resolution_);
     glProgramUniform1i(p, voxel::UV_CASCADE, cascade);
-    glBindTextureUnit(0, grid.albedo.id());
+    glBindTextureUnit(voxel::TV_OCCUPANCY_ALBEDO, grid.albedo.id());
     bind();
     const GLuint b = GLuint(blocksPerEdge());
     gl::dispatchCompute(gl::groupsFor(b, 4), gl::groupsFor(b, 4), gl::groupsFor(b, 4), "occupancy");

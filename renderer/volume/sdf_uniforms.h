@@ -25,6 +25,33 @@ inline constexpr float kDefaultHitThreshold = 0.5f;
 enum SdfUniform : int { GIS_SDF_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kSdfUniforms[] = {GIS_SDF_UNIFORMS(GIS_UNIFORM_SLOT)};
 
+// Binding points of the field's programs, each block one program's: texture units (TF_), image
+// units (IF_), storage buffers (SF_). The march probe is the tests' (tests/volume/test_march.cpp):
+// it reads the field where DistanceField::bind puts it, the coarse level one unit above.
+#define GIS_SDF_BINDINGS(X) \
+    /* jfa_seed.comp */ \
+    X(TF_SEED_OCCUPANCY, 0) \
+    X(IF_SEED_SEEDS, 0) \
+    /* jfa_step.comp */ \
+    X(IF_STEP_SOURCE, 0) \
+    X(IF_STEP_TARGET, 1) \
+    /* sdf_resolve.comp */ \
+    X(TF_RESOLVE_NORMALS, 1) \
+    X(IF_RESOLVE_SEEDS, 0) \
+    X(IF_RESOLVE_DISTANCE, 1) \
+    /* sdf_coarse.comp */ \
+    X(TF_COARSE_DISTANCE, 0) \
+    X(IF_COARSE_TARGET, 0) \
+    /* sdf_march_probe.comp */ \
+    X(TF_MARCH_PROBE_DISTANCE, 0) \
+    X(TF_MARCH_PROBE_COARSE, 1) \
+    X(SF_MARCH_PROBE_RAYS, 0) \
+    X(SF_MARCH_PROBE_HITS, 1)
+
+enum SdfBinding : int { GIS_SDF_BINDINGS(GIS_BINDING_ENUM) };
+inline constexpr gl::BindingSlot kSdfBindings[] = {GIS_SDF_BINDINGS(GIS_BINDING_SLOT)};
+static_assert(TF_MARCH_PROBE_COARSE == TF_MARCH_PROBE_DISTANCE + 1, "DistanceField::bind: the coarse level one unit above");
+
 // How sphere tracing marches the field (shaders/volume/sdf_march.glsl's SdfMarchParams).
 #define GIS_SDF_MARCH_BLOCK(M, A) \
     M(float, hitThreshold)  /* cells */ \

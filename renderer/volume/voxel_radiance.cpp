@@ -61,14 +61,12 @@ const ProgramDesc kTracedInjectProgram{"voxel_inject_traced", {"volume/inject.co
 const ProgramDesc kMipProgram{"voxel_mip", {"volume/voxel_mip.comp"}, {}};
 const ProgramDesc kBounceProgram{"voxel_bounce", {"volume/bounce.comp"}, {}};
 // The bounce whose cones cast rays through the ray scene (bounce.comp's BOUNCE_RAYS).
-constexpr GLuint kBounceRaySceneUnit = 4;
 const ProgramDesc kBounceRaysProgram{
-    "voxel_bounce_rays", {"volume/bounce.comp"}, {{"BOUNCE_RAYS", "1"}, {"RAY_SCENE_TEXTURE_UNIT", std::to_string(kBounceRaySceneUnit)}}};
+    "voxel_bounce_rays", {"volume/bounce.comp"}, {{"BOUNCE_RAYS", "1"}, {"RAY_SCENE_TEXTURE_UNIT", "TV_BOUNCE_RAY_SCENE"}}};
 const ProgramDesc kExteriorProgram{"voxel_exterior", {"volume/exterior.comp"}, {}};
 const ProgramDesc kExteriorSweepProgram{"voxel_exterior_sweep", {"volume/exterior.comp"}, {{"SWEEP", "1"}}};
 constexpr int kExteriorSeed = 0, kExteriorCull = 2;
 constexpr int kSweepGroup = 8;          // exterior.comp's SWEEP local size
-constexpr GLuint kChangedBinding = 0;    // exterior.comp's Changed
 
 std::vector<ProgramDesc> VoxelRadiance::programs() {
     return {kInjectProgram, kMipProgram, kBounceProgram, kBounceRaysProgram, kTracedInjectProgram, kExteriorProgram,
@@ -117,7 +115,7 @@ void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
     const GLuint p = traced ? tracedInjectProgram_.id() : injectProgram_.id();
     hitLights_ = lights;
     if (traced) {
-        lights.rays->bind(7);  // inject.comp's RAY_SCENE_TEXTURE_UNIT; SSBOs 1-5 (0: the frame's lights, below)
+        lights.rays->bind(TV_INJECT_RAY_SCENE);  // its storage buffers above the frame's lights (below)
         glProgramUniform2i(p, UV_EMITTER_SAMPLES, int(lights.rays->emitterCount), emitterSamples);
         glProgramUniform1i(p, UV_ENVIRONMENT_SAMPLES, environmentSamples);
     }
@@ -131,17 +129,17 @@ void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
     glProgramUniform1i(p, UV_SHADOWS_ENABLED, lights.shadows ? 1 : 0);
     glProgramUniform1f(p, UV_EMISSION_WEIGHT, lights.emission);
     const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), grid.emission.id()};
-    glBindTextures(0, 3, textures);
-    glBindSamplers(0, 7, nullptr);
-    if (lights.shadowMaps) glBindTextureUnit(5, lights.shadowMaps);
-    if (lights.shadowCubes) glBindTextureUnit(6, lights.shadowCubes);
+    glBindTextures(TV_INJECT_ALBEDO, 3, textures);
+    glBindSamplers(TV_INJECT_ALBEDO, TV_INJECT_RAY_SCENE - TV_INJECT_ALBEDO, nullptr);
+    if (lights.shadowMaps) glBindTextureUnit(TV_INJECT_SHADOW_MAPS, lights.shadowMaps);
+    if (lights.shadowCubes) glBindTextureUnit(TV_INJECT_SHADOW_CUBES, lights.shadowCubes);
     if (lights.buffer) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightsBinding, lights.buffer);
     const gl::Texture& target = bounces_ > 1 ? direct_ : radiance_;
-    glBindImageTexture(0, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, (bounces_ > 1 ? directSides_ : sides_).id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IV_INJECT_RADIANCE, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IV_INJECT_SIDES, (bounces_ > 1 ? directSides_ : sides_).id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     // No texture without hitLights: the image unit is unbound and the stores have no effect (GL 4.5, 8.26).
-    if (punctual_.id()) glBindImageTexture(2, punctual_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    else glBindImageTexture(2, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    if (punctual_.id()) glBindImageTexture(IV_INJECT_PUNCTUAL, punctual_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    else glBindImageTexture(IV_INJECT_PUNCTUAL, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch3D(n, n, n);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     if (reach_.id()) cullUnlitOutsides(grid, target, lights.environmentLit);
@@ -157,13 +155,13 @@ void VoxelRadiance::copyDirectLight() {
 void VoxelRadiance::cullUnlitOutsides(const VoxelGrid& grid, const gl::Texture& target, bool environmentLit) {
     const int n = radiance_.width;
     const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), target.id()};
-    glBindTextures(0, 3, textures);
-    glBindSamplers(0, 3, nullptr);
+    glBindTextures(TV_EXTERIOR_ALBEDO, 3, textures);
+    glBindSamplers(TV_EXTERIOR_ALBEDO, 3, nullptr);
     const GLubyte zero = 0;
     glClearTexImage(reach_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
-    glBindImageTexture(0, reach_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R8UI);
-    glBindImageTexture(1, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kChangedBinding, changed_.id());
+    glBindImageTexture(IV_EXTERIOR_REACH, reach_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R8UI);
+    glBindImageTexture(IV_EXTERIOR_RADIANCE, target.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SV_EXTERIOR_CHANGED, changed_.id());
     const GLuint p = exteriorProgram_.id();
     glUseProgram(p);
     glProgramUniform1i(p, UV_RESOLUTION, n);
@@ -199,10 +197,10 @@ void VoxelRadiance::downsample(const gl::Texture& source, int sourceLevel, const
     glProgramUniform1i(p, UV_MIP_LEVEL, sourceLevel);
     glProgramUniform1i(p, UV_DIRECTION, direction);
     glProgramUniform1i(p, UV_NORMAL_WEIGHT, !normals ? 0 : cullBackfaces_ ? 2 : 1);
-    glBindTextureUnit(0, source.id());
-    glBindTextureUnit(1, normals ? normals : source.id());
-    glBindTextureUnit(2, sides_.id());
-    glBindImageTexture(0, target.id(), targetLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindTextureUnit(TV_MIP_SOURCE, source.id());
+    glBindTextureUnit(TV_MIP_NORMAL, normals ? normals : source.id());
+    glBindTextureUnit(TV_MIP_SIDES, sides_.id());
+    glBindImageTexture(IV_MIP_TARGET, target.id(), targetLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     const int size = std::max(target.width >> targetLevel, 1);
     dispatch3D(size, size, size);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -210,7 +208,7 @@ void VoxelRadiance::downsample(const gl::Texture& source, int sourceLevel, const
 
 void VoxelRadiance::buildMips(const VoxelGrid& grid) {
     glUseProgram(mipProgram_.id());
-    glBindSamplers(0, 3, nullptr);
+    glBindSamplers(TV_MIP_SOURCE, 3, nullptr);
     for (int level = 1; level < radiance_.levels; ++level) downsample(radiance_, level - 1, radiance_, level, -1);
     if (!anisotropic_) return;
     for (int d = 0; d < 6; ++d) {
@@ -227,7 +225,7 @@ GLuint VoxelRadiance::useBounceProgram(const VoxelGrid& grid, const ConeSettings
     const GLuint p = withRays ? bounceRaysProgram_.id() : bounceProgram_.id();
     glUseProgram(p);
     if (withRays) {
-        rays->bind(kBounceRaySceneUnit);
+        rays->bind(TV_BOUNCE_RAY_SCENE);
         const glm::mat4 voxelToWorld = grid.fit.voxelToWorldMatrix();
         glProgramUniformMatrix4fv(p, UV_VOXEL_TO_WORLD, 1, GL_FALSE, &voxelToWorld[0][0]);
         const glm::mat4 worldToVoxel = grid.fit.worldToVoxelMatrix();
@@ -252,11 +250,11 @@ void VoxelRadiance::gatherOnce(const VoxelGrid& grid, const Scratch& scratch, GL
     const int n = radiance_.width;
     glUseProgram(program);
     const GLuint textures[4] = {grid.albedo.id(), grid.normal.id(), direct_.id(), directSides_.id()};
-    glBindTextures(0, 4, textures);
-    glBindSamplers(0, 10, nullptr);
+    glBindTextures(TV_BOUNCE_ALBEDO, 4, textures);
+    glBindSamplers(TV_BOUNCE_ALBEDO, 10, nullptr);
     bind();
-    glBindImageTexture(0, scratch.radiance.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, scratch.sides.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IV_BOUNCE_RADIANCE, scratch.radiance.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IV_BOUNCE_SIDES, scratch.sides.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch3D(n, n, n);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     glCopyImageSubData(scratch.radiance.id(), GL_TEXTURE_3D, 0, 0, 0, 0, radiance_.id(), GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);

@@ -40,6 +40,55 @@ namespace gis::voxel {
 enum VoxelUniform : int { GIS_VOXEL_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kVoxelUniforms[] = {GIS_VOXEL_UNIFORMS(GIS_UNIFORM_SLOT)};
 
+// Binding points of the voxel module's programs, each block one program's: its texture units (TV_),
+// image units (IV_) and storage buffers (SV_). A program that traces (bounce.comp with rays,
+// inject.comp lighting by the direct pass's lights) samples the ray scene's textures at its own
+// unit, above the ones it reads the grid through.
+#define GIS_VOXEL_BINDINGS(X) \
+    /* voxel_resolve.comp: the grid it writes */ \
+    X(IV_RESOLVE_ALBEDO, 0) \
+    X(IV_RESOLVE_NORMAL, 1) \
+    X(IV_RESOLVE_EMISSION, 2) \
+    /* inject.comp */ \
+    X(TV_INJECT_ALBEDO, 0) \
+    X(TV_INJECT_NORMAL, 1) \
+    X(TV_INJECT_EMISSION, 2) \
+    X(TV_INJECT_SHADOW_MAPS, 5) \
+    X(TV_INJECT_SHADOW_CUBES, 6) \
+    X(TV_INJECT_RAY_SCENE, 7) \
+    X(IV_INJECT_RADIANCE, 0) \
+    X(IV_INJECT_SIDES, 1) \
+    X(IV_INJECT_PUNCTUAL, 2) \
+    /* exterior.comp (the seed, the sweeps, the cull) */ \
+    X(TV_EXTERIOR_ALBEDO, 0) \
+    X(TV_EXTERIOR_NORMAL, 1) \
+    X(TV_EXTERIOR_RADIANCE, 2) \
+    X(IV_EXTERIOR_REACH, 0) \
+    X(IV_EXTERIOR_RADIANCE, 1) \
+    X(SV_EXTERIOR_CHANGED, 0) \
+    /* voxel_mip.comp */ \
+    X(TV_MIP_SOURCE, 0) \
+    X(TV_MIP_NORMAL, 1) \
+    X(TV_MIP_SIDES, 2) \
+    X(IV_MIP_TARGET, 0) \
+    /* bounce.comp (the volume's own units above these: SceneVolume's slots) */ \
+    X(TV_BOUNCE_ALBEDO, 0) \
+    X(TV_BOUNCE_NORMAL, 1) \
+    X(TV_BOUNCE_DIRECT, 2) \
+    X(TV_BOUNCE_DIRECT_SIDES, 3) \
+    X(TV_BOUNCE_RAY_SCENE, 4) \
+    X(IV_BOUNCE_RADIANCE, 0) \
+    X(IV_BOUNCE_SIDES, 1) \
+    /* occupancy_build.comp */ \
+    X(TV_OCCUPANCY_ALBEDO, 0) \
+    /* hdda_probe.comp: the tests' walk through the occupancy (tests/volume/test_hdda.cpp) */ \
+    X(SV_HDDA_PROBE_RAYS, 0) \
+    X(SV_HDDA_PROBE_HITS, 1) \
+    X(SV_HDDA_PROBE_POSITIONS, 2)
+
+enum VoxelBinding : int { GIS_VOXEL_BINDINGS(GIS_BINDING_ENUM) };
+inline constexpr gl::BindingSlot kVoxelBindings[] = {GIS_VOXEL_BINDINGS(GIS_BINDING_SLOT)};
+
 // How cones march the voxel radiance (shaders/volume/cone_trace.glsl): the bounces' gather and VCT's.
 #define GIS_CONE_TRACE_BLOCK(M, A) \
     M(float, stepFactor)   /* each step's length over the cone's diameter there */ \

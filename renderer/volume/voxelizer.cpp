@@ -166,9 +166,9 @@ void Voxelizer::voxelizeAround(const GpuScene& scene, const glm::ivec3& keepLo, 
     glProgramUniform1f(r, UV_EMISSION_SCALE, 1.0f / emissionMax);
     glProgramUniform3iv(r, UV_KEEP_LO, 1, &keepLo[0]);
     glProgramUniform3iv(r, UV_KEEP_HI, 1, &keepHi[0]);
-    glBindImageTexture(0, grid_.albedo.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
-    glBindImageTexture(1, grid_.normal.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
-    glBindImageTexture(2, grid_.emission.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IV_RESOLVE_ALBEDO, grid_.albedo.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
+    glBindImageTexture(IV_RESOLVE_NORMAL, grid_.normal.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8);
+    glBindImageTexture(IV_RESOLVE_EMISSION, grid_.emission.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     const GLuint groups = gl::groupsFor(n, 4);
     gl::dispatchCompute(groups, groups, groups, "voxelizer");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);

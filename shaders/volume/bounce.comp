@@ -15,12 +15,12 @@
 #include "volume/voxel_faces.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = 0) uniform sampler3D s_albedo;
-layout(binding = 1) uniform sampler3D s_normal;
-layout(binding = 2) uniform sampler3D s_direct;
-layout(binding = 3) uniform sampler3D s_directSides;  // inject.comp's i_sides
-layout(rgba16f, binding = 0) uniform writeonly image3D i_radiance;
-layout(rgba16f, binding = 1) uniform writeonly image3D i_sides;
+layout(binding = TV_BOUNCE_ALBEDO) uniform sampler3D s_albedo;
+layout(binding = TV_BOUNCE_NORMAL) uniform sampler3D s_normal;
+layout(binding = TV_BOUNCE_DIRECT) uniform sampler3D s_direct;
+layout(binding = TV_BOUNCE_DIRECT_SIDES) uniform sampler3D s_directSides;  // inject.comp's i_sides
+layout(rgba16f, binding = IV_BOUNCE_RADIANCE) uniform writeonly image3D i_radiance;
+layout(rgba16f, binding = IV_BOUNCE_SIDES) uniform writeonly image3D i_sides;
 
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_CONE_SET) uniform int u_coneSet;

@@ -20,12 +20,12 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #else
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 #endif
-layout(binding = 0) uniform sampler3D s_albedo;    // a = occupancy
-layout(binding = 1) uniform sampler3D s_normal;
-layout(binding = 2) uniform sampler3D s_radiance;  // the injected light (SEED)
-layout(r8ui, binding = 0) uniform uimage3D i_reach;
-layout(rgba16f, binding = 1) uniform writeonly image3D i_radiance;  // CULL's target
-layout(std430, binding = 0) buffer Changed { uint u_changed; };
+layout(binding = TV_EXTERIOR_ALBEDO) uniform sampler3D s_albedo;    // a = occupancy
+layout(binding = TV_EXTERIOR_NORMAL) uniform sampler3D s_normal;
+layout(binding = TV_EXTERIOR_RADIANCE) uniform sampler3D s_radiance;  // the injected light (SEED)
+layout(r8ui, binding = IV_EXTERIOR_REACH) uniform uimage3D i_reach;
+layout(rgba16f, binding = IV_EXTERIOR_RADIANCE) uniform writeonly image3D i_radiance;  // CULL's target
+layout(std430, binding = SV_EXTERIOR_CHANGED) buffer Changed { uint u_changed; };
 
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_EXTERIOR_STEP) uniform ivec2 u_step;  // SEED/CULL: (0 seed | 2 cull, environment lit); SWEEP: (axis, 0)

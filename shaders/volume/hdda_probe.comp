@@ -8,10 +8,10 @@ struct ProbeRay {
     vec4 origin;     // xyz, w = max distance
     vec4 direction;  // xyz (normalized), w = start offset
 };
-layout(std430, binding = 0) readonly buffer Rays { ProbeRay rays[]; };
+layout(std430, binding = SV_HDDA_PROBE_RAYS) readonly buffer Rays { ProbeRay rays[]; };
 // Per ray: hit voxel xyz + (1 + cascade, 0 = miss); position + steps.
-layout(std430, binding = 1) writeonly buffer Hits { ivec4 hitVoxels[]; };
-layout(std430, binding = 2) writeonly buffer HitPositions { vec4 hitPositions[]; };
+layout(std430, binding = SV_HDDA_PROBE_HITS) writeonly buffer Hits { ivec4 hitVoxels[]; };
+layout(std430, binding = SV_HDDA_PROBE_POSITIONS) writeonly buffer HitPositions { vec4 hitPositions[]; };
 
 layout(location = 0) uniform uint u_count;
 layout(location = 1) uniform int u_resolution;

@@ -9,17 +9,17 @@
 #include "volume/voxel_faces.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = 0) uniform sampler3D s_albedo;
-layout(binding = 1) uniform sampler3D s_normal;
-layout(binding = 2) uniform sampler3D s_emission;
-layout(binding = 5) uniform sampler2DArrayShadow s_shadowMaps;
-layout(binding = 6) uniform sampler2DArrayShadow s_shadowCubes;  // cube faces, 6 layers per cube
-layout(rgba16f, binding = 0) uniform writeonly image3D i_radiance;
+layout(binding = TV_INJECT_ALBEDO) uniform sampler3D s_albedo;
+layout(binding = TV_INJECT_NORMAL) uniform sampler3D s_normal;
+layout(binding = TV_INJECT_EMISSION) uniform sampler3D s_emission;
+layout(binding = TV_INJECT_SHADOW_MAPS) uniform sampler2DArrayShadow s_shadowMaps;
+layout(binding = TV_INJECT_SHADOW_CUBES) uniform sampler2DArrayShadow s_shadowCubes;  // cube faces, 6 layers per cube
+layout(rgba16f, binding = IV_INJECT_RADIANCE) uniform writeonly image3D i_radiance;
 // Slab voxels: rgb = (L(+axis face) - L(-axis face)) / 2, a = the slab's mark (volume/voxel_faces.glsl); 0 elsewhere.
-layout(rgba16f, binding = 1) uniform writeonly image3D i_sides;
+layout(rgba16f, binding = IV_INJECT_SIDES) uniform writeonly image3D i_sides;
 // The share of i_radiance's mean the punctual lights gave (rgb; a = occupancy, as i_radiance), which
 // the tracers' hits take out to light themselves (volume/hit_light.glsl).
-layout(rgba16f, binding = 2) uniform writeonly image3D i_punctual;
+layout(rgba16f, binding = IV_INJECT_PUNCTUAL) uniform writeonly image3D i_punctual;
 
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_VOXEL_TO_WORLD) uniform mat4 u_voxelToWorld;
@@ -43,7 +43,7 @@ layout(location = UV_EMISSION_WEIGHT) uniform float u_emissionWeight;
 //     from the ray scene's emitter table (as the direct pass's ReSTIR candidates).
 //   - The environment (emitters.environment): u_environmentSamples directions per voxel (not on a
 //     slab, below).
-#define RAY_SCENE_TEXTURE_UNIT 7
+#define RAY_SCENE_TEXTURE_UNIT TV_INJECT_RAY_SCENE
 #include "random.glsl"
 #include "ray_scene.glsl"
 #include "environment.glsl"

@@ -4,8 +4,8 @@
 #include "volume/jfa_common.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = 0) uniform sampler3D s_occupancy;
-layout(binding = 0, r32ui) uniform writeonly uimage3D i_seeds;
+layout(binding = TF_SEED_OCCUPANCY) uniform sampler3D s_occupancy;
+layout(binding = IF_SEED_SEEDS, r32ui) uniform writeonly uimage3D i_seeds;
 
 void main() {
     ivec3 c = ivec3(gl_GlobalInvocationID);

@@ -4,8 +4,8 @@
 #include "volume/jfa_common.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = 0, r32ui) uniform readonly uimage3D i_source;
-layout(binding = 1, r32ui) uniform writeonly uimage3D i_target;
+layout(binding = IF_STEP_SOURCE, r32ui) uniform readonly uimage3D i_source;
+layout(binding = IF_STEP_TARGET, r32ui) uniform writeonly uimage3D i_target;
 layout(location = US_JFA_STEP) uniform int u_step;
 
 void main() {

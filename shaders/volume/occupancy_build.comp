@@ -4,7 +4,7 @@
 #include "volume/occupancy.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = 0) uniform sampler3D s_albedo;   // a = occupancy
+layout(binding = TV_OCCUPANCY_ALBEDO) uniform sampler3D s_albedo;   // a = occupancy
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_CASCADE) uniform int u_cascade;
 

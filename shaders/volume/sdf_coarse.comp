@@ -5,8 +5,8 @@
 // may step by this value without a fine lookup while it is far from everything.
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = 0) uniform sampler3D s_distance;
-layout(binding = 0, r32f) uniform writeonly image3D i_coarse;
+layout(binding = TF_COARSE_DISTANCE) uniform sampler3D s_distance;
+layout(binding = IF_COARSE_TARGET, r32f) uniform writeonly image3D i_coarse;
 layout(location = US_RESOLUTION) uniform int u_resolution;
 layout(location = US_CELL_SIZE) uniform float u_cellSize;
 layout(location = US_COARSE_FACTOR) uniform int u_factor;

@@ -8,11 +8,11 @@ struct ProbeRay {
     vec4 origin;     // xyz, w = max distance
     vec4 direction;  // xyz (normalized), w unused
 };
-layout(std430, binding = 0) readonly buffer Rays { ProbeRay rays[]; };
+layout(std430, binding = SF_MARCH_PROBE_RAYS) readonly buffer Rays { ProbeRay rays[]; };
 // Two vec4 per ray: position + hit (1 + cascade, 0 = miss), normal + steps.
-layout(std430, binding = 1) writeonly buffer Hits { vec4 hits[]; };
-layout(binding = 0) uniform sampler3D s_distance;
-layout(binding = 1) uniform sampler3D s_coarse;
+layout(std430, binding = SF_MARCH_PROBE_HITS) writeonly buffer Hits { vec4 hits[]; };
+layout(binding = TF_MARCH_PROBE_DISTANCE) uniform sampler3D s_distance;
+layout(binding = TF_MARCH_PROBE_COARSE) uniform sampler3D s_coarse;
 
 layout(location = 0) uniform uint u_count;
 layout(location = 1) uniform vec4 u_volume;   // origin xyz, size

@@ -16,9 +16,9 @@
 #include "volume/jfa_common.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = 0, r32ui) uniform readonly uimage3D i_seeds;
-layout(binding = 1, r32f) uniform writeonly image3D i_distance;
-layout(binding = 1) uniform sampler3D s_normals;   // RGBA8: mean normal * 0.5 + 0.5
+layout(binding = IF_RESOLVE_SEEDS, r32ui) uniform readonly uimage3D i_seeds;
+layout(binding = IF_RESOLVE_DISTANCE, r32f) uniform writeonly image3D i_distance;
+layout(binding = TF_RESOLVE_NORMALS) uniform sampler3D s_normals;   // RGBA8: mean normal * 0.5 + 0.5
 layout(location = US_CELL_SIZE) uniform float u_cellSize;
 layout(location = US_FAR) uniform float u_far;
 layout(location = US_HAS_NORMALS) uniform int u_hasNormals;

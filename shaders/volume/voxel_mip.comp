@@ -12,10 +12,10 @@
 #include "volume/voxel_faces.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = 0) uniform sampler3D s_source;  // the level below, read with texelFetch
-layout(binding = 1) uniform sampler3D s_normal;  // the voxel grid's mean normals (level 0 only)
-layout(binding = 2) uniform sampler3D s_sides;   // inject.comp's i_sides (level 0 only)
-layout(rgba16f, binding = 0) uniform writeonly image3D i_target;
+layout(binding = TV_MIP_SOURCE) uniform sampler3D s_source;  // the level below, read with texelFetch
+layout(binding = TV_MIP_NORMAL) uniform sampler3D s_normal;  // the voxel grid's mean normals (level 0 only)
+layout(binding = TV_MIP_SIDES) uniform sampler3D s_sides;   // inject.comp's i_sides (level 0 only)
+layout(rgba16f, binding = IV_MIP_TARGET) uniform writeonly image3D i_target;
 layout(location = UV_MIP_LEVEL) uniform int u_sourceLevel;
 layout(location = UV_DIRECTION) uniform int u_direction;  // -1: isotropic
 layout(location = UV_NORMAL_WEIGHT) uniform int u_weightByNormal;  // 0 none, 1 |n.axis|, 2 cull back faces

@@ -3,9 +3,9 @@
 #include "volume/voxel_faces.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(rgba8, binding = 0) uniform writeonly image3D i_albedo;    // rgb albedo, a occupancy (0 or 1)
-layout(rgba8, binding = 1) uniform writeonly image3D i_normal;    // xyz mean normal * 0.5 + 0.5, a the junction mark (below)
-layout(rgba16f, binding = 2) uniform writeonly image3D i_emission; // rgb emitted radiance, a the slab mark (below)
+layout(rgba8, binding = IV_RESOLVE_ALBEDO) uniform writeonly image3D i_albedo;    // rgb albedo, a occupancy (0 or 1)
+layout(rgba8, binding = IV_RESOLVE_NORMAL) uniform writeonly image3D i_normal;    // xyz mean normal * 0.5 + 0.5, a the junction mark (below)
+layout(rgba16f, binding = IV_RESOLVE_EMISSION) uniform writeonly image3D i_emission; // rgb emitted radiance, a the slab mark (below)
 
 layout(location = UV_RESOLUTION) uniform int u_resolution;
 layout(location = UV_EMISSION_SCALE) uniform float u_emissionScale;  // the scale voxelize.frag applied

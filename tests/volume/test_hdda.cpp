@@ -12,6 +12,7 @@
 
 #include "render_test_util.h"
 #include "volume/occupancy.h"
+#include "volume/voxel_uniforms.h"
 #include "volume/voxelizer.h"
 
 namespace gis::test {
@@ -170,9 +171,9 @@ std::vector<GpuHit> traceGpu(const OccupancyHierarchy& h, const std::vector<Casc
     for (size_t c = 0; c < cs.size(); ++c) volumes[c] = glm::vec4(glm::vec3(cs[c].origin), float(cs[c].size));
     glProgramUniform4fv(p, 3, 4, &volumes[0][0]);
     glProgramUniform1i(p, 7, 100000);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, voxels.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, positions.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, voxel::SV_HDDA_PROBE_RAYS, in.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, voxel::SV_HDDA_PROBE_HITS, voxels.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, voxel::SV_HDDA_PROBE_POSITIONS, positions.id());
     h.bind();
     glDispatchCompute(GLuint((rays.size() + 63) / 64), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

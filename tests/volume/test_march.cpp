@@ -58,9 +58,9 @@ std::vector<Hit> march(const DistanceField& field, const std::vector<Ray>& rays,
     for (int i = 0; i < field.layers(); ++i) cascades.emplace_back(field.volume(i).origin, field.volume(i).size);
     glProgramUniform1i(p, 4, field.layers() > 1 ? field.layers() : 0);
     glProgramUniform4fv(p, 5, GLsizei(cascades.size()), &cascades[0][0]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
-    field.bind(0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, sdf::SF_MARCH_PROBE_RAYS, in.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, sdf::SF_MARCH_PROBE_HITS, out.id());
+    field.bind(sdf::TF_MARCH_PROBE_DISTANCE);
     glDispatchCompute(GLuint((rays.size() + 63) / 64), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<glm::vec4> raw(rays.size() * 2);

@@ -156,7 +156,7 @@ void HddagiPass::drawDebugView(const std::string& view, const Frame& frame, GLui
     slice_.set(slice);
     glProgramUniform1i(p, UH_STEPS_MAX, live.stepsMax);
     volume_->bind();
-    glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(hddagi::IH_DEBUG_TARGET, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     const int w = frame.settings.width, h = frame.settings.height;
     gl::dispatchCompute(gl::groupsFor(w, 8), gl::groupsFor(h, 8), 1, "hddagi debug");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -169,6 +169,7 @@ GiMethod hddagiMethod() {
                 "that scroll, gathered at half resolution";
     m.params = hddagiParams().rows;
     m.shaderTables.uniforms = tableRows(hddagi::kHddagiUniforms);
+    m.shaderTables.bindings = tableRows(hddagi::kHddagiBindings);
     m.shaderTables.blocks = {hddagi::HddagiSliceBlock::desc()};
     m.presets = {
         {"low", "32^3, probes every 1/3 with 64 rays, SH L1",

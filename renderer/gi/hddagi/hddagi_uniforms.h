@@ -20,6 +20,14 @@ namespace gis::hddagi {
 enum HddagiUniform : int { GIS_HDDAGI_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kHddagiUniforms[] = {GIS_HDDAGI_UNIFORMS(GIS_UNIFORM_SLOT)};
 
+// Binding points of HDDAGI's own programs: its debug views' output image (the scene volume and the
+// probes bind themselves at their own slots).
+#define GIS_HDDAGI_BINDINGS(X) \
+    X(IH_DEBUG_TARGET, 0)
+
+enum HddagiBinding : int { GIS_HDDAGI_BINDINGS(GIS_BINDING_ENUM) };
+inline constexpr gl::BindingSlot kHddagiBindings[] = {GIS_HDDAGI_BINDINGS(GIS_BINDING_SLOT)};
+
 // The occupancy slice hddagi.occupancy shows.
 #define GIS_HDDAGI_SLICE_BLOCK(M, A) \
     M(int, axis) \

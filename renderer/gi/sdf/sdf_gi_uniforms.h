@@ -29,6 +29,38 @@ namespace gis::sdfgi {
 enum SdfGiUniform : int { GIS_SDF_GI_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kSdfGiUniforms[] = {GIS_SDF_GI_UNIFORMS(GIS_UNIFORM_SLOT)};
 
+// Binding points of SDF GI's own programs: the G-buffer every one reads (gi/sdf/sdf_gbuffer.glsl;
+// the trace also the material), then each program's texture units (TG_) and image units (IG_).
+// The scene volume and the probes bind themselves at their own slots.
+#define GIS_SDF_GI_BINDINGS(X) \
+    X(TG_DEPTH, 0) \
+    X(TG_NORMAL, 1) \
+    X(TG_MATERIAL, 2) \
+    /* sdf_trace.comp */ \
+    X(IG_TRACE_DIFFUSE, 0) \
+    X(IG_TRACE_REFLECTION, 1) \
+    X(IG_TRACE_AO, 2) \
+    X(IG_TRACE_INFO, 3) \
+    /* sdf_temporal.comp */ \
+    X(TG_TEMPORAL_CURRENT, 2) \
+    X(TG_TEMPORAL_HISTORY, 3) \
+    X(TG_TEMPORAL_HISTORY_DISTANCE, 4) \
+    X(IG_TEMPORAL_HISTORY, 0) \
+    X(IG_TEMPORAL_HISTORY_DISTANCE, 1) \
+    /* sdf_filter.comp */ \
+    X(TG_FILTER_DIFFUSE, 2) \
+    X(TG_FILTER_REFLECTION, 3) \
+    X(TG_FILTER_OCCLUSION, 4) \
+    X(IG_FILTER_DIFFUSE, 0) \
+    X(IG_FILTER_SPECULAR, 1) \
+    X(IG_FILTER_AO, 2) \
+    /* sdf_debug.comp */ \
+    X(TG_DEBUG_INFO, 6) \
+    X(IG_DEBUG_TARGET, 0)
+
+enum SdfGiBinding : int { GIS_SDF_GI_BINDINGS(GIS_BINDING_ENUM) };
+inline constexpr gl::BindingSlot kSdfGiBindings[] = {GIS_SDF_GI_BINDINGS(GIS_BINDING_SLOT)};
+
 // What the debug views show (sdf.slice, sdf.steps, sdf.normals).
 #define GIS_SDF_DEBUG_BLOCK(M, A) \
     M(int, view)            /* 0 slice, 1 steps, 2 normals */ \

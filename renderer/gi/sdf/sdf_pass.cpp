@@ -144,8 +144,8 @@ void SdfGiPass::setCommonUniforms(GLuint p, const Frame& frame) const {
     glProgramUniform1i(p, UG_SCALE, scale_);
     const GLuint gbuffer[3] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal),
                                frame.texture(resource::kGbufferMaterial)};
-    glBindTextures(0, 3, gbuffer);
-    glBindSamplers(0, 7, nullptr);
+    glBindTextures(TG_DEPTH, 3, gbuffer);
+    glBindSamplers(TG_DEPTH, TG_DEBUG_INFO + 1 - TG_DEPTH, nullptr);
 }
 
 void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
@@ -182,10 +182,10 @@ void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
     glProgramUniform1i(p, UG_CASCADE_COUNT, field.layers());
     glProgramUniform1i(p, UG_RESOLUTION, volume_->layout().resolution());
     volume_->bind();
-    glBindImageTexture(0, raw_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, reflection_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(2, occlusion_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
-    glBindImageTexture(3, info_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IG_TRACE_DIFFUSE, raw_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IG_TRACE_REFLECTION, reflection_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IG_TRACE_AO, occlusion_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    glBindImageTexture(IG_TRACE_INFO, info_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch2D(raw_.width, raw_.height);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
@@ -203,10 +203,10 @@ void SdfGiPass::accumulate(const Frame& frame, const SdfGiSettings& s) {
     temporal.cameraMoved = moved ? 1 : 0;
     temporalBlock_.set(temporal);
     const GLuint inputs[3] = {raw_.id(), history_[current_].id(), historyDistance_[current_].id()};
-    glBindTextures(2, 3, inputs);
+    glBindTextures(TG_TEMPORAL_CURRENT, 3, inputs);
     const int next = 1 - current_;
-    glBindImageTexture(0, history_[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, historyDistance_[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(IG_TEMPORAL_HISTORY, history_[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IG_TEMPORAL_HISTORY_DISTANCE, historyDistance_[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     dispatch2D(raw_.width, raw_.height);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     current_ = next;
@@ -220,10 +220,10 @@ void SdfGiPass::filter(const Frame& frame, const SdfGiSettings& s) {
     glProgramUniform1f(p, UG_INTENSITY, s.intensity);
     // SDFGI's gathered diffuse needs no history: it is not noisy.
     const GLuint inputs[3] = {field_ ? raw_.id() : history_[current_].id(), reflection_.id(), occlusion_.id()};
-    glBindTextures(2, 3, inputs);
-    glBindImageTexture(0, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(2, ao_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    glBindTextures(TG_FILTER_DIFFUSE, 3, inputs);
+    glBindImageTexture(IG_FILTER_DIFFUSE, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IG_FILTER_SPECULAR, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IG_FILTER_AO, ao_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     dispatch2D(diffuse_.width, diffuse_.height);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
@@ -312,10 +312,10 @@ void SdfGiPass::drawDebugView(const std::string& view, const Frame& frame, GLuin
     debug.slicePosition = live.slicePosition;
     debug.maxSteps = live.maxSteps;
     debug_.set(debug);
-    glBindSamplers(0, 7, nullptr);
+    glBindSamplers(TG_DEPTH, TG_DEBUG_INFO + 1 - TG_DEPTH, nullptr);
     volume_->bind();
-    glBindTextureUnit(6, info_.id());
-    glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindTextureUnit(TG_DEBUG_INFO, info_.id());
+    glBindImageTexture(IG_DEBUG_TARGET, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch2D(diffuse_.width, diffuse_.height);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -327,6 +327,7 @@ GiMethod sdfMethod() {
                 "edge-aware filter";
     m.params = sdfParams().rows;
     m.shaderTables.uniforms = tableRows(sdfgi::kSdfGiUniforms);
+    m.shaderTables.bindings = tableRows(sdfgi::kSdfGiBindings);
     m.shaderTables.blocks = {sdfgi::SdfDebugBlock::desc(), sdfgi::SdfTraceBlock::desc(), sdfgi::SdfTemporalBlock::desc()};
     m.presets = {
         {"low", "32^3, one volume, plain JFA, probes every 1/3 with 64 rays, 32 steps",

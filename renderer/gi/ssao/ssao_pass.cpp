@@ -7,6 +7,7 @@
 
 #include "debug_view.h"
 #include "gi/method.h"
+#include "gi/ssao/ssao_bindings.h"
 #include "uniforms.h"
 
 namespace gis {
@@ -142,14 +143,14 @@ void SsaoPass::execute(Frame& frame) {
     glBindVertexArray(vao_.id());
     glViewport(0, 0, width_, height_);
     const GLuint samplers[3] = {sampler_.id(), 0, 0};  // linear depth for the sample tests
-    glBindSamplers(0, 3, samplers);
+    glBindSamplers(ssao::TA_DEPTH, 3, samplers);
 
     // 1. Raw AO.
     GLuint p = aoProgram_.id();
     glUseProgram(p);
     glBindFramebuffer(GL_FRAMEBUFFER, rawFbo_.id());
     const GLuint inputs[3] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal), noise_.id()};
-    glBindTextures(0, 3, inputs);
+    glBindTextures(ssao::TA_DEPTH, 3, inputs);
     const glm::mat4 invProj = glm::inverse(frame.camera.proj);
     glProgramUniformMatrix4fv(p, U_PROJ, 1, GL_FALSE, &frame.camera.proj[0][0]);
     glProgramUniformMatrix4fv(p, U_INV_PROJ, 1, GL_FALSE, &invProj[0][0]);
@@ -174,13 +175,13 @@ void SsaoPass::execute(Frame& frame) {
 
     // 2. Bilateral blur over the noise tile.
     if (blurred_.id()) {
-        glBindSamplers(0, 3, nullptr);
+        glBindSamplers(ssao::TA_DEPTH, 3, nullptr);
         glUseProgram(blurProgram_.id());
         glProgramUniformMatrix4fv(blurProgram_.id(), U_INV_PROJ, 1, GL_FALSE, &invProj[0][0]);
         glProgramUniformMatrix4fv(blurProgram_.id(), U_VIEW, 1, GL_FALSE, &frame.camera.view[0][0]);
         glBindFramebuffer(GL_FRAMEBUFFER, blurFbo_.id());
         const GLuint blurInputs[2] = {result->id(), frame.texture(resource::kGbufferNormal)};
-        glBindTextures(0, 2, blurInputs);
+        glBindTextures(ssao::TA_BLUR_AO, 2, blurInputs);
         glDrawArrays(GL_TRIANGLES, 0, 3);
         result = &blurred_;
     }
@@ -192,7 +193,7 @@ void SsaoPass::execute(Frame& frame) {
         glUseProgram(p);
         glBindFramebuffer(GL_FRAMEBUFFER, historyFbo_[next].id());
         const GLuint temporalInputs[3] = {result->id(), history_[current_].id(), frame.texture(resource::kGbufferDepth)};
-        glBindTextures(0, 3, temporalInputs);
+        glBindTextures(ssao::TA_TEMPORAL_AO, 3, temporalInputs);
         glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
         glProgramUniformMatrix4fv(p, U_PREV_VIEW_PROJ, 1, GL_FALSE, &prevViewProj_[0][0]);
         SsaoTemporalBlock temporal;
@@ -248,6 +249,7 @@ GiMethod ssaoMethod() {
     m.scoredAgainstAo = true;
     m.summary = "screen-space ambient occlusion of the constant ambient term (hemisphere or GTAO kernel, blur, temporal)";
     m.params = ssaoParams().rows;
+    m.shaderTables.bindings = tableRows(ssao::kSsaoBindings);
     const SsaoKernel other = kPresetKernel == SsaoKernel::Gtao ? SsaoKernel::Hemisphere : SsaoKernel::Gtao;
     addPresets(m, kPresetKernel, "");
     addPresets(m, other, other == SsaoKernel::Gtao ? "gtao-" : "hemisphere-");

@@ -7,11 +7,13 @@
 #include "gi/method.h"
 #include "scene/scene_lighting.h"
 #include "services/scene_services.h"
+#include "gi/vct/vct_bindings.h"
 #include "volume/voxel_uniforms.h"
 
 namespace gis {
 
 using namespace voxel;
+using namespace vct;
 
 namespace {
 ConeSettings coneSettingsOf(const VctSettings& s) {
@@ -64,9 +66,7 @@ glm::ivec2 jitterPhase(int scale, uint32_t frame) {
 }  // namespace
 
 // The ray scene's texture array in the trace (its sky rays), above the G-buffer's units.
-constexpr int kTraceRaySceneUnit = 3;
-const ProgramDesc kTraceProgram{
-    "vct_trace", {"gi/vct/vct_trace.comp"}, {{"RAY_SCENE_TEXTURE_UNIT", std::to_string(kTraceRaySceneUnit)}}};
+const ProgramDesc kTraceProgram{"vct_trace", {"gi/vct/vct_trace.comp"}, {{"RAY_SCENE_TEXTURE_UNIT", "TC_TRACE_RAY_SCENE"}}};
 const ProgramDesc kDebugProgram{"vct_debug", {"gi/vct/vct_debug.comp"}, {}};
 const ProgramDesc kUpsampleProgram{"vct_upsample", {"gi/vct/vct_upsample.comp"}, {}};
 const ProgramDesc kSkyFilterProgram{"vct_sky_filter", {"gi/vct/vct_sky_filter.comp"}, {}};
@@ -132,13 +132,13 @@ void VctPass::trace(const Frame& frame, const VctSettings& s, glm::ivec2 jitter)
     glProgramUniform1f(p, UV_SPECULAR_ROUGHNESS, s.specularRoughness);
     const GLuint gbuffer[3] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal),
                                frame.texture(resource::kGbufferMaterial)};
-    glBindTextures(0, 3, gbuffer);
-    glBindSamplers(0, 3, nullptr);
+    glBindTextures(TC_TRACE_DEPTH, 3, gbuffer);
+    glBindSamplers(TC_TRACE_DEPTH, 3, nullptr);
     volume_->bind();
-    if (s.skyRays > 0) services_->rays().bind(kTraceRaySceneUnit);
-    glBindImageTexture(0, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(2, ao_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    if (s.skyRays > 0) services_->rays().bind(TC_TRACE_RAY_SCENE);
+    glBindImageTexture(IC_TRACE_DIFFUSE, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IC_TRACE_SPECULAR, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IC_TRACE_AO, ao_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     gl::dispatchCompute(gl::groupsFor(diffuse_.width, 8), gl::groupsFor(diffuse_.height, 8), 1, "vct");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -149,9 +149,9 @@ void VctPass::filterSky(const Frame& frame, const gl::Texture& diffuse) {
     glProgramUniformMatrix4fv(p, UV_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UV_CAMERA_POS, 1, &frame.camera.position[0]);
     const GLuint inputs[3] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal), diffuse.id()};
-    glBindTextures(0, 3, inputs);
-    glBindSamplers(0, 3, nullptr);
-    glBindImageTexture(0, skyFiltered_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindTextures(TC_SKY_FILTER_DEPTH, 3, inputs);
+    glBindSamplers(TC_SKY_FILTER_DEPTH, 3, nullptr);
+    glBindImageTexture(IC_SKY_FILTER_OUTPUT, skyFiltered_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl::dispatchCompute(gl::groupsFor(skyFiltered_.width, 8), gl::groupsFor(skyFiltered_.height, 8), 1, "vct sky filter");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -177,11 +177,11 @@ void VctPass::upsample(const Frame& frame, glm::ivec2 jitter) {
     const GLuint inputs[7] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal),
                               diffuse_.id(), specular_.id(), previous.diffuse.id(), previous.specular.id(),
                               previous.geometry.id()};
-    glBindTextures(0, 7, inputs);
-    glBindSamplers(0, 7, nullptr);
-    glBindImageTexture(0, next.diffuse.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, next.specular.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(2, next.geometry.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindTextures(TC_UPSAMPLE_DEPTH, 7, inputs);
+    glBindSamplers(TC_UPSAMPLE_DEPTH, 7, nullptr);
+    glBindImageTexture(IC_UPSAMPLE_DIFFUSE, next.diffuse.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IC_UPSAMPLE_SPECULAR, next.specular.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IC_UPSAMPLE_GEOMETRY, next.geometry.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl::dispatchCompute(gl::groupsFor(next.diffuse.width, 8), gl::groupsFor(next.diffuse.height, 8), 1, "vct upsample");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     current_ = 1 - current_;
@@ -215,7 +215,7 @@ void VctPass::drawDebugView(const std::string& view, const Frame& frame, GLuint 
     debug.slicePosition = live.slicePosition;
     debug_.set(debug);
     volume_->bind();
-    glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(IC_DEBUG_VIEW, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl::dispatchCompute(gl::groupsFor(frame.settings.width, 8), gl::groupsFor(frame.settings.height, 8), 1, "vct");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -279,6 +279,7 @@ GiMethod vctMethod() {
     m.name = "vct";
     m.summary = "voxel cone tracing: conservative voxelization, shadow-mapped light injection, cone-traced indirect";
     m.params = vctParams().rows;
+    m.shaderTables.bindings = tableRows(vct::kVctBindings);
     m.presets = {
         {"low", "32^3, isotropic mips, one bounce, four cones, step 1, no specular cone",
          {{"vct.resolution", {32.0}},

@@ -8,8 +8,8 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = 0, rgba32f) uniform image2D u_accumulation;
-layout(binding = 1, rgba32f) uniform writeonly image2D u_output;
+layout(binding = I_ACCUMULATION_SUM, rgba32f) uniform image2D u_accumulation;
+layout(binding = I_ACCUMULATION_MEAN, rgba32f) uniform writeonly image2D u_output;
 
 layout(location = U_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = U_SAMPLE_INDEX) uniform uint u_sampleIndex;

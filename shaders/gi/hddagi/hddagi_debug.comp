@@ -6,7 +6,7 @@
 #include "debug_slice.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba16f, binding = 0) uniform writeonly image2D i_target;
+layout(rgba16f, binding = IH_DEBUG_TARGET) uniform writeonly image2D i_target;
 layout(location = UH_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = UH_CAMERA_POS) uniform vec3 u_cameraPos;
 layout(location = UH_CASCADES) uniform vec4 u_cascades[SDF_MAX_CASCADES];

@@ -10,8 +10,8 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = VOLUME_DISTANCE_UNIT) uniform sampler3D s_distance;
-layout(binding = 6) uniform sampler2D s_info;   // mean steps, first hit normal (traced resolution)
-layout(rgba16f, binding = 0) uniform writeonly image2D i_target;
+layout(binding = TG_DEBUG_INFO) uniform sampler2D s_info;   // mean steps, first hit normal (traced resolution)
+layout(rgba16f, binding = IG_DEBUG_TARGET) uniform writeonly image2D i_target;
 
 layout(location = UG_VOLUME) uniform vec4 u_volume;
 layout(location = UG_RESOLUTION) uniform int u_resolution;

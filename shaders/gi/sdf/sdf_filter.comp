@@ -15,12 +15,12 @@
 #include "gi/sdf/sdf_gbuffer.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 2) uniform sampler2D s_diffuse;      // traced resolution: probes' gather, or the rays' history
-layout(binding = 3) uniform sampler2D s_reflection;   // rgb, a = weight against diffuse
-layout(binding = 4) uniform sampler2D s_occlusion;
-layout(rgba16f, binding = 0) uniform writeonly image2D i_diffuse;
-layout(rgba16f, binding = 1) uniform writeonly image2D i_specular;
-layout(r16f, binding = 2) uniform writeonly image2D i_ao;
+layout(binding = TG_FILTER_DIFFUSE) uniform sampler2D s_diffuse;      // traced resolution: probes' gather, or the rays' history
+layout(binding = TG_FILTER_REFLECTION) uniform sampler2D s_reflection;   // rgb, a = weight against diffuse
+layout(binding = TG_FILTER_OCCLUSION) uniform sampler2D s_occlusion;
+layout(rgba16f, binding = IG_FILTER_DIFFUSE) uniform writeonly image2D i_diffuse;
+layout(rgba16f, binding = IG_FILTER_SPECULAR) uniform writeonly image2D i_specular;
+layout(r16f, binding = IG_FILTER_AO) uniform writeonly image2D i_ao;
 
 layout(location = UG_FILTER) uniform int u_radius;
 layout(location = UG_CAMERA_POS) uniform vec3 u_cameraPos;

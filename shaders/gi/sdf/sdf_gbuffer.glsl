@@ -3,8 +3,8 @@
 // the temporal pass and the filter all agree on which surface a traced pixel is.
 #include "gbuffer_layout.glsl"
 
-layout(binding = 0) uniform sampler2D s_depth;
-layout(binding = 1) uniform sampler2D s_gbufNormal;
+layout(binding = TG_DEPTH) uniform sampler2D s_depth;
+layout(binding = TG_NORMAL) uniform sampler2D s_gbufNormal;
 
 layout(location = UG_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = UG_SCALE) uniform int u_scale;

@@ -10,11 +10,11 @@
 #include "gi/sdf/sdf_gbuffer.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 2) uniform sampler2D s_current;        // this frame's traced diffuse
-layout(binding = 3) uniform sampler2D s_history;        // rgb, a = frames accumulated
-layout(binding = 4) uniform sampler2D s_historyDistance; // distance from the previous camera, -1 = none
-layout(rgba16f, binding = 0) uniform writeonly image2D i_history;
-layout(r32f, binding = 1) uniform writeonly image2D i_historyDistance;
+layout(binding = TG_TEMPORAL_CURRENT) uniform sampler2D s_current;        // this frame's traced diffuse
+layout(binding = TG_TEMPORAL_HISTORY) uniform sampler2D s_history;        // rgb, a = frames accumulated
+layout(binding = TG_TEMPORAL_HISTORY_DISTANCE) uniform sampler2D s_historyDistance; // distance from the previous camera, -1 = none
+layout(rgba16f, binding = IG_TEMPORAL_HISTORY) uniform writeonly image2D i_history;
+layout(r32f, binding = IG_TEMPORAL_HISTORY_DISTANCE) uniform writeonly image2D i_historyDistance;
 
 layout(location = UG_PREV_VIEW_PROJ) uniform mat4 u_prevViewProj;
 SdfTemporalBlock u_temporal;

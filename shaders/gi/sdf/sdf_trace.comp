@@ -17,15 +17,15 @@
 #include "probes/probe_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 2) uniform sampler2D s_gbufMaterial;  // metallic, roughness, occlusion, specular
+layout(binding = TG_MATERIAL) uniform sampler2D s_gbufMaterial;  // metallic, roughness, occlusion, specular
 layout(binding = VOLUME_DISTANCE_UNIT) uniform sampler3D s_distance;
 layout(binding = VOLUME_COARSE_UNIT) uniform sampler3D s_coarse;
 layout(binding = VOLUME_RADIANCE_UNIT) uniform sampler3D s_radiance;      // rgb = radiance x occupancy, a = occupancy; a layer per cascade
 layout(binding = VOLUME_RADIANCE_UNIT + 7) uniform sampler3D s_sides;     // the slab voxels' sides (volume/voxel_faces.glsl), as many layers
-layout(rgba16f, binding = 0) uniform writeonly image2D i_diffuse;
-layout(rgba16f, binding = 1) uniform writeonly image2D i_reflection;  // rgb, a = its weight against diffuse
-layout(r16f, binding = 2) uniform writeonly image2D i_ao;
-layout(rgba16f, binding = 3) uniform writeonly image2D i_info;        // mean steps, first hit normal
+layout(rgba16f, binding = IG_TRACE_DIFFUSE) uniform writeonly image2D i_diffuse;
+layout(rgba16f, binding = IG_TRACE_REFLECTION) uniform writeonly image2D i_reflection;  // rgb, a = its weight against diffuse
+layout(r16f, binding = IG_TRACE_AO) uniform writeonly image2D i_ao;
+layout(rgba16f, binding = IG_TRACE_INFO) uniform writeonly image2D i_info;        // mean steps, first hit normal
 
 layout(location = UG_CAMERA_POS) uniform vec3 u_cameraPos;
 layout(location = UG_RESOLUTION) uniform int u_resolution;

@@ -5,8 +5,8 @@
 // depth quickly from pixel to pixel yet is one surface.
 #include "common.glsl"
 
-layout(binding = 0) uniform sampler2D s_ao;          // r = AO, g = view depth
-layout(binding = 1) uniform sampler2D s_gbufNormal;
+layout(binding = TA_BLUR_AO) uniform sampler2D s_ao;          // r = AO, g = view depth
+layout(binding = TA_BLUR_NORMAL) uniform sampler2D s_gbufNormal;
 
 layout(location = U_INV_PROJ) uniform mat4 u_invProj;
 layout(location = U_VIEW) uniform mat4 u_view;

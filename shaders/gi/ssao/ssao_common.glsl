@@ -3,9 +3,9 @@
 // view-space reconstruction from window depth.
 #include "common.glsl"
 
-layout(binding = 0) uniform sampler2D s_depth;       // window depth; the pass binds a linear sampler
-layout(binding = 1) uniform sampler2D s_gbufNormal;
-layout(binding = 2) uniform sampler2D s_noise;       // 4x4 tile of random rotation vectors (xy)
+layout(binding = TA_DEPTH) uniform sampler2D s_depth;       // window depth; the pass binds a linear sampler
+layout(binding = TA_NORMAL) uniform sampler2D s_gbufNormal;
+layout(binding = TA_NOISE) uniform sampler2D s_noise;       // 4x4 tile of random rotation vectors (xy)
 
 layout(location = U_PROJ) uniform mat4 u_proj;
 layout(location = U_INV_PROJ) uniform mat4 u_invProj;

@@ -5,9 +5,9 @@
 // the noise-free AO.
 #include "common.glsl"
 
-layout(binding = 0) uniform sampler2D s_ao;          // current (blurred) AO, g = view depth
-layout(binding = 1) uniform sampler2D s_history;     // r = accumulated AO, g = view depth, b = frames
-layout(binding = 2) uniform sampler2D s_depth;
+layout(binding = TA_TEMPORAL_AO) uniform sampler2D s_ao;          // current (blurred) AO, g = view depth
+layout(binding = TA_TEMPORAL_HISTORY) uniform sampler2D s_history;     // r = accumulated AO, g = view depth, b = frames
+layout(binding = TA_TEMPORAL_DEPTH) uniform sampler2D s_depth;
 
 layout(location = U_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = U_PREV_VIEW_PROJ) uniform mat4 u_prevViewProj;

@@ -9,7 +9,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = VOLUME_ALBEDO_UNIT) uniform sampler3D s_albedo;
 layout(binding = VOLUME_EMISSION_UNIT) uniform sampler3D s_emission;
 layout(binding = VOLUME_RADIANCE_UNIT) uniform sampler3D s_radiance;
-layout(rgba16f, binding = 0) uniform writeonly image2D i_view;
+layout(rgba16f, binding = IC_DEBUG_VIEW) uniform writeonly image2D i_view;
 
 layout(location = UV_WORLD_TO_VOXEL) uniform mat4 u_worldToVoxel;
 layout(location = UV_RESOLUTION) uniform int u_resolution;

@@ -6,10 +6,10 @@
 #include "common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D s_depth;
-layout(binding = 1) uniform sampler2D s_gbufNormal;
-layout(binding = 2) uniform sampler2D s_diffuse;
-layout(rgba16f, binding = 0) uniform writeonly image2D i_filtered;
+layout(binding = TC_SKY_FILTER_DEPTH) uniform sampler2D s_depth;
+layout(binding = TC_SKY_FILTER_NORMAL) uniform sampler2D s_gbufNormal;
+layout(binding = TC_SKY_FILTER_DIFFUSE) uniform sampler2D s_diffuse;
+layout(rgba16f, binding = IC_SKY_FILTER_OUTPUT) uniform writeonly image2D i_filtered;
 
 layout(location = UV_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = UV_CAMERA_POS) uniform vec3 u_cameraPos;

@@ -9,12 +9,12 @@
 #include "ray_scene.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D s_depth;
-layout(binding = 1) uniform sampler2D s_gbufNormal;
-layout(binding = 2) uniform sampler2D s_gbufMaterial;
-layout(rgba16f, binding = 0) uniform writeonly image2D i_diffuse;
-layout(rgba16f, binding = 1) uniform writeonly image2D i_specular;
-layout(r16f, binding = 2) uniform writeonly image2D i_ao;
+layout(binding = TC_TRACE_DEPTH) uniform sampler2D s_depth;
+layout(binding = TC_TRACE_NORMAL) uniform sampler2D s_gbufNormal;
+layout(binding = TC_TRACE_MATERIAL) uniform sampler2D s_gbufMaterial;
+layout(rgba16f, binding = IC_TRACE_DIFFUSE) uniform writeonly image2D i_diffuse;
+layout(rgba16f, binding = IC_TRACE_SPECULAR) uniform writeonly image2D i_specular;
+layout(r16f, binding = IC_TRACE_AO) uniform writeonly image2D i_ao;
 
 layout(location = UV_WORLD_TO_VOXEL) uniform mat4 u_worldToVoxel;
 layout(location = UV_RESOLUTION) uniform int u_resolution;

@@ -13,16 +13,16 @@
 #include "common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D s_depth;
-layout(binding = 1) uniform sampler2D s_gbufNormal;
-layout(binding = 2) uniform sampler2D s_tracedDiffuse;
-layout(binding = 3) uniform sampler2D s_tracedSpecular;
-layout(binding = 4) uniform sampler2D s_historyDiffuse;
-layout(binding = 5) uniform sampler2D s_historySpecular;
-layout(binding = 6) uniform sampler2D s_historyGeometry;  // normal, distance from that frame's camera (-1: none)
-layout(rgba16f, binding = 0) uniform writeonly image2D i_diffuse;
-layout(rgba16f, binding = 1) uniform writeonly image2D i_specular;
-layout(rgba16f, binding = 2) uniform writeonly image2D i_geometry;
+layout(binding = TC_UPSAMPLE_DEPTH) uniform sampler2D s_depth;
+layout(binding = TC_UPSAMPLE_NORMAL) uniform sampler2D s_gbufNormal;
+layout(binding = TC_UPSAMPLE_TRACED_DIFFUSE) uniform sampler2D s_tracedDiffuse;
+layout(binding = TC_UPSAMPLE_TRACED_SPECULAR) uniform sampler2D s_tracedSpecular;
+layout(binding = TC_UPSAMPLE_HISTORY_DIFFUSE) uniform sampler2D s_historyDiffuse;
+layout(binding = TC_UPSAMPLE_HISTORY_SPECULAR) uniform sampler2D s_historySpecular;
+layout(binding = TC_UPSAMPLE_HISTORY_GEOMETRY) uniform sampler2D s_historyGeometry;  // normal, distance from that frame's camera (-1: none)
+layout(rgba16f, binding = IC_UPSAMPLE_DIFFUSE) uniform writeonly image2D i_diffuse;
+layout(rgba16f, binding = IC_UPSAMPLE_SPECULAR) uniform writeonly image2D i_specular;
+layout(rgba16f, binding = IC_UPSAMPLE_GEOMETRY) uniform writeonly image2D i_geometry;
 
 layout(location = UV_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
 layout(location = UV_CAMERA_POS) uniform vec3 u_cameraPos;
