@@ -310,21 +310,19 @@ void ProbeField::bindForHitLight(GLuint p, const FieldSettings& live) const {
     setFieldUniforms(p);
     setUpdateBlock(live);
     bindTracer();
-    // The radiance, then each cascade's albedo (its own texture each, for the multi-bounce term;
-    // unused units repeat the last cascade's), then the slab voxels' sides (texelFetch: no sampler).
-    constexpr int kUnits = 1 + kMaxGrids;
-    GLuint textures[kUnits + 1] = {volume_->radianceTexture()};
-    for (int c = 0; c < kMaxGrids; ++c)
-        textures[1 + c] = volume_->grid(std::min(c, volume_->cascadeCount() - 1)).albedo.id();
-    textures[kUnits] = volume_->sidesTexture();
-    glBindTextures(TP_VOXEL_RADIANCE, kUnits + 1, textures);
-    GLuint samplers[kUnits];
-    std::fill_n(samplers, kUnits, sampler_.id());
-    glBindSamplers(TP_VOXEL_RADIANCE, kUnits, samplers);
+    // The radiance and the albedo (for the multi-bounce term), filtered; the slab voxels' sides
+    // (texelFetch: no sampler).
+    const GLuint textures[2] = {volume_->radianceTexture(), volume_->albedoTexture()};
+    const GLuint samplers[2] = {sampler_.id(), sampler_.id()};
+    static_assert(TP_VOXEL_ALBEDO == TP_VOXEL_RADIANCE + 1, "bound together");
+    glBindTextures(TP_VOXEL_RADIANCE, 2, textures);
+    glBindSamplers(TP_VOXEL_RADIANCE, 2, samplers);
+    glBindTextureUnit(TP_VOXEL_SIDES, volume_->sidesTexture());
+    glBindSampler(TP_VOXEL_SIDES, 0);
     bindBuffers();
 }
 
-void ProbeField::releaseHitLight() const { glBindSamplers(TP_VOXEL_RADIANCE, 1 + kMaxGrids, nullptr); }
+void ProbeField::releaseHitLight() const { glBindSamplers(TP_VOXEL_RADIANCE, 2, nullptr); }
 
 void ProbeField::trace(const Frame& frame, const FieldSettings& s, int batch) {
     const GLuint p = traceProgram_.id();

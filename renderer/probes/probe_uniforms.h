@@ -39,7 +39,7 @@ inline constexpr gl::UniformSlot kProbeUniforms[] = {GIS_PROBE_UNIFORMS(GIS_UNIF
 // batch (trace, blend, the rays view). Texture units of the programs that walk the field (the
 // distance field's two levels where the tracer has one) and shade its rays
 // (probes/probe_hit_light.glsl: the probes' own rays and the screen reflection's): the voxel
-// radiance, each cascade's albedo (consecutive units, one per grid), the slab voxels' sides; the
+// radiance, the albedo (both a layer per cascade, as the volume holds them), the slab voxels' sides; the
 // screen gather's and the reflection's G-buffer inputs. Image units: each program's output, the
 // gathered pixels, the reflection's running mean and the gather's indirect.diffuse it blends
 // towards. All below 11, where the environment's units begin (volume/volume_slots.h).
@@ -53,10 +53,7 @@ inline constexpr gl::UniformSlot kProbeUniforms[] = {GIS_PROBE_UNIFORMS(GIS_UNIF
     X(TP_FIELD_DISTANCE, 0) \
     X(TP_FIELD_COARSE, 1) \
     X(TP_VOXEL_RADIANCE, 2) \
-    X(TP_VOXEL_ALBEDO0, 3) \
-    X(TP_VOXEL_ALBEDO1, 4) \
-    X(TP_VOXEL_ALBEDO2, 5) \
-    X(TP_VOXEL_ALBEDO3, 6) \
+    X(TP_VOXEL_ALBEDO, 3) \
     X(TP_VOXEL_SIDES, 7) \
     X(TP_GATHER_DEPTH, 4) \
     X(TP_GATHER_NORMAL, 5) \
@@ -71,7 +68,6 @@ inline constexpr gl::UniformSlot kProbeUniforms[] = {GIS_PROBE_UNIFORMS(GIS_UNIF
 
 enum ProbeBinding : int { GIS_PROBE_BINDINGS(GIS_BINDING_ENUM) };
 inline constexpr gl::BindingSlot kProbeBindings[] = {GIS_PROBE_BINDINGS(GIS_BINDING_SLOT)};
-static_assert(TP_VOXEL_ALBEDO0 + kMaxGrids == TP_VOXEL_SIDES, "one albedo unit per grid, then the sides");
 
 // One probe update (probe_trace.comp's rays, probe_blend.comp's blend).
 #define GIS_PROBE_UPDATE_BLOCK(M, A) \

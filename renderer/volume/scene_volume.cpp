@@ -12,7 +12,7 @@ namespace {
 auto tied(const VolumeRequest& r) {
     return std::tie(r.method, r.resolution, r.resolutionKey, r.conservative, r.conservativeKey, r.marginVoxels,
                     r.anisotropic, r.cullBackfaces, r.cullUnlitOutsides, r.hitLights, r.mips, r.bounces, r.distanceField,
-                    r.jfa, r.occupancy, r.scroll, r.feedback, r.cascades, r.cascadeExtent);
+                    r.jfa, r.occupancy, r.albedoAtlas, r.scroll, r.feedback, r.cascades, r.cascadeExtent);
 }
 
 // The members of an aggregate, counted as the most values it can be brace-initialised from (C++17
@@ -35,10 +35,25 @@ static_assert(std::is_aggregate_v<VolumeRequest> &&
                   memberCount<VolumeRequest>() == std::tuple_size_v<decltype(tied(std::declval<VolumeRequest>()))>,
               "every member of VolumeRequest belongs in tied()");
 
-// Level 0 of every cascade's light, and its slab voxels' sides, in RGBA16F textures, when there is more than one.
-int64_t radianceAtlasBytes(int resolution, int cascades) {
+// With more than one cascade: level 0 of every cascade's light and its slab voxels' sides (RGBA16F),
+// and where asked their albedo (RGBA8), a layer each.
+int64_t atlasBytes(int resolution, int cascades, bool albedo) {
     const int64_t n = resolution;
-    return cascades > 1 ? 2 * 8 * n * n * n * cascades : 0;  // level 0 and the slabs' sides
+    return cascades > 1 ? (2 * 8 + (albedo ? 4 : 0)) * n * n * n * cascades : 0;
+}
+
+gl::Texture createAtlas(const gl::MemoryScope& scope, GLenum format, int n, int cascades, bool filtered) {
+    gl::Texture atlas = gl::createTexture3D(scope, format, n, n, n * cascades);
+    if (!filtered) return atlas;  // read by texelFetch
+    glTextureParameteri(atlas.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(atlas.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTextureParameteri(atlas.id(), wrap, GL_CLAMP_TO_EDGE);
+    return atlas;
+}
+
+// Level 0 of `source` into cascade i's layer of `atlas`.
+void copyIntoLayer(GLuint source, GLuint atlas, int n, int i) {
+    glCopyImageSubData(source, GL_TEXTURE_3D, 0, 0, 0, 0, atlas, GL_TEXTURE_3D, 0, 0, 0, i * n, n, n, n);
 }
 
 VolumeFit fitOf(const SdfVolume& v) {
@@ -69,7 +84,7 @@ int64_t sceneVolumeBytes(const VolumeRequest& r, int cascades) {
     const int n = r.resolution;
     const int64_t perCascade = voxelGridBytes(n) + voxelRadianceBytes(n, r.anisotropic, r.bounces, r.cullUnlitOutsides, r.hitLights);
     return cascades * perCascade + (r.distanceField ? distanceFieldBuildBytes(n, cascades) : 0) +
-           (r.occupancy ? occupancyBytes(n, cascades) : 0) + radianceAtlasBytes(n, cascades);
+           (r.occupancy ? occupancyBytes(n, cascades) : 0) + atlasBytes(n, cascades, r.albedoAtlas);
 }
 
 CascadeLayout volumeLayout(const Aabb& bounds, const VolumeRequest& r) {
@@ -101,12 +116,9 @@ SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::M
         field_ = std::make_unique<DistanceField>(layout_.volume(count - 1, glm::ivec3(0)), scope_, count);
     if (request.occupancy) occupancy_ = std::make_unique<OccupancyHierarchy>(scope_, n, count);
     if (count > 1) {
-        radianceAtlas_ = gl::createTexture3D(scope_, GL_RGBA16F, n, n, n * count);
-        glTextureParameteri(radianceAtlas_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(radianceAtlas_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-            glTextureParameteri(radianceAtlas_.id(), wrap, GL_CLAMP_TO_EDGE);
-        sidesAtlas_ = gl::createTexture3D(scope_, GL_RGBA16F, n, n, n * count);  // read by texelFetch
+        radianceAtlas_ = createAtlas(scope_, GL_RGBA16F, n, count, true);
+        sidesAtlas_ = createAtlas(scope_, GL_RGBA16F, n, count, false);
+        if (request.albedoAtlas) albedoAtlas_ = createAtlas(scope_, GL_RGBA8, n, count, true);
     }
     // Two bounces: the sums and the bounce targets, no more.
     if (request.feedback)
@@ -158,6 +170,10 @@ void SceneVolume::revoxelize(Frame& frame, int i) {
         ++c.builds.voxelizations;
     }
     c.scrollBy = glm::ivec3(0);
+    if (albedoAtlas_.id()) {
+        glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        copyIntoLayer(c.voxelizer->grid().albedo.id(), albedoAtlas_.id(), n, i);
+    }
     if (occupancy_) {
         auto t = frame.step(prefix + "occupancy");
         occupancy_->build(c.voxelizer->grid(), i);
@@ -217,10 +233,8 @@ void SceneVolume::relight(Frame& frame, int i, const ConeSettings& bounceCones) 
     if (layout_.count > 1) {  // into this cascade's layer, where tracers read it
         const int n = layout_.resolution();
         glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        glCopyImageSubData(c.radiance->radiance().id(), GL_TEXTURE_3D, 0, 0, 0, 0, radianceAtlas_.id(), GL_TEXTURE_3D,
-                           0, 0, 0, i * n, n, n, n);
-        glCopyImageSubData(c.radiance->sides().id(), GL_TEXTURE_3D, 0, 0, 0, 0, sidesAtlas_.id(), GL_TEXTURE_3D, 0, 0,
-                           0, i * n, n, n, n);
+        copyIntoLayer(c.radiance->radiance().id(), radianceAtlas_.id(), n, i);
+        copyIntoLayer(c.radiance->sides().id(), sidesAtlas_.id(), n, i);
     }
 }
 
@@ -234,6 +248,11 @@ GLuint SceneVolume::radianceTexture() const {
 
 GLuint SceneVolume::sidesTexture() const {
     return layout_.count > 1 ? sidesAtlas_.id() : cascades_[0].radiance->sides().id();
+}
+
+GLuint SceneVolume::albedoTexture() const {
+    if (!request_.albedoAtlas) throw Error("scene volume: " + request_.method + " asked for no albedo atlas");
+    return layout_.count > 1 ? albedoAtlas_.id() : grid().albedo.id();
 }
 
 void SceneVolume::bind() const {

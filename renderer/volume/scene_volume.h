@@ -51,6 +51,9 @@ struct VolumeRequest {
     bool distanceField = false;
     JfaVariant jfa = JfaVariant::OnePlusJfa;
     bool occupancy = false;           // the occupancy hierarchy (HDDA traversal)
+    // The cascades' albedo in one texture, a layer each (albedoTexture()): a hit's albedo in any
+    // cascade by a coordinate (the probes' multi-bounce term).
+    bool albedoAtlas = false;
     bool scroll = false;              // a moved cascade voxelizes only the cells it gained
     // A second light that sums the bounce series over frames (vct.feedback: restartFeedback(),
     // addFeedbackBounce()); the tracers then read it, while the volume's own stays the injected light.
@@ -106,6 +109,7 @@ public:
     // stacked along z (like the field's layers), so a tracer switches cascade by a coordinate.
     GLuint radianceTexture() const;
     GLuint sidesTexture() const;     // its slab voxels' sides (VoxelRadiance::sides), laid out the same
+    GLuint albedoTexture() const;    // the voxels' albedo (a = occupancy), laid out the same; request.albedoAtlas
     const DistanceField& field() const;  // throws unless request.distanceField
     bool hasField() const { return field_ != nullptr; }
     const OccupancyHierarchy& occupancy() const;  // throws unless request.occupancy
@@ -158,6 +162,7 @@ private:
     std::unique_ptr<OccupancyHierarchy> occupancy_;
     gl::Texture radianceAtlas_;              // more than one cascade: their light, a layer each
     gl::Texture sidesAtlas_;                 // and their slab voxels' sides (VoxelRadiance::sides)
+    gl::Texture albedoAtlas_;                // request.albedoAtlas: and their voxels' albedo
     std::unique_ptr<VoxelRadiance> feedback_;  // request.feedback: the bounces summed so far
 };
 

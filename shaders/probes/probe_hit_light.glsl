@@ -14,11 +14,7 @@
 #endif
 
 layout(binding = TP_VOXEL_RADIANCE) uniform sampler3D s_voxelRadiance;  // premultiplied by occupancy (a); a layer per cascade
-// Albedo (a = occupancy) of each cascade, its own texture each.
-layout(binding = TP_VOXEL_ALBEDO0) uniform sampler3D s_voxelAlbedo0;
-layout(binding = TP_VOXEL_ALBEDO1) uniform sampler3D s_voxelAlbedo1;
-layout(binding = TP_VOXEL_ALBEDO2) uniform sampler3D s_voxelAlbedo2;
-layout(binding = TP_VOXEL_ALBEDO3) uniform sampler3D s_voxelAlbedo3;
+layout(binding = TP_VOXEL_ALBEDO) uniform sampler3D s_voxelAlbedo;  // albedo (a = occupancy); a layer per cascade
 layout(binding = TP_VOXEL_SIDES) uniform sampler3D s_voxelSides;  // slab voxels' sides, a layer per cascade like the radiance
 
 ProbeUpdateBlock u_update;
@@ -26,15 +22,6 @@ ProbeUpdateBlock u_update;
 // The voxels store occupancy-weighted values; trilinear lookups then blend in empty voxels, which
 // dividing by the blended occupancy undoes (the surface's own value, not half of it).
 vec3 unpremultiply(vec4 v) { return v.a > 1e-4 ? v.rgb / v.a : vec3(0.0); }
-
-vec3 voxelAlbedo(int cascade, vec3 uvw) {
-    switch (cascade) {
-    case 0: return unpremultiply(textureLod(s_voxelAlbedo0, uvw, 0.0));
-    case 1: return unpremultiply(textureLod(s_voxelAlbedo1, uvw, 0.0));
-    case 2: return unpremultiply(textureLod(s_voxelAlbedo2, uvw, 0.0));
-    default: return unpremultiply(textureLod(s_voxelAlbedo3, uvw, 0.0));
-    }
-}
 
 // The multi-bounce term: the probes' own irradiance at the hit times its albedo, on the side the
 // ray `dir` came from (a field's gradient at a wall thinner than a cell may point out of the room,
@@ -56,16 +43,6 @@ vec3 lightSeen(vec4 light, int cascade, ivec3 v, vec3 origin) {
     return unpremultiply(voxelLightSeen(light, sides, origin - centre));
 }
 
-// The hit voxel's own light and albedo (one voxel, no filtering: its neighbours may be empty).
-vec3 voxelAlbedoAt(int cascade, ivec3 v) {
-    switch (cascade) {
-    case 0: return unpremultiply(texelFetch(s_voxelAlbedo0, v, 0));
-    case 1: return unpremultiply(texelFetch(s_voxelAlbedo1, v, 0));
-    case 2: return unpremultiply(texelFetch(s_voxelAlbedo2, v, 0));
-    default: return unpremultiply(texelFetch(s_voxelAlbedo3, v, 0));
-    }
-}
-
 // Radiance along -dir at the first hit from origin (rgb) and its distance (a; a miss: the sky at
 // u_update.missDistance, averaged over `missSteradians` around dir: a probe ray stands for 4 pi / n
 // of the sphere, and a point-sampled sun far smaller than that is hit by almost no probe's rays and
@@ -75,9 +52,10 @@ vec4 fieldRayRadiance(vec3 origin, vec3 dir, float missSteradians) {
     HddaCascades cs = HddaCascades(u_cascades, u_cascadeCount, u_sdfResolution);
     HddaHit h = hddaTraceCascades(cs, origin, dir, 0.0, u_update.missDistance, 4096);
     if (!h.hit) return vec4(environmentMissCone(dir, missSteradians), u_update.missDistance);
-    vec3 radiance = lightSeen(texelFetch(s_voxelRadiance, h.voxel + ivec3(0, 0, h.cascade * u_sdfResolution), 0),
-                              h.cascade, h.voxel, origin);
-    radiance += bounceLight(h.position, h.normal, dir, voxelAlbedoAt(h.cascade, h.voxel));
+    // The hit voxel's own light and albedo (one voxel, no filtering: its neighbours may be empty).
+    ivec3 texel = h.voxel + ivec3(0, 0, h.cascade * u_sdfResolution);
+    vec3 radiance = lightSeen(texelFetch(s_voxelRadiance, texel, 0), h.cascade, h.voxel, origin);
+    radiance += bounceLight(h.position, h.normal, dir, unpremultiply(texelFetch(s_voxelAlbedo, texel, 0)));
     return vec4(finiteOrZero(radiance), max(h.t, 0.0));
 }
 #else
@@ -90,7 +68,8 @@ vec4 fieldRayRadiance(vec3 origin, vec3 dir, float missSteradians) {
     if (!h.hit) return vec4(environmentMissCone(dir, missSteradians), u_update.missDistance);
     SdfVolume vol = sdfCascadeVolume(cs, h.cascade);
     vec3 radiance = sdfHitLight(s_voxelRadiance, s_voxelSides, cs, h, dir);
-    radiance += bounceLight(h.position, h.normal, dir, voxelAlbedo(h.cascade, (h.position - vol.origin) / vol.size));
+    vec3 albedoCoord = sdfLayerCoord(vol, h.cascade, sdfLayers(s_voxelAlbedo, vol), h.position);
+    radiance += bounceLight(h.position, h.normal, dir, unpremultiply(textureLod(s_voxelAlbedo, albedoCoord, 0.0)));
     return vec4(finiteOrZero(radiance), max(h.t, 0.0));
 }
 #endif

@@ -29,6 +29,7 @@ VolumeRequest volumeRequest(const HddagiSettings& s) {
     r.resolution = s.resolution;
     r.resolutionKey = "hddagi.resolution";
     r.occupancy = true;
+    r.albedoAtlas = true;  // the probes' rays light their hits' multi-bounce by it
     r.scroll = true;
     r.cascades = s.cascades;
     r.cascadeExtent = s.cascadeExtent;

@@ -30,6 +30,7 @@ VolumeRequest volumeRequest(const ProbeSettings& s) {
     r.resolution = s.sdfResolution;
     r.resolutionKey = "probes.sdf-resolution";
     r.distanceField = true;
+    r.albedoAtlas = true;  // the probes' rays light their hits' multi-bounce by it
     r.cascades = s.cascades;
     r.cascadeExtent = s.cascadeExtent;
     return r;

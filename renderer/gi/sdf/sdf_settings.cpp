@@ -15,6 +15,7 @@ VolumeRequest sdfVolumeRequest(const SdfGiSettings& s) {
     r.bounces = s.bounces;
     r.distanceField = true;
     r.jfa = s.jfaVariant();
+    r.albedoAtlas = s.probeGather();  // the probes' rays light their hits' multi-bounce by it
     r.cascades = s.cascades;
     r.cascadeExtent = s.cascadeExtent;
     return r;

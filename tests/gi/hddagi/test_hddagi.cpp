@@ -127,6 +127,16 @@ struct CascadeVoxels {
     std::vector<bool> regions;
 };
 
+// Cascade i's layer of the volume's albedo atlas (SceneVolume::albedoTexture), as RGBA8 bytes.
+std::vector<uint8_t> readAlbedoLayer(const SceneVolume& v, int i) {
+    const int n = v.layout().resolution();
+    std::vector<uint8_t> out(size_t(n) * n * n * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureSubImage(v.albedoTexture(), 0, 0, 0, i * n, n, n, n, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(out.size()),
+                         out.data());
+    return out;
+}
+
 CascadeVoxels readCascade(const SceneVolume& v, int i) {
     return {readVoxelsRgba8(v.grid(i).albedo), readVoxelsRgba8(v.grid(i).normal), readVoxelsRgba16f(v.grid(i).emission),
             v.occupancy().readBlocks(i), v.occupancy().readRegions(i)};
@@ -177,6 +187,10 @@ TEST(Hddagi, AScrolledCascadeEqualsAFreshBuildAndAStaticFrameVoxelizesNothing) {
     ASSERT_EQ(freshVolume.offset(0), volume.offset(0));
     const CascadeVoxels built = readCascade(freshVolume, 0);
     EXPECT_TRUE(scrolled.albedo == built.albedo);
+    // The probes' rays read every cascade's albedo from one atlas: each layer holds its cascade's
+    // voxels, the scrolled one's included.
+    for (int i = 0; i < volume.cascadeCount(); ++i)
+        EXPECT_TRUE(readAlbedoLayer(volume, i) == readVoxelsRgba8(volume.grid(i).albedo)) << "cascade " << i;
     EXPECT_TRUE(scrolled.normal == built.normal);
     EXPECT_TRUE(scrolled.emission == built.emission);
     EXPECT_TRUE(scrolled.blocks == built.blocks);
