@@ -144,6 +144,9 @@ public:
     // Passes that count the rays they trace: the count over every frame the pass worked in (the
     // frames PassTiming::totalMs covers), so rays / totalMs is its throughput. nullopt: not counted.
     virtual std::optional<RayCounts> raysTraced() const { return std::nullopt; }
+    // A pass that bakes its light into a texture atlas (the lightmap): the atlas's texels, for the
+    // bench's columns beside the bake's time and memory. nullopt: no atlas.
+    virtual std::optional<int64_t> atlasTexels() const { return std::nullopt; }
     gl::GpuTimer timer;
     StepTimers steps;
 };

@@ -119,6 +119,8 @@ void measure(Renderer& renderer, const GiMethod& method, const ImageF& reference
     }
     if (row.cut.frames == 1) row.cut.frameMs = row.ms;  // no frame after the first: the steady one is its frame
     row.bytes = renderer.memory().total();
+    for (const auto& pass : renderer.passes())
+        if (const std::optional<int64_t> texels = pass->atlasTexels()) row.atlasTexels = *texels;
 }
 
 // After the steady frames: the first punctual light's intensity halved (as a light edit in the

@@ -77,6 +77,9 @@ const std::vector<CsvColumn>& csvColumns() {
         {"edit_settled_frames", false, edited([](std::ostream& f, const BenchRow::Convergence& c) { f << c.settledFrames; })},
         {"edit_settled_gpu_ms", true, edited([](std::ostream& f, const BenchRow::Convergence& c) { f << c.settledGpuMs; })},
         {"gpu_bytes", false, [](std::ostream& f, const BenchRow& r) { f << r.bytes; }},
+        {"atlas_texels", false, [](std::ostream& f, const BenchRow& r) {
+             if (r.atlasTexels >= 0) f << r.atlasTexels;
+         }},
         {"rmse", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.rmse; })},
         {"relmse", false, scored([](std::ostream& f, const BenchRow& r) { f << r.error.relMse; })},
         {"psnr_linear", false, scored([](std::ostream& f, const BenchRow& r) { f << formatMetric(r.error.psnrLinear); })},
@@ -201,6 +204,7 @@ nlohmann::ordered_json rowToJson(const BenchRow& r) {
     if (r.aoRmse >= 0.0) e["ao_rmse_vs_raytraced"] = r.aoRmse;
     if (r.leak >= 0.0) e["leak"] = r.leak;
     if (r.megaRaysPerSecond >= 0.0) e["mrays_per_s"] = r.megaRaysPerSecond;
+    if (r.atlasTexels >= 0) e["atlas_texels"] = r.atlasTexels;
     if (r.cut.frames > 0) e["converge"] = convergenceToJson(r.cut);
     if (r.edit) e["light_edit"] = convergenceToJson(*r.edit);
     if (!r.quality.empty()) e["quality"] = qualityToJson(r.quality);
@@ -233,6 +237,7 @@ BenchRow rowFromJson(const nlohmann::ordered_json& j) {
     if (j.contains("ao_rmse_vs_raytraced")) r.aoRmse = j.at("ao_rmse_vs_raytraced").get<double>();
     if (j.contains("leak")) r.leak = j.at("leak").get<double>();
     if (j.contains("mrays_per_s")) r.megaRaysPerSecond = j.at("mrays_per_s").get<double>();
+    if (j.contains("atlas_texels")) r.atlasTexels = j.at("atlas_texels").get<int64_t>();
     return r;
 }
 

@@ -58,6 +58,7 @@ struct BenchRow {
     double aoRmse = -1.0;                     // SSAO only: its AO term against ray-traced AO
     double leak = -1.0;                       // scenes with leak cameras (Scene::leakCameras); -1: none
     double megaRaysPerSecond = -1.0;          // passes that count their rays (the path tracer); -1: none
+    int64_t atlasTexels = -1;                 // a method that bakes into an atlas (Pass::atlasTexels); -1: none
     // A fly-through (bench --flythrough): ms and wallMs are its medians, passMs and steps too.
     std::optional<FlythroughStats> flythrough;
 };

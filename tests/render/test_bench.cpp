@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <sstream>
 
 #include "bench/bench_plan.h"
 #include "cli_util.h"
@@ -109,6 +110,40 @@ TEST(Bench, CellsMeasureTheBakeNotItsDiskCache) {
     EXPECT_EQ(getParam(jobSettings(job, RenderSettings{}), "lightmap.cache").number, 0.0);
     job.method = "vct";  // a method without a disk cache keeps its settings
     EXPECT_NO_THROW(jobSettings(job, RenderSettings{}));
+}
+
+// A baked method's cell reports its atlas beside the bake's time (its convergence) and memory:
+// atlas_texels in JSON and CSV, absent for a method without one.
+TEST(Bench, ALightmapCellReportsItsAtlasTexels) {
+    const std::string dir = tempDir("bench_lightmap");
+    CliResult r = runCli("bench --scenes builtin:cornell --size 16x16 --frames 2 --warmup 1 --reference-spp 4 "
+                         "--presets low --methods none,lightmap --out-dir " + dir);
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::ifstream jf(dir + "/bench.json");
+    const nlohmann::json j = nlohmann::json::parse(jf);
+    ASSERT_EQ(j["results"].size(), 2u);
+    for (const auto& row : j["results"]) {
+        if (row["method"] == "none") {
+            EXPECT_FALSE(row.contains("atlas_texels")) << row.dump();
+            continue;
+        }
+        const int64_t texels = row.value("atlas_texels", int64_t(0));
+        EXPECT_GT(texels, 0) << row.dump();
+        EXPECT_GT(row["converge"]["frames"].get<int>(), 1) << "the bake's frames: " << row.dump();
+    }
+    std::ifstream cf(dir + "/bench.csv");
+    std::vector<std::vector<std::string>> lines;
+    for (std::string line; std::getline(cf, line);) {  // no field of bench.csv holds a comma
+        std::istringstream fields(line + ",");
+        lines.emplace_back();
+        for (std::string field; std::getline(fields, field, ',');) lines.back().push_back(field);
+    }
+    ASSERT_EQ(lines.size(), 3u);  // the header, none, lightmap
+    const auto column = std::find(lines[0].begin(), lines[0].end(), "atlas_texels");
+    ASSERT_NE(column, lines[0].end());
+    const size_t c = size_t(column - lines[0].begin());
+    EXPECT_EQ(lines[1].at(c), "");
+    EXPECT_EQ(lines[2].at(c), std::to_string(j["results"][1]["atlas_texels"].get<int64_t>()));
 }
 
 // --emitters lights,gi: each cell once per mode, against one reference, the mode in its row.

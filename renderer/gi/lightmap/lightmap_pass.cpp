@@ -281,6 +281,12 @@ void LightmapPass::writeCache() {
     }
 }
 
+std::optional<int64_t> LightmapPass::atlasTexels() const {
+    if (bake_->empty()) return int64_t(0);
+    const LightmapMesh& m = bake_->mesh();
+    return int64_t(m.layers) * m.side * m.side;
+}
+
 std::vector<std::string> LightmapPass::stats() const {
     if (bake_->empty()) return {"lightmap: no surfaces to bake"};
     const LightmapMesh& m = bake_->mesh();

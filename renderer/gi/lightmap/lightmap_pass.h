@@ -29,6 +29,7 @@ public:
     Progress progress() const override { return {done_, params_.samples, "spp"}; }
     std::vector<std::string> stats() const override;
     std::optional<RayCounts> raysTraced() const override;
+    std::optional<int64_t> atlasTexels() const override;
     std::vector<DebugViewDesc> debugViews() const override;
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
 
