@@ -293,25 +293,76 @@ private:
         if (warned_.insert(line).second) scene_.warnings.push_back(line);
     }
 
+    struct GlbChunks {
+        const char* json = nullptr;
+        size_t jsonLen = 0;
+        const uint8_t* bin = nullptr;
+        uint64_t binLen = 0;
+        bool haveBin = false;
+    };
+    GlbChunks readGlbChunks(const uint8_t* data, size_t size);
+    std::vector<uint8_t> canonicalGlb(const GlbChunks& chunks);
+    void parseModel(bool binary, const std::vector<uint8_t>& glb, const char* json, size_t jsonLen,
+                    const std::string& baseDir);
+
     void prevalidate(const char* json, size_t len, bool binary);
+    nlohmann::json parseJsonObject(const char* json, size_t len);
+    const nlohmann::json* jsonArray(const nlohmann::json& doc, const char* key);
+    void requireKeys(const nlohmann::json& obj, const std::string& what, std::initializer_list<const char*> keys);
+    void checkAsset(const nlohmann::json& doc);
+    void checkBufferUris(const nlohmann::json& buffers, bool binary);
     void checkBufferUri(const std::string& what, const std::string& uri, const nlohmann::json& buffer);
+    void checkRequiredProperties(const nlohmann::json& doc, const nlohmann::json* buffers,
+                                 const nlohmann::json* views, const nlohmann::json* images);
+    void checkSkinJoints(const nlohmann::json& skins);
+    void checkBinChunkBuffers(const nlohmann::json& buffers);
+    void checkByteStrides(const nlohmann::json& views);
+    void noteBadCameras(const nlohmann::json& cameras);
+    void checkLights(const nlohmann::json& doc);
+    void checkImageBufferViews(const nlohmann::json& images, const nlohmann::json* views,
+                               const nlohmann::json* buffers);
+
     void checkExtensions();
     void checkCameraDepthRange();
     void buildNodes();
+    std::vector<int> nodeParents();
+    std::vector<int> sceneRoots(const std::vector<int>& parent);
+    glm::mat4 nodeLocalTransform(const tinygltf::Node& node, const std::string& where);
     void convertMaterials();
+    glm::vec3 emittedRadiance(const tinygltf::Material& src, const std::string& where);
     int textureImage(int textureIndex, int texCoord, const tinygltf::ExtensionMap& ext,
                      const std::string& where, bool srgb);
     int decodeImage(int imageIndex);
     int primitiveFor(int mesh, int prim);
     Primitive convertPrimitive(int mesh, int prim, const std::string& where);
+    void readPositions(const tinygltf::Primitive& src, const std::string& where, Primitive& p);
+    void readVertexAttributes(const tinygltf::Primitive& src, const std::string& where, Primitive& p);
+    std::vector<uint32_t> triangleList(const tinygltf::Primitive& src, int mode, const std::string& where,
+                                       size_t nv);
     void addNodeContent(int node, const glm::mat4& world);
+    Camera nodeCamera(int cameraIndex, const std::string& where, const glm::mat4& world);
+    Light nodeLight(const tinygltf::Value& ext, const std::string& where, const glm::mat4& world);
 
     struct AccessorData {
         std::vector<glm::vec4> values;  // for attributes
         std::vector<uint32_t> indices;  // for index accessors
     };
+    struct AccessorSource {
+        const uint8_t* first = nullptr;  // nullptr: no bufferView, the elements are zeros
+        uint64_t stride = 0;
+    };
+    struct SparseSource {
+        const uint8_t* indices = nullptr;
+        const uint8_t* values = nullptr;
+        int indexType = 0, indexSize = 0;
+        int count = 0;
+    };
     const tinygltf::BufferView& checkedBufferView(int bv, const std::string& what,
                                                   const uint8_t** base);
+    AccessorSource accessorSource(const tinygltf::Accessor& acc, const std::string& name, uint64_t count,
+                                  uint64_t elemSize);
+    SparseSource sparseSource(const tinygltf::Accessor& acc, const std::string& name, uint64_t count,
+                              uint64_t elemSize);
     void readAccessor(int index, const std::string& what, bool asIndices, AccessorData& out);
     std::vector<uint8_t> bufferViewBytes(int bv, const std::string& what);
 
@@ -387,7 +438,8 @@ void Loader::checkBufferUri(const std::string& what, const std::string& uri, con
     if (!S_ISREG(info.st_mode)) fail(what + ".uri '" + shortUri(uri) + "' is not a regular file");
 }
 
-void Loader::prevalidate(const char* json, size_t len, bool binary) {
+// The document, its nesting bounded before it is parsed; refused unless its root is an object.
+nlohmann::json Loader::parseJsonObject(const char* json, size_t len) {
     // tinygltf recurses on extras/extensions: bound the nesting before anything parses it.
     if (jsonNestingDepth(json, len, kMaxJsonDepth) > kMaxJsonDepth)
         fail("JSON is nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
@@ -402,46 +454,52 @@ void Loader::prevalidate(const char* json, size_t len, bool binary) {
         fail("invalid JSON: " + what);
     }
     if (!doc.is_object()) fail("invalid glTF: the JSON root is not an object");
+    return doc;
+}
 
-    auto arrayOf = [&](const char* key) -> const nlohmann::json* {
-        auto it = doc.find(key);
-        if (it == doc.end()) return nullptr;
-        if (!it->is_array()) fail(std::string("invalid glTF: '") + key + "' is not an array");
-        return &*it;
-    };
-    const nlohmann::json* buffers = arrayOf("buffers");
-    const nlohmann::json* views = arrayOf("bufferViews");
-    const nlohmann::json* images = arrayOf("images");
+// doc[key], nullptr when absent; refused when it is not an array.
+const nlohmann::json* Loader::jsonArray(const nlohmann::json& doc, const char* key) {
+    auto it = doc.find(key);
+    if (it == doc.end()) return nullptr;
+    if (!it->is_array()) fail(std::string("invalid glTF: '") + key + "' is not an array");
+    return &*it;
+}
 
-    // What tinygltf reports badly: "JSON string too short." for {}, "File not found :" with no
-    // name for a buffer without uri, "File not found" for data: URIs it cannot decode and for
-    // http:// URIs, "Failed to decode 'uri'" plus the whole URI for a byteLength mismatch, and
-    // nothing at all for a skin without joints. Each gets a message naming the element here.
-    {
-        auto asset = doc.find("asset");
-        if (asset == doc.end() || !asset->is_object())
-            fail("asset: missing or not an object (a glTF needs \"asset\": {\"version\": \"2.0\"})");
-        auto version = asset->find("version");
-        if (version == asset->end() || !version->is_string())
-            fail("asset.version: missing or not a string (a glTF needs \"asset\": {\"version\": \"2.0\"})");
-    }
-    if (buffers) {
-        for (size_t i = 0; i < buffers->size(); ++i) {
-            const auto& b = (*buffers)[i];
-            if (!b.is_object()) continue;  // tinygltf names the type error
-            const std::string what = "buffers[" + str(i) + "]";
-            auto u = b.find("uri");
-            if (u == b.end()) {
-                if (!binary) fail(what + ": no uri (only a .glb's buffer may omit it, for the BIN chunk)");
-                continue;
-            }
-            if (!u->is_string()) continue;
-            checkBufferUri(what, u->get_ref<const std::string&>(), b);
+void Loader::requireKeys(const nlohmann::json& obj, const std::string& what,
+                         std::initializer_list<const char*> keys) {
+    for (const char* k : keys)
+        if (obj.find(k) == obj.end()) fail(what + ": '" + k + "' is missing (required)");
+}
+
+void Loader::checkAsset(const nlohmann::json& doc) {
+    auto asset = doc.find("asset");
+    if (asset == doc.end() || !asset->is_object())
+        fail("asset: missing or not an object (a glTF needs \"asset\": {\"version\": \"2.0\"})");
+    auto version = asset->find("version");
+    if (version == asset->end() || !version->is_string())
+        fail("asset.version: missing or not a string (a glTF needs \"asset\": {\"version\": \"2.0\"})");
+}
+
+void Loader::checkBufferUris(const nlohmann::json& buffers, bool binary) {
+    for (size_t i = 0; i < buffers.size(); ++i) {
+        const auto& b = buffers[i];
+        if (!b.is_object()) continue;  // tinygltf names the type error
+        const std::string what = "buffers[" + str(i) + "]";
+        auto u = b.find("uri");
+        if (u == b.end()) {
+            if (!binary) fail(what + ": no uri (only a .glb's buffer may omit it, for the BIN chunk)");
+            continue;
         }
+        if (!u->is_string()) continue;
+        checkBufferUri(what, u->get_ref<const std::string&>(), b);
     }
-    // Required properties and element types tinygltf checks without saying which element failed
-    // ("'componentType' property is missing in Accessor.", "`materials' does not contain an JSON
-    // object."): the same checks, naming the element.
+}
+
+// Required properties and element types tinygltf checks without saying which element failed
+// ("'componentType' property is missing in Accessor.", "`materials' does not contain an JSON
+// object."): the same checks, naming the element.
+void Loader::checkRequiredProperties(const nlohmann::json& doc, const nlohmann::json* buffers,
+                                     const nlohmann::json* views, const nlohmann::json* images) {
     for (const char* key : {"accessors", "animations", "buffers", "bufferViews", "cameras", "images", "materials",
                             "meshes", "nodes", "samplers", "scenes", "skins", "textures"}) {
         auto it = doc.find(key);
@@ -450,14 +508,10 @@ void Loader::prevalidate(const char* json, size_t len, bool binary) {
             if (!(*list)[i].is_object())
                 fail(std::string(key) + "[" + str(i) + "] is " + oneLine((*list)[i].dump(), 30) + ", not an object");
     }
-    auto require = [&](const nlohmann::json& obj, const std::string& what, std::initializer_list<const char*> keys) {
-        for (const char* k : keys)
-            if (obj.find(k) == obj.end()) fail(what + ": '" + k + "' is missing (required)");
-    };
     auto eachOf = [&](const char* key, std::initializer_list<const char*> keys) {
         auto it = doc.find(key);
         if (it != doc.end() && it->is_array())
-            for (size_t i = 0; i < it->size(); ++i) require((*it)[i], std::string(key) + "[" + str(i) + "]", keys);
+            for (size_t i = 0; i < it->size(); ++i) requireKeys((*it)[i], std::string(key) + "[" + str(i) + "]", keys);
     };
     eachOf("accessors", {"componentType", "count", "type"});
     eachOf("bufferViews", {"buffer", "byteLength"});
@@ -476,203 +530,227 @@ void Loader::prevalidate(const char* json, size_t len, bool binary) {
             if (!bl->is_number_unsigned() || bl->get<uint64_t>() == 0)
                 fail("buffers[" + str(i) + "].byteLength is " + oneLine(bl->dump(), 30) + "; it must be a positive integer");
         }
-    if (const nlohmann::json* anims = arrayOf("animations"))
+    if (const nlohmann::json* anims = jsonArray(doc, "animations"))
         for (size_t a = 0; a < anims->size(); ++a)
             for (const char* part : {"channels", "samplers"}) {
                 auto list = (*anims)[a].find(part);
                 if (list == (*anims)[a].end() || !list->is_array()) continue;
                 for (size_t i = 0; i < list->size(); ++i)
-                    require((*list)[i], "animations[" + str(a) + "]." + part + "[" + str(i) + "]",
-                            part[0] == 'c' ? std::initializer_list<const char*>{"sampler", "target"}
-                                           : std::initializer_list<const char*>{"input", "output"});
+                    requireKeys((*list)[i], "animations[" + str(a) + "]." + part + "[" + str(i) + "]",
+                                part[0] == 'c' ? std::initializer_list<const char*>{"sampler", "target"}
+                                               : std::initializer_list<const char*>{"input", "output"});
             }
     if (images)
         for (size_t i = 0; i < images->size(); ++i)
             if ((*images)[i].find("uri") == (*images)[i].end() && (*images)[i].find("bufferView") == (*images)[i].end())
                 fail("images[" + str(i) + "]: neither 'uri' nor 'bufferView' is given (one is required)");
+}
 
-    if (const nlohmann::json* skins = arrayOf("skins")) {
-        for (size_t i = 0; i < skins->size(); ++i) {
-            const auto& sk = (*skins)[i];
-            if (!sk.is_object()) continue;
-            auto j = sk.find("joints");
-            if (j == sk.end()) fail("skins[" + str(i) + "]: 'joints' is missing (required)");
-            if (!j->is_array()) fail("skins[" + str(i) + "].joints is not an array of node indices");
-            for (const auto& n : *j)
-                if (!n.is_number_unsigned())
-                    fail("skins[" + str(i) + "].joints holds " + oneLine(n.dump(), 30) + ", not a node index");
-        }
+void Loader::checkSkinJoints(const nlohmann::json& skins) {
+    for (size_t i = 0; i < skins.size(); ++i) {
+        const auto& sk = skins[i];
+        if (!sk.is_object()) continue;
+        auto j = sk.find("joints");
+        if (j == sk.end()) fail("skins[" + str(i) + "]: 'joints' is missing (required)");
+        if (!j->is_array()) fail("skins[" + str(i) + "].joints is not an array of node indices");
+        for (const auto& n : *j)
+            if (!n.is_number_unsigned())
+                fail("skins[" + str(i) + "].joints holds " + oneLine(n.dump(), 30) + ", not a node index");
     }
+}
 
-    if (binary && buffers) {
-        size_t noUri = 0;
-        for (const auto& b : *buffers)
-            if (b.is_object() && b.find("uri") == b.end()) ++noUri;
-        if (noUri > 1)
-            fail("binary glTF has " + str(noUri) +
-                 " buffers without a uri; only one may refer to the BIN chunk");
+// Every buffer without a uri would get its own copy of the whole BIN chunk.
+void Loader::checkBinChunkBuffers(const nlohmann::json& buffers) {
+    size_t noUri = 0;
+    for (const auto& b : buffers)
+        if (b.is_object() && b.find("uri") == b.end()) ++noUri;
+    if (noUri > 1)
+        fail("binary glTF has " + str(noUri) +
+             " buffers without a uri; only one may refer to the BIN chunk");
+}
+
+void Loader::checkByteStrides(const nlohmann::json& views) {
+    for (size_t i = 0; i < views.size(); ++i) {
+        const auto& view = views[i];
+        auto it = view.is_object() ? view.find("byteStride") : view.end();
+        if (!view.is_object() || it == view.end()) continue;
+        const std::string what = "bufferViews[" + str(i) + "].byteStride";
+        if (!it->is_number_unsigned() || it->get<uint64_t>() > 252 ||
+            it->get<uint64_t>() % 4 != 0)
+            fail(what + " is " + oneLine(it->dump(), 40) +
+                 "; it must be a multiple of 4 from 4 to 252 (spec)");
+        if (it->get<uint64_t>() == 0)
+            warn(what + " is 0, below the spec's minimum 4 (read as tightly packed)");
     }
+}
+
+bool positiveIfPresent(const nlohmann::json& obj, const char* key) {
+    if (!obj.is_object()) return true;
+    auto it = obj.find(key);
+    return it == obj.end() || (it->is_number() && it->get<double>() > 0.0);
+}
+
+// Noted, not refused: a camera no node uses does not stop the load.
+void Loader::noteBadCameras(const nlohmann::json& cameras) {
+    for (size_t i = 0; i < cameras.size(); ++i) {
+        const auto& cam = cameras[i];
+        if (!cam.is_object()) continue;
+        auto p = cam.find("perspective");
+        if (p != cam.end() && !positiveIfPresent(*p, "aspectRatio"))
+            badCameras_[int(i)] = "cameras[" + str(i) + "].perspective.aspectRatio is " +
+                                  oneLine((*p)["aspectRatio"].dump(), 40) +
+                                  "; it must be > 0 when given (spec)";
+    }
+}
+
+// KHR_lights_punctual's required properties; a bad range is noted, refused only when a node
+// uses the light.
+void Loader::checkLights(const nlohmann::json& doc) {
+    auto ext = doc.find("extensions");
+    if (ext == doc.end() || !ext->is_object()) return;
+    auto lp = ext->find("KHR_lights_punctual");
+    if (lp == ext->end() || !lp->is_object()) return;
+    auto lights = lp->find("lights");
+    if (lights == lp->end() || !lights->is_array()) return;
+    for (size_t i = 0; i < lights->size(); ++i) {
+        const std::string lw = "KHR_lights_punctual.lights[" + str(i) + "]";
+        if (!(*lights)[i].is_object()) fail(lw + " is not an object");
+        requireKeys((*lights)[i], lw, {"type"});
+        if ((*lights)[i]["type"] == "spot") requireKeys((*lights)[i], lw, {"spot"});
+        if (!positiveIfPresent((*lights)[i], "range"))
+            badLights_[int(i)] = "KHR_lights_punctual.lights[" + str(i) + "].range is " +
+                                 oneLine((*lights)[i]["range"].dump(), 40) +
+                                 "; it must be > 0 when given (absent = infinite)";
+    }
+}
+
+// tinygltf hands &buffer.data[view.byteOffset] for images in bufferViews to the image
+// callback without a bounds check: verify the chain first.
+void Loader::checkImageBufferViews(const nlohmann::json& images, const nlohmann::json* views,
+                                   const nlohmann::json* buffers) {
+    for (size_t i = 0; i < images.size(); ++i) {
+        const auto& img = images[i];
+        if (!img.is_object()) continue;  // tinygltf rejects it
+        auto bvIt = img.find("bufferView");
+        if (bvIt == img.end()) continue;
+        const std::string what = "image " + str(i);
+        if (!bvIt->is_number_unsigned() || !views || bvIt->get<uint64_t>() >= views->size())
+            fail(what + ": bufferView does not exist");
+        const auto& view = (*views)[bvIt->get<size_t>()];
+        uint64_t buffer = 0, offset = 0, length = 0, bufLen = 0;
+        if (!view.is_object() || !asUnsigned(view, "buffer", buffer, true) ||
+            !asUnsigned(view, "byteOffset", offset, false) ||
+            !asUnsigned(view, "byteLength", length, true))
+            fail(what + ": bufferView " + str(bvIt->get<uint64_t>()) + " is malformed");
+        if (!buffers || buffer >= buffers->size() || !(*buffers)[buffer].is_object() ||
+            !asUnsigned((*buffers)[buffer], "byteLength", bufLen, true))
+            fail(what + ": bufferView " + str(bvIt->get<uint64_t>()) +
+                 " refers to a missing or malformed buffer");
+        if (offset > bufLen || length > bufLen - offset)
+            fail(what + ": bufferView " + str(bvIt->get<uint64_t>()) +
+                 " lies outside buffer " + str(buffer) + " (needs " + str(offset) + "+" +
+                 str(length) + " bytes, has " + str(bufLen) + ")");
+    }
+}
+
+void Loader::prevalidate(const char* json, size_t len, bool binary) {
+    const nlohmann::json doc = parseJsonObject(json, len);
+    const nlohmann::json* buffers = jsonArray(doc, "buffers");
+    const nlohmann::json* views = jsonArray(doc, "bufferViews");
+    const nlohmann::json* images = jsonArray(doc, "images");
+
+    // What tinygltf reports badly: "JSON string too short." for {}, "File not found :" with no
+    // name for a buffer without uri, "File not found" for data: URIs it cannot decode and for
+    // http:// URIs, "Failed to decode 'uri'" plus the whole URI for a byteLength mismatch, and
+    // nothing at all for a skin without joints. Each gets a message naming the element here.
+    checkAsset(doc);
+    if (buffers) checkBufferUris(*buffers, binary);
+    checkRequiredProperties(doc, buffers, views, images);
+    if (const nlohmann::json* skins = jsonArray(doc, "skins")) checkSkinJoints(*skins);
+    if (binary && buffers) checkBinChunkBuffers(*buffers);
 
     // Values tinygltf reads as "absent" although the spec forbids them: without a look at the
     // JSON a byteStride of -12 becomes tightly packed data, and a range or aspectRatio of 0 the
     // same as none given (infinite range, the viewport's aspect).
-    if (views) {
-        for (size_t i = 0; i < views->size(); ++i) {
-            const auto& view = (*views)[i];
-            auto it = view.is_object() ? view.find("byteStride") : view.end();
-            if (!view.is_object() || it == view.end()) continue;
-            const std::string what = "bufferViews[" + str(i) + "].byteStride";
-            if (!it->is_number_unsigned() || it->get<uint64_t>() > 252 ||
-                it->get<uint64_t>() % 4 != 0)
-                fail(what + " is " + oneLine(it->dump(), 40) +
-                     "; it must be a multiple of 4 from 4 to 252 (spec)");
-            if (it->get<uint64_t>() == 0)
-                warn(what + " is 0, below the spec's minimum 4 (read as tightly packed)");
-        }
-    }
-    auto positiveIfPresent = [](const nlohmann::json& obj, const char* key) {
-        if (!obj.is_object()) return true;
-        auto it = obj.find(key);
-        return it == obj.end() || (it->is_number() && it->get<double>() > 0.0);
-    };
-    if (const nlohmann::json* cameras = arrayOf("cameras")) {
-        for (size_t i = 0; i < cameras->size(); ++i) {
-            const auto& cam = (*cameras)[i];
-            if (!cam.is_object()) continue;
-            auto p = cam.find("perspective");
-            if (p != cam.end() && !positiveIfPresent(*p, "aspectRatio"))
-                badCameras_[int(i)] = "cameras[" + str(i) + "].perspective.aspectRatio is " +
-                                      oneLine((*p)["aspectRatio"].dump(), 40) +
-                                      "; it must be > 0 when given (spec)";
-        }
-    }
-    auto ext = doc.find("extensions");
-    if (ext != doc.end() && ext->is_object()) {
-        auto lp = ext->find("KHR_lights_punctual");
-        if (lp != ext->end() && lp->is_object()) {
-            auto lights = lp->find("lights");
-            if (lights != lp->end() && lights->is_array()) {
-                for (size_t i = 0; i < lights->size(); ++i) {
-                    const std::string lw = "KHR_lights_punctual.lights[" + str(i) + "]";
-                    if (!(*lights)[i].is_object()) fail(lw + " is not an object");
-                    require((*lights)[i], lw, {"type"});
-                    if ((*lights)[i]["type"] == "spot") require((*lights)[i], lw, {"spot"});
-                    if (!positiveIfPresent((*lights)[i], "range"))
-                        badLights_[int(i)] = "KHR_lights_punctual.lights[" + str(i) + "].range is " +
-                                             oneLine((*lights)[i]["range"].dump(), 40) +
-                                             "; it must be > 0 when given (absent = infinite)";
-                }
-            }
-        }
-    }
+    if (views) checkByteStrides(*views);
+    if (const nlohmann::json* cameras = jsonArray(doc, "cameras")) noteBadCameras(*cameras);
+    checkLights(doc);
 
-    // tinygltf hands &buffer.data[view.byteOffset] for images in bufferViews to the image
-    // callback without a bounds check: verify the chain first.
-    if (images) {
-        for (size_t i = 0; i < images->size(); ++i) {
-            const auto& img = (*images)[i];
-            if (!img.is_object()) continue;  // tinygltf rejects it
-            auto bvIt = img.find("bufferView");
-            if (bvIt == img.end()) continue;
-            const std::string what = "image " + str(i);
-            if (!bvIt->is_number_unsigned() || !views || bvIt->get<uint64_t>() >= views->size())
-                fail(what + ": bufferView does not exist");
-            const auto& view = (*views)[bvIt->get<size_t>()];
-            uint64_t buffer = 0, offset = 0, length = 0, bufLen = 0;
-            if (!view.is_object() || !asUnsigned(view, "buffer", buffer, true) ||
-                !asUnsigned(view, "byteOffset", offset, false) ||
-                !asUnsigned(view, "byteLength", length, true))
-                fail(what + ": bufferView " + str(bvIt->get<uint64_t>()) + " is malformed");
-            if (!buffers || buffer >= buffers->size() || !(*buffers)[buffer].is_object() ||
-                !asUnsigned((*buffers)[buffer], "byteLength", bufLen, true))
-                fail(what + ": bufferView " + str(bvIt->get<uint64_t>()) +
-                     " refers to a missing or malformed buffer");
-            if (offset > bufLen || length > bufLen - offset)
-                fail(what + ": bufferView " + str(bvIt->get<uint64_t>()) +
-                     " lies outside buffer " + str(buffer) + " (needs " + str(offset) + "+" +
-                     str(length) + " bytes, has " + str(bufLen) + ")");
-        }
-    }
+    if (images) checkImageBufferViews(*images, views, buffers);
 }
 
-Scene Loader::load(const uint8_t* data, size_t size, const std::string& baseDir) {
-    baseDir_ = baseDir;
-    if (!data && size) fail("no data");
-    if (size > kMaxInputBytes) fail("file is too large (" + str(size) + " bytes)");
-    if (size == 0) fail("file is empty");
-
-    const bool binary = size >= 4 && readU32(data) == kGlbMagic;
-    std::vector<uint8_t> glb;  // canonical copy of a binary glTF
-    const char* json = nullptr;
-    size_t jsonLen = 0;
-    if (binary) {
-        if (size < 12) fail("binary glTF header is truncated (" + str(size) + " bytes)");
-        const uint32_t version = readU32(data + 4);
-        if (version != 2)
-            fail("binary glTF version " + str(version) + " is not supported (only glTF 2.0)");
-        const uint64_t length = readU32(data + 8);
-        if (length > size)
-            fail("binary glTF is truncated (header says " + str(length) + " bytes, got " +
-                 str(size) + ")");
-        if (length < size) warn("binary glTF: " + str(size - length) + " trailing bytes ignored");
-        const uint8_t* bin = nullptr;
-        uint64_t binLen = 0;
-        bool haveBin = false;
-        uint64_t off = 12;
-        int chunk = 0;
-        while (off < length) {
-            if (length - off < 8)
-                fail("binary glTF chunk " + std::to_string(chunk) + " header at byte " + str(off) +
-                     " is truncated");
-            const uint64_t clen = readU32(data + off);
-            const uint32_t ctype = readU32(data + off + 4);
-            if (clen > length - off - 8)
-                fail("binary glTF chunk " + std::to_string(chunk) + " (" + str(clen) +
-                     " bytes at byte " + str(off) + ") runs past the end of the file (" +
-                     str(length) + " bytes)");
-            if (chunk == 0) {
-                if (ctype != kChunkJson) fail("binary glTF: the first chunk is not JSON");
-                json = reinterpret_cast<const char*>(data + off + 8);
-                jsonLen = static_cast<size_t>(clen);
-            } else if (chunk == 1 && ctype == kChunkBin) {
-                bin = data + off + 8;
-                binLen = clen;
-                haveBin = true;
-            } else {
-                warn("binary glTF: unknown chunk type ignored");
-            }
-            off += 8 + clen;
-            ++chunk;
+// Walks a .glb's chunks, checking every bound: the first must be JSON, a BIN chunk may follow.
+Loader::GlbChunks Loader::readGlbChunks(const uint8_t* data, size_t size) {
+    if (size < 12) fail("binary glTF header is truncated (" + str(size) + " bytes)");
+    const uint32_t version = readU32(data + 4);
+    if (version != 2)
+        fail("binary glTF version " + str(version) + " is not supported (only glTF 2.0)");
+    const uint64_t length = readU32(data + 8);
+    if (length > size)
+        fail("binary glTF is truncated (header says " + str(length) + " bytes, got " +
+             str(size) + ")");
+    if (length < size) warn("binary glTF: " + str(size - length) + " trailing bytes ignored");
+    GlbChunks chunks;
+    uint64_t off = 12;
+    int chunk = 0;
+    while (off < length) {
+        if (length - off < 8)
+            fail("binary glTF chunk " + std::to_string(chunk) + " header at byte " + str(off) +
+                 " is truncated");
+        const uint64_t clen = readU32(data + off);
+        const uint32_t ctype = readU32(data + off + 4);
+        if (clen > length - off - 8)
+            fail("binary glTF chunk " + std::to_string(chunk) + " (" + str(clen) +
+                 " bytes at byte " + str(off) + ") runs past the end of the file (" +
+                 str(length) + " bytes)");
+        if (chunk == 0) {
+            if (ctype != kChunkJson) fail("binary glTF: the first chunk is not JSON");
+            chunks.json = reinterpret_cast<const char*>(data + off + 8);
+            chunks.jsonLen = static_cast<size_t>(clen);
+        } else if (chunk == 1 && ctype == kChunkBin) {
+            chunks.bin = data + off + 8;
+            chunks.binLen = clen;
+            chunks.haveBin = true;
+        } else {
+            warn("binary glTF: unknown chunk type ignored");
         }
-        if (!json) fail("binary glTF has no JSON chunk");
-        prevalidate(json, jsonLen, true);
-        // Canonical container: header, JSON chunk (space padded), BIN chunk (zero padded,
-        // omitted when empty) - the layout tinygltf's own chunk checks accept.
-        const uint64_t jsonPadded = (jsonLen + 3) & ~uint64_t(3);
-        const uint64_t binPadded = (binLen + 3) & ~uint64_t(3);
-        const bool writeBin = haveBin && binLen > 0;
-        const uint64_t total = 12 + 8 + jsonPadded + (writeBin ? 8 + binPadded : 0);
-        if (total > kMaxInputBytes) fail("binary glTF is too large");
-        glb.reserve(static_cast<size_t>(total));
-        writeU32(glb, kGlbMagic);
-        writeU32(glb, 2);
-        writeU32(glb, static_cast<uint32_t>(total));
-        writeU32(glb, static_cast<uint32_t>(jsonPadded));
-        writeU32(glb, kChunkJson);
-        glb.insert(glb.end(), json, json + jsonLen);
-        glb.resize(glb.size() + static_cast<size_t>(jsonPadded - jsonLen), ' ');
-        if (writeBin) {
-            writeU32(glb, static_cast<uint32_t>(binPadded));
-            writeU32(glb, kChunkBin);
-            glb.insert(glb.end(), bin, bin + binLen);
-            glb.resize(glb.size() + static_cast<size_t>(binPadded - binLen), 0);
-        }
-    } else {
-        json = reinterpret_cast<const char*>(data);
-        jsonLen = size;
-        prevalidate(json, jsonLen, false);
+        off += 8 + clen;
+        ++chunk;
     }
+    if (!chunks.json) fail("binary glTF has no JSON chunk");
+    return chunks;
+}
 
+// Canonical container: header, JSON chunk (space padded), BIN chunk (zero padded,
+// omitted when empty) - the layout tinygltf's own chunk checks accept.
+std::vector<uint8_t> Loader::canonicalGlb(const GlbChunks& chunks) {
+    const uint64_t jsonPadded = (chunks.jsonLen + 3) & ~uint64_t(3);
+    const uint64_t binPadded = (chunks.binLen + 3) & ~uint64_t(3);
+    const bool writeBin = chunks.haveBin && chunks.binLen > 0;
+    const uint64_t total = 12 + 8 + jsonPadded + (writeBin ? 8 + binPadded : 0);
+    if (total > kMaxInputBytes) fail("binary glTF is too large");
+    std::vector<uint8_t> glb;
+    glb.reserve(static_cast<size_t>(total));
+    writeU32(glb, kGlbMagic);
+    writeU32(glb, 2);
+    writeU32(glb, static_cast<uint32_t>(total));
+    writeU32(glb, static_cast<uint32_t>(jsonPadded));
+    writeU32(glb, kChunkJson);
+    glb.insert(glb.end(), chunks.json, chunks.json + chunks.jsonLen);
+    glb.resize(glb.size() + static_cast<size_t>(jsonPadded - chunks.jsonLen), ' ');
+    if (writeBin) {
+        writeU32(glb, static_cast<uint32_t>(binPadded));
+        writeU32(glb, kChunkBin);
+        glb.insert(glb.end(), chunks.bin, chunks.bin + chunks.binLen);
+        glb.resize(glb.size() + static_cast<size_t>(binPadded - chunks.binLen), 0);
+    }
+    return glb;
+}
+
+// tinygltf reads the checked input into model_, with our file and image callbacks; its
+// errors and warnings become ours.
+void Loader::parseModel(bool binary, const std::vector<uint8_t>& glb, const char* json, size_t jsonLen,
+                        const std::string& baseDir) {
     tinygltf::TinyGLTF parser;
     FsState fsState;
     fsState.baseDir = baseDir;
@@ -712,6 +790,30 @@ Scene Loader::load(const uint8_t* data, size_t size, const std::string& baseDir)
             start = end + 1;
         }
     }
+}
+
+Scene Loader::load(const uint8_t* data, size_t size, const std::string& baseDir) {
+    baseDir_ = baseDir;
+    if (!data && size) fail("no data");
+    if (size > kMaxInputBytes) fail("file is too large (" + str(size) + " bytes)");
+    if (size == 0) fail("file is empty");
+
+    const bool binary = size >= 4 && readU32(data) == kGlbMagic;
+    std::vector<uint8_t> glb;  // canonical copy of a binary glTF
+    const char* json = nullptr;
+    size_t jsonLen = 0;
+    if (binary) {
+        const GlbChunks chunks = readGlbChunks(data, size);
+        json = chunks.json;
+        jsonLen = chunks.jsonLen;
+        prevalidate(json, jsonLen, true);
+        glb = canonicalGlb(chunks);
+    } else {
+        json = reinterpret_cast<const char*>(data);
+        jsonLen = size;
+        prevalidate(json, jsonLen, false);
+    }
+    parseModel(binary, glb, json, jsonLen, baseDir);
 
     checkExtensions();
     if (!model_.animations.empty())
@@ -878,6 +980,83 @@ std::vector<uint8_t> Loader::bufferViewBytes(int bv, const std::string& what) {
     return std::vector<uint8_t>(base, base + view.byteLength);
 }
 
+// Where an accessor's elements lie, checked against its bufferView: nullptr for an accessor
+// without one (read as zeros).
+Loader::AccessorSource Loader::accessorSource(const tinygltf::Accessor& acc, const std::string& name,
+                                              uint64_t count, uint64_t elemSize) {
+    AccessorSource source;
+    source.stride = elemSize;
+    if (acc.bufferView >= 0) {
+        const tinygltf::BufferView& view = checkedBufferView(acc.bufferView, name, &source.first);
+        if (view.byteStride != 0) {
+            if (view.byteStride < elemSize)
+                fail(name + ": byteStride " + str(uint64_t(view.byteStride)) +
+                     " of bufferView " + std::to_string(acc.bufferView) +
+                     " is smaller than an element (" + str(elemSize) + " bytes)");
+            source.stride = view.byteStride;
+        }
+        const uint64_t off = acc.byteOffset;
+        if (off > view.byteLength)
+            fail(name + ": byteOffset " + str(off) + " lies past the end of bufferView " +
+                 std::to_string(acc.bufferView) + " (" + str(uint64_t(view.byteLength)) + " bytes)");
+        // off <= byteLength <= buffer size (< 2^32), stride <= 2^32, count <= 2^28: no overflow.
+        const uint64_t needed = off + source.stride * (count - 1) + elemSize;
+        if (needed > view.byteLength) {
+            const uint64_t bufferNeeds = uint64_t(view.byteOffset) + needed;
+            fail(name + " reads past the end of bufferView " + std::to_string(acc.bufferView) +
+                 " (needs " + str(needed) + " bytes, has " + str(uint64_t(view.byteLength)) +
+                 "; buffer " + std::to_string(view.buffer) + " would need " + str(bufferNeeds) +
+                 ")");
+        }
+        source.first += off;
+    } else {
+        // Allowed by the spec (zeros, usually the base of a sparse accessor). Its size is not
+        // backed by any buffer, so bound it by the data the file actually has.
+        uint64_t bufferBytes = 0;
+        for (const auto& b : model_.buffers) bufferBytes += b.data.size();
+        if (count > std::max<uint64_t>(65536, bufferBytes))
+            fail(name + " has no bufferView and " + str(count) +
+                 " elements, more than the file's buffers could describe");
+        if (!acc.sparse.isSparse) warn("an accessor without bufferView is read as zeros");
+    }
+    return source;
+}
+
+// A sparse accessor's index and value arrays, checked against their bufferViews.
+Loader::SparseSource Loader::sparseSource(const tinygltf::Accessor& acc, const std::string& name,
+                                          uint64_t count, uint64_t elemSize) {
+    SparseSource sparse;
+    sparse.count = acc.sparse.count;
+    if (sparse.count < 1 || uint64_t(sparse.count) > count)
+        fail(name + ": sparse count " + std::to_string(sparse.count) + " is invalid (accessor has " +
+             str(count) + " elements)");
+    sparse.indexType = acc.sparse.indices.componentType;
+    const int itype = sparse.indexType;
+    sparse.indexSize = (itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                        itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
+                        itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                           ? componentSize(itype)
+                           : 0;
+    if (sparse.indexSize == 0) fail(name + ": sparse indices have invalid componentType " + std::to_string(itype));
+    if (acc.sparse.indices.byteOffset < 0 || acc.sparse.values.byteOffset < 0)
+        fail(name + ": sparse byteOffset is negative");
+    const auto& iview = checkedBufferView(acc.sparse.indices.bufferView, name + " sparse indices", &sparse.indices);
+    const auto& vview = checkedBufferView(acc.sparse.values.bufferView, name + " sparse values", &sparse.values);
+    const uint64_t ineed = uint64_t(acc.sparse.indices.byteOffset) + uint64_t(sparse.count) * sparse.indexSize;
+    const uint64_t vneed = uint64_t(acc.sparse.values.byteOffset) + uint64_t(sparse.count) * elemSize;
+    if (ineed > iview.byteLength)
+        fail(name + ": sparse indices read past the end of bufferView " +
+             std::to_string(acc.sparse.indices.bufferView) + " (needs " + str(ineed) +
+             " bytes, has " + str(uint64_t(iview.byteLength)) + ")");
+    if (vneed > vview.byteLength)
+        fail(name + ": sparse values read past the end of bufferView " +
+             std::to_string(acc.sparse.values.bufferView) + " (needs " + str(vneed) +
+             " bytes, has " + str(uint64_t(vview.byteLength)) + ")");
+    sparse.indices += acc.sparse.indices.byteOffset;
+    sparse.values += acc.sparse.values.byteOffset;
+    return sparse;
+}
+
 void Loader::readAccessor(int index, const std::string& what, bool asIndices, AccessorData& out) {
     if (index < 0 || static_cast<size_t>(index) >= model_.accessors.size())
         fail(what + " refers to accessor " + std::to_string(index) + ", which does not exist (" +
@@ -908,42 +1087,7 @@ void Loader::readAccessor(int index, const std::string& what, bool asIndices, Ac
             fail(name + " must be SCALAR unsigned byte/short/int to hold indices");
     }
 
-    const uint8_t* src = nullptr;
-    uint64_t stride = elemSize;
-    if (acc.bufferView >= 0) {
-        const tinygltf::BufferView& view = checkedBufferView(acc.bufferView, name, &src);
-        if (view.byteStride != 0) {
-            if (view.byteStride < elemSize)
-                fail(name + ": byteStride " + str(uint64_t(view.byteStride)) +
-                     " of bufferView " + std::to_string(acc.bufferView) +
-                     " is smaller than an element (" + str(elemSize) + " bytes)");
-            stride = view.byteStride;
-        }
-        const uint64_t off = acc.byteOffset;
-        if (off > view.byteLength)
-            fail(name + ": byteOffset " + str(off) + " lies past the end of bufferView " +
-                 std::to_string(acc.bufferView) + " (" + str(uint64_t(view.byteLength)) + " bytes)");
-        // off <= byteLength <= buffer size (< 2^32), stride <= 2^32, count <= 2^28: no overflow.
-        const uint64_t needed = off + stride * (count - 1) + elemSize;
-        if (needed > view.byteLength) {
-            const uint64_t bufferNeeds = uint64_t(view.byteOffset) + needed;
-            fail(name + " reads past the end of bufferView " + std::to_string(acc.bufferView) +
-                 " (needs " + str(needed) + " bytes, has " + str(uint64_t(view.byteLength)) +
-                 "; buffer " + std::to_string(view.buffer) + " would need " + str(bufferNeeds) +
-                 ")");
-        }
-        src += off;
-    } else {
-        // Allowed by the spec (zeros, usually the base of a sparse accessor). Its size is not
-        // backed by any buffer, so bound it by the data the file actually has.
-        uint64_t bufferBytes = 0;
-        for (const auto& b : model_.buffers) bufferBytes += b.data.size();
-        if (count > std::max<uint64_t>(65536, bufferBytes))
-            fail(name + " has no bufferView and " + str(count) +
-                 " elements, more than the file's buffers could describe");
-        if (!acc.sparse.isSparse) warn("an accessor without bufferView is read as zeros");
-    }
-
+    const AccessorSource source = accessorSource(acc, name, count, elemSize);
     const size_t n = static_cast<size_t>(count);
     if (asIndices)
         out.indices.assign(n, 0u);
@@ -959,45 +1103,17 @@ void Loader::readAccessor(int index, const std::string& what, bool asIndices, Ac
             out.values[i] = v;
         }
     };
-    if (src)
-        for (size_t i = 0; i < n; ++i) store(i, src + i * stride);
+    if (source.first)
+        for (size_t i = 0; i < n; ++i) store(i, source.first + i * source.stride);
 
     if (acc.sparse.isSparse) {
-        const int scount = acc.sparse.count;
-        if (scount < 1 || uint64_t(scount) > count)
-            fail(name + ": sparse count " + std::to_string(scount) + " is invalid (accessor has " +
-                 str(count) + " elements)");
-        const int itype = acc.sparse.indices.componentType;
-        const int isize = (itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                           itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
-                           itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-                              ? componentSize(itype)
-                              : 0;
-        if (isize == 0) fail(name + ": sparse indices have invalid componentType " + std::to_string(itype));
-        if (acc.sparse.indices.byteOffset < 0 || acc.sparse.values.byteOffset < 0)
-            fail(name + ": sparse byteOffset is negative");
-        const uint8_t* ibase = nullptr;
-        const uint8_t* vbase = nullptr;
-        const auto& iview = checkedBufferView(acc.sparse.indices.bufferView, name + " sparse indices", &ibase);
-        const auto& vview = checkedBufferView(acc.sparse.values.bufferView, name + " sparse values", &vbase);
-        const uint64_t ineed = uint64_t(acc.sparse.indices.byteOffset) + uint64_t(scount) * isize;
-        const uint64_t vneed = uint64_t(acc.sparse.values.byteOffset) + uint64_t(scount) * elemSize;
-        if (ineed > iview.byteLength)
-            fail(name + ": sparse indices read past the end of bufferView " +
-                 std::to_string(acc.sparse.indices.bufferView) + " (needs " + str(ineed) +
-                 " bytes, has " + str(uint64_t(iview.byteLength)) + ")");
-        if (vneed > vview.byteLength)
-            fail(name + ": sparse values read past the end of bufferView " +
-                 std::to_string(acc.sparse.values.bufferView) + " (needs " + str(vneed) +
-                 " bytes, has " + str(uint64_t(vview.byteLength)) + ")");
-        ibase += acc.sparse.indices.byteOffset;
-        vbase += acc.sparse.values.byteOffset;
-        for (int k = 0; k < scount; ++k) {
-            const uint32_t target = decodeIndex(ibase + size_t(k) * isize, itype);
+        const SparseSource sparse = sparseSource(acc, name, count, elemSize);
+        for (int k = 0; k < sparse.count; ++k) {
+            const uint32_t target = decodeIndex(sparse.indices + size_t(k) * sparse.indexSize, sparse.indexType);
             if (target >= count)
                 fail(name + ": sparse index " + str(target) + " is out of range (" + str(count) +
                      " elements)");
-            store(target, vbase + size_t(k) * elemSize);
+            store(target, sparse.values + size_t(k) * elemSize);
         }
     }
 }
@@ -1110,6 +1226,37 @@ int Loader::textureImage(int textureIndex, int texCoord, const tinygltf::Extensi
 
 bool finiteNumber(double v) { return std::isfinite(v); }
 
+// emissiveFactor x KHR_materials_emissive_strength, checked against what the renderer takes.
+glm::vec3 Loader::emittedRadiance(const tinygltf::Material& src, const std::string& where) {
+    glm::vec3 emissive(0.0f);
+    if (!src.emissiveFactor.empty()) {
+        if (src.emissiveFactor.size() != 3) fail(where + ": emissiveFactor must have 3 numbers");
+        for (int c = 0; c < 3; ++c) {
+            const double f = src.emissiveFactor[size_t(c)];
+            if (!finiteNumber(f)) fail(where + ": emissiveFactor is not finite");
+            // The spec's range is [0, 1] (a brighter emitter uses KHR_materials_emissive_strength);
+            // a negative factor emitted negative radiance. Above 1 is taken as many files do, up to
+            // the radiance limit below.
+            if (f < 0.0) fail(where + ": emissiveFactor " + num(f) + " is outside [0, 1]");
+            emissive[c] = static_cast<float>(f);
+        }
+    }
+    float strength = 1.0f;
+    auto es = src.extensions.find("KHR_materials_emissive_strength");
+    if (es != src.extensions.end() && es->second.IsObject() && es->second.Has("emissiveStrength")) {
+        const tinygltf::Value& v = es->second.Get("emissiveStrength");
+        if (!v.IsNumber() || !finiteNumber(v.GetNumberAsDouble()) || v.GetNumberAsDouble() < 0.0)
+            fail(where + ": emissiveStrength must be a non-negative number");
+        strength = static_cast<float>(v.GetNumberAsDouble());
+    }
+    // In double: the product of two floats' worth of numbers must not overflow before the check.
+    const double radiance = double(std::max({emissive.x, emissive.y, emissive.z})) * double(strength);
+    if (radiance > double(kMaxRadiance))
+        fail(where + ": emissive radiance " + num(radiance) + " (emissiveFactor x emissiveStrength) is more than the " +
+             num(double(kMaxRadiance)) + " the renderer takes");
+    return emissive * strength;
+}
+
 void Loader::convertMaterials() {
     for (size_t i = 0; i < model_.materials.size(); ++i) {
         const tinygltf::Material& src = model_.materials[i];
@@ -1128,33 +1275,7 @@ void Loader::convertMaterials() {
         m.metallicFactor = static_cast<float>(pbr.metallicFactor);
         m.roughnessFactor = static_cast<float>(pbr.roughnessFactor);
 
-        glm::vec3 emissive(0.0f);
-        if (!src.emissiveFactor.empty()) {
-            if (src.emissiveFactor.size() != 3) fail(where + ": emissiveFactor must have 3 numbers");
-            for (int c = 0; c < 3; ++c) {
-                const double f = src.emissiveFactor[size_t(c)];
-                if (!finiteNumber(f)) fail(where + ": emissiveFactor is not finite");
-                // The spec's range is [0, 1] (a brighter emitter uses KHR_materials_emissive_strength);
-                // a negative factor emitted negative radiance. Above 1 is taken as many files do, up to
-                // the radiance limit below.
-                if (f < 0.0) fail(where + ": emissiveFactor " + num(f) + " is outside [0, 1]");
-                emissive[c] = static_cast<float>(f);
-            }
-        }
-        float strength = 1.0f;
-        auto es = src.extensions.find("KHR_materials_emissive_strength");
-        if (es != src.extensions.end() && es->second.IsObject() && es->second.Has("emissiveStrength")) {
-            const tinygltf::Value& v = es->second.Get("emissiveStrength");
-            if (!v.IsNumber() || !finiteNumber(v.GetNumberAsDouble()) || v.GetNumberAsDouble() < 0.0)
-                fail(where + ": emissiveStrength must be a non-negative number");
-            strength = static_cast<float>(v.GetNumberAsDouble());
-        }
-        // In double: the product of two floats' worth of numbers must not overflow before the check.
-        const double radiance = double(std::max({emissive.x, emissive.y, emissive.z})) * double(strength);
-        if (radiance > double(kMaxRadiance))
-            fail(where + ": emissive radiance " + num(radiance) + " (emissiveFactor x emissiveStrength) is more than the " +
-                 num(double(kMaxRadiance)) + " the renderer takes");
-        m.emissive = emissive * strength;
+        m.emissive = emittedRadiance(src, where);
 
         auto sp = src.extensions.find("KHR_materials_specular");
         if (sp != src.extensions.end() && sp->second.IsObject() && sp->second.Has("specularFactor")) {
@@ -1211,27 +1332,16 @@ const char* modeName(int mode) {
     }
 }
 
-Primitive Loader::convertPrimitive(int meshIndex, int primIndex, const std::string& where) {
-    const tinygltf::Primitive& src = model_.meshes[size_t(meshIndex)].primitives[size_t(primIndex)];
-    const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-        mode != TINYGLTF_MODE_TRIANGLE_FAN)
-        fail(where + ": mode " + std::to_string(mode) + " (" + modeName(mode) +
-             ") is not supported; only triangles, strips and fans are");
-    if (!src.targets.empty()) warn("morph targets are not supported (ignored; base mesh shown)");
-    if (src.material < -1 || (src.material >= 0 && static_cast<size_t>(src.material) >= model_.materials.size()))
-        fail(where + " refers to material " + std::to_string(src.material) +
-             ", which does not exist (" + str(model_.materials.size()) + " materials)");
+// The accessor of a primitive's attribute, -1 when it has none.
+int attributeAccessor(const tinygltf::Primitive& src, const char* name) {
+    auto it = src.attributes.find(name);
+    return it == src.attributes.end() ? -1 : it->second;
+}
 
-    auto attr = [&](const char* name) -> int {
-        auto it = src.attributes.find(name);
-        return it == src.attributes.end() ? -1 : it->second;
-    };
-    const int posAcc = attr("POSITION");
+// POSITION into p's vertices, one vertex each; their normals and tangents are missing until read.
+void Loader::readPositions(const tinygltf::Primitive& src, const std::string& where, Primitive& p) {
+    const int posAcc = attributeAccessor(src, "POSITION");
     if (posAcc < 0) fail(where + " has no POSITION attribute");
-
-    Primitive p;
-    p.material = src.material;
     AccessorData data;
     readAccessor(posAcc, where + " POSITION", false, data);
     if (model_.accessors[size_t(posAcc)].type != TINYGLTF_TYPE_VEC3)
@@ -1249,9 +1359,14 @@ Primitive Loader::convertPrimitive(int meshIndex, int primIndex, const std::stri
         p.vertices[i].normal = glm::vec3(0.0f);   // missing until read
         p.vertices[i].tangent = glm::vec4(0.0f);  // missing until read
     }
+}
 
+// NORMAL, TANGENT, TEXCOORD_0/1 and COLOR_0 into p's vertices (their POSITIONs already read).
+void Loader::readVertexAttributes(const tinygltf::Primitive& src, const std::string& where, Primitive& p) {
+    const size_t nv = p.vertices.size();
+    AccessorData data;
     auto readAttr = [&](const char* name, std::initializer_list<int> types, bool needNormalizedInts) -> bool {
-        const int a = attr(name);
+        const int a = attributeAccessor(src, name);
         if (a < 0) return false;
         readAccessor(a, where + " " + name, false, data);
         const tinygltf::Accessor& acc = model_.accessors[size_t(a)];
@@ -1284,7 +1399,7 @@ Primitive Loader::convertPrimitive(int meshIndex, int primIndex, const std::stri
         for (size_t i = 0; i < nv; ++i) p.uv1[i] = glm::vec2(data.values[i]);
     }
     if (readAttr("COLOR_0", {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, true)) {
-        const bool rgb = model_.accessors[size_t(attr("COLOR_0"))].type == TINYGLTF_TYPE_VEC3;
+        const bool rgb = model_.accessors[size_t(attributeAccessor(src, "COLOR_0"))].type == TINYGLTF_TYPE_VEC3;
         for (size_t i = 0; i < nv; ++i) {
             glm::vec4 c = data.values[i];
             if (rgb) c.w = 1.0f;
@@ -1293,10 +1408,14 @@ Primitive Loader::convertPrimitive(int meshIndex, int primIndex, const std::stri
             p.vertices[i].color = c;
         }
     }
+}
 
-    // Indices (or 0..n-1), then strips and fans into lists.
+// Indices (or 0..n-1), then strips and fans into lists.
+std::vector<uint32_t> Loader::triangleList(const tinygltf::Primitive& src, int mode, const std::string& where,
+                                           size_t nv) {
     std::vector<uint32_t> idx;
     if (src.indices >= 0) {
+        AccessorData data;
         readAccessor(src.indices, where + " indices", true, data);
         idx = std::move(data.indices);
     } else {
@@ -1307,27 +1426,49 @@ Primitive Loader::convertPrimitive(int meshIndex, int primIndex, const std::stri
         if (idx[i] >= nv)
             fail(where + ": index " + str(idx[i]) + " at position " + str(i) +
                  " is out of range (" + str(nv) + " vertices)");
+    std::vector<uint32_t> triangles;
     if (mode == TINYGLTF_MODE_TRIANGLES) {
         if (idx.size() % 3 != 0) {
             warn(std::string("a TRIANGLES primitive has an index count that is not a multiple of 3 "
                              "(extra indices ignored)"));
             idx.resize(idx.size() - idx.size() % 3);
         }
-        p.indices = std::move(idx);
+        triangles = std::move(idx);
     } else if (idx.size() >= 3) {
         const size_t tris = idx.size() - 2;
-        p.indices.reserve(tris * 3);
+        triangles.reserve(tris * 3);
         for (size_t i = 0; i < tris; ++i) {
             if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
                 // glTF: triangle i = {v_i, v_{i+1+i%2}, v_{i+2-i%2}} keeps the winding.
-                p.indices.insert(p.indices.end(),
+                triangles.insert(triangles.end(),
                                  {idx[i], idx[i + 1 + i % 2], idx[i + 2 - i % 2]});
             } else {
                 // glTF: triangle i = {v_{i+1}, v_{i+2}, v_0}.
-                p.indices.insert(p.indices.end(), {idx[i + 1], idx[i + 2], idx[0]});
+                triangles.insert(triangles.end(), {idx[i + 1], idx[i + 2], idx[0]});
             }
         }
     }
+    return triangles;
+}
+
+Primitive Loader::convertPrimitive(int meshIndex, int primIndex, const std::string& where) {
+    const tinygltf::Primitive& src = model_.meshes[size_t(meshIndex)].primitives[size_t(primIndex)];
+    const int mode = src.mode < 0 ? TINYGLTF_MODE_TRIANGLES : src.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        fail(where + ": mode " + std::to_string(mode) + " (" + modeName(mode) +
+             ") is not supported; only triangles, strips and fans are");
+    if (!src.targets.empty()) warn("morph targets are not supported (ignored; base mesh shown)");
+    if (src.material < -1 || (src.material >= 0 && static_cast<size_t>(src.material) >= model_.materials.size()))
+        fail(where + " refers to material " + std::to_string(src.material) +
+             ", which does not exist (" + str(model_.materials.size()) + " materials)");
+
+    Primitive p;
+    p.material = src.material;
+    readPositions(src, where, p);
+    readVertexAttributes(src, where, p);
+
+    p.indices = triangleList(src, mode, where, p.vertices.size());
     if (totalIndices_ + p.indices.size() > kMaxTotalIndices) fail("scene has too many indices");
     totalIndices_ += p.indices.size();
     return p;
@@ -1375,6 +1516,106 @@ glm::mat4 orthonormalFrame(const glm::mat4& world) {
     return m;
 }
 
+// The camera a node refers to, placed at the node (its frame made orthonormal).
+Camera Loader::nodeCamera(int cameraIndex, const std::string& where, const glm::mat4& world) {
+    if (cameraIndex < 0 || static_cast<size_t>(cameraIndex) >= model_.cameras.size())
+        fail(where + " refers to camera " + std::to_string(cameraIndex) + ", which does not exist (" +
+             str(model_.cameras.size()) + " cameras)");
+    const tinygltf::Camera& src = model_.cameras[size_t(cameraIndex)];
+    const std::string cw = "camera " + std::to_string(cameraIndex) + quoted(src.name);
+    auto bad = badCameras_.find(cameraIndex);
+    if (bad != badCameras_.end()) fail(bad->second);
+    Camera cam;
+    cam.name = src.name;
+    cam.cameraToWorld = orthonormalFrame(world);
+    if (src.type == "perspective") {
+        const auto& p = src.perspective;
+        if (!(p.yfov > 0.0 && p.yfov < 3.14159265358979) || !std::isfinite(p.yfov))
+            fail(cw + ": yfov " + std::to_string(p.yfov) + " must be in (0, pi)");
+        if (!(p.znear > 0.0) || !std::isfinite(p.znear)) fail(cw + ": znear must be > 0");
+        if (!std::isfinite(p.zfar) || (p.zfar != 0.0 && !(p.zfar > p.znear)))
+            fail(cw + ": zfar must be greater than znear (or absent for infinite)");
+        cam.orthographic = false;
+        cam.yfov = static_cast<float>(p.yfov);
+        cam.znear = static_cast<float>(p.znear);
+        cam.zfar = static_cast<float>(p.zfar);
+    } else if (src.type == "orthographic") {
+        const auto& o = src.orthographic;
+        if (!(o.xmag != 0.0) || !(o.ymag != 0.0) || !std::isfinite(o.xmag) || !std::isfinite(o.ymag))
+            fail(cw + ": xmag and ymag must be non-zero");
+        if (!(o.znear >= 0.0) || !(o.zfar > o.znear) || !std::isfinite(o.zfar))
+            fail(cw + ": orthographic zfar must be greater than znear >= 0");
+        cam.orthographic = true;
+        cam.xmag = static_cast<float>(std::fabs(o.xmag));
+        cam.ymag = static_cast<float>(std::fabs(o.ymag));
+        cam.znear = static_cast<float>(o.znear);
+        cam.zfar = static_cast<float>(o.zfar);
+    } else {
+        fail(cw + ": unknown camera type '" + oneLine(src.type, 40) + "'");
+    }
+    return cam;
+}
+
+// The light a node's KHR_lights_punctual extension refers to, placed and aimed by the node.
+Light Loader::nodeLight(const tinygltf::Value& ext, const std::string& where, const glm::mat4& world) {
+    if (!ext.IsObject() || !ext.Has("light") || !ext.Get("light").IsInt())
+        fail(where + ": KHR_lights_punctual needs an integer 'light'");
+    const int li = ext.Get("light").GetNumberAsInt();
+    if (li < 0 || static_cast<size_t>(li) >= model_.lights.size())
+        fail(where + " refers to light " + std::to_string(li) + ", which does not exist (" +
+             str(model_.lights.size()) + " lights)");
+    const tinygltf::Light& src = model_.lights[size_t(li)];
+    const std::string lw = "light " + std::to_string(li) + quoted(src.name);
+    auto bad = badLights_.find(li);
+    if (bad != badLights_.end()) fail(bad->second);
+    Light l;
+    l.name = src.name;
+    if (src.type == "directional")
+        l.type = LightType::Directional;
+    else if (src.type == "point")
+        l.type = LightType::Point;
+    else if (src.type == "spot")
+        l.type = LightType::Spot;
+    else
+        fail(lw + ": unknown light type '" + oneLine(src.type, 40) + "'");
+    if (!src.color.empty()) {
+        if (src.color.size() != 3) fail(lw + ": color must have 3 numbers");
+        for (int c = 0; c < 3; ++c) {
+            if (!std::isfinite(src.color[size_t(c)]) || src.color[size_t(c)] < 0.0)
+                fail(lw + ": color must be finite and non-negative");
+            l.color[c] = static_cast<float>(src.color[size_t(c)]);
+        }
+    }
+    if (!std::isfinite(src.intensity) || src.intensity < 0.0 || src.intensity > 3.0e38)
+        fail(lw + ": intensity must be a finite non-negative number");
+    l.intensity = static_cast<float>(src.intensity);
+    // The renderers use color x intensity in float: refuse a product that would be Inf.
+    for (int c = 0; c < 3; ++c) {
+        const double product = double(l.color[c]) * double(l.intensity);
+        if (!(product <= double(std::numeric_limits<float>::max()))) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.3g", product);
+            fail(lw + ": color x intensity = " + text + " overflows a float (max 3.4e38)");
+        }
+    }
+    if (!std::isfinite(src.range) || src.range < 0.0 || src.range > 3.0e38)
+        fail(lw + ": range must be a finite positive number");
+    l.range = static_cast<float>(src.range);
+    if (l.type == LightType::Spot) {
+        const double inner = src.spot.innerConeAngle, outer = src.spot.outerConeAngle;
+        if (!std::isfinite(inner) || !std::isfinite(outer) || inner < 0.0 || outer <= 0.0 ||
+            inner > outer || outer > 1.5707963267948966 + 1e-6)
+            fail(lw + ": cone angles must satisfy 0 <= inner <= outer <= pi/2");
+        l.innerConeAngle = static_cast<float>(inner);
+        l.outerConeAngle = static_cast<float>(outer);
+    }
+    l.position = glm::vec3(world[3]);
+    glm::vec3 dir = glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f);
+    const float len = glm::length(dir);
+    l.direction = (len > 1e-12f && std::isfinite(len)) ? dir / len : glm::vec3(0.0f, 0.0f, -1.0f);
+    return l;
+}
+
 void Loader::addNodeContent(int n, const glm::mat4& world) {
     const tinygltf::Node& node = model_.nodes[size_t(n)];
     const std::string where = "node " + std::to_string(n) + quoted(node.name);
@@ -1392,108 +1633,15 @@ void Loader::addNodeContent(int n, const glm::mat4& world) {
         fail(where + " refers to mesh " + std::to_string(node.mesh) + ", which does not exist");
     }
 
-    if (node.camera >= 0 || node.camera < -1) {
-        if (node.camera < 0 || static_cast<size_t>(node.camera) >= model_.cameras.size())
-            fail(where + " refers to camera " + std::to_string(node.camera) + ", which does not exist (" +
-                 str(model_.cameras.size()) + " cameras)");
-        const tinygltf::Camera& src = model_.cameras[size_t(node.camera)];
-        const std::string cw = "camera " + std::to_string(node.camera) + quoted(src.name);
-        auto bad = badCameras_.find(node.camera);
-        if (bad != badCameras_.end()) fail(bad->second);
-        Camera cam;
-        cam.name = src.name;
-        cam.cameraToWorld = orthonormalFrame(world);
-        if (src.type == "perspective") {
-            const auto& p = src.perspective;
-            if (!(p.yfov > 0.0 && p.yfov < 3.14159265358979) || !std::isfinite(p.yfov))
-                fail(cw + ": yfov " + std::to_string(p.yfov) + " must be in (0, pi)");
-            if (!(p.znear > 0.0) || !std::isfinite(p.znear)) fail(cw + ": znear must be > 0");
-            if (!std::isfinite(p.zfar) || (p.zfar != 0.0 && !(p.zfar > p.znear)))
-                fail(cw + ": zfar must be greater than znear (or absent for infinite)");
-            cam.orthographic = false;
-            cam.yfov = static_cast<float>(p.yfov);
-            cam.znear = static_cast<float>(p.znear);
-            cam.zfar = static_cast<float>(p.zfar);
-        } else if (src.type == "orthographic") {
-            const auto& o = src.orthographic;
-            if (!(o.xmag != 0.0) || !(o.ymag != 0.0) || !std::isfinite(o.xmag) || !std::isfinite(o.ymag))
-                fail(cw + ": xmag and ymag must be non-zero");
-            if (!(o.znear >= 0.0) || !(o.zfar > o.znear) || !std::isfinite(o.zfar))
-                fail(cw + ": orthographic zfar must be greater than znear >= 0");
-            cam.orthographic = true;
-            cam.xmag = static_cast<float>(std::fabs(o.xmag));
-            cam.ymag = static_cast<float>(std::fabs(o.ymag));
-            cam.znear = static_cast<float>(o.znear);
-            cam.zfar = static_cast<float>(o.zfar);
-        } else {
-            fail(cw + ": unknown camera type '" + oneLine(src.type, 40) + "'");
-        }
-        scene_.cameras.push_back(cam);
-    }
+    if (node.camera >= 0 || node.camera < -1) scene_.cameras.push_back(nodeCamera(node.camera, where, world));
 
     auto lp = node.extensions.find("KHR_lights_punctual");
-    if (lp != node.extensions.end()) {
-        const tinygltf::Value& ext = lp->second;
-        if (!ext.IsObject() || !ext.Has("light") || !ext.Get("light").IsInt())
-            fail(where + ": KHR_lights_punctual needs an integer 'light'");
-        const int li = ext.Get("light").GetNumberAsInt();
-        if (li < 0 || static_cast<size_t>(li) >= model_.lights.size())
-            fail(where + " refers to light " + std::to_string(li) + ", which does not exist (" +
-                 str(model_.lights.size()) + " lights)");
-        const tinygltf::Light& src = model_.lights[size_t(li)];
-        const std::string lw = "light " + std::to_string(li) + quoted(src.name);
-        auto bad = badLights_.find(li);
-        if (bad != badLights_.end()) fail(bad->second);
-        Light l;
-        l.name = src.name;
-        if (src.type == "directional")
-            l.type = LightType::Directional;
-        else if (src.type == "point")
-            l.type = LightType::Point;
-        else if (src.type == "spot")
-            l.type = LightType::Spot;
-        else
-            fail(lw + ": unknown light type '" + oneLine(src.type, 40) + "'");
-        if (!src.color.empty()) {
-            if (src.color.size() != 3) fail(lw + ": color must have 3 numbers");
-            for (int c = 0; c < 3; ++c) {
-                if (!std::isfinite(src.color[size_t(c)]) || src.color[size_t(c)] < 0.0)
-                    fail(lw + ": color must be finite and non-negative");
-                l.color[c] = static_cast<float>(src.color[size_t(c)]);
-            }
-        }
-        if (!std::isfinite(src.intensity) || src.intensity < 0.0 || src.intensity > 3.0e38)
-            fail(lw + ": intensity must be a finite non-negative number");
-        l.intensity = static_cast<float>(src.intensity);
-        // The renderers use color x intensity in float: refuse a product that would be Inf.
-        for (int c = 0; c < 3; ++c) {
-            const double product = double(l.color[c]) * double(l.intensity);
-            if (!(product <= double(std::numeric_limits<float>::max()))) {
-                char text[32];
-                std::snprintf(text, sizeof text, "%.3g", product);
-                fail(lw + ": color x intensity = " + text + " overflows a float (max 3.4e38)");
-            }
-        }
-        if (!std::isfinite(src.range) || src.range < 0.0 || src.range > 3.0e38)
-            fail(lw + ": range must be a finite positive number");
-        l.range = static_cast<float>(src.range);
-        if (l.type == LightType::Spot) {
-            const double inner = src.spot.innerConeAngle, outer = src.spot.outerConeAngle;
-            if (!std::isfinite(inner) || !std::isfinite(outer) || inner < 0.0 || outer <= 0.0 ||
-                inner > outer || outer > 1.5707963267948966 + 1e-6)
-                fail(lw + ": cone angles must satisfy 0 <= inner <= outer <= pi/2");
-            l.innerConeAngle = static_cast<float>(inner);
-            l.outerConeAngle = static_cast<float>(outer);
-        }
-        l.position = glm::vec3(world[3]);
-        glm::vec3 dir = glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f);
-        const float len = glm::length(dir);
-        l.direction = (len > 1e-12f && std::isfinite(len)) ? dir / len : glm::vec3(0.0f, 0.0f, -1.0f);
-        scene_.lights.push_back(l);
-    }
+    if (lp != node.extensions.end()) scene_.lights.push_back(nodeLight(lp->second, where, world));
 }
 
-void Loader::buildNodes() {
+// Each node's parent (-1 for a root), refusing children that do not exist, nodes with two
+// parents and cycles.
+std::vector<int> Loader::nodeParents() {
     const size_t n = model_.nodes.size();
     std::vector<int> parent(n, -1);
     for (size_t i = 0; i < n; ++i) {
@@ -1523,7 +1671,13 @@ void Loader::buildNodes() {
             fail("node graph has a cycle (through node " + std::to_string(v) + ")");
         for (int c : chain) state[size_t(c)] = 2;
     }
+    return parent;
+}
 
+// The root nodes of the scene that is loaded (the default one, else the first), or every
+// parentless node of a file without scenes.
+std::vector<int> Loader::sceneRoots(const std::vector<int>& parent) {
+    const size_t n = model_.nodes.size();
     std::vector<int> roots;
     if (model_.scenes.empty()) {
         if (model_.defaultScene >= 0)
@@ -1556,6 +1710,40 @@ void Loader::buildNodes() {
             roots.push_back(r);
         }
     }
+    return roots;
+}
+
+// A node's transform relative to its parent: its matrix, else its translation, rotation and scale.
+glm::mat4 Loader::nodeLocalTransform(const tinygltf::Node& node, const std::string& where) {
+    if (!node.matrix.empty()) {
+        if (node.matrix.size() != 16) fail(where + ": matrix must have 16 numbers");
+        glm::dmat4 m;
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[size_t(c * 4 + r)];
+        return glm::mat4(m);
+    }
+    glm::dvec3 t(0.0), s(1.0);
+    glm::dquat q(1.0, 0.0, 0.0, 0.0);
+    if (!node.translation.empty()) {
+        if (node.translation.size() != 3) fail(where + ": translation must have 3 numbers");
+        t = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
+    }
+    if (!node.rotation.empty()) {
+        if (node.rotation.size() != 4) fail(where + ": rotation must have 4 numbers");
+        q = glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+        if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z) || !std::isfinite(q.w))
+            fail(where + ": rotation is not finite");
+    }
+    if (!node.scale.empty()) {
+        if (node.scale.size() != 3) fail(where + ": scale must have 3 numbers");
+        s = glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
+    }
+    return detail::composeTrs(t, q, s);
+}
+
+void Loader::buildNodes() {
+    const std::vector<int> parent = nodeParents();
+    const std::vector<int> roots = sceneRoots(parent);
 
     // Depth-first over the forest (explicit stack: chains may be very deep).
     std::vector<std::pair<int, glm::mat4>> stack;
@@ -1565,32 +1753,7 @@ void Loader::buildNodes() {
         stack.pop_back();
         const tinygltf::Node& node = model_.nodes[size_t(v)];
         const std::string where = "node " + std::to_string(v) + quoted(node.name);
-        glm::mat4 local(1.0f);
-        if (!node.matrix.empty()) {
-            if (node.matrix.size() != 16) fail(where + ": matrix must have 16 numbers");
-            glm::dmat4 m;
-            for (int c = 0; c < 4; ++c)
-                for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[size_t(c * 4 + r)];
-            local = glm::mat4(m);
-        } else {
-            glm::dvec3 t(0.0), s(1.0);
-            glm::dquat q(1.0, 0.0, 0.0, 0.0);
-            if (!node.translation.empty()) {
-                if (node.translation.size() != 3) fail(where + ": translation must have 3 numbers");
-                t = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
-            }
-            if (!node.rotation.empty()) {
-                if (node.rotation.size() != 4) fail(where + ": rotation must have 4 numbers");
-                q = glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
-                if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z) || !std::isfinite(q.w))
-                    fail(where + ": rotation is not finite");
-            }
-            if (!node.scale.empty()) {
-                if (node.scale.size() != 3) fail(where + ": scale must have 3 numbers");
-                s = glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
-            }
-            local = detail::composeTrs(t, q, s);
-        }
+        const glm::mat4 local = nodeLocalTransform(node, where);
         const glm::mat4 world = parentWorld * local;
         if (!detail::isFinite(local) || !detail::isFinite(world))
             fail(where + ": transform is not finite");
