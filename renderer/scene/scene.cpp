@@ -84,26 +84,10 @@ glm::vec3 anyPerpendicular(const glm::vec3& n) {
     return t / len;
 }
 
-void finalizePrimitive(Primitive& p, bool wantTangents, size_t index) {
+// Normals: area-weighted face normals (in double, so huge coordinates cannot overflow)
+// accumulated on every vertex whose normal is missing (zero or non-finite).
+void finalizeNormals(Primitive& p) {
     const size_t nv = p.vertices.size();
-    if (p.indices.size() % 3 != 0)
-        throw Error("primitive " + std::to_string(index) + ": index count " +
-                    std::to_string(p.indices.size()) + " is not a multiple of 3");
-    for (size_t i = 0; i < p.indices.size(); ++i)
-        if (p.indices[i] >= nv)
-            throw Error("primitive " + std::to_string(index) + ": index " +
-                        std::to_string(p.indices[i]) + " at position " + std::to_string(i) +
-                        " is out of range (" + std::to_string(nv) + " vertices)");
-    p.bounds = Aabb{};
-    for (size_t i = 0; i < nv; ++i) {
-        if (!finite3(p.vertices[i].position))
-            throw Error("primitive " + std::to_string(index) + ": vertex " + std::to_string(i) +
-                        " has a non-finite position");
-        p.bounds.extend(p.vertices[i].position);
-    }
-
-    // Normals: area-weighted face normals (in double, so huge coordinates cannot overflow)
-    // accumulated on every vertex whose normal is missing (zero or non-finite).
     std::vector<char> missingN(nv, 0);
     bool anyMissingN = false;
     for (size_t i = 0; i < nv; ++i) {
@@ -140,10 +124,45 @@ void finalizePrimitive(Primitive& p, bool wantTangents, size_t index) {
             v.normal = glm::vec3(n / glm::length(n));
         }
     }
+}
 
-    // Tangents: keep usable given ones (orthonormalised against the normal); generate the
-    // missing ones from UV derivatives when the material has a normal map; otherwise (and as
-    // the fallback for degenerate UVs) any unit vector perpendicular to the normal.
+// Per vertex, the area-weighted tangent and bitangent directions of its triangles' UV
+// derivatives; triangles with degenerate UVs add nothing.
+void accumulateUvTangents(const Primitive& p, std::vector<glm::dvec3>& tSum, std::vector<glm::dvec3>& bSum) {
+    const size_t nv = p.vertices.size();
+    tSum.assign(nv, glm::dvec3(0.0));
+    bSum.assign(nv, glm::dvec3(0.0));
+    for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+        const uint32_t idx[3] = {p.indices[t], p.indices[t + 1], p.indices[t + 2]};
+        const glm::dvec3 p0(p.vertices[idx[0]].position), p1(p.vertices[idx[1]].position),
+            p2(p.vertices[idx[2]].position);
+        const glm::dvec2 w0(p.vertices[idx[0]].uv), w1(p.vertices[idx[1]].uv),
+            w2(p.vertices[idx[2]].uv);
+        const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0;
+        const glm::dvec2 d1 = w1 - w0, d2 = w2 - w0;
+        const double det = d1.x * d2.y - d2.x * d1.y;
+        if (!(std::fabs(det) > 1e-20) || !std::isfinite(det)) continue;  // degenerate UVs
+        glm::dvec3 tan = (e1 * d2.y - e2 * d1.y) / det;
+        glm::dvec3 bit = (e2 * d1.x - e1 * d2.x) / det;
+        const double area = glm::length(glm::cross(e1, e2));
+        const double tl = glm::length(tan), bl = glm::length(bit);
+        if (!(tl > 0.0) || !(bl > 0.0) || !std::isfinite(tl) || !std::isfinite(bl) ||
+            !std::isfinite(area))
+            continue;
+        tan *= area / tl;
+        bit *= area / bl;
+        for (uint32_t k : idx) {
+            tSum[k] += tan;
+            bSum[k] += bit;
+        }
+    }
+}
+
+// Tangents: keep usable given ones (orthonormalised against the normal); generate the
+// missing ones from UV derivatives when the material has a normal map; otherwise (and as
+// the fallback for degenerate UVs) any unit vector perpendicular to the normal.
+void finalizeTangents(Primitive& p, bool wantTangents) {
+    const size_t nv = p.vertices.size();
     std::vector<char> missingT(nv, 0);
     bool anyMissingT = false;
     for (size_t i = 0; i < nv; ++i) {
@@ -152,34 +171,7 @@ void finalizePrimitive(Primitive& p, bool wantTangents, size_t index) {
         anyMissingT = anyMissingT || missingT[i];
     }
     std::vector<glm::dvec3> tSum, bSum;
-    if (anyMissingT && wantTangents) {
-        tSum.assign(nv, glm::dvec3(0.0));
-        bSum.assign(nv, glm::dvec3(0.0));
-        for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
-            const uint32_t idx[3] = {p.indices[t], p.indices[t + 1], p.indices[t + 2]};
-            const glm::dvec3 p0(p.vertices[idx[0]].position), p1(p.vertices[idx[1]].position),
-                p2(p.vertices[idx[2]].position);
-            const glm::dvec2 w0(p.vertices[idx[0]].uv), w1(p.vertices[idx[1]].uv),
-                w2(p.vertices[idx[2]].uv);
-            const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0;
-            const glm::dvec2 d1 = w1 - w0, d2 = w2 - w0;
-            const double det = d1.x * d2.y - d2.x * d1.y;
-            if (!(std::fabs(det) > 1e-20) || !std::isfinite(det)) continue;  // degenerate UVs
-            glm::dvec3 tan = (e1 * d2.y - e2 * d1.y) / det;
-            glm::dvec3 bit = (e2 * d1.x - e1 * d2.x) / det;
-            const double area = glm::length(glm::cross(e1, e2));
-            const double tl = glm::length(tan), bl = glm::length(bit);
-            if (!(tl > 0.0) || !(bl > 0.0) || !std::isfinite(tl) || !std::isfinite(bl) ||
-                !std::isfinite(area))
-                continue;
-            tan *= area / tl;
-            bit *= area / bl;
-            for (uint32_t k : idx) {
-                tSum[k] += tan;
-                bSum[k] += bit;
-            }
-        }
-    }
+    if (anyMissingT && wantTangents) accumulateUvTangents(p, tSum, bSum);
     for (size_t i = 0; i < nv; ++i) {
         Vertex& v = p.vertices[i];
         const glm::dvec3 n(v.normal);
@@ -203,6 +195,27 @@ void finalizePrimitive(Primitive& p, bool wantTangents, size_t index) {
         }
         v.tangent = glm::vec4(tf, static_cast<float>(sign));
     }
+}
+
+void finalizePrimitive(Primitive& p, bool wantTangents, size_t index) {
+    const size_t nv = p.vertices.size();
+    if (p.indices.size() % 3 != 0)
+        throw Error("primitive " + std::to_string(index) + ": index count " +
+                    std::to_string(p.indices.size()) + " is not a multiple of 3");
+    for (size_t i = 0; i < p.indices.size(); ++i)
+        if (p.indices[i] >= nv)
+            throw Error("primitive " + std::to_string(index) + ": index " +
+                        std::to_string(p.indices[i]) + " at position " + std::to_string(i) +
+                        " is out of range (" + std::to_string(nv) + " vertices)");
+    p.bounds = Aabb{};
+    for (size_t i = 0; i < nv; ++i) {
+        if (!finite3(p.vertices[i].position))
+            throw Error("primitive " + std::to_string(index) + ": vertex " + std::to_string(i) +
+                        " has a non-finite position");
+        p.bounds.extend(p.vertices[i].position);
+    }
+    finalizeNormals(p);
+    finalizeTangents(p, wantTangents);
 }
 
 }  // namespace
