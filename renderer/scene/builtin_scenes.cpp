@@ -18,27 +18,12 @@ namespace {
 
 using namespace detail;
 
-// emitterSize: the area light's edge in metres, its radiance scaled to keep its power; 0 = the
-// reference glTF's 0.5 m quad of radiance 15. emitterTiles: the quad cut into tiles x tiles quads
-// (2 tiles^2 emissive triangles, the same light): what the emitters' cost grows with.
-Scene makeCornell(bool areaLight, float emitterSize = 0.0f, int emitterTiles = 1) {
-    Scene s;
-    s.name = areaLight ? "cornell-area" : "cornell";
-    s.background = glm::vec3(0.0f);
+// The Cornell scenes' materials, in the order makeCornell adds them.
+enum CornellMaterial { kWhite, kRed, kGreen, kLight };
 
-    enum { kWhite, kRed, kGreen, kLight };
-    s.materials.push_back(lambert("White", {0.73f, 0.73f, 0.73f}));
-    s.materials.push_back(lambert("Red", {0.63f, 0.065f, 0.05f}));
-    s.materials.push_back(lambert("Green", {0.14f, 0.45f, 0.091f}));
-    if (areaLight) {
-        Material light = lambert("Light", {0.0f, 0.0f, 0.0f});
-        light.emissive = glm::vec3(1.0f) * 15.0f;  // emissiveFactor (1,1,1) * emissiveStrength 15
-        if (emitterSize > 0.0f) light.emissive *= (0.5f / emitterSize) * (0.5f / emitterSize);  // equal power
-        s.materials.push_back(light);
-    }
-
-    // Mesh "Walls": floor + ceiling + back wall (white), left wall (red), right wall (green).
-    // Single-sided quads facing the inside of the box; the box is open at z = +1.
+// Mesh "Walls": floor + ceiling + back wall (white), left wall (red), right wall (green).
+// Single-sided quads facing the inside of the box; the box is open at z = +1.
+void addCornellWalls(Scene& s) {
     Primitive white;
     white.material = kWhite;
     addQuad(white, {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}}, {0, 1, 0});   // floor
@@ -52,22 +37,44 @@ Scene makeCornell(bool areaLight, float emitterSize = 0.0f, int emitterTiles = 1
     addQuad(green, {{1, 0, -1}, {1, 0, 1}, {1, 2, 1}, {1, 2, -1}}, {-1, 0, 0});
     s.primitives = {white, red, green};
     for (int i = 0; i < 3; ++i) s.draws.push_back(DrawItem{i, glm::mat4(1.0f)});
+}
 
+// Emitter quad just below the ceiling, facing down (-Y), one-sided.
+void addCornellEmitter(Scene& s, float emitterSize, int emitterTiles) {
+    Primitive quad;
+    quad.material = kLight;
+    const float y = 1.999f, e = emitterSize > 0.0f ? 0.5f * emitterSize : 0.25f;
+    const float step = 2.0f * e / float(emitterTiles);
+    for (int i = 0; i < emitterTiles; ++i)
+        for (int k = 0; k < emitterTiles; ++k) {
+            const float x0 = -e + step * float(i), z0 = -e + step * float(k);
+            const float x1 = i + 1 == emitterTiles ? e : x0 + step, z1 = k + 1 == emitterTiles ? e : z0 + step;
+            addQuad(quad, {{x0, y, z0}, {x1, y, z0}, {x1, y, z1}, {x0, y, z1}}, {0, -1, 0});
+        }
+    s.primitives.push_back(quad);
+    s.draws.push_back(DrawItem{static_cast<int>(s.primitives.size()) - 1, glm::mat4(1.0f)});
+}
+
+// emitterSize: the area light's edge in metres, its radiance scaled to keep its power; 0 = the
+// reference glTF's 0.5 m quad of radiance 15. emitterTiles: the quad cut into tiles x tiles quads
+// (2 tiles^2 emissive triangles, the same light): what the emitters' cost grows with.
+Scene makeCornell(bool areaLight, float emitterSize = 0.0f, int emitterTiles = 1) {
+    Scene s;
+    s.name = areaLight ? "cornell-area" : "cornell";
+    s.background = glm::vec3(0.0f);
+
+    s.materials.push_back(lambert("White", {0.73f, 0.73f, 0.73f}));
+    s.materials.push_back(lambert("Red", {0.63f, 0.065f, 0.05f}));
+    s.materials.push_back(lambert("Green", {0.14f, 0.45f, 0.091f}));
     if (areaLight) {
-        // Emitter quad just below the ceiling, facing down (-Y), one-sided.
-        Primitive quad;
-        quad.material = kLight;
-        const float y = 1.999f, e = emitterSize > 0.0f ? 0.5f * emitterSize : 0.25f;
-        const float step = 2.0f * e / float(emitterTiles);
-        for (int i = 0; i < emitterTiles; ++i)
-            for (int k = 0; k < emitterTiles; ++k) {
-                const float x0 = -e + step * float(i), z0 = -e + step * float(k);
-                const float x1 = i + 1 == emitterTiles ? e : x0 + step, z1 = k + 1 == emitterTiles ? e : z0 + step;
-                addQuad(quad, {{x0, y, z0}, {x1, y, z0}, {x1, y, z1}, {x0, y, z1}}, {0, -1, 0});
-            }
-        s.primitives.push_back(quad);
-        s.draws.push_back(DrawItem{static_cast<int>(s.primitives.size()) - 1, glm::mat4(1.0f)});
+        Material light = lambert("Light", {0.0f, 0.0f, 0.0f});
+        light.emissive = glm::vec3(1.0f) * 15.0f;  // emissiveFactor (1,1,1) * emissiveStrength 15
+        if (emitterSize > 0.0f) light.emissive *= (0.5f / emitterSize) * (0.5f / emitterSize);  // equal power
+        s.materials.push_back(light);
     }
+
+    addCornellWalls(s);
+    if (areaLight) addCornellEmitter(s, emitterSize, emitterTiles);
 
     // Blocks: unit cubes placed by node TRS (rotation about +Y by +-17 degrees).
     const double half = 0.5 * 17.0 * 3.14159265358979323846 / 180.0;
@@ -111,11 +118,8 @@ Scene makeCornell(bool areaLight, float emitterSize = 0.0f, int emitterTiles = 1
 enum GalleryDiffuse { kLambert = 0, kWrap = 1, kToonDiffuse = 2, kBurley = 3 };
 enum GallerySpecular { kGgx = 0, kBlinnPhong = 1, kToonSpecular = 2, kNoSpecular = 3 };
 
-Scene makeBrdfGallery() {
-    Scene s;
-    s.name = "brdf-gallery";
-    s.background = glm::vec3(0.02f, 0.025f, 0.03f);
-
+// The spheres: one row per BRDF combination, one column per roughness, dielectric then metal.
+void addGallerySpheres(Scene& s) {
     // Rows, top of the image (far) to bottom (near): every diffuse and every specular model appears.
     struct Row { const char* name; int diffuse, specular; };
     const Row rows[] = {{"lambert+ggx", kLambert, kGgx},      {"burley+ggx", kBurley, kGgx},
@@ -151,8 +155,10 @@ Scene makeBrdfGallery() {
                                glm::translate(glm::mat4(1.0f), glm::vec3(x, radius, z))});
         }
     }
+}
 
-    // Checkered floor of 0.5 m squares: two Lambert materials, whatever the render's BRDF flags.
+// Checkered floor of 0.5 m squares: two Lambert materials, whatever the render's BRDF flags.
+void addGalleryFloor(Scene& s) {
     const glm::vec3 checkColor[2] = {glm::vec3(0.45f), glm::vec3(0.18f)};
     Primitive checks[2];
     for (int k = 0; k < 2; ++k) {
@@ -178,6 +184,15 @@ Scene makeBrdfGallery() {
         s.primitives.push_back(p);
         s.draws.push_back({int(s.primitives.size()) - 1, glm::mat4(1.0f)});
     }
+}
+
+Scene makeBrdfGallery() {
+    Scene s;
+    s.name = "brdf-gallery";
+    s.background = glm::vec3(0.02f, 0.025f, 0.03f);
+
+    addGallerySpheres(s);
+    addGalleryFloor(s);
 
     // Key light from the upper left, on the camera's side: highlights face the viewer and the
     // shadows fall back and to the right, between the rows.
