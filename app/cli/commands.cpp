@@ -176,6 +176,27 @@ int renderFlythrough(Renderer& renderer, const Scene& scene, const RenderOptions
     return 0;
 }
 
+// Older flags stay as aliases of their parameter rows (one flag may set the same key of
+// several methods, e.g. --spp for pathtrace and ao-reference).
+void addParameterAliasOptions(CLI::App& cmd, RenderOptions& o) {
+    for (const GiMethod& m : giMethods())
+        for (const ParamDesc& d : m.params) {
+            if (d.alias.empty() || o.aliases.count(d.alias) || o.aliasFlags.count(d.alias)) continue;
+            std::string keys;  // every method's row the flag stands for: it sets the rendered method's
+            for (const GiMethod& other : giMethods())
+                for (const ParamDesc& od : other.params)
+                    if (od.alias == d.alias) keys += (keys.empty() ? "" : " or ") + other.name + "." + od.key;
+            const std::string help = "Alias of --set " + keys + " (the rendered method's): " + d.help;
+            if (d.type == ParamType::Bool) {
+                o.aliasFlags[d.alias] = false;
+                cmd.add_flag(d.alias, o.aliasFlags[d.alias], help);
+            } else {
+                o.aliases[d.alias] = "";
+                cmd.add_option(d.alias, o.aliases[d.alias], help);
+            }
+        }
+}
+
 }  // namespace
 
 void addEnvironmentOptions(CLI::App& cmd, std::string& path, float& rotationDegrees) {
@@ -227,24 +248,7 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
                    "`gisandbox methods NAME` lists them")
         ->take_all()
         ->allow_extra_args(false);
-    // Older flags stay as aliases of their parameter rows (one flag may set the same key of
-    // several methods, e.g. --spp for pathtrace and ao-reference).
-    for (const GiMethod& m : giMethods())
-        for (const ParamDesc& d : m.params) {
-            if (d.alias.empty() || o.aliases.count(d.alias) || o.aliasFlags.count(d.alias)) continue;
-            std::string keys;  // every method's row the flag stands for: it sets the rendered method's
-            for (const GiMethod& other : giMethods())
-                for (const ParamDesc& od : other.params)
-                    if (od.alias == d.alias) keys += (keys.empty() ? "" : " or ") + other.name + "." + od.key;
-            const std::string help = "Alias of --set " + keys + " (the rendered method's): " + d.help;
-            if (d.type == ParamType::Bool) {
-                o.aliasFlags[d.alias] = false;
-                cmd.add_flag(d.alias, o.aliasFlags[d.alias], help);
-            } else {
-                o.aliases[d.alias] = "";
-                cmd.add_option(d.alias, o.aliases[d.alias], help);
-            }
-        }
+    addParameterAliasOptions(cmd, o);
     cmd.add_option("--view", o.view,
                    "What to output: final, or a debug view the method's passes offer (gbuffer.normal, ao, ...); "
                    "`--view list` lists them")
