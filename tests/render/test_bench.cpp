@@ -112,15 +112,21 @@ TEST(Bench, CellsMeasureTheBakeNotItsDiskCache) {
     EXPECT_NO_THROW(jobSettings(job, RenderSettings{}));
 }
 
+// A 16x16 low-preset bench of `flags` into `dir`: its bench.json (no results when it failed).
+nlohmann::json tinyBench(const std::string& flags, const std::string& dir) {
+    const CliResult r = runCli("bench --size 16x16 --frames 2 --warmup 1 --reference-spp 4 --presets low " + flags +
+                               " --out-dir " + dir);
+    EXPECT_EQ(r.status, 0) << r.err;
+    if (r.status != 0) return {{"results", nlohmann::json::array()}};
+    std::ifstream jf(dir + "/bench.json");
+    return nlohmann::json::parse(jf);
+}
+
 // A baked method's cell reports its atlas beside the bake's time (its convergence) and memory:
 // atlas_texels in JSON and CSV, absent for a method without one.
 TEST(Bench, ALightmapCellReportsItsAtlasTexels) {
     const std::string dir = tempDir("bench_lightmap");
-    CliResult r = runCli("bench --scenes builtin:cornell --size 16x16 --frames 2 --warmup 1 --reference-spp 4 "
-                         "--presets low --methods none,lightmap --out-dir " + dir);
-    ASSERT_EQ(r.status, 0) << r.err;
-    std::ifstream jf(dir + "/bench.json");
-    const nlohmann::json j = nlohmann::json::parse(jf);
+    const nlohmann::json j = tinyBench("--scenes builtin:cornell --methods none,lightmap", dir);
     ASSERT_EQ(j["results"].size(), 2u);
     for (const auto& row : j["results"]) {
         if (row["method"] == "none") {
@@ -149,11 +155,7 @@ TEST(Bench, ALightmapCellReportsItsAtlasTexels) {
 // --emitters lights,gi: each cell once per mode, against one reference, the mode in its row.
 TEST(Bench, EmitterModesGiveARowEach) {
     const std::string dir = tempDir("bench_emitters");
-    CliResult r = runCli("bench --scenes builtin:cornell-area --size 16x16 --frames 2 --warmup 1 --reference-spp 4 "
-                         "--presets low --methods none --emitters lights,gi --out-dir " + dir);
-    ASSERT_EQ(r.status, 0) << r.err;
-    std::ifstream jf(dir + "/bench.json");
-    const nlohmann::json j = nlohmann::json::parse(jf);
+    const nlohmann::json j = tinyBench("--scenes builtin:cornell-area --methods none --emitters lights,gi", dir);
     ASSERT_EQ(j["results"].size(), 2u);
     EXPECT_EQ(j["results"][0]["emitters"], "lights");
     EXPECT_EQ(j["results"][1]["emitters"], "gi");
@@ -161,8 +163,8 @@ TEST(Bench, EmitterModesGiveARowEach) {
     // ReSTIR lights the room only with lights: the two images differ.
     EXPECT_NE(j["results"][0]["rmse"].get<double>(), j["results"][1]["rmse"].get<double>());
     for (const char* bad : {"lights,lights", "lights,", "candle"}) {
-        r = runCli(std::string("bench --scenes builtin:cornell-area --size 16x16 --reference-spp 4 --presets low "
-                               "--methods none --emitters ") + bad + " --out-dir " + dir + "/bad");
+        const CliResult r = runCli(std::string("bench --scenes builtin:cornell-area --size 16x16 --reference-spp 4 --presets low "
+                                         "--methods none --emitters ") + bad + " --out-dir " + dir + "/bad");
         EXPECT_NE(r.status, 0) << bad;
         EXPECT_EQ(countLines(r.err), 1) << bad << ": " << r.err;
     }
