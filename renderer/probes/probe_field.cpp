@@ -9,6 +9,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "gl/bind.h"
 #include "gl/dispatch.h"
 #include "gl/shader.h"
 #include "probes/probe_uniforms.h"
@@ -312,17 +313,15 @@ void ProbeField::bindForHitLight(GLuint p, const FieldSettings& live) const {
     bindTracer();
     // The radiance and the albedo (for the multi-bounce term), filtered; the slab voxels' sides
     // (texelFetch: no sampler).
-    const GLuint textures[2] = {volume_->radianceTexture(), volume_->albedoTexture()};
-    const GLuint samplers[2] = {sampler_.id(), sampler_.id()};
-    static_assert(TP_VOXEL_ALBEDO == TP_VOXEL_RADIANCE + 1, "bound together");
-    glBindTextures(TP_VOXEL_RADIANCE, 2, textures);
-    glBindSamplers(TP_VOXEL_RADIANCE, 2, samplers);
-    glBindTextureUnit(TP_VOXEL_SIDES, volume_->sidesTexture());
-    glBindSampler(TP_VOXEL_SIDES, 0);
+    gl::bindTextures({{TP_VOXEL_RADIANCE, volume_->radianceTexture()}, {TP_VOXEL_ALBEDO, volume_->albedoTexture()}},
+                     sampler_.id());
+    gl::bindTextures({{TP_VOXEL_SIDES, volume_->sidesTexture()}});
     bindBuffers();
 }
 
-void ProbeField::releaseHitLight() const { glBindSamplers(TP_VOXEL_RADIANCE, 2, nullptr); }
+void ProbeField::releaseHitLight() const {
+    for (int unit : {TP_VOXEL_RADIANCE, TP_VOXEL_ALBEDO}) glBindSampler(GLuint(unit), 0);
+}
 
 void ProbeField::trace(const Frame& frame, const FieldSettings& s, int batch) {
     const GLuint p = traceProgram_.id();

@@ -5,6 +5,7 @@
 
 #include "emitter_settings.h"
 #include "lights.h"
+#include "gl/bind.h"
 #include "gl/dispatch.h"
 #include "volume/volume_slots.h"
 #include "volume/voxel_uniforms.h"
@@ -128,9 +129,9 @@ void VoxelRadiance::inject(const VoxelGrid& grid, const Lights& lights) {
     glProgramUniform1i(p, UV_LIGHT_COUNT, lights.buffer ? lights.count : 0);
     glProgramUniform1i(p, UV_SHADOWS_ENABLED, lights.shadows ? 1 : 0);
     glProgramUniform1f(p, UV_EMISSION_WEIGHT, lights.emission);
-    const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), grid.emission.id()};
-    glBindTextures(TV_INJECT_ALBEDO, 3, textures);
-    glBindSamplers(TV_INJECT_ALBEDO, TV_INJECT_RAY_SCENE - TV_INJECT_ALBEDO, nullptr);
+    gl::bindTextures({{TV_INJECT_ALBEDO, grid.albedo.id()}, {TV_INJECT_NORMAL, grid.normal.id()},
+                      {TV_INJECT_EMISSION, grid.emission.id()}});
+    glBindSamplers(TV_INJECT_ALBEDO, TV_INJECT_RAY_SCENE - TV_INJECT_ALBEDO, nullptr);  // the shadow units' too
     if (lights.shadowMaps) glBindTextureUnit(TV_INJECT_SHADOW_MAPS, lights.shadowMaps);
     if (lights.shadowCubes) glBindTextureUnit(TV_INJECT_SHADOW_CUBES, lights.shadowCubes);
     if (lights.buffer) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightsBinding, lights.buffer);
@@ -154,9 +155,8 @@ void VoxelRadiance::copyDirectLight() {
 
 void VoxelRadiance::cullUnlitOutsides(const VoxelGrid& grid, const gl::Texture& target, bool environmentLit) {
     const int n = radiance_.width;
-    const GLuint textures[3] = {grid.albedo.id(), grid.normal.id(), target.id()};
-    glBindTextures(TV_EXTERIOR_ALBEDO, 3, textures);
-    glBindSamplers(TV_EXTERIOR_ALBEDO, 3, nullptr);
+    gl::bindTextures({{TV_EXTERIOR_ALBEDO, grid.albedo.id()}, {TV_EXTERIOR_NORMAL, grid.normal.id()},
+                      {TV_EXTERIOR_RADIANCE, target.id()}});
     const GLubyte zero = 0;
     glClearTexImage(reach_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
     glBindImageTexture(IV_EXTERIOR_REACH, reach_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R8UI);
@@ -249,8 +249,8 @@ void VoxelRadiance::gatherOnce(const VoxelGrid& grid, const Scratch& scratch, GL
     // copy them over level 0 and the sides.
     const int n = radiance_.width;
     glUseProgram(program);
-    const GLuint textures[4] = {grid.albedo.id(), grid.normal.id(), direct_.id(), directSides_.id()};
-    glBindTextures(TV_BOUNCE_ALBEDO, 4, textures);
+    gl::bindTextures({{TV_BOUNCE_ALBEDO, grid.albedo.id()}, {TV_BOUNCE_NORMAL, grid.normal.id()},
+                      {TV_BOUNCE_DIRECT, direct_.id()}, {TV_BOUNCE_DIRECT_SIDES, directSides_.id()}});
     glBindSamplers(TV_BOUNCE_ALBEDO, 10, nullptr);
     bind();
     glBindImageTexture(IV_BOUNCE_RADIANCE, scratch.radiance.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);

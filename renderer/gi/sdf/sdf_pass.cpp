@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "gl/bind.h"
 #include "gl/dispatch.h"
 #include "debug_view.h"
 #include "gi/method.h"
@@ -142,10 +143,9 @@ void SdfGiPass::setCommonUniforms(GLuint p, const Frame& frame) const {
     glProgramUniformMatrix4fv(p, UG_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UG_CAMERA_POS, 1, &frame.camera.position[0]);
     glProgramUniform1i(p, UG_SCALE, scale_);
-    const GLuint gbuffer[3] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal),
-                               frame.texture(resource::kGbufferMaterial)};
-    glBindTextures(TG_DEPTH, 3, gbuffer);
-    glBindSamplers(TG_DEPTH, TG_DEBUG_INFO + 1 - TG_DEPTH, nullptr);
+    glBindSamplers(TG_DEPTH, TG_DEBUG_INFO + 1 - TG_DEPTH, nullptr);  // every unit of the method's programs
+    gl::bindTextures({{TG_DEPTH, frame.texture(resource::kGbufferDepth)}, {TG_NORMAL, frame.texture(resource::kGbufferNormal)},
+                      {TG_MATERIAL, frame.texture(resource::kGbufferMaterial)}});
 }
 
 void SdfGiPass::trace(const Frame& frame, const SdfGiSettings& s) {
@@ -202,8 +202,8 @@ void SdfGiPass::accumulate(const Frame& frame, const SdfGiSettings& s) {
     temporal.hasHistory = hasHistory_ ? 1 : 0;
     temporal.cameraMoved = moved ? 1 : 0;
     temporalBlock_.set(temporal);
-    const GLuint inputs[3] = {raw_.id(), history_[current_].id(), historyDistance_[current_].id()};
-    glBindTextures(TG_TEMPORAL_CURRENT, 3, inputs);
+    gl::bindTextures({{TG_TEMPORAL_CURRENT, raw_.id()}, {TG_TEMPORAL_HISTORY, history_[current_].id()},
+                      {TG_TEMPORAL_HISTORY_DISTANCE, historyDistance_[current_].id()}});
     const int next = 1 - current_;
     glBindImageTexture(IG_TEMPORAL_HISTORY, history_[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(IG_TEMPORAL_HISTORY_DISTANCE, historyDistance_[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
@@ -219,8 +219,8 @@ void SdfGiPass::filter(const Frame& frame, const SdfGiSettings& s) {
     glProgramUniform1i(p, UG_FILTER, s.filterRadius);
     glProgramUniform1f(p, UG_INTENSITY, s.intensity);
     // SDFGI's gathered diffuse needs no history: it is not noisy.
-    const GLuint inputs[3] = {field_ ? raw_.id() : history_[current_].id(), reflection_.id(), occlusion_.id()};
-    glBindTextures(TG_FILTER_DIFFUSE, 3, inputs);
+    gl::bindTextures({{TG_FILTER_DIFFUSE, field_ ? raw_.id() : history_[current_].id()},
+                      {TG_FILTER_REFLECTION, reflection_.id()}, {TG_FILTER_OCCLUSION, occlusion_.id()}});
     glBindImageTexture(IG_FILTER_DIFFUSE, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(IG_FILTER_SPECULAR, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(IG_FILTER_AO, ao_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);

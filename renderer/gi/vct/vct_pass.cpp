@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "gl/bind.h"
 #include "gl/dispatch.h"
 #include "debug_view.h"
 #include "gi/method.h"
@@ -130,10 +131,9 @@ void VctPass::trace(const Frame& frame, const VctSettings& s, glm::ivec2 jitter)
     glProgramUniform1f(p, UV_INTENSITY, s.intensity);
     glProgramUniform3i(p, UV_TRACE_JITTER, built_.tracePixels(), jitter.x, jitter.y);
     glProgramUniform1f(p, UV_SPECULAR_ROUGHNESS, s.specularRoughness);
-    const GLuint gbuffer[3] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal),
-                               frame.texture(resource::kGbufferMaterial)};
-    glBindTextures(TC_TRACE_DEPTH, 3, gbuffer);
-    glBindSamplers(TC_TRACE_DEPTH, 3, nullptr);
+    gl::bindTextures({{TC_TRACE_DEPTH, frame.texture(resource::kGbufferDepth)},
+                      {TC_TRACE_NORMAL, frame.texture(resource::kGbufferNormal)},
+                      {TC_TRACE_MATERIAL, frame.texture(resource::kGbufferMaterial)}});
     volume_->bind();
     if (s.skyRays > 0) services_->rays().bind(TC_TRACE_RAY_SCENE);
     glBindImageTexture(IC_TRACE_DIFFUSE, diffuse_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -148,9 +148,9 @@ void VctPass::filterSky(const Frame& frame, const gl::Texture& diffuse) {
     glUseProgram(p);
     glProgramUniformMatrix4fv(p, UV_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, UV_CAMERA_POS, 1, &frame.camera.position[0]);
-    const GLuint inputs[3] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal), diffuse.id()};
-    glBindTextures(TC_SKY_FILTER_DEPTH, 3, inputs);
-    glBindSamplers(TC_SKY_FILTER_DEPTH, 3, nullptr);
+    gl::bindTextures({{TC_SKY_FILTER_DEPTH, frame.texture(resource::kGbufferDepth)},
+                      {TC_SKY_FILTER_NORMAL, frame.texture(resource::kGbufferNormal)},
+                      {TC_SKY_FILTER_DIFFUSE, diffuse.id()}});
     glBindImageTexture(IC_SKY_FILTER_OUTPUT, skyFiltered_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl::dispatchCompute(gl::groupsFor(skyFiltered_.width, 8), gl::groupsFor(skyFiltered_.height, 8), 1, "vct sky filter");
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -174,11 +174,13 @@ void VctPass::upsample(const Frame& frame, glm::ivec2 jitter) {
     glProgramUniformMatrix4fv(p, UV_PREV_VIEW_PROJ, 1, GL_FALSE, &lastCamera_.viewProj[0][0]);
     glProgramUniform3fv(p, UV_PREV_CAMERA_POS, 1, &lastCamera_.position[0]);
     glProgramUniform2i(p, UV_HISTORY, hasHistory_ ? 1 : 0, cameraMoved_ ? 1 : 0);
-    const GLuint inputs[7] = {frame.texture(resource::kGbufferDepth), frame.texture(resource::kGbufferNormal),
-                              diffuse_.id(), specular_.id(), previous.diffuse.id(), previous.specular.id(),
-                              previous.geometry.id()};
-    glBindTextures(TC_UPSAMPLE_DEPTH, 7, inputs);
-    glBindSamplers(TC_UPSAMPLE_DEPTH, 7, nullptr);
+    gl::bindTextures({{TC_UPSAMPLE_DEPTH, frame.texture(resource::kGbufferDepth)},
+                      {TC_UPSAMPLE_NORMAL, frame.texture(resource::kGbufferNormal)},
+                      {TC_UPSAMPLE_TRACED_DIFFUSE, diffuse_.id()},
+                      {TC_UPSAMPLE_TRACED_SPECULAR, specular_.id()},
+                      {TC_UPSAMPLE_HISTORY_DIFFUSE, previous.diffuse.id()},
+                      {TC_UPSAMPLE_HISTORY_SPECULAR, previous.specular.id()},
+                      {TC_UPSAMPLE_HISTORY_GEOMETRY, previous.geometry.id()}});
     glBindImageTexture(IC_UPSAMPLE_DIFFUSE, next.diffuse.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(IC_UPSAMPLE_SPECULAR, next.specular.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(IC_UPSAMPLE_GEOMETRY, next.geometry.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
