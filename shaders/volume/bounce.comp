@@ -90,11 +90,12 @@ vec3 faceGather(ivec3 v, vec4 normalTexel, vec3 centre, vec3 n, out float plusSh
         vec3 p = voxelJunctionSide(v, normalTexel, centre, i == 0 ? 1.0 : -1.0);
 #if BOUNCE_RAYS
         g_raysStartedInside = 0;
+#endif
         side[i] = gatherAround(p, n);
+#if BOUNCE_RAYS
         inside[i] = 2 * g_raysStartedInside > g_coneRays.count * diffuseConeCount(u_coneSet);
         sky[i] = skyShare(p + n * 0.5);
 #else
-        side[i] = gatherAround(p, n);
         inside[i] = false;
         sky[i] = 1.0 - side[i].a;
 #endif

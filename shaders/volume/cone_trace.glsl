@@ -88,8 +88,8 @@ float boundaryCrossing(vec3 a, vec3 b, float lo, float hi) {
 // came from (judged from where the slab lies in the voxel, voxelSlabCentre: a ray from the room
 // that meets the wall just under the roof, in the voxel that holds both, gets the roof's underside,
 // not the sunlit top its direction's tiny upward part would pick). One voxel, not a blend: a
-// trilinear blend reaches the voxels behind a wall thinner than one. Where the surface's fragments went to the voxel in front (a surface on a
-// voxel boundary), that one.
+// trilinear blend reaches the voxels behind a wall thinner than one. Where the surface's fragments
+// went to the voxel in front (a surface on a voxel boundary), that one.
 vec3 surfaceLight(float resolution, vec3 from, vec3 hit, vec3 dir, out ivec3 v) {
     ivec3 last = ivec3(int(resolution) - 1);
     v = clamp(ivec3(floor(hit + dir * 0.05)), ivec3(0), last);
