@@ -49,6 +49,7 @@ struct SdfHit {
     float t;          // distance along the ray to `position`
     int steps;        // field lookups spent (a miss counts them too)
     int cascade;      // the cascade (layer) the hit was found in
+    float stopValue;  // the field's value where the march stopped, before sdfRefine
 };
 
 SdfMarchParams sdfDefaultParams(float maxDistance) {
@@ -123,38 +124,78 @@ float sdfCoarseBound(sampler3D coarse, SdfVolume vol, int layer, int coarseFacto
     return texelFetch(coarse, c + ivec3(0, 0, layer * size), 0).r;
 }
 
+// A Newton step along the ray longer than this many cells (or than the empty sphere around its
+// start) has its path checked, this many cells off the surface along its normal.
+const float SDF_REFINE_FREE_CELLS = 0.5;
+const float SDF_REFINE_LIFT_CELLS = 1.5;
+
+// Whether the path from a to b, two points on a surface with normal n, crosses no other surface:
+// sphere traced along the path lifted off the surface by SDF_REFINE_LIFT_CELLS, where the surface
+// itself stays more than half a cell away, so a distance below that is something standing on it.
+bool sdfLiftedPathClear(sampler3D field, SdfVolume vol, int layer, vec3 a, vec3 b, vec3 n) {
+    float cell = sdfCellSize(vol);
+    vec3 from = a + n * (SDF_REFINE_LIFT_CELLS * cell);
+    float len = length(b - a);
+    vec3 along = (b - a) / max(len, 1e-30);
+    float s = 0.0;
+    for (int i = 0; i < 64 && s < len; ++i) {
+        float d = sdfSample(field, vol, layer, from + along * s);
+        if (d < 0.5 * cell) return false;
+        s += d;
+    }
+    return s >= len;
+}
+
 // The marcher stops within the hit threshold of the surface, which at a grazing angle is many
 // cells short along the ray. Two Newton steps along the ray onto the zero level set (exact for a
-// plane under trilinear filtering), each kept only if it brings |distance| down; if the ray runs
-// nearly parallel to the surface, the point is moved onto it along the normal instead.
+// plane under trilinear filtering), each kept only if it brings |distance| down and, when it goes
+// further than SDF_REFINE_FREE_CELLS and the empty sphere around its start, only if nothing stands
+// on the surface in between: at a grazing angle the field near a floor is the floor's, and a step
+// along it would pass through a wall standing on it, into the next room. If the ray runs nearly
+// parallel to the surface, the point is moved onto it along the normal instead.
 vec3 sdfRefineHit(sampler3D field, SdfVolume vol, int layer, vec3 origin, vec3 dir, float t, float d, vec3 n) {
     float cell = sdfCellSize(vol);
+    // Where the ray comes within the hand-over margin of the cube's faces: the field knows nothing
+    // beyond them.
+    float tCube = sdfRayBox(vol, origin, dir).y - SDF_HAND_OVER_CELLS * cell;
     for (int k = 0; k < 2; ++k) {
         float cosine = -dot(dir, n);
         if (cosine < 0.02) break;
         float tNext = t + clamp(d / cosine, -2.0 * cell, 16.0 * cell);
+        if (tNext > t && tNext > tCube) break;
         float dNext = sdfSample(field, vol, layer, origin + dir * tNext);
         if (abs(dNext) >= abs(d)) break;
+        vec3 from = origin + dir * t - n * d, to = origin + dir * tNext - n * dNext;
+        bool far = tNext - t > max(abs(d), SDF_REFINE_FREE_CELLS * cell);
+        if (far && !sdfLiftedPathClear(field, vol, layer, from, to, n)) break;
         t = tNext;
         d = dNext;
     }
     return origin + dir * t - n * d;
 }
 
-// Fills `result` with a hit at distance d near ray parameter t in layer `layer`.
-void sdfAcceptHit(sampler3D field, SdfVolume vol, int layer, vec3 origin, vec3 dir, float t, float d,
-                  inout SdfHit result) {
-    vec3 x = origin + dir * t;
-    result.normal = sdfNormal(field, vol, layer, x);
-    result.position = sdfRefineHit(field, vol, layer, origin, dir, t, d, result.normal);
-    result.t = dot(result.position - origin, dir);
+// Marks `result` a hit at ray parameter t in layer `layer`, where the field holds d; sdfRefine
+// then moves it onto the surface. Kept apart so that callers who only ask whether a ray hits
+// (sdfSegmentClear) skip that work, and the marchers refine once, outside their loops.
+void sdfStopAt(float t, float d, int layer, inout SdfHit result) {
     result.hit = true;
+    result.t = t;
+    result.stopValue = d;
     result.cascade = layer;
 }
 
+// A hit sdfStopAt marked: its normal and its point on the surface (sdfRefineHit).
+void sdfRefine(sampler3D field, SdfVolume vol, vec3 origin, vec3 dir, inout SdfHit result) {
+    if (!result.hit) return;
+    vec3 x = origin + dir * result.t;
+    result.normal = sdfNormal(field, vol, result.cascade, x);
+    result.position = sdfRefineHit(field, vol, result.cascade, origin, dir, result.t, result.stopValue, result.normal);
+    result.t = dot(result.position - origin, dir);
+}
+
 // Sphere traces from t up to tEnd through one volume (layer `layer`). Returns true with `result`
-// filled on a hit; otherwise t is where the ray left [.., tEnd] (or ran out of steps), at a point
-// reached by safe steps only. `bounded`: surfaces outside the cube are missing from this field (a
+// marked a hit (sdfStopAt); otherwise t is where the ray left [.., tEnd] (or ran out of steps), at
+// a point reached by safe steps only. `bounded`: surfaces outside the cube are missing from this field (a
 // fine cascade), so no step is longer than the distance to the cube's faces - a sphere that
 // reaches outside the cube is not known to be empty.
 bool sdfMarchLayer(sampler3D field, sampler3D coarse, SdfVolume vol, int layer, bool bounded, vec3 origin, vec3 dir,
@@ -184,8 +225,7 @@ bool sdfMarchLayer(sampler3D field, sampler3D coarse, SdfVolume vol, int layer, 
         // crossing lies between the two points: interpolate there instead of marching on inside.
         if (previousSigned * d < 0.0) {
             float tCross = t - stepLength * abs(d) / (abs(d) + abs(previousSigned));
-            sdfAcceptHit(field, vol, layer, origin, dir, tCross, sdfSample(field, vol, layer, origin + dir * tCross),
-                         result);
+            sdfStopAt(tCross, sdfSample(field, vol, layer, origin + dir * tCross), layer, result);
             return true;
         }
         // Over-relaxation (Keinert et al. 2015): a step of w*r is safe only if the sphere at the new
@@ -198,7 +238,7 @@ bool sdfMarchLayer(sampler3D field, sampler3D coarse, SdfVolume vol, int layer, 
             continue;
         }
         if (abs(d) < threshold) {
-            sdfAcceptHit(field, vol, layer, origin, dir, t, d, result);
+            sdfStopAt(t, d, layer, result);
             return true;
         }
         previousRadius = radius;
@@ -212,20 +252,22 @@ bool sdfMarchLayer(sampler3D field, sampler3D coarse, SdfVolume vol, int layer, 
 }
 
 SdfHit sdfMarch(sampler3D field, sampler3D coarse, SdfVolume vol, vec3 origin, vec3 dir, SdfMarchParams p) {
-    SdfHit result = SdfHit(false, origin, vec3(0.0), 0.0, 0, 0);
+    SdfHit result = SdfHit(false, origin, vec3(0.0), 0.0, 0, 0, 0.0);
     vec2 span = sdfRayBox(vol, origin, dir);
     float t = max(p.startOffset, span.x);
     // Leaving the cube is a miss: the field says nothing outside it.
     sdfMarchLayer(field, coarse, vol, 0, false, origin, dir, p, min(p.maxDistance, span.y), t, result);
+    sdfRefine(field, vol, origin, dir, result);
     return result;
 }
 
 // Cascade hand-over: the ray marches in the finest cascade that holds its current point; when it
 // comes within SDF_HAND_OVER_CELLS of that cascade's faces it continues, from the same point and
 // with the same step budget, in the next coarser one that holds it. Leaving the coarsest (the whole
-// scene) is a miss. Each cascade's hit threshold is in its own cells.
-SdfHit sdfMarchCascades(sampler3D field, sampler3D coarse, SdfCascades cs, vec3 origin, vec3 dir, SdfMarchParams p) {
-    SdfHit result = SdfHit(false, origin, vec3(0.0), 0.0, 0, 0);
+// scene) is a miss. Each cascade's hit threshold is in its own cells. The hit is where the march
+// stopped (sdfStopAt); sdfMarchCascades refines it.
+SdfHit sdfStopCascades(sampler3D field, sampler3D coarse, SdfCascades cs, vec3 origin, vec3 dir, SdfMarchParams p) {
+    SdfHit result = SdfHit(false, origin, vec3(0.0), 0.0, 0, 0, 0.0);
     float t = p.startOffset;
     for (int c = 0; c < cs.count; ++c) {
         SdfVolume vol = sdfCascadeVolume(cs, c);
@@ -238,6 +280,12 @@ SdfHit sdfMarchCascades(sampler3D field, sampler3D coarse, SdfCascades cs, vec3 
             return result;
         if (result.steps >= p.maxSteps || t >= p.maxDistance) break;
     }
+    return result;
+}
+
+SdfHit sdfMarchCascades(sampler3D field, sampler3D coarse, SdfCascades cs, vec3 origin, vec3 dir, SdfMarchParams p) {
+    SdfHit result = sdfStopCascades(field, coarse, cs, origin, dir, p);
+    sdfRefine(field, sdfCascadeVolume(cs, result.cascade), origin, dir, result);
     return result;
 }
 
@@ -262,7 +310,7 @@ bool sdfSegmentClear(sampler3D field, sampler3D coarse, SdfCascades cs, vec3 fro
     if (len <= endGap) return true;
     SdfMarchParams p = sdfDefaultParams(len - endGap);
     p.maxSteps = maxSteps;
-    return !sdfMarchCascades(field, coarse, cs, from, (to - from) / len, p).hit;
+    return !sdfStopCascades(field, coarse, cs, from, (to - from) / len, p).hit;
 }
 
 // Whether a surface point P sees `to` along a straight path: from `offsetCells` cells off the

@@ -7,70 +7,16 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <random>
 
 #include "render_test_util.h"
 #include "volume/sdf_uniforms.h"
 #include "volume/volume_cascades.h"
+#include "march_test_util.h"
 #include "sdf_test_util.h"
 
 namespace gis::test {
 namespace {
-
-struct Ray {
-    glm::vec4 origin;     // w = max distance
-    glm::vec4 direction;
-};
-struct Hit {
-    glm::vec3 position;
-    bool hit = false;
-    glm::vec3 normal;
-    int steps = 0;
-    int cascade = -1;   // the layer the hit was found in (-1: a miss)
-};
-
-struct MarchSettings {
-    float threshold = 0.5f, relaxation = 1.2f;
-    int maxSteps = 128;
-    float startOffset = 0.0f;
-};
-
-std::vector<Hit> march(const DistanceField& field, const std::vector<Ray>& rays, const MarchSettings& m = {}) {
-    static gl::Object program = buildProgram({"sdf_march_probe", {"volume/sdf_march_probe.comp"}, {}});
-    gl::MemoryLedger ledger;
-    const gl::MemoryScope scope{&ledger, "sdf_test"};
-    gl::Buffer in = gl::createBuffer(scope, int64_t(rays.size() * sizeof(Ray)), rays.data());
-    gl::Buffer out = gl::createBuffer(scope, int64_t(rays.size() * 32), nullptr);
-    const GLuint p = program.id();
-    glUseProgram(p);
-    const SdfVolume& v = field.volume();
-    glProgramUniform1ui(p, 0, GLuint(rays.size()));
-    glProgramUniform4f(p, 1, v.origin.x, v.origin.y, v.origin.z, v.size);
-    glProgramUniform1i(p, 2, v.resolution);
-    sdf::SdfMarchBlock block;
-    block.hitThreshold = m.threshold;
-    block.relaxation = m.relaxation;
-    block.maxSteps = m.maxSteps;
-    block.offset = m.startOffset;
-    const gl::UniformBuffer<sdf::SdfMarchBlock> marchBlock(scope);
-    marchBlock.set(block);
-    // A layered field is marched as cascades (layer 0 the finest), a single one as one volume.
-    std::vector<glm::vec4> cascades;
-    for (int i = 0; i < field.layers(); ++i) cascades.emplace_back(field.volume(i).origin, field.volume(i).size);
-    glProgramUniform1i(p, 4, field.layers() > 1 ? field.layers() : 0);
-    glProgramUniform4fv(p, 5, GLsizei(cascades.size()), &cascades[0][0]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, sdf::SF_MARCH_PROBE_RAYS, in.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, sdf::SF_MARCH_PROBE_HITS, out.id());
-    field.bind(sdf::TF_MARCH_PROBE_DISTANCE);
-    glDispatchCompute(GLuint((rays.size() + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<glm::vec4> raw(rays.size() * 2);
-    glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(raw.size() * sizeof(glm::vec4)), raw.data());
-    std::vector<Hit> hits(rays.size());
-    for (size_t i = 0; i < hits.size(); ++i)
-        hits[i] = {glm::vec3(raw[2 * i]), raw[2 * i].w > 0.5f, glm::vec3(raw[2 * i + 1]), int(raw[2 * i + 1].w),
-                   int(raw[2 * i].w) - 1};
-    return hits;
-}
 
 // A field sampled from an analytic signed distance at every cell centre.
 std::unique_ptr<DistanceField> analyticField(const SdfVolume& v, const std::function<float(glm::vec3)>& sdf,
@@ -347,6 +293,52 @@ TEST(SdfMarch, CascadesGiveFiniteResultsAndMisses) {
     EXPECT_TRUE(hits[3].hit);   // enters the coarsest cascade from outside and meets the plane
     for (const Hit& h : hits)
         for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isfinite(h.position[k]) && std::isfinite(h.normal[k]));
+}
+
+
+// A floor and a wall one cell thick standing on it (jump-flooded seeds, as the voxelizer leaves a
+// wall thinner than a cell). Rays start just above the floor, within the hit threshold, and run at
+// grazing angles towards the wall: near the floor the field is the floor's, so the refinement's
+// Newton step onto the floor's plane, many cells along the ray, would land beyond the wall, in
+// the next room. Every hit stays on the near side of the wall.
+TEST(SdfMarch, AGrazingHitOnAFloorDoesNotPassAWallStandingOnIt) {
+    const int n = kVolume.resolution;
+    const float h = kVolume.cellSize();
+    const int floorY = 8, wallX = 16;
+    SeedGrid g = uniformSeeds(n, 0, 1);
+    for (int z = 0; z < n; ++z)
+        for (int x = 0; x < n; ++x) {
+            g.seed[g.index(x, floorY, z)] = 1;
+            g.normal[g.index(x, floorY, z)] = glm::vec3(0, 1, 0);
+        }
+    for (int z = 0; z < n; ++z)
+        for (int y = floorY + 1; y < n; ++y) g.seed[g.index(wallX, y, z)] = 1;  // both faces: no orientation
+    gl::MemoryLedger ledger;
+    const gl::MemoryScope scope{&ledger, "sdf_test"};
+    SeedTextures textures = uploadSeeds(g, scope);
+    DistanceField field(kVolume, scope);
+    field.build(textures.seeds(true), JfaVariant::JfaPlusTwo);
+    const float floorLevel = kVolume.origin.y + (float(floorY) + 0.5f) * h;
+    const float wallFar = kVolume.origin.x + (float(wallX) + 1.0f) * h;
+    std::vector<Ray> rays;
+    for (float cellsFromWall : {1.0f, 2.5f, 4.0f})
+        for (float height : {0.2f, 0.35f, 0.45f})
+            for (float e : {1.0f, 2.0f, 4.0f})
+                for (float azimuth : {-0.3f, 0.0f, 0.4f}) {
+                    const float el = glm::radians(e);
+                    const glm::vec3 dir(std::cos(el) * std::cos(azimuth), -std::sin(el), std::cos(el) * std::sin(azimuth));
+                    const glm::vec3 origin(wallFar - (1.0f + cellsFromWall) * h, floorLevel + height * h, 0.05f);
+                    rays.push_back({glm::vec4(origin, 10.0f), glm::vec4(dir, 0.0f)});
+                }
+    const auto hits = march(field, rays);
+    float furthest = -1e9f;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        ASSERT_TRUE(hits[i].hit) << "ray " << i;
+        EXPECT_LE(hits[i].position.x, wallFar) << "ray " << i << " from x " << rays[i].origin.x;
+        furthest = std::max(furthest, hits[i].position.x);
+    }
+    std::printf("grazing rays towards a wall on a floor: furthest hit %.2f cells past the wall's far face\n",
+                (furthest - wallFar) / h);
 }
 
 }  // namespace
