@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "frame.h"
+#include "render_settings.h"
 #include "gl/shader.h"
 
 namespace gis {

@@ -5,7 +5,9 @@
 
 #include "gl/dispatch.h"
 #include "gl/gpu_budget.h"
+#include "emitter_settings.h"
 #include "error.h"
+#include "frame.h"
 #include "uniforms.h"
 
 namespace gis {
@@ -198,6 +200,12 @@ void GpuEnvironment::bind(glm::vec3 constant, float rotationDegrees, bool direct
     glBindTextureUnit(kEnvironmentConditionalUnit, conditional_.id());
     // The textures' own filtering and wrapping, whatever sampler object a unit last held.
     glBindSamplers(kEnvironmentBrdfUnit, kEnvironmentUnits, nullptr);
+}
+
+// Frame's, defined beside what it binds: the frame (below every pass) need not include the
+// environment's GPU side (above the scene's uniforms and the emitter settings).
+void Frame::bindEnvironment() const {
+    environment->bind(background(), settings.environmentRotation, environmentIsLight(scene.cpu, settings));
 }
 
 }  // namespace gis

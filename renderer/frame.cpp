@@ -2,8 +2,7 @@
 
 #include <algorithm>
 
-#include "emitter_settings.h"
-#include "environment_gpu.h"
+#include "error.h"
 
 namespace gis {
 
@@ -14,10 +13,6 @@ void Frame::checkDeclared(const std::string& name, bool write) const {
     if (!write && std::find(in.begin(), in.end(), name) != in.end()) return;
     throw Error(std::string("internal: pass '") + pass->name() + (write ? "' writes '" : "' reads '") + name +
                 "', which its " + (write ? "outputs()" : "inputs()") + " do not declare");
-}
-
-void Frame::bindEnvironment() const {
-    environment->bind(background(), settings.environmentRotation, environmentIsLight(scene.cpu, settings));
 }
 
 void Frame::put(const std::string& name, const gl::Texture& t) {

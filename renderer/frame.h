@@ -13,6 +13,7 @@
 #include "frame_resources.h"
 #include "gl/gl.h"
 #include "gpu_scene.h"
+#include "ray_counts.h"
 #include "render_settings.h"
 
 namespace gis {
@@ -86,7 +87,7 @@ struct Frame {
     // else the scene's own.
     glm::vec3 background() const { return settings.background.value_or(scene.cpu.background); }
     // Binds the environment (shaders/environment.glsl) for the programs the pass runs next: the
-    // map of --environment, else background() as a constant map.
+    // map of --environment, else background() as a constant map. Defined in environment_gpu.cpp.
     void bindEnvironment() const;
 
 private:
@@ -96,13 +97,6 @@ private:
 // A named picture a pass can draw for inspection ("ao", "gbuffer.normal", "vct.slice").
 struct DebugViewDesc {
     std::string name, help;
-};
-
-// Rays a ray-tracing pass traced, by kind: primary (from the camera), bounce (path continuation),
-// shadow (visibility towards a light or emitter).
-struct RayCounts {
-    uint64_t primary = 0, bounce = 0, shadow = 0;
-    uint64_t total() const { return primary + bounce + shadow; }
 };
 
 // The memory-barrier rule between passes: after each pass that declares writesImagesOrBuffers(),

@@ -1,7 +1,5 @@
 #include "gpu_scene.h"
 
-#include "gl/bind.h"
-#include "uniforms.h"
 
 namespace gis {
 
@@ -95,31 +93,6 @@ GpuScene::GpuScene(const Scene& scene, gl::MemoryLedger& ledger) : cpu(scene) {
         draws.push_back(g);
     }
     gl::checkOutOfMemory("uploading the scene");
-}
-
-void GpuScene::bindMaterial(const GpuMaterial& m) const {
-    gl::bindTextures({{T_MATERIAL_BASE_COLOR, m.baseColor},
-                      {T_MATERIAL_METALLIC_ROUGHNESS, m.metallicRoughness},
-                      {T_MATERIAL_NORMAL, m.normal},
-                      {T_MATERIAL_EMISSIVE, m.emissive},
-                      {T_MATERIAL_OCCLUSION, m.occlusion}},
-                     sampler.id());
-}
-
-void GpuScene::setDrawUniforms(GLuint program, const GpuDraw& draw) const {
-    const Material& m = materials[draw.material].params;
-    glProgramUniformMatrix4fv(program, U_MODEL, 1, GL_FALSE, &draw.world[0][0]);
-    glProgramUniformMatrix3fv(program, U_NORMAL_MATRIX, 1, GL_FALSE, &draw.normalMatrix[0][0]);
-    glProgramUniform4fv(program, U_BASE_COLOR_FACTOR, 1, &m.baseColorFactor[0]);
-    glProgramUniform1f(program, U_METALLIC, m.metallicFactor);
-    glProgramUniform1f(program, U_ROUGHNESS, m.roughnessFactor);
-    glProgramUniform1f(program, U_SPECULAR_FACTOR, m.specularFactor);
-    glProgramUniform1f(program, U_OCCLUSION_STRENGTH, m.occlusionStrength);
-    glProgramUniform3fv(program, U_EMISSIVE, 1, &m.emissive[0]);
-    glProgramUniform1f(program, U_ALPHA_CUTOFF, m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f);
-    glProgramUniform1f(program, U_NORMAL_SCALE, m.normalScale);
-    glProgramUniform1i(program, U_DOUBLE_SIDED, m.doubleSided ? 1 : 0);
-    glProgramUniform2i(program, U_BRDF_OVERRIDE, m.diffuseModel, m.specularModel);
 }
 
 }  // namespace gis

@@ -37,11 +37,6 @@ struct GpuScene {
     gl::Object sampler;
     std::vector<GpuMaterial> materials;
     std::vector<GpuDraw> draws;
-
-    // Binds vertex array, material textures (units 0..4) and per-draw uniforms for `draw`.
-    // Uniform locations are the fixed ones of shaders/scene_vertex.glsl and material.glsl.
-    void bindMaterial(const GpuMaterial& material) const;
-    void setDrawUniforms(GLuint program, const GpuDraw& draw) const;
 };
 
 }  // namespace gis

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "frame.h"
 #include "gl/dispatch.h"
 #include "lights.h"
 #include "uniforms.h"

@@ -9,6 +9,7 @@
 #include "bvh.h"
 #include "gl/storage_struct.h"
 #include "gpu_scene.h"
+#include "ray_counts.h"
 
 namespace gis {
 
@@ -38,7 +39,6 @@ constexpr int kBvhNodesBinding = 1, kBvhTrianglesBinding = 2, kRayAttributesBind
               kRayEmittersBinding = 5;
 // The path tracer's ray counts (shaders/path_tracer.glsl: 3 x (low, high) uint), which its passes bind.
 constexpr int kRayCountsBinding = 6;
-struct RayCounts;
 gl::Buffer createRayCounts(const gl::MemoryScope& scope);  // zeroed
 RayCounts readRayCounts(const gl::Buffer& counts);         // the counts so far (a GPU sync)
 

@@ -5,6 +5,7 @@
 
 #include "debug_view.h"
 #include "gl/dispatch.h"
+#include "scene_draw.h"
 
 #include "uniforms.h"
 
@@ -149,10 +150,7 @@ void GBufferPass::drawScene(const Frame& frame, const glm::mat4& viewProj) {
         else glEnable(GL_CULL_FACE);
         // A mirroring transform (negative determinant) flips the winding.
         glFrontFace(glm::determinant(glm::mat3(d.world)) < 0.0f ? GL_CW : GL_CCW);
-        scene.setDrawUniforms(program, d);
-        scene.bindMaterial(m);
-        glDrawElementsBaseVertex(GL_TRIANGLES, d.indexCount, GL_UNSIGNED_INT,
-                                 reinterpret_cast<const void*>(uintptr_t(d.firstIndex) * 4), d.baseVertex);
+        drawWithMaterial(scene, program, d);
     }
     glFrontFace(GL_CCW);
 }

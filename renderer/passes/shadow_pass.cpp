@@ -6,6 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene_draw.h"
 #include "uniforms.h"
 
 namespace gis {
@@ -159,10 +160,7 @@ void ShadowPass::execute(Frame& frame) {
         glClear(GL_DEPTH_BUFFER_BIT);
         glProgramUniformMatrix4fv(program_.id(), U_VIEW_PROJ, 1, GL_FALSE, &v.viewProj[0][0]);
         for (const GpuDraw& d : scene.draws) {
-            scene.setDrawUniforms(program_.id(), d);
-            scene.bindMaterial(scene.materials[d.material]);
-            glDrawElementsBaseVertex(GL_TRIANGLES, d.indexCount, GL_UNSIGNED_INT,
-                                     reinterpret_cast<const void*>(uintptr_t(d.firstIndex) * 4), d.baseVertex);
+            drawWithMaterial(scene, program_.id(), d);
         }
     }
     glDisable(GL_POLYGON_OFFSET_FILL);

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "gl/dispatch.h"
+#include "scene_draw.h"
 #include "volume/voxel_uniforms.h"
 
 namespace gis {
@@ -151,10 +152,7 @@ void Voxelizer::voxelizeAround(const GpuScene& scene, const glm::ivec3& keepLo, 
     glUseProgram(p);
     glBindVertexArray(scene.vao.id());
     for (const GpuDraw& d : scene.draws) {
-        scene.setDrawUniforms(p, d);
-        scene.bindMaterial(scene.materials[d.material]);
-        glDrawElementsBaseVertex(GL_TRIANGLES, d.indexCount, GL_UNSIGNED_INT,
-                                 reinterpret_cast<const void*>(uintptr_t(d.firstIndex) * 4), d.baseVertex);
+        drawWithMaterial(scene, p, d);
     }
     if (mode_ == ConservativeMode::Hardware) glDisable(GL_CONSERVATIVE_RASTERIZATION_NV);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
