@@ -1,6 +1,5 @@
 #include "gpu_scene.h"
 
-
 namespace gis {
 
 namespace {

@@ -7,17 +7,16 @@ namespace gis {
 
 namespace {
 
-void bindMaterial(const GpuScene& scene, const GpuMaterial& m) {
+void bindMaterialTextures(const GpuMaterial& m, GLuint sampler) {
     gl::bindTextures({{T_MATERIAL_BASE_COLOR, m.baseColor},
                       {T_MATERIAL_METALLIC_ROUGHNESS, m.metallicRoughness},
                       {T_MATERIAL_NORMAL, m.normal},
                       {T_MATERIAL_EMISSIVE, m.emissive},
                       {T_MATERIAL_OCCLUSION, m.occlusion}},
-                     scene.sampler.id());
+                     sampler);
 }
 
-void setDrawUniforms(const GpuScene& scene, GLuint program, const GpuDraw& draw) {
-    const Material& m = scene.materials[draw.material].params;
+void setDrawUniforms(GLuint program, const GpuDraw& draw, const Material& m) {
     glProgramUniformMatrix4fv(program, U_MODEL, 1, GL_FALSE, &draw.world[0][0]);
     glProgramUniformMatrix3fv(program, U_NORMAL_MATRIX, 1, GL_FALSE, &draw.normalMatrix[0][0]);
     glProgramUniform4fv(program, U_BASE_COLOR_FACTOR, 1, &m.baseColorFactor[0]);
@@ -35,8 +34,9 @@ void setDrawUniforms(const GpuScene& scene, GLuint program, const GpuDraw& draw)
 }  // namespace
 
 void drawWithMaterial(const GpuScene& scene, GLuint program, const GpuDraw& draw) {
-    setDrawUniforms(scene, program, draw);
-    bindMaterial(scene, scene.materials[draw.material]);
+    const GpuMaterial& material = scene.materials[draw.material];
+    setDrawUniforms(program, draw, material.params);
+    bindMaterialTextures(material, scene.sampler.id());
     glDrawElementsBaseVertex(GL_TRIANGLES, draw.indexCount, GL_UNSIGNED_INT,
                              reinterpret_cast<const void*>(uintptr_t(draw.firstIndex) * 4), draw.baseVertex);
 }

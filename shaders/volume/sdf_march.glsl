@@ -195,9 +195,9 @@ void sdfRefine(sampler3D field, SdfVolume vol, vec3 origin, vec3 dir, inout SdfH
 
 // Sphere traces from t up to tEnd through one volume (layer `layer`). Returns true with `result`
 // marked a hit (sdfStopAt); otherwise t is where the ray left [.., tEnd] (or ran out of steps), at
-// a point reached by safe steps only. `bounded`: surfaces outside the cube are missing from this field (a
-// fine cascade), so no step is longer than the distance to the cube's faces - a sphere that
-// reaches outside the cube is not known to be empty.
+// a point reached by safe steps only. `bounded`: surfaces outside the cube are missing from this
+// field (a fine cascade), so no step is longer than the distance to the cube's faces - a sphere
+// that reaches outside the cube is not known to be empty.
 bool sdfMarchLayer(sampler3D field, sampler3D coarse, SdfVolume vol, int layer, bool bounded, vec3 origin, vec3 dir,
                    SdfMarchParams p, float tEnd, inout float t, inout SdfHit result) {
     float cell = sdfCellSize(vol);

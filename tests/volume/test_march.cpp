@@ -1,16 +1,14 @@
 // The sphere tracer (shaders/volume/sdf_march.glsl) through shaders/volume/sdf_march_probe.comp: a plane
 // and a sphere at their analytic distances, from head-on to grazing, on exact fields and on fields
 // jump-flooded from voxelized seeds; misses are misses; the cascade hand-over finds planes outside
-// the fine cascades.
+// the fine cascades; a grazing hit on a floor stays short of a wall standing on it.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <functional>
-#include <random>
 
 #include "render_test_util.h"
-#include "volume/sdf_uniforms.h"
 #include "volume/volume_cascades.h"
 #include "march_test_util.h"
 #include "sdf_test_util.h"

@@ -827,4 +827,3 @@ TEST(SdfGi, MeasurePresets) {
 
 }  // namespace
 }  // namespace gis::test
-
