@@ -90,12 +90,15 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     const int w = settings_.width, h = settings_.height;
     const bool deferred = method.pipeline == MethodPipeline::Deferred;
     const bool gbufferView = settings_.view.rfind("gbuffer.", 0) == 0;
-    if (deferred) passes_.push_back(std::make_unique<ShadowPass>(*gpuScene_, settings_, ledger_));
+    // A method that bakes the lights' direct light (lightmap.mode=all): the frame draws none itself.
+    const bool lightsBaked = method.bakesDirectLight && method.bakesDirectLight(settings_);
+    if (deferred) passes_.push_back(std::make_unique<ShadowPass>(*gpuScene_, settings_, !lightsBaked, ledger_));
     if (deferred || gbufferView) passes_.push_back(std::make_unique<GBufferPass>(scene, w, h, ledger_));
     // Emissive triangles and the environment as lights of the direct pass: only when there are
     // any (no cost otherwise).
     const bool environmentLight = environmentIsLight(scene, settings_);
-    if (deferred && ((emittersAreLights(scene, settings_) && services_->rays().emitterCount > 0) || environmentLight))
+    if (deferred && !lightsBaked &&
+        ((emittersAreLights(scene, settings_) && services_->rays().emitterCount > 0) || environmentLight))
         passes_.push_back(std::make_unique<EmitterLightPass>(services_->rays(), settings_, environmentLight, ledger_));
     MethodBuild build{scene, settings_, *services_, ledger_, passes_};
     method.addPasses(build);
@@ -114,7 +117,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     };
     for (const auto& pass : passes_) declare(*pass);
     if (deferred) {
-        passes_.push_back(std::make_unique<LightingPass>(w, h, settings_.hdr32, produced, ledger_));
+        passes_.push_back(std::make_unique<LightingPass>(w, h, settings_.hdr32, produced, !lightsBaked, ledger_));
         declare(*passes_.back());
     }
     passes_.push_back(std::make_unique<TonemapPass>(w, h, ledger_));

@@ -193,10 +193,12 @@ vec3 environmentLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel
 
 // `firstDepth` 0: `dir` leaves the camera; 1: it leaves a surface the caller shades itself (a
 // lightmap texel), so what it hits first is that surface's direct light and the rest indirect.
-vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng, int firstDepth) {
+// `firstPdf`: the density `dir` was drawn with, where the caller also samples the lights at its
+// origin (the other half of the MIS for what the ray hits first); 0: it does not (the camera).
+vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng, int firstDepth, float firstPdf) {
     vec3 radiance = vec3(0.0);
     vec3 throughput = vec3(1.0);
-    float lastBsdfPdf = 0.0;   // 0 = the ray came from the camera (no MIS for what it hits)
+    float lastBsdfPdf = firstPdf;  // 0 = no MIS for what the ray hits
     bool afterDiffuse = false; // the path has made a diffuse bounce (caustics switch)
     // The first surface's diffuse lobe's share of the throughput, per channel (set by its BSDF
     // sample): what of everything after it is indirect diffuse light, the rest indirect specular.

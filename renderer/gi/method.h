@@ -79,6 +79,10 @@ struct GiMethod {
     // checked with the ranges by checkParams: before anything is built and whenever a value is set.
     // Throws gis::Error naming the key. Optional.
     std::function<void(const ParamValues&)> checkSettings;
+    // Whether its indirect.diffuse holds the lights' direct diffuse light too (a bake of all the
+    // light): the frame then draws no light of its own (no shadow maps, no emitter pass, no light
+    // loop in the lighting pass). Optional; absent: it does not.
+    std::function<bool(const RenderSettings&)> bakesDirectLight;
     // Its own uniform rows, binding points and blocks, emitted into every shader (gl/shader.h).
     ShaderTables shaderTables;
 

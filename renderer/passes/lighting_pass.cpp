@@ -118,12 +118,12 @@ std::vector<ProgramDesc> LightingPass::programs() {
     return all;
 }
 
-LightingPass::LightingPass(int width, int height, bool hdr32, const std::set<std::string>& produced,
+LightingPass::LightingPass(int width, int height, bool hdr32, const std::set<std::string>& produced, bool lit,
                            gl::MemoryLedger& ledger)
     : hasAo_(produced.count(resource::kAo) > 0),
       hasDiffuse_(produced.count(resource::kIndirectDiffuse) > 0),
       hasSpecular_(produced.count(resource::kIndirectSpecular) > 0),
-      hasEmitters_(produced.count(resource::kEmittersDirect) > 0) {
+      hasEmitters_(produced.count(resource::kEmittersDirect) > 0), lit_(lit) {
     radiance_ = gl::createTexture2D({&ledger, name()}, hdr32 ? GL_RGBA32F : GL_RGBA16F, width, height);
     unit_ = gl::createTexture2D({&ledger, name()}, GL_RG16F, 1, 1);  // samplers stay valid; ao reads 1
     const float one[2] = {1.0f, 0.0f};
@@ -214,7 +214,7 @@ void LightingPass::draw(const Frame& frame, GLuint p, GLuint fbo, float maxRadia
     glBindBufferBase(GL_UNIFORM_BUFFER, kLightsBinding, frame.buffer(resource::kLights));
     glProgramUniformMatrix4fv(p, U_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
     glProgramUniform3fv(p, U_CAMERA_POS, 1, &frame.camera.position[0]);
-    glProgramUniform1i(p, U_LIGHT_COUNT, int(frame.scene.cpu.lights.size()));
+    glProgramUniform1i(p, U_LIGHT_COUNT, lit_ ? int(frame.scene.cpu.lights.size()) : 0);
     glProgramUniform3fv(p, U_AMBIENT, 1, &s.ambient[0]);
     frame.bindEnvironment();
     glProgramUniform2i(p, U_BRDF_MODELS, int(s.diffuse), int(s.specular));

@@ -28,8 +28,10 @@ namespace gis {
 
 class LightingPass final : public Pass {
 public:
-    // The contract's terms the method passes before this one produce, by name.
-    LightingPass(int width, int height, bool hdr32, const std::set<std::string>& produced, gl::MemoryLedger& ledger);
+    // The contract's terms the method passes before this one produce, by name. `lit`: false when a
+    // method's bake holds the lights' direct light (GiMethod::bakesDirectLight): no light is drawn.
+    LightingPass(int width, int height, bool hdr32, const std::set<std::string>& produced, bool lit,
+                 gl::MemoryLedger& ledger);
     const char* name() const override { return "lighting"; }
     std::vector<std::string> inputs() const override;
     std::vector<std::string> outputs() const override { return {resource::kRadiance}; }
@@ -54,7 +56,7 @@ private:
     gl::Texture radiance_, unit_;   // unit_: a 1x1 stand-in (ao = 1) for terms no method gives
     gl::Object fbo_, viewFbo_, vao_;  // viewFbo_: a term view's target
     std::map<std::string, gl::Object> programs_;  // by variant name, built on first need
-    bool hasAo_, hasDiffuse_, hasSpecular_, hasEmitters_;
+    bool hasAo_, hasDiffuse_, hasSpecular_, hasEmitters_, lit_;
 };
 
 class TonemapPass final : public Pass {

@@ -41,9 +41,9 @@ void checkLayerLimits(const Scene& scene) {
 
 std::vector<ProgramDesc> ShadowPass::programs() { return {{"shadow", {"scene.vert", "shadow.frag"}, {}}}; }
 
-ShadowPass::ShadowPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger)
+ShadowPass::ShadowPass(const GpuScene& scene, const RenderSettings& settings, bool lit, gl::MemoryLedger& ledger)
     : scene_(scene), ledger_(ledger), mapSize_(settings.shadowMapSize), cubeSize_(settings.shadowCubeSize),
-      shadows_(settings.shadows) {
+      shadows_(settings.shadows && lit) {
     layoutLights();
     fbo_ = gl::createFramebuffer();
     glNamedFramebufferDrawBuffer(fbo_.id(), GL_NONE);

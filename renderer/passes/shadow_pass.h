@@ -15,7 +15,8 @@ namespace gis {
 
 class ShadowPass final : public Pass {
 public:
-    ShadowPass(const GpuScene& scene, const RenderSettings& settings, gl::MemoryLedger& ledger);
+    // `lit`: false when the frame draws no light of its own (a bake holds it): no maps are made.
+    ShadowPass(const GpuScene& scene, const RenderSettings& settings, bool lit, gl::MemoryLedger& ledger);
     const char* name() const override { return "shadows"; }
     std::vector<std::string> outputs() const override { return {resource::kLights, resource::kShadowMaps, resource::kShadowCubes}; }
     void execute(Frame& frame) override;

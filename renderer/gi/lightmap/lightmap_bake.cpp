@@ -85,6 +85,12 @@ LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, const gl::
     glProgramUniform1f(filter_.id(), UL_TEXEL_SIZE, texelSize_);
     result_ = &ping_;
     rasterizeTexels();
+    std::vector<SeamVertex> seamVertices;
+    for (const LightmapMesh::Vertex& v : mesh_.vertices)
+        seamVertices.push_back({glm::vec3(v.position[0], v.position[1], v.position[2]),
+                                glm::vec3(v.normal[0], v.normal[1], v.normal[2]),
+                                glm::vec2(v.uv[0], v.uv[1]) * float(mesh_.side), int(v.layer)});
+    seams_ = findSeams(seamVertices, mesh_.indices);
 }
 
 void LightmapBake::rasterizeTexels() {
@@ -222,7 +228,17 @@ void LightmapBake::filterStep(const gl::Texture& from, const gl::Texture& to, in
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-void LightmapBake::resolve(int samples, bool denoise) {
+void LightmapBake::stitch(const gl::Texture& lightmap) {
+    TexelImage image{std::vector<float>(static_cast<size_t>(meanFloats())), mesh_.side, mesh_.layers};
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glGetTextureImage(lightmap.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(image.rgba.size() * 4), image.rgba.data());
+    seamGapBefore_ = stitchSeams(seams_, image, 0);  // no sweep: measures only
+    seamGap_ = stitchSeams(seams_, image);
+    glTextureSubImage3D(lightmap.id(), 0, 0, 0, 0, mesh_.side, mesh_.side, mesh_.layers, GL_RGBA, GL_FLOAT,
+                        image.rgba.data());
+}
+
+void LightmapBake::resolve(int samples, bool denoise, bool stitchSeams) {
     if (empty()) return;
     glUseProgram(filter_.id());
     glBindImageTexture(IL_POSITION, position_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
@@ -233,6 +249,7 @@ void LightmapBake::resolve(int samples, bool denoise) {
     filterStep(*to, *from, kCopy, 0, samples);  // the mean into ping (its source is not read)
     if (denoise)
         for (int step : kDenoiseSteps) filterStep(*from, *to, kDenoise, step, samples), std::swap(from, to);
+    if (stitchSeams && !seams_.empty()) stitch(*from);
     // Two texels of dilation: the atlas's gutter, so bilinear lookups at a chart's border never
     // read an unlit texel.
     for (int i = 0; i < 2; ++i) filterStep(*from, *to, kDilate, 1, samples), std::swap(from, to);

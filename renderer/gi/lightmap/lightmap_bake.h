@@ -11,6 +11,7 @@
 #include "gl/gl.h"
 #include "gl/shader.h"
 #include "lightmap/atlas.h"
+#include "lightmap/seams.h"
 
 namespace gis {
 
@@ -56,8 +57,14 @@ public:
     int insideTexels() const { return insideTexels_; }  // texels whose centre is behind a surface
     int blockedLinks() const { return blockedLinks_; }  // texel-to-neighbour steps a surface blocks
     GLuint traceProgram() const { return trace_.id(); }
-    // The lightmap from the mean of `samples` paths: denoised or not, dilated into the gutters.
-    void resolve(int samples, bool denoise);
+    // The lightmap from the mean of `samples` paths: denoised or not, its seams stitched or not
+    // (lightmap/seams.h: on the CPU, between the denoiser and the dilation), dilated into the gutters.
+    void resolve(int samples, bool denoise, bool stitch);
+    int seamPoints() const { return int(seams_.size()); }
+    // The largest difference between a seam's two sides over the mean light along the seams,
+    // before and after the last stitch.
+    float seamGapBefore() const { return seamGapBefore_; }
+    float seamGap() const { return seamGap_; }
     const gl::Texture& result() const { return *result_; }
     // Draws every atlas triangle (apply.vert's attributes) with the bound program.
     void drawSurfaces() const;
@@ -75,6 +82,7 @@ private:
     void rasterizeTexels();
     void splitChartsAtWalls();
     void filterStep(const gl::Texture& from, const gl::Texture& to, int mode, int step, int samples);
+    void stitch(const gl::Texture& lightmap);
 
     LightmapMesh mesh_;
     float texelSize_ = 0.0f;
@@ -85,6 +93,8 @@ private:
     const gl::Texture* result_ = nullptr;
     int validTexels_ = 0;
     int regions_ = 0, insideTexels_ = 0, blockedLinks_ = 0;
+    std::vector<lightmap::SeamPoint> seams_;
+    float seamGapBefore_ = 0.0f, seamGap_ = 0.0f;
 };
 
 }  // namespace gis

@@ -92,14 +92,14 @@ void LightmapPass::invalidate(Changes c) {
 
 void LightmapPass::execute(Frame& frame) {
     const LightmapSettings now = lightmapParams().read("lightmap", frame.settings.params);
-    if (now.denoise != params_.denoise) resolved_ = false;
+    if (now.denoise != params_.denoise || now.stitch != params_.stitch) resolved_ = false;
     if (now.samples < done_) done_ = 0;  // fewer samples asked than are in: start over
     if (now.samples != params_.samples) cacheTried_ = false;  // another bake: its own cache file
     params_ = now;
     if (!bake_->classified()) rays_.bind(), bake_->classify();
     if (!cacheTried_) readCache(frame);
     if (done_ < params_.samples) bake(frame);
-    if (!resolved_) bake_->resolve(done_, params_.denoise), resolved_ = true;
+    if (!resolved_) bake_->resolve(done_, params_.denoise, params_.stitch), resolved_ = true;
     draw(frame, indirect_.id(), kShowLight);
     frame.put(resource::kIndirectDiffuse, indirect_);
     changed_ = false;
@@ -121,8 +121,11 @@ void LightmapPass::bake(Frame& frame) {
     glProgramUniform1i(p, U_CAUSTICS, 1);
     glProgramUniform1i(p, U_ENV_SAMPLING, params_.environmentSampling ? 1 : 0);
     glProgramUniform1ui(p, U_SEED, s.seed);
-    // The emitters and environment the direct pass lights with are its light; otherwise the bake carries theirs.
-    glProgramUniform1i(p, U_PT_TERM, directPassHasLights(scene_, s) ? kTermIndirect : kTermAll);
+    // The emitters and environment the direct pass lights with are its light; otherwise the bake
+    // carries theirs. A bake of all the light carries every light's (the frame draws none).
+    const bool all = params_.mode == kLightmapAll;
+    glProgramUniform1i(p, U_PT_TERM, !all && directPassHasLights(scene_, s) ? kTermIndirect : kTermAll);
+    glProgramUniform1i(p, UL_BAKE_DIRECT, all ? 1 : 0);
     const int batch = std::min(s.samplesPerFrame, params_.samples - done_);
     bake_->trace(done_, batch);
     done_ += batch;
@@ -232,7 +235,7 @@ std::string LightmapPass::cacheKey(const Frame& frame) const {
     id.value(int(s.diffuse)), id.value(int(s.specular)), id.value(s.seed);
     id.value(emittersAreLights(scene_, s)), id.value(environmentIsLight(scene_, s));
     id.add(atlas_.hash);
-    id.value(params_.samples), id.value(params_.bounces), id.value(params_.environmentSampling);
+    id.value(params_.samples), id.value(params_.bounces), id.value(params_.environmentSampling), id.value(params_.mode);
     return id.hex();
 }
 
@@ -298,10 +301,19 @@ std::vector<std::string> LightmapPass::stats() const {
                   bake_->blockedLinks(), int(atlas_.charts.size()), bake_->regions(),
                   double(atlas_.params.texelsPerMetre), describeBytes(double(LightmapBake::bytes(m))).c_str());
     std::vector<std::string> out{line};
-    std::snprintf(line, sizeof line, "lightmap bake %d / %d paths per texel, %d bounces%s", done_, params_.samples,
-                  params_.bounces, done_ >= params_.samples && bakeSeconds_ > 0.0
+    std::snprintf(line, sizeof line, "lightmap bake %d / %d paths per texel, %d bounces, %s%s", done_, params_.samples,
+                  params_.bounces, params_.mode == kLightmapAll ? "all the light (the frame draws none)" : "indirect light",
+                  done_ >= params_.samples && bakeSeconds_ > 0.0
                                        ? (", " + std::to_string(bakeSeconds_).substr(0, 6) + " s").c_str() : "");
     out.push_back(line);
+    if (bake_->seamPoints() == 0) out.push_back("lightmap seams: none (every chart border is a crease)");
+    else {
+        std::snprintf(line, sizeof line, "lightmap seams: %d points where a smooth surface's charts meet, %s",
+                      bake_->seamPoints(), params_.stitch ? "stitched" : "not stitched (lightmap.stitch=false)");
+        out.push_back(line + (params_.stitch ? " (largest gap " + std::to_string(bake_->seamGapBefore()) + " of the seams' mean "
+                                                   "light before, " + std::to_string(bake_->seamGap()) + " after)"
+                                             : ""));
+    }
     out.push_back("lightmap cache: " + cacheState_);
     return out;
 }
@@ -318,6 +330,9 @@ GiMethod lightmapMethod() {
     m.presets = {{"low", "4k texels, 32 paths each", {{"lightmap.texels", {4096.0}}, {"lightmap.samples", {32.0}}}},
                  {"medium", "16k texels, 64 paths each", {{"lightmap.texels", {16384.0}}, {"lightmap.samples", {64.0}}}},
                  {"high", "64k texels, 256 paths each", {{"lightmap.texels", {65536.0}}, {"lightmap.samples", {256.0}}}}};
+    m.bakesDirectLight = [](const RenderSettings& s) {
+        return lightmapParams().read("lightmap", s.params).mode == kLightmapAll;
+    };
     m.programs = &LightmapPass::programs;
     m.estimateMemory = &LightmapPass::estimateMemory;
     m.addPasses = [](MethodBuild& b) {

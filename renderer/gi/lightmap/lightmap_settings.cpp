@@ -25,8 +25,15 @@ const ParamTable<LightmapSettings>& lightmapParams() {
                  ParamUpdate::Rebuild)
         .boolean(&S::denoise, "denoise", "Denoise", "an edge-aware filter within each chart (never across charts), "
                  "its edges at a few standard errors of the texels' mean", ParamUpdate::Live)
+        .boolean(&S::stitch, "stitch", "Stitch seams", "where a smooth surface's charts meet, the texels on both "
+                 "sides are moved, as little as possible, until the two sides' lookups agree (no line shows)",
+                 ParamUpdate::Live)
         .boolean(&S::cache, "cache", "Cache on disk", "a finished bake is kept on disk by the scene's content id and "
-                 "read back instead of baking again (GIS_LIGHTMAP_CACHE names the folder)", ParamUpdate::Live);
+                 "read back instead of baking again (GIS_LIGHTMAP_CACHE names the folder)", ParamUpdate::Live)
+        .choice(&S::mode, "mode", "Baked light", "indirect: the light the lighting pass does not draw (its lights "
+                "stay per frame, with shadow maps and highlights); all: the lights' direct diffuse light too, and the "
+                "frame draws no light of its own (the cheapest frame, without the lights' specular highlights)",
+                {"indirect", "all"}, ParamUpdate::Rebuild);
     return table;
 }
 

@@ -1,6 +1,6 @@
 // The lightmap's parameters: one row each in lightmapParams() (names scripts and checks use:
 // lightmap.texels, lightmap.texels-per-metre, lightmap.samples, lightmap.bounces,
-// lightmap.env-sampling, lightmap.denoise, lightmap.cache), defaults in the initialisers below.
+// lightmap.env-sampling, lightmap.denoise, lightmap.stitch, lightmap.cache, lightmap.mode), defaults in the initialisers below.
 #pragma once
 
 #include <string>
@@ -12,6 +12,13 @@ namespace gis {
 
 struct Scene;
 
+// lightmap.mode: what the bake holds. Indirect: the light the lighting pass does not draw itself
+// (its lights' direct light stays per frame, shadow-mapped, with its specular highlights). All: the
+// lights' direct diffuse light too, ray-traced, and the frame then draws no light of its own (no
+// shadow maps, no emitter pass, no light loop): the cheapest frame, without the lights' specular
+// highlights, as a static light in Godot's LightmapGI.
+enum LightmapMode : int { kLightmapIndirect = 0, kLightmapAll = 1 };
+
 struct LightmapSettings {
     int texels = 16384;            // lightmap.texels: texels on all surfaces together (rebuild)
     float texelsPerMetre = 0.0f;   // lightmap.texels-per-metre: 0 = from texels and the surfaces' area (rebuild)
@@ -19,7 +26,9 @@ struct LightmapSettings {
     int bounces = 8;               // lightmap.bounces: bounces after the texel's first (rebuild)
     bool environmentSampling = true;  // lightmap.env-sampling: a map sampled as a light too (rebuild)
     bool denoise = true;           // lightmap.denoise: the edge-aware filter within each chart (live)
+    bool stitch = true;            // lightmap.stitch: the two sides of a seam made to agree (live)
     bool cache = true;             // lightmap.cache: read and write finished bakes on disk (live)
+    int mode = kLightmapIndirect;  // lightmap.mode: indirect or all (rebuild: the frame's passes follow it)
 };
 
 const ParamTable<LightmapSettings>& lightmapParams();

@@ -13,7 +13,8 @@ namespace gis::lightmap {
     X(UL_MODE, 903, 1)        /* filter: 0 copy, 1 denoise step, 2 dilate */ \
     X(UL_TEXEL_SIZE, 904, 1)  /* world units per texel */ \
     X(UL_LAYERS, 905, 1)      /* lightmap.atlas: the atlas array's layers */ \
-    X(UL_TARGET_SIZE, 906, 1) /* lightmap.atlas: the view's pixels */
+    X(UL_TARGET_SIZE, 906, 1) /* lightmap.atlas: the view's pixels */ \
+    X(UL_BAKE_DIRECT, 907, 1) /* bake: 1 adds the punctual lights' direct light at the texel (lightmap.mode=all) */
 
 enum LightmapUniform : int { GIS_LIGHTMAP_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kLightmapUniforms[] = {GIS_LIGHTMAP_UNIFORMS(GIS_UNIFORM_SLOT)};

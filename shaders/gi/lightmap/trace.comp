@@ -2,8 +2,11 @@
 // leaving the texel's point in a cosine-weighted direction. Their mean is the texel's irradiance
 // over pi, what the lighting contract's indirect.diffuse holds: u_term (set to the indirect term)
 // keeps what the first hit emits and the lights' direct light on the texel out, which the
-// lighting pass adds itself. The running mean's alpha is the luminance's second moment, from
-// which the denoiser knows each texel's noise.
+// lighting pass adds itself. With lightmap.mode=all (u_term: everything, u_bakeDirect 1) the frame
+// draws no light: the lights are also sampled at the texel, as the path tracer samples them at a
+// vertex (the punctual lights, which no ray can hit, only so), and what the cosine ray hits first is
+// weighted against that (MIS): shadows of small emitters come out of the noise as they do there. The running mean's
+// alpha is the luminance's second moment, from which the denoiser knows each texel's noise.
 #include "path_tracer.glsl"
 #include "gi/lightmap/lightmap_texels.glsl"
 
@@ -13,6 +16,23 @@ layout(binding = IL_NORMAL, rgba32f) readonly uniform image2DArray u_normal;
 layout(binding = IL_MEAN, rgba32f) uniform image2DArray u_mean;
 layout(location = U_SAMPLE_INDEX) uniform uint u_sampleIndex;
 layout(location = U_SEED) uniform uint u_seed;
+layout(location = UL_BAKE_DIRECT) uniform int u_bakeDirect;
+
+// The light sampled at the texel as the path tracer samples it at a vertex (directLight: every
+// punctual light, one emitter by power; environmentLight: the map by luminance), MIS-weighted
+// against the cosine ray, on a white Lambertian surface: E / pi.
+vec3 lightsAtTexel(vec3 position, vec3 n, inout Rng rng) {
+    SurfacePoint s;
+    s.position = position;
+    s.geometricNormal = n;
+    s.normal = n;
+    s.brdf = makeSurfaceBrdf(vec3(1.0), 0.0, 1.0, 0.0);
+    s.emission = vec3(0.0);
+    s.emitterPdfPerArea = 0.0;
+    s.hasSpecular = false;
+    vec3 unusedShare;
+    return directLight(s, n, 0.0, SPECULAR_NONE, rng) + environmentLight(s, n, 0.0, SPECULAR_NONE, rng, false, unusedShare);
+}
 
 void main() {
     ivec3 texel = ivec3(gl_GlobalInvocationID);
@@ -24,7 +44,10 @@ void main() {
     vec3 n = imageLoad(u_normal, texel).xyz;
     Rng rng = makeRng(uvec2(texel.xy) + uvec2(0u, uint(texel.z * size.y)), u_sampleIndex, u_seed);
     vec3 dir = cosineDirection(n, nextFloat2(rng));
-    vec3 radiance = finiteOrZero(min(tracePath(offsetRayOrigin(position.xyz, n), dir, rng, 1), vec3(MAX_RADIANCE)));
+    bool direct = u_bakeDirect != 0;
+    vec3 radiance = tracePath(offsetRayOrigin(position.xyz, n), dir, rng, 1, direct ? max(dot(n, dir), 0.0) * INV_PI : 0.0);
+    if (direct) radiance += lightsAtTexel(position.xyz, n, rng);
+    radiance = finiteOrZero(min(radiance, vec3(MAX_RADIANCE)));
     float lum = luminance(radiance);
     vec4 mean = u_sampleIndex == 0u ? vec4(0.0) : imageLoad(u_mean, texel);
     float count = float(u_sampleIndex + 1u);

@@ -23,7 +23,7 @@ void main() {
     vec3 dir = normalize(far.xyz / far.w - origin);
     // A path whose radiance overflowed (emission or background near FLT_MAX) counts as the
     // largest float, not as black; NaN (min's result is undefined for it) still becomes 0.
-    vec3 radiance = finiteOrZero(min(tracePath(origin, dir, rng, 0), vec3(MAX_RADIANCE)));
+    vec3 radiance = finiteOrZero(min(tracePath(origin, dir, rng, 0, 0.0), vec3(MAX_RADIANCE)));
 
     // The accumulation holds the running mean (rgb) and the sample count (w), not a sum: a sum
     // of samples near FLT_MAX overflows to Inf after two, while the mean of finite non-negative

@@ -258,3 +258,81 @@ TEST(Lightmap, TheAtlasViewShowsTheChartsTheirBordersAndTheTexelsInsideGeometry)
     EXPECT_GT(inside, 10) << "the blocks stand on the floor's texels";
     EXPECT_GT(lit, borders) << "the charts' insides show their light";
 }
+
+// lightmap.mode=all: the bake holds the lights' direct light too (the punctual light by a shadow
+// ray at each texel, the emitter by the paths that hit it) and the frame draws none of its own:
+// no emitter pass, no shadow maps. The image is the one the lighting pass lights itself, but for
+// the lights' specular highlights, the shadows at the texels' resolution and the denoiser's blur of
+// 64 paths (512 bring cornell-area's thirds within 2% of the path tracer): per third of the image
+// within 8%. A bake that misses the direct light is several times darker; a frame that also draws
+// it, twice as bright where it falls.
+TEST(Lightmap, ABakeOfAllTheLightDrawsNoLightOfItsOwnAndKeepsTheImage) {
+    for (const char* name : {"cornell", "cornell-area"}) {
+        const Scene scene = makeBuiltinScene(name);
+        context();
+        ImageF images[2];
+        for (int all = 0; all < 2; ++all) {
+            RenderSettings s = lightmapSettings(64, 4096, 64);
+            setParam(s, "lightmap.mode", all ? "all" : "indirect");
+            Renderer r(scene, s);
+            bakedIndirect(r);
+            images[all] = r.readHdr();
+            EXPECT_EQ(statsSay(r, "all the light"), all == 1) << name;
+            bool emitterPass = false;
+            for (const auto& pass : r.passes()) emitterPass = emitterPass || std::string(pass->name()) == "emitters";
+            const int64_t shadowBytes = r.memory().bytesByOwner.count("shadows") ? r.memory().bytesByOwner.at("shadows") : 0;
+            if (all) {
+                EXPECT_FALSE(emitterPass) << name << ": the frame still draws the emitters' light";
+                EXPECT_LT(shadowBytes, 65536) << name << ": shadow maps made";
+            }
+        }
+        ASSERT_TRUE(allFinite(images[1]));
+        for (int third = 0; third < 3; ++third) {
+            double sum[2] = {0.0, 0.0};
+            for (int i = 0; i < 2; ++i)
+                for (int y = 0; y < 64; ++y)
+                    for (int x = third * 64 / 3; x < (third + 1) * 64 / 3; ++x)
+                        for (int c = 0; c < 3; ++c) sum[i] += images[i].at(x, y)[c];
+            std::printf("LIGHTMAP-TABLE mode all %s third %d: %.4f of the lit frame's\n", name, third, sum[1] / sum[0]);
+            EXPECT_NEAR(sum[1] / sum[0], 1.0, 0.08) << name << " third " << third;
+        }
+    }
+}
+
+// Seams in a real bake: the Cornell box's chart borders are all creases (nothing to stitch: the
+// light differs across them in truth); the mirror scene's spheres are smooth surfaces split into
+// charts, and their seams are stitched to a few percent of the light (the CPU stitcher's own
+// measure; tests/lightmap/test_seams.cpp checks the stitcher), without moving the image's light.
+TEST(Lightmap, SmoothSurfacesSeamsAreStitchedAndABoxHasNone) {
+    context();
+    {
+        const Scene cornell = makeBuiltinScene("cornell");
+        Renderer r(cornell, lightmapSettings(32, 4096, 4));
+        bakedIndirect(r);
+        EXPECT_TRUE(statsSay(r, "seams: none")) << "a box's chart borders are creases";
+    }
+    const Scene mirror = makeBuiltinScene("mirror");
+    double mean[2] = {0.0, 0.0};
+    for (int stitch = 0; stitch < 2; ++stitch) {
+        RenderSettings s = lightmapSettings(48, 4096, 16);
+        setParam(s, "lightmap.stitch", stitch ? "true" : "false");
+        Renderer r(mirror, s);
+        const ImageF indirect = bakedIndirect(r);
+        ASSERT_TRUE(allFinite(indirect));
+        for (float v : indirect.rgba) mean[stitch] += v;
+        float before = -1.0f, after = -1.0f;
+        for (const std::string& line : lightmapStats(r))
+            if (const size_t at = line.find("largest gap "); at != std::string::npos) {
+                before = std::stof(line.substr(at + 12));
+                after = std::stof(line.substr(line.find("before, ") + 8));
+            }
+        if (stitch) {
+            std::printf("LIGHTMAP-TABLE seams mirror: largest gap %.3f of the seams' mean light before, %.3f after\n",
+                        before, after);
+            EXPECT_TRUE(after >= 0.0f && after < 0.25f * before) << "gap " << before << " before, " << after << " after";
+        } else {
+            EXPECT_TRUE(statsSay(r, "not stitched"));
+        }
+    }
+    EXPECT_NEAR(mean[1] / mean[0], 1.0, 0.01) << "stitching moves light along seams, not into or out of the image";
+}
