@@ -48,12 +48,14 @@ void push(std::deque<T>& d, T v) {
     while (d.size() > size_t(kHistoryFrames)) d.pop_front();
 }
 
-// "12/64 spp" (or "updates") for a progressive method, "64 spp" once converged, "" for the others.
+// "12/64 spp" (or "updates") for a progressive method, "64 spp" once converged, "" for the others;
+// a stale result (a bake from before an edit, shown while the next one runs) says so first.
 std::string progressText(const Renderer& r) {
     for (const auto& pass : r.passes()) {
         const Pass::Progress pr = pass->progress();
         if (pr.target <= 0) continue;
-        return (pr.done >= pr.target ? "" : std::to_string(pr.done) + "/") + std::to_string(pr.target) + " " + pr.unit;
+        return std::string(pr.stale ? "stale since an edit, the last result shown while it redoes it: " : "") +
+               (pr.done >= pr.target ? "" : std::to_string(pr.done) + "/") + std::to_string(pr.target) + " " + pr.unit;
     }
     return "";
 }

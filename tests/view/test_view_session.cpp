@@ -416,6 +416,26 @@ TEST(Session, LightEditsChangeTheImage) {
     EXPECT_EQ(meanAbsDiff(s.view(32, 32), base), 0.0);
 }
 
+// A lightmap pane after a light edit: the last bake stays on show and its status says it is
+// stale while the next bake runs; once that is done the mark is gone (#41). With every light baked
+// (lightmap.mode=all) the frame is the lightmap alone: the old image until the new bake is done.
+TEST(Session, ALightEditMarksTheLightmapStaleUntilItIsBakedAgain) {
+    Sandbox s;
+    for (const char* line : {"method 0 lightmap", "set 0 lightmap.texels 1024", "set 0 lightmap.samples 8",
+                             "set 0 lightmap.cache false", "set 0 lightmap.mode all"})
+        s.act(line);
+    const ImageU8 base = s.view(32, 32);
+    EXPECT_EQ(s.session->pane(0).status.find("stale"), std::string::npos) << s.session->pane(0).status;
+    s.act("light 0 intensity 0.25");
+    s.session->relight(s.state);
+    s.session->renderFrame(s.state, 32, 32);
+    EXPECT_NE(s.session->pane(0).status.find("stale"), std::string::npos) << s.session->pane(0).status;
+    EXPECT_EQ(meanAbsDiff(s.session->composite(s.state, false), base), 0.0) << "the last bake is shown";
+    const ImageU8 dimmer = s.view(32, 32);
+    EXPECT_EQ(s.session->pane(0).status.find("stale"), std::string::npos) << s.session->pane(0).status;
+    EXPECT_GT(meanAbsDiff(dimmer, base), 5.0);
+}
+
 // --lighting auto gives an unlit model the default sun and sky unless an environment map lights
 // it. A map set after the scene opened (the panel, a script, --environment over a settings file)
 // takes the sun away as one set before would, and clearing it brings the sun back (#26).

@@ -86,8 +86,12 @@ LightmapPass::LightmapPass(const Scene& scene, RayScene& rays, const RenderSetti
 
 void LightmapPass::invalidate(Changes c) {
     changed_ = true;
-    // What the light depends on: the bake is stale and starts over (the last image stays shown).
-    if (c & (ChangeLights | ChangeGeometry | ChangeMaterials | ChangeBrdfModels)) done_ = 0, cacheTried_ = false;
+    // What the light depends on: the bake is stale and starts over; a lightmap already drawn stays
+    // on show (marked stale) until the new one is done, not replaced by the new bake's first paths.
+    if (c & (ChangeLights | ChangeGeometry | ChangeMaterials | ChangeBrdfModels)) {
+        done_ = 0, cacheTried_ = false;
+        stale_ = shown_;
+    }
 }
 
 void LightmapPass::execute(Frame& frame) {
@@ -99,7 +103,8 @@ void LightmapPass::execute(Frame& frame) {
     if (!bake_->classified()) rays_.bind(), bake_->classify();
     if (!cacheTried_) readCache(frame);
     if (done_ < params_.samples) bake(frame);
-    if (!resolved_) bake_->resolve(done_, params_.denoise, params_.stitch), resolved_ = true;
+    if (stale_ && done_ >= params_.samples) stale_ = false;
+    if (!resolved_ && !stale_) bake_->resolve(done_, params_.denoise, params_.stitch), resolved_ = shown_ = true;
     draw(frame, indirect_.id(), kShowLight);
     frame.put(resource::kIndirectDiffuse, indirect_);
     changed_ = false;

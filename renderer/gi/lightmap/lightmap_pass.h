@@ -2,7 +2,8 @@
 // lightmap atlas (renderer/lightmap/), its texels are baked by the path tracer's paths on the GPU
 // (lightmap_bake.h), progressively over frames, and each frame draws the surfaces again at their
 // lightmap UVs into indirect.diffuse. A finished bake is cached on disk by the scene's content id.
-// What changes the light (a light, an object, a material) makes the bake stale: it starts over.
+// What changes the light (a light, an object, a material) makes the bake stale: the last lightmap
+// stays on show, marked stale (progress()), while the next bake runs; it replaces it when done.
 #pragma once
 
 #include <chrono>
@@ -26,7 +27,7 @@ public:
     void invalidate(Changes c) override;
     bool settled() const override { return done_ >= params_.samples && !changed_; }
     bool writesImagesOrBuffers() const override { return true; }
-    Progress progress() const override { return {done_, params_.samples, "spp"}; }
+    Progress progress() const override { return {done_, params_.samples, "spp", stale_}; }
     std::vector<std::string> stats() const override;
     std::optional<RayCounts> raysTraced() const override;
     std::optional<int64_t> atlasTexels() const override;
@@ -56,6 +57,8 @@ private:
     int done_ = 0;
     bool changed_ = true;           // something since the last execute() asks for a redraw
     bool resolved_ = false;         // the lightmap holds the mean of done_ samples
+    bool shown_ = false;            // a lightmap has been resolved (and drawn) at all
+    bool stale_ = false;            // the one drawn predates an edit: kept until the next bake is done
     bool cacheTried_ = false;
     std::string cacheState_ = "off";  // what the cache did: off, read <path>, written <path>, ...
     std::string cachePath_;

@@ -336,3 +336,30 @@ TEST(Lightmap, SmoothSurfacesSeamsAreStitchedAndABoxHasNone) {
     }
     EXPECT_NEAR(mean[1] / mean[0], 1.0, 0.01) << "stitching moves light along seams, not into or out of the image";
 }
+
+// A light edited after the bake: the last lightmap stays on show, marked stale, while the next
+// bake runs (its first paths would be noise), and the new one replaces it when done.
+TEST(Lightmap, AnEditKeepsTheLastLightmapMarkedStaleUntilTheNextBakeIsDone) {
+    context();
+    Scene scene = wallOnAFloor();
+    Renderer r(scene, lightmapSettings(32, 1024, 8));
+    const Pass* lightmap = nullptr;
+    for (const auto& pass : r.passes())
+        if (std::string(pass->name()) == "lightmap") lightmap = pass.get();
+    ASSERT_NE(lightmap, nullptr);
+    EXPECT_FALSE(lightmap->progress().stale) << "the first bake has nothing older to show";
+    const ImageF before = bakedIndirect(r);
+    scene.lights[0].intensity *= 4.0f;
+    r.lightsChanged();
+    r.renderFrame();
+    ASSERT_FALSE(r.converged());
+    EXPECT_TRUE(lightmap->progress().stale);
+    EXPECT_LT(lightmap->progress().done, lightmap->progress().target);
+    EXPECT_EQ(readTextureFloat(r.frameTexture("indirect.diffuse"), 32, 32).rgba, before.rgba)
+        << "the last lightmap is shown while the next bakes";
+    const ImageF after = bakedIndirect(r);
+    EXPECT_FALSE(lightmap->progress().stale);
+    double sum[2] = {0.0, 0.0};
+    for (size_t i = 0; i < after.rgba.size(); i += 4) sum[0] += before.rgba[i], sum[1] += after.rgba[i];
+    EXPECT_NEAR(sum[1] / sum[0], 4.0, 0.4) << "the new bake holds the brighter light";
+}
