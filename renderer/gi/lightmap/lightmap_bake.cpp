@@ -20,7 +20,7 @@ const ProgramDesc kClassifyProgram{"lightmap-classify", {"gi/lightmap/classify.c
 const ProgramDesc kTraceProgram{"lightmap-trace", {"gi/lightmap/trace.comp"}, {}};
 const ProgramDesc kFilterProgram{"lightmap-filter", {"gi/lightmap/filter.comp"}, {}};
 constexpr int kGroup = 8;           // trace.comp's and filter.comp's local size (x and y)
-enum FilterMode { kCopy = 0, kDenoise = 1, kDilate = 2 };  // filter.comp's u_mode
+enum FilterMode { kCopy = 0, kDenoise = 1, kDilate = 2, kCopyDirection = 3 };  // filter.comp's u_mode
 // The a-trous steps (Dammertz et al. 2010): 1, 2, 4 texels, a 5x5 kernel each, 29 texels across.
 constexpr int kDenoiseSteps[] = {1, 2, 4};
 }  // namespace
@@ -61,13 +61,13 @@ LightmapMesh lightmapMesh(const Scene& scene, const Atlas& atlas) {
     return out;
 }
 
-int64_t LightmapBake::bytes(const LightmapMesh& mesh) {
-    return int64_t(mesh.side) * mesh.side * mesh.layers * kBytesPerTexel +
+int64_t LightmapBake::bytes(const LightmapMesh& mesh, bool directional) {
+    return int64_t(mesh.side) * mesh.side * mesh.layers * (kBytesPerTexel + (directional ? kDirectionalBytesPerTexel : 0)) +
            int64_t(mesh.vertices.size() * sizeof(LightmapMesh::Vertex)) + int64_t(mesh.indices.size() * 4);
 }
 
-LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, const gl::MemoryScope& scope)
-    : mesh_(mesh), texelSize_(texelSize) {
+LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, bool directional, const gl::MemoryScope& scope)
+    : mesh_(mesh), texelSize_(texelSize), directional_(directional) {
     if (empty()) return;
     const int s = mesh_.side, n = mesh_.layers;
     position_ = gl::createTexture2DArray(scope, GL_RGBA32F, s, s, n);
@@ -75,6 +75,12 @@ LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, const gl::
     mean_ = gl::createTexture2DArray(scope, GL_RGBA32F, s, s, n);
     ping_ = gl::createTexture2DArray(scope, GL_RGBA16F, s, s, n);
     pong_ = gl::createTexture2DArray(scope, GL_RGBA16F, s, s, n);
+    if (directional_) {
+        direction_ = gl::createTexture2DArray(scope, GL_RGBA32F, s, s, n);
+        directionPing_ = gl::createTexture2DArray(scope, GL_RGBA16F, s, s, n);
+        directionPong_ = gl::createTexture2DArray(scope, GL_RGBA16F, s, s, n);
+        directionResult_ = &directionPing_;
+    }
     vertices_ = gl::createBuffer(scope, int64_t(mesh_.vertices.size() * sizeof(LightmapMesh::Vertex)), mesh_.vertices.data());
     indices_ = gl::createBuffer(scope, int64_t(mesh_.indices.size() * 4), mesh_.indices.data());
     texelProgram_ = buildProgram(kTexelProgram);
@@ -83,6 +89,7 @@ LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, const gl::
     filter_ = buildProgram(kFilterProgram);
     glProgramUniform1f(classify_.id(), UL_TEXEL_SIZE, texelSize_);
     glProgramUniform1f(filter_.id(), UL_TEXEL_SIZE, texelSize_);
+    glProgramUniform1i(trace_.id(), UL_DIRECTIONAL, directional_ ? 1 : 0);
     result_ = &ping_;
     rasterizeTexels();
     std::vector<SeamVertex> seamVertices;
@@ -208,6 +215,7 @@ void LightmapBake::trace(int done, int count) {
     glBindImageTexture(IL_POSITION, position_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
     glBindImageTexture(IL_NORMAL, normal_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
     glBindImageTexture(IL_MEAN, mean_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
+    if (directional_) glBindImageTexture(IL_DIRECTION, direction_.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
     for (int i = 0; i < count; ++i) {
         glProgramUniform1ui(p, U_SAMPLE_INDEX, GLuint(done + i));
         gl::dispatchCompute(gl::groupsFor(mesh_.side, kGroup), gl::groupsFor(mesh_.side, kGroup), GLuint(mesh_.layers),
@@ -228,39 +236,58 @@ void LightmapBake::filterStep(const gl::Texture& from, const gl::Texture& to, in
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-void LightmapBake::stitch(const gl::Texture& lightmap) {
-    TexelImage image{std::vector<float>(static_cast<size_t>(meanFloats())), mesh_.side, mesh_.layers};
+void LightmapBake::stitch(const gl::Texture& lightmap, bool measured) {
+    TexelImage image{std::vector<float>(size_t(mesh_.side) * size_t(mesh_.side) * size_t(mesh_.layers) * 4), mesh_.side,
+                     mesh_.layers};
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
     glGetTextureImage(lightmap.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(image.rgba.size() * 4), image.rgba.data());
-    seamGapBefore_ = stitchSeams(seams_, image, 0);  // no sweep: measures only
-    seamGap_ = stitchSeams(seams_, image);
+    const float before = measured ? stitchSeams(seams_, image, 0) : 0.0f;  // no sweep: measures only
+    const float after = stitchSeams(seams_, image);
+    if (measured) seamGapBefore_ = before, seamGap_ = after;
     glTextureSubImage3D(lightmap.id(), 0, 0, 0, 0, mesh_.side, mesh_.side, mesh_.layers, GL_RGBA, GL_FLOAT,
                         image.rgba.data());
 }
 
-void LightmapBake::resolve(int samples, bool denoise, bool stitchSeams) {
-    if (empty()) return;
-    glUseProgram(filter_.id());
-    glBindImageTexture(IL_POSITION, position_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
-    glBindImageTexture(IL_NORMAL, normal_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
-    glBindImageTexture(IL_MEAN, mean_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
-    gl::Texture* from = &ping_;
-    gl::Texture* to = &pong_;
-    filterStep(*to, *from, kCopy, 0, samples);  // the mean into ping (its source is not read)
+// The mean (or, kCopyDirection, the mean direction over the mean's luminance) copied into `ping`,
+// denoised within its regions, stitched, dilated; returns the image holding the result.
+const gl::Texture* LightmapBake::filterImages(const gl::Texture& source, gl::Texture& ping, gl::Texture& pong,
+                                              bool denoise, bool stitchSeams, int samples) {
+    gl::Texture* from = &ping;
+    gl::Texture* to = &pong;
+    filterStep(*to, *from, &source == &mean_ ? kCopy : kCopyDirection, 0, samples);  // (its source is not read)
     if (denoise)
         for (int step : kDenoiseSteps) filterStep(*from, *to, kDenoise, step, samples), std::swap(from, to);
-    if (stitchSeams && !seams_.empty()) stitch(*from);
+    if (stitchSeams && !seams_.empty()) stitch(*from, &source == &mean_);
     // Two texels of dilation: the atlas's gutter, so bilinear lookups at a chart's border never
     // read an unlit texel.
     for (int i = 0; i < 2; ++i) filterStep(*from, *to, kDilate, 1, samples), std::swap(from, to);
-    result_ = from;
+    return from;
+}
+
+void LightmapBake::resolve(int samples, bool denoise, bool stitchSeams) {
+    if (empty()) return;
+    const GLuint p = filter_.id();
+    glUseProgram(p);
+    glBindImageTexture(IL_POSITION, position_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glBindImageTexture(IL_NORMAL, normal_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glBindImageTexture(IL_MEAN, mean_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glProgramUniform1i(p, UL_DIRECTIONAL, 0);
+    result_ = filterImages(mean_, ping_, pong_, denoise, stitchSeams, samples);
+    if (!directional_) return;
+    // The direction: the same denoiser without its luminance edges (a direction has no
+    // luminance), stitched and dilated as the light.
+    glBindImageTexture(IL_DIRECTION, direction_.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glProgramUniform1i(p, UL_DIRECTIONAL, 1);
+    directionResult_ = filterImages(direction_, directionPing_, directionPong_, denoise, stitchSeams, samples);
 }
 
 std::vector<float> LightmapBake::readMean() const {
     std::vector<float> texels(static_cast<size_t>(meanFloats()));
     if (empty()) return texels;
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // the trace's image stores, before the read back
-    glGetTextureImage(mean_.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(texels.size() * 4), texels.data());
+    const size_t half = directional_ ? texels.size() / 2 : texels.size();
+    glGetTextureImage(mean_.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(half * 4), texels.data());
+    if (directional_) glGetTextureImage(direction_.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(half * 4), texels.data() + half);
     return texels;
 }
 
@@ -269,6 +296,9 @@ void LightmapBake::loadMean(const std::vector<float>& texels) {
         throw Error("lightmap: a cached bake of " + std::to_string(texels.size()) + " floats for " +
                     std::to_string(meanFloats()));
     glTextureSubImage3D(mean_.id(), 0, 0, 0, 0, mesh_.side, mesh_.side, mesh_.layers, GL_RGBA, GL_FLOAT, texels.data());
+    if (directional_)
+        glTextureSubImage3D(direction_.id(), 0, 0, 0, 0, mesh_.side, mesh_.side, mesh_.layers, GL_RGBA, GL_FLOAT,
+                            texels.data() + texels.size() / 2);
 }
 
 }  // namespace gis

@@ -37,12 +37,15 @@ std::vector<ProgramDesc> lightmapBakePrograms();
 
 class LightmapBake {
 public:
-    // Images of one texel: position, normal, the paths' mean and two filter targets.
+    // Images of one texel: position, normal, the paths' mean and two filter targets; directional,
+    // the mean direction and its two filter targets too.
     static constexpr int64_t kBytesPerTexel = 16 + 16 + 16 + 8 + 8;
-    static int64_t bytes(const LightmapMesh& mesh);
+    static constexpr int64_t kDirectionalBytesPerTexel = 16 + 8 + 8;
+    static int64_t bytes(const LightmapMesh& mesh, bool directional);
 
-    // `texelSize`: world units per texel (the atlas's 1 / texels per metre).
-    LightmapBake(const LightmapMesh& mesh, float texelSize, const gl::MemoryScope& scope);
+    // `texelSize`: world units per texel (the atlas's 1 / texels per metre). `directional`: the
+    // paths' luminance-weighted mean direction is kept too (lightmap.directional).
+    LightmapBake(const LightmapMesh& mesh, float texelSize, bool directional, const gl::MemoryScope& scope);
     LightmapBake(const LightmapBake&) = delete;  // result_ points into the bake's own images
     LightmapBake& operator=(const LightmapBake&) = delete;
     bool empty() const { return mesh_.layers == 0; }
@@ -66,14 +69,17 @@ public:
     float seamGapBefore() const { return seamGapBefore_; }
     float seamGap() const { return seamGap_; }
     const gl::Texture& result() const { return *result_; }
+    bool directional() const { return directional_; }
+    // Directional: the light's mean direction (xyz, |xyz| <= 1) per texel, filtered as the result.
+    const gl::Texture& direction() const { return *directionResult_; }
     // Draws every atlas triangle (apply.vert's attributes) with the bound program.
     void drawSurfaces() const;
     const gl::Texture& positions() const { return position_; }  // w: 1 + classify.comp's flags
-    // The paths' mean as it is stored (RGBA32F per texel: rgb, the luminance's second moment),
-    // for the cache; load() puts a read one back.
+    // The paths' mean as it is stored (RGBA32F per texel: rgb, the luminance's second moment;
+    // directional, then the mean direction's), for the cache; loadMean() puts a read one back.
     std::vector<float> readMean() const;
     void loadMean(const std::vector<float>& texels);
-    int64_t meanFloats() const { return int64_t(mesh_.side) * mesh_.side * mesh_.layers * 4; }
+    int64_t meanFloats() const { return int64_t(mesh_.side) * mesh_.side * mesh_.layers * 4 * (directional_ ? 2 : 1); }
     const LightmapMesh& mesh() const { return mesh_; }
     int validTexels() const { return validTexels_; }  // texels on a surface, counted by classify()
     float texelSize() const { return texelSize_; }
@@ -82,15 +88,20 @@ private:
     void rasterizeTexels();
     void splitChartsAtWalls();
     void filterStep(const gl::Texture& from, const gl::Texture& to, int mode, int step, int samples);
-    void stitch(const gl::Texture& lightmap);
+    void stitch(const gl::Texture& lightmap, bool measured);  // measured: its gaps are the ones reported
+    const gl::Texture* filterImages(const gl::Texture& source, gl::Texture& ping, gl::Texture& pong, bool denoise,
+                                    bool stitchSeams, int samples);
 
     LightmapMesh mesh_;
     float texelSize_ = 0.0f;
     gl::Buffer vertices_, indices_;
     gl::Object vao_, texelProgram_, classify_, trace_, filter_;
     bool classified_ = false;  // classify.comp ran (it needs the ray scene, bound at the first trace)
+    bool directional_ = false;
     gl::Texture position_, normal_, mean_, ping_, pong_;
+    gl::Texture direction_, directionPing_, directionPong_;  // directional only
     const gl::Texture* result_ = nullptr;
+    const gl::Texture* directionResult_ = nullptr;
     int validTexels_ = 0;
     int regions_ = 0, insideTexels_ = 0, blockedLinks_ = 0;
     std::vector<lightmap::SeamPoint> seams_;

@@ -34,7 +34,7 @@ constexpr int kTermAll = 0, kTermIndirect = 3;
 constexpr int kShowLight = 0, kShowTexels = 1, kShowSeams = 2;
 // The cache file's first line, also in the key: a change of the file format or of the bake's C++
 // (its shaders are in the key themselves) bumps it, and old files are then never read.
-constexpr char kCacheMagic[] = "gisandbox lightmap 2\n";
+constexpr char kCacheMagic[] = "gisandbox lightmap 3\n";
 
 std::string describeBytes(double bytes) {
     char text[32];
@@ -63,7 +63,7 @@ std::vector<std::pair<std::string, uint64_t>> LightmapPass::estimateMemory(const
     const LightmapMesh mesh = lightmapMesh(scene, lightmapAtlas(scene, p));
     const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
     return {{"lightmap atlas, texels and bake (" + std::to_string(mesh.layers) + " x " + std::to_string(mesh.side) + "^2)",
-             uint64_t(LightmapBake::bytes(mesh))},
+             uint64_t(LightmapBake::bytes(mesh, p.directional))},
             {"lightmap lookup (RGBA16F + depth)", pixels * (8 + 4)}};
 }
 
@@ -72,7 +72,7 @@ LightmapPass::LightmapPass(const Scene& scene, RayScene& rays, const RenderSetti
       atlas_(lightmapAtlas(scene, params_)) {
     const gl::MemoryScope scope{&ledger, kName};
     const float texelSize = atlas_.atlasSizes.empty() ? 0.0f : 1.0f / atlas_.params.texelsPerMetre;
-    bake_ = std::make_unique<LightmapBake>(lightmapMesh(scene, atlas_), texelSize, scope);
+    bake_ = std::make_unique<LightmapBake>(lightmapMesh(scene, atlas_), texelSize, params_.directional, scope);
     indirect_ = gl::createTexture2D(scope, GL_RGBA16F, settings.width, settings.height);
     depth_ = gl::createTexture2D(scope, GL_DEPTH_COMPONENT32F, settings.width, settings.height);
     fbo_ = gl::createFramebuffer();
@@ -168,9 +168,14 @@ void LightmapPass::draw(const Frame& frame, GLuint target, int mode) {
     rays_.bind();  // the second program's rays beside a wall's foot
     glBindTextureUnit(TL_LIGHTMAP, bake_->result().id());
     glBindTextureUnit(TL_TEXELS, bake_->positions().id());
+    if (bake_->directional()) {
+        glBindTextureUnit(TL_DIRECTION, bake_->direction().id());
+        glBindTextureUnit(TL_SHADING_NORMAL, frame.texture(resource::kGbufferNormal));
+    }
     for (const gl::Object& program : applyPrograms_) {
         const GLuint p = program.id();
         glUseProgram(p);
+        glProgramUniform1i(p, UL_DIRECTIONAL, bake_->directional() ? 1 : 0);
         glProgramUniformMatrix4fv(p, UL_VIEW_PROJ, 1, GL_FALSE, &frame.camera.viewProj[0][0]);
         glProgramUniform1i(p, UL_MODE, mode);
         glProgramUniform1i(p, UL_STEP, bake_->mesh().side);
@@ -241,6 +246,7 @@ std::string LightmapPass::cacheKey(const Frame& frame) const {
     id.value(emittersAreLights(scene_, s)), id.value(environmentIsLight(scene_, s));
     id.add(atlas_.hash);
     id.value(params_.samples), id.value(params_.bounces), id.value(params_.environmentSampling), id.value(params_.mode);
+    id.value(params_.directional);
     return id.hex();
 }
 
@@ -304,7 +310,8 @@ std::vector<std::string> LightmapPass::stats() const {
                   "blocked, %d charts in %d regions, %.4g texels per unit, %s",
                   m.layers, m.layers == 1 ? "" : "es", m.side, bake_->validTexels(), atlas_.fill(), bake_->insideTexels(),
                   bake_->blockedLinks(), int(atlas_.charts.size()), bake_->regions(),
-                  double(atlas_.params.texelsPerMetre), describeBytes(double(LightmapBake::bytes(m))).c_str());
+                  double(atlas_.params.texelsPerMetre),
+                  describeBytes(double(LightmapBake::bytes(m, bake_->directional()))).c_str());
     std::vector<std::string> out{line};
     std::snprintf(line, sizeof line, "lightmap bake %d / %d paths per texel, %d bounces, %s%s", done_, params_.samples,
                   params_.bounces, params_.mode == kLightmapAll ? "all the light (the frame draws none)" : "indirect light",

@@ -21,7 +21,7 @@ public:
     static constexpr const char* kName = "lightmap";
     LightmapPass(const Scene& scene, RayScene& rays, const RenderSettings& settings, gl::MemoryLedger& ledger);
     const char* name() const override { return kName; }
-    std::vector<std::string> inputs() const override { return {resource::kGbufferDepth}; }
+    std::vector<std::string> inputs() const override { return {resource::kGbufferDepth, resource::kGbufferNormal}; }
     std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse}; }
     void execute(Frame& frame) override;
     void invalidate(Changes c) override;

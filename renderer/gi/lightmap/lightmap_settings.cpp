@@ -30,6 +30,10 @@ const ParamTable<LightmapSettings>& lightmapParams() {
                  ParamUpdate::Live)
         .boolean(&S::cache, "cache", "Cache on disk", "a finished bake is kept on disk by the scene's content id and "
                  "read back instead of baking again (GIS_LIGHTMAP_CACHE names the folder)", ParamUpdate::Live)
+        .boolean(&S::directional, "directional", "Directional",
+                 "the light's luminance-weighted mean direction per texel too, so a normal map's relief is lit by "
+                 "where the light comes from (a first-order spherical-harmonic fit, exact at the surface's own "
+                 "normal); 24 more bytes a texel", ParamUpdate::Rebuild)
         .choice(&S::mode, "mode", "Baked light", "indirect: the light the lighting pass does not draw (its lights "
                 "stay per frame, with shadow maps and highlights); all: the lights' direct diffuse light too, and the "
                 "frame draws no light of its own (the cheapest frame, without the lights' specular highlights)",

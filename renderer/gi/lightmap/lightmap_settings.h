@@ -1,6 +1,7 @@
 // The lightmap's parameters: one row each in lightmapParams() (names scripts and checks use:
 // lightmap.texels, lightmap.texels-per-metre, lightmap.samples, lightmap.bounces,
-// lightmap.env-sampling, lightmap.denoise, lightmap.stitch, lightmap.cache, lightmap.mode), defaults in the initialisers below.
+// lightmap.env-sampling, lightmap.denoise, lightmap.stitch, lightmap.cache, lightmap.mode,
+// lightmap.directional), defaults in the initialisers below.
 #pragma once
 
 #include <string>
@@ -28,6 +29,7 @@ struct LightmapSettings {
     bool denoise = true;           // lightmap.denoise: the edge-aware filter within each chart (live)
     bool stitch = true;            // lightmap.stitch: the two sides of a seam made to agree (live)
     bool cache = true;             // lightmap.cache: read and write finished bakes on disk (live)
+    bool directional = false;      // lightmap.directional: the light's mean direction kept too (rebuild)
     int mode = kLightmapIndirect;  // lightmap.mode: indirect or all (rebuild: the frame's passes follow it)
 };
 

@@ -25,6 +25,9 @@ layout(binding = TL_TEXELS) uniform sampler2DArray s_texels;    // position, w =
 layout(location = UL_MODE) uniform int u_mode;  // 0 the light, 1 lightmap.texels' checker, 2 lightmap.seams
 layout(location = UL_STEP) uniform int u_side;  // the atlas array's side, texels
 layout(location = UL_TEXEL_SIZE) uniform float u_texelSize;
+layout(location = UL_DIRECTIONAL) uniform int u_directional;  // lightmap.directional
+layout(binding = TL_DIRECTION) uniform sampler2DArray s_direction;  // the light's mean direction, |d| <= 1
+layout(binding = TL_SHADING_NORMAL) uniform sampler2D s_shadingNormal;  // the G-buffer's (normal maps)
 layout(location = 0) out vec4 o_indirect;
 
 // As classify.comp's rays: a twentieth of a texel above the surface.
@@ -41,7 +44,7 @@ bool reaches(vec3 from, vec3 to) {
 #endif
 }
 
-vec3 lightmapLight(vec2 uv, int layer) {
+vec3 lightmapLight(vec2 uv, int layer, out vec3 direction) {
     vec2 st = uv * float(u_side) - 0.5;
     ivec2 corner = ivec2(floor(st));
     vec2 f = st - floor(st);
@@ -54,6 +57,7 @@ vec3 lightmapLight(vec2 uv, int layer) {
     vec3 n = dot(v_normal, v_normal) > 0.0 ? normalize(v_normal) : vec3(0.0);
     vec3 pixel = v_world + n * (LIFT * u_texelSize);
     vec4 own = vec4(0.0), any = vec4(0.0);
+    vec3 ownDirection = vec3(0.0), anyDirection = vec3(0.0);
     for (int k = 0; k < 4; ++k) {
         ivec2 offset = ivec2(k & 1, k >> 1);
         ivec3 tap = ivec3(clamp(corner + offset, ivec2(0), ivec2(u_side - 1)), layer);
@@ -63,11 +67,30 @@ vec3 lightmapLight(vec2 uv, int layer) {
         bool blocked = nearestInside
                            ? !reaches(pixel, texelFetch(s_texels, tap, 0).xyz + n * (LIFT * u_texelSize))
                            : (flags & (neighbourBit(ivec2(step.x, 0)) | neighbourBit(ivec2(0, step.y)))) != 0;
-        if (light.a == 1.0 && !blocked) own += vec4(light.rgb, 1.0) * w;
-        if (light.a > 0.0) any += vec4(light.rgb, 1.0) * w;
+        vec3 d = u_directional != 0 ? texelFetch(s_direction, tap, 0).xyz : vec3(0.0);
+        if (light.a == 1.0 && !blocked) own += vec4(light.rgb, 1.0) * w, ownDirection += d * w;
+        if (light.a > 0.0) any += vec4(light.rgb, 1.0) * w, anyDirection += d * w;
     }
+    direction = own.w > 0.0 ? ownDirection / own.w : any.w > 0.0 ? anyDirection / any.w : vec3(0.0);
     if (own.w > 0.0) return own.rgb / own.w;
     return any.w > 0.0 ? any.rgb / any.w : vec3(0.0);
+}
+
+// Directional lightmaps: the irradiance towards the shading normal `m` over that towards the
+// surface's normal `n`, from a first-order spherical-harmonic fit of the radiance. The bake keeps
+// the irradiance E (over pi) and the luminance-weighted mean direction d of the light arriving
+// about n (both cosine-weighted moments: stable under cosine sampling). Radiance a + b.w over n's
+// hemisphere (none below it) has exactly those two moments for a = 9 - 12 d.n,
+// b = 4 (d - (d.n) n) + (18 d.n - 12) n (per unit of E); its projection on the sphere's first two
+// bands convolved with the clamped cosine (Ramamoorthi and Hanrahan 2001: pi and 2 pi / 3) gives the
+// irradiance towards any m. Uniform light gives (1 + n.m) / 2, one direction the cosine to it.
+float directionalFactor(vec3 d, vec3 n, vec3 m) {
+    float dn = dot(d, n);
+    float a = 9.0 - 12.0 * dn;
+    vec3 b = 4.0 * (d - dn * n) + (18.0 * dn - 12.0) * n;
+    float towardsM = 0.25 * (2.0 * a + dot(b, n)) + 0.5 * a * dot(n, m) + dot(b, m) / 3.0;
+    float towardsN = 2.0 - 1.5 * dn;  // the same at m = n
+    return towardsN > 1e-4 ? clamp(towardsM / towardsN, 0.0, 4.0) : 1.0;
 }
 
 // Whether the pixel's bilinear footprint reaches a texel on no chart (the gutter): a chart's edge,
@@ -84,7 +107,14 @@ bool atChartEdge(vec2 uv, int layer) {
 void main() {
     if (!gl_FrontFacing && v_doubleSided < 0.5) discard;
     int layer = int(v_uvLayer.z + 0.5);
-    vec3 light = lightmapLight(v_uvLayer.xy, layer);
+    vec3 direction;
+    vec3 light = lightmapLight(v_uvLayer.xy, layer, direction);
+    if (u_directional != 0 && u_mode == 0) {
+        vec3 m = texelFetch(s_shadingNormal, ivec2(gl_FragCoord.xy), 0).xyz;
+        vec3 n = dot(v_normal, v_normal) > 0.0 ? normalize(v_normal) : m;
+        if (!gl_FrontFacing) n = -n;  // a double-sided face seen from behind: its normal as the G-buffer's
+        if (dot(m, m) > 0.0) light *= directionalFactor(direction, n, normalize(m));
+    }
     float peak = max(max(light.r, max(light.g, light.b)), 1e-30);
     if (u_mode == 1) {
         vec2 texel = floor(v_uvLayer.xy * float(u_side));

@@ -3,7 +3,9 @@
 // Filtering", HPG 2010) that stay inside each region (a chart, split where a wall parts its texels:
 // lightmap_bake.cpp) and stop at the plane and normal of the
 // texel's surface and at a luminance difference of a few of its standard errors (the texels' own
-// noise, as SVGF weighs by variance: Schied et al. 2017), then dilated into the gutters.
+// noise, as SVGF weighs by variance: Schied et al. 2017), then dilated into the gutters. Directional
+// lightmaps run it a second time on the light's mean direction (over its luminance), without the
+// luminance edges.
 #include "common.glsl"
 #include "gi/lightmap/lightmap_texels.glsl"
 
@@ -13,12 +15,14 @@ layout(binding = IL_NORMAL, rgba32f) readonly uniform image2DArray u_normal;
 layout(binding = IL_MEAN, rgba32f) readonly uniform image2DArray u_mean;
 layout(binding = IL_SOURCE, rgba16f) readonly uniform image2DArray u_source;
 layout(binding = IL_TARGET, rgba16f) writeonly uniform image2DArray u_target;
+layout(binding = IL_DIRECTION, rgba32f) readonly uniform image2DArray u_direction;  // directional only
 layout(location = UL_MODE) uniform int u_mode;
 layout(location = UL_STEP) uniform int u_step;
 layout(location = UL_SAMPLES) uniform int u_samples;
 layout(location = UL_TEXEL_SIZE) uniform float u_texelSize;
+layout(location = UL_DIRECTIONAL) uniform int u_directional;  // 1: filtering the direction (no luminance edges)
 
-const int MODE_COPY = 0, MODE_DENOISE = 1, MODE_DILATE = 2;
+const int MODE_COPY = 0, MODE_DENOISE = 1, MODE_DILATE = 2, MODE_COPY_DIRECTION = 3;
 // Standard errors of the difference between two texels' means at which the weight is 1/e.
 const float LUMINANCE_SIGMA = 4.0;
 const float NORMAL_POWER = 64.0;
@@ -49,7 +53,7 @@ vec4 denoised(ivec3 c, ivec3 size) {
             if (st.a < 1.0 || nt.w != nc.w) continue;  // a gutter, inside geometry, or another region
             vec3 s = st.rgb;
             float plane = abs(dot(nc.xyz, pt.xyz - pc.xyz)) / (u_texelSize * float(u_step));
-            float edge = abs(luminance(s) - lc) / (LUMINANCE_SIGMA * sqrt(ec * ec + standardError(t) * standardError(t)) + 1e-6 * (lc + 1e-30));
+            float edge = u_directional != 0 ? 0.0 : abs(luminance(s) - lc) / (LUMINANCE_SIGMA * sqrt(ec * ec + standardError(t) * standardError(t)) + 1e-6 * (lc + 1e-30));
             float w = kernel[abs(x)] * kernel[abs(y)] * pow(max(dot(nc.xyz, nt.xyz), 0.0), NORMAL_POWER) * exp(-plane - edge);
             sum += s * w;
             weights += w;
@@ -82,6 +86,11 @@ void main() {
     float w = imageLoad(u_position, c).w;
     bool own = w > 0.0 && (texelFlags(w) & TEXEL_INSIDE) == 0;
     if (u_mode == MODE_COPY) result = own ? vec4(imageLoad(u_mean, c).rgb, 1.0) : vec4(0.0);
+    else if (u_mode == MODE_COPY_DIRECTION) {  // the mean direction, weighted by the light's luminance
+        float level = luminance(imageLoad(u_mean, c).rgb);
+        vec3 d = level > 0.0 ? imageLoad(u_direction, c).xyz / level : vec3(0.0);
+        result = own ? vec4(d / max(1.0, length(d)), 1.0) : vec4(0.0);
+    }
     else if (u_mode == MODE_DENOISE) result = denoised(c, size);
     else result = dilated(c, size);
     imageStore(u_target, c, result);

@@ -14,9 +14,11 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = IL_POSITION, rgba32f) readonly uniform image2DArray u_position;
 layout(binding = IL_NORMAL, rgba32f) readonly uniform image2DArray u_normal;
 layout(binding = IL_MEAN, rgba32f) uniform image2DArray u_mean;
+layout(binding = IL_DIRECTION, rgba32f) uniform image2DArray u_direction;  // lightmap.directional only
 layout(location = U_SAMPLE_INDEX) uniform uint u_sampleIndex;
 layout(location = U_SEED) uniform uint u_seed;
 layout(location = UL_BAKE_DIRECT) uniform int u_bakeDirect;
+layout(location = UL_DIRECTIONAL) uniform int u_directional;
 
 // The light sampled at the texel as the path tracer samples it at a vertex (directLight: every
 // punctual light, one emitter by power; environmentLight: the map by luminance), MIS-weighted
@@ -34,6 +36,26 @@ vec3 lightsAtTexel(vec3 position, vec3 n, inout Rng rng) {
     return directLight(s, n, 0.0, SPECULAR_NONE, rng) + environmentLight(s, n, 0.0, SPECULAR_NONE, rng, false, unusedShare);
 }
 
+// The punctual lights' part of lightsAtTexel's luminance times its direction, for the
+// directional mean (lightmap.mode=all): a shadow ray each again; the one emitter and the map
+// sampled there are counted along the texel's normal, their direction not kept.
+vec3 punctualMoment(vec3 position, vec3 n, out float level) {
+    vec3 origin = offsetRayOrigin(position, n);
+    vec3 moment = vec3(0.0);
+    level = 0.0;
+    for (int i = 0; i < u_lightCount; ++i) {
+        vec3 L;
+        float dist;
+        vec3 e = lightIrradiance(u_lights[i], position, L, dist);
+        float NoL = dot(n, L);
+        if (NoL <= 0.0 || all(equal(e, vec3(0.0))) || !visible(origin, L, dist * (1.0 - 1e-4))) continue;
+        float l = luminance(e) * NoL * INV_PI;
+        moment += l * L;
+        level += l;
+    }
+    return moment;
+}
+
 void main() {
     ivec3 texel = ivec3(gl_GlobalInvocationID);
     ivec3 size = imageSize(u_mean);
@@ -45,13 +67,27 @@ void main() {
     Rng rng = makeRng(uvec2(texel.xy) + uvec2(0u, uint(texel.z * size.y)), u_sampleIndex, u_seed);
     vec3 dir = cosineDirection(n, nextFloat2(rng));
     bool direct = u_bakeDirect != 0;
-    vec3 radiance = tracePath(offsetRayOrigin(position.xyz, n), dir, rng, 1, direct ? max(dot(n, dir), 0.0) * INV_PI : 0.0);
-    if (direct) radiance += lightsAtTexel(position.xyz, n, rng);
-    radiance = finiteOrZero(min(radiance, vec3(MAX_RADIANCE)));
+    vec3 path = finiteOrZero(min(tracePath(offsetRayOrigin(position.xyz, n), dir, rng, 1,
+                                           direct ? max(dot(n, dir), 0.0) * INV_PI : 0.0), vec3(MAX_RADIANCE)));
+    vec3 lights = direct ? finiteOrZero(min(lightsAtTexel(position.xyz, n, rng), vec3(MAX_RADIANCE))) : vec3(0.0);
+    vec3 radiance = min(path + lights, vec3(MAX_RADIANCE));
     float lum = luminance(radiance);
     vec4 mean = u_sampleIndex == 0u ? vec4(0.0) : imageLoad(u_mean, texel);
     float count = float(u_sampleIndex + 1u);
     mean += (vec4(radiance, lum * lum) - mean) / count;
     imageStore(u_mean, texel, min(mean, vec4(MAX_RADIANCE)));
+    if (u_directional != 0) {
+        // The luminance-weighted mean direction of the light arriving (the cosine-weighted first
+        // moment of the radiance over pi, from which apply.frag fits its first-order harmonics).
+        float punctualLevel = 0.0;
+        vec3 moment = luminance(path) * dir;
+        if (direct) {
+            vec3 punctual = punctualMoment(position.xyz, n, punctualLevel);
+            moment += punctual + max(luminance(lights) - punctualLevel, 0.0) * n;
+        }
+        vec4 directionMean = u_sampleIndex == 0u ? vec4(0.0) : imageLoad(u_direction, texel);
+        directionMean += (vec4(moment, 0.0) - directionMean) / count;
+        imageStore(u_direction, texel, directionMean);
+    }
     publishRayCounts();
 }

@@ -363,3 +363,56 @@ TEST(Lightmap, AnEditKeepsTheLastLightmapMarkedStaleUntilTheNextBakeIsDone) {
     for (size_t i = 0; i < after.rgba.size(); i += 4) sum[0] += before.rgba[i], sum[1] += after.rgba[i];
     EXPECT_NEAR(sum[1] / sum[0], 4.0, 0.4) << "the new bake holds the brighter light";
 }
+
+// lightmap.directional: a floor whose normal map tilts its shading normal by 30 degrees towards
+// +x and -x in stripes, lit only indirectly by a sunlit wall on its +x side. The stripes facing the
+// wall get more of its light than those facing away (about twice); without the direction the two
+// read the same.
+TEST(Lightmap, ADirectionalBakeLightsANormalMapByWhereTheLightComesFrom) {
+    Scene s;
+    s.materials.push_back(lambert(glm::vec3(0.5f)));
+    s.materials.push_back(lambert(glm::vec3(0.9f)));
+    Image stripes;
+    stripes.width = 8;
+    stripes.height = 1;
+    for (int x = 0; x < 8; ++x) {
+        const float tilt = (x % 2 ? 1.0f : -1.0f) * 0.5f;  // sin 30 degrees along the tangent
+        for (float c : {tilt, 0.0f, 0.866f, 1.0f}) stripes.rgba8.push_back(uint8_t(std::lround((c * 0.5f + 0.5f) * 255.0f)));
+    }
+    s.images.push_back(stripes);
+    s.materials[0].normalTexture = 0;
+    addQuad(s, glm::vec3(0.0f), glm::vec3(0, 1, 0), 2.0f, 0);
+    addQuad(s, glm::vec3(1.0f, 1.0f, 0.0f), glm::vec3(-1, 0, 0), 2.0f, 1);
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(1.0f, -0.2f, 0.0f));
+    sun.intensity = 3.0f;
+    s.lights.push_back(sun);
+    s.cameras.push_back(lookAtCamera({-0.2f, 2.5f, 0.01f}, {-0.2f, 0.0f, 0.0f}, 50.0f));
+    finalizeScene(s);
+    context();
+    double ratio[2] = {0.0, 0.0};
+    for (int directional = 0; directional < 2; ++directional) {
+        RenderSettings r = lightmapSettings(48, 2048, 32);
+        setParam(r, "lightmap.directional", directional ? "true" : "false");
+        Renderer renderer(s, r);
+        const ImageF indirect = bakedIndirect(renderer);
+        const ImageF normal = readTextureFloat(renderer.frameTexture("gbuffer.normal"), 48, 48);
+        double sum[2] = {0.0, 0.0}, count[2] = {0.0, 0.0};
+        for (int y = 0; y < 48; ++y)
+            for (int x = 0; x < 48; ++x) {
+                const float* n = normal.at(x, y);
+                if (n[1] < 0.8f || std::abs(n[0]) < 0.4f) continue;  // the floor's stripes, not their blends
+                const int side = n[0] > 0.0f ? 1 : 0;  // facing the wall
+                sum[side] += indirect.at(x, y)[0];
+                count[side] += 1.0;
+            }
+        ASSERT_GT(count[0], 30.0);
+        ASSERT_GT(count[1], 30.0);
+        ratio[directional] = (sum[1] / count[1]) / (sum[0] / count[0]);
+        std::printf("LIGHTMAP-TABLE directional %d: stripes facing the wall / facing away = %.3f\n", directional,
+                    ratio[directional]);
+    }
+    EXPECT_NEAR(ratio[0], 1.0, 0.1) << "without the direction a normal map changes nothing";
+    EXPECT_GT(ratio[1], 1.3) << "with it the stripes facing the lit wall get more of its light";
+}
