@@ -32,6 +32,7 @@ LightmapMesh lightmapMesh(const Scene& scene, const Atlas& atlas) {
     out.layers = int(atlas.atlasSizes.size());
     for (int side : atlas.atlasSizes) out.side = std::max(out.side, side);
     std::vector<std::vector<uint32_t>> byAtlas(size_t(out.layers));
+    std::vector<uint32_t> cutouts;
     for (size_t m = 0; m < atlas.meshes.size(); ++m) {
         const MeshAtlas& ma = atlas.meshes[m];
         const DrawItem& draw = scene.draws[m];  // meshesFromScene: one mesh per draw
@@ -49,21 +50,28 @@ LightmapMesh lightmapMesh(const Scene& scene, const Atlas& atlas) {
             out.vertices.push_back({{pos.x, pos.y, pos.z}, {n.x, n.y, n.z}, {ma.uv[v].x * scale, ma.uv[v].y * scale},
                                     float(a), float(ma.chart[v]), doubleSided ? 1.0f : 0.0f});
         }
+        const bool masked = p.material >= 0 && scene.materials[size_t(p.material)].alphaMode == AlphaMode::Mask;
         for (size_t t = 0; t + 2 < ma.indices.size(); t += 3) {
             auto& list = byAtlas[size_t(atlas.atlasOf(m, ma.indices[t]))];
-            for (int k = 0; k < 3; ++k) list.push_back(base + ma.indices[t + size_t(k)]);
+            for (int k = 0; k < 3; ++k) {
+                list.push_back(base + ma.indices[t + size_t(k)]);
+                (masked ? cutouts : out.surfaceIndices).push_back(base + ma.indices[t + size_t(k)]);
+            }
         }
     }
     for (const std::vector<uint32_t>& list : byAtlas) {
         out.ranges.emplace_back(uint32_t(out.indices.size()), uint32_t(list.size()));
         out.indices.insert(out.indices.end(), list.begin(), list.end());
     }
+    out.cutoutFirst = uint32_t(out.surfaceIndices.size());
+    out.surfaceIndices.insert(out.surfaceIndices.end(), cutouts.begin(), cutouts.end());
     return out;
 }
 
 int64_t LightmapBake::bytes(const LightmapMesh& mesh, bool directional) {
     return int64_t(mesh.side) * mesh.side * mesh.layers * (kBytesPerTexel + (directional ? kDirectionalBytesPerTexel : 0)) +
-           int64_t(mesh.vertices.size() * sizeof(LightmapMesh::Vertex)) + int64_t(mesh.indices.size() * 4);
+           int64_t(mesh.vertices.size() * sizeof(LightmapMesh::Vertex)) + int64_t(mesh.indices.size() * 4) +
+           int64_t(mesh.surfaceIndices.size() * 4);
 }
 
 LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, bool directional, const gl::MemoryScope& scope)
@@ -83,6 +91,7 @@ LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, bool direc
     }
     vertices_ = gl::createBuffer(scope, int64_t(mesh_.vertices.size() * sizeof(LightmapMesh::Vertex)), mesh_.vertices.data());
     indices_ = gl::createBuffer(scope, int64_t(mesh_.indices.size() * 4), mesh_.indices.data());
+    surfaceIndices_ = gl::createBuffer(scope, int64_t(mesh_.surfaceIndices.size() * 4), mesh_.surfaceIndices.data());
     texelProgram_ = buildProgram(kTexelProgram);
     classify_ = buildProgram(kClassifyProgram);
     trace_ = buildProgram(kTraceProgram);
@@ -138,9 +147,13 @@ void LightmapBake::rasterizeTexels() {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-void LightmapBake::drawSurfaces() const {
+void LightmapBake::drawSurfaces(bool cutouts) const {
+    const uint32_t first = cutouts ? mesh_.cutoutFirst : 0;
+    const uint32_t count = cutouts ? uint32_t(mesh_.surfaceIndices.size()) - first : mesh_.cutoutFirst;
+    if (count == 0) return;
     glBindVertexArray(vao_.id());
-    glDrawElements(GL_TRIANGLES, GLsizei(mesh_.indices.size()), GL_UNSIGNED_INT, nullptr);
+    glVertexArrayElementBuffer(vao_.id(), surfaceIndices_.id());
+    glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT, reinterpret_cast<const void*>(uintptr_t(first) * 4));
     glBindVertexArray(0);
 }
 

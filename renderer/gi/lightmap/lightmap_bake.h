@@ -29,6 +29,10 @@ struct LightmapMesh {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
     std::vector<std::pair<uint32_t, uint32_t>> ranges;  // per atlas: first index, index count
+    // The same triangles as the lookup draws them: the opaque ones, then from cutoutFirst on
+    // those of alpha-masked materials (whose holes the G-buffer saw through).
+    std::vector<uint32_t> surfaceIndices;
+    uint32_t cutoutFirst = 0;
     int side = 0;                                        // the array's side, texels
     int layers = 0;
 };
@@ -72,8 +76,10 @@ public:
     bool directional() const { return directional_; }
     // Directional: the light's mean direction (xyz, |xyz| <= 1) per texel, filtered as the result.
     const gl::Texture& direction() const { return *directionResult_; }
-    // Draws every atlas triangle (apply.vert's attributes) with the bound program.
-    void drawSurfaces() const;
+    // Draws the opaque atlas triangles or those of alpha-masked materials (apply.vert's attributes)
+    // with the bound program.
+    void drawSurfaces(bool cutouts) const;
+    bool hasCutouts() const { return mesh_.cutoutFirst < mesh_.surfaceIndices.size(); }
     const gl::Texture& positions() const { return position_; }  // w: 1 + classify.comp's flags
     // The paths' mean as it is stored (RGBA32F per texel: rgb, the luminance's second moment;
     // directional, then the mean direction's), for the cache; loadMean() puts a read one back.
@@ -94,7 +100,7 @@ private:
 
     LightmapMesh mesh_;
     float texelSize_ = 0.0f;
-    gl::Buffer vertices_, indices_;
+    gl::Buffer vertices_, indices_, surfaceIndices_;
     gl::Object vao_, texelProgram_, classify_, trace_, filter_;
     bool classified_ = false;  // classify.comp ran (it needs the ray scene, bound at the first trace)
     bool directional_ = false;

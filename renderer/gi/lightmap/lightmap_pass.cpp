@@ -22,10 +22,13 @@ namespace gis {
 using namespace lightmap;  // its uniform and binding names
 
 namespace {
-// The lookup (apply.frag): every pixel without rays, then the pixels beside a wall's foot with them.
-const ProgramDesc kApplyPrograms[2] = {
-    {"lightmap-apply", {"gi/lightmap/apply.vert", "gi/lightmap/apply.frag"}, {{"RAY_FALLBACK", "0"}}},
-    {"lightmap-apply-rays", {"gi/lightmap/apply.vert", "gi/lightmap/apply.frag"}, {{"RAY_FALLBACK", "1"}}}};
+// The lookup (apply.frag): every pixel of the opaque surfaces without rays, then their pixels beside
+// a wall's foot with them; then the alpha-masked surfaces, every pixel, their holes left out.
+const ProgramDesc kApplyPrograms[3] = {
+    {"lightmap-apply", {"gi/lightmap/apply.vert", "gi/lightmap/apply.frag"}, {{"RAY_FALLBACK", "0"}, {"CUTOUTS", "0"}}},
+    {"lightmap-apply-rays", {"gi/lightmap/apply.vert", "gi/lightmap/apply.frag"}, {{"RAY_FALLBACK", "1"}, {"CUTOUTS", "0"}}},
+    {"lightmap-apply-cutouts", {"gi/lightmap/apply.vert", "gi/lightmap/apply.frag"}, {{"RAY_FALLBACK", "1"}, {"CUTOUTS", "1"}}}};
+constexpr size_t kCutoutProgram = 2;
 // lightmap.atlas: the atlas's texels across the image.
 const ProgramDesc kAtlasProgram = {"lightmap-atlas", {"fullscreen.vert", "gi/lightmap/atlas.frag"}, {}};
 // path_tracer.glsl's u_term: the indirect term, or everything (emitters' direct light included).
@@ -78,7 +81,8 @@ LightmapPass::LightmapPass(const Scene& scene, RayScene& rays, const RenderSetti
     fbo_ = gl::createFramebuffer();
     gbufferFbo_ = gl::createFramebuffer();
     glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
-    for (int i = 0; i < 2; ++i) applyPrograms_[i] = buildProgram(kApplyPrograms[i]);
+    for (const ProgramDesc& program : kApplyPrograms)
+        if (&program != &kApplyPrograms[kCutoutProgram] || bake_->hasCutouts()) applyPrograms_.push_back(buildProgram(program));
     atlasProgram_ = buildProgram(kAtlasProgram);
     atlasVao_ = gl::createVertexArray();
     rayCounts_ = createRayCounts({&ledger, kName});
@@ -172,15 +176,17 @@ void LightmapPass::draw(const Frame& frame, GLuint target, int mode) {
         glBindTextureUnit(TL_DIRECTION, bake_->direction().id());
         glBindTextureUnit(TL_SHADING_NORMAL, frame.texture(resource::kGbufferNormal));
     }
-    for (const gl::Object& program : applyPrograms_) {
-        const GLuint p = program.id();
+    glBindTextureUnit(TL_GBUFFER_DEPTH, frame.texture(resource::kGbufferDepth));
+    for (size_t i = 0; i < applyPrograms_.size(); ++i) {
+        const GLuint p = applyPrograms_[i].id();
         glUseProgram(p);
         glProgramUniform1i(p, UL_DIRECTIONAL, bake_->directional() ? 1 : 0);
         glProgramUniformMatrix4fv(p, UL_VIEW_PROJ, 1, GL_FALSE, &frame.camera.viewProj[0][0]);
         glProgramUniform1i(p, UL_MODE, mode);
         glProgramUniform1i(p, UL_STEP, bake_->mesh().side);
         glProgramUniform1f(p, UL_TEXEL_SIZE, bake_->texelSize());
-        bake_->drawSurfaces();
+        if (i == kCutoutProgram) glProgramUniformMatrix4fv(p, UL_INV_VIEW_PROJ, 1, GL_FALSE, &frame.camera.invViewProj[0][0]);
+        bake_->drawSurfaces(i == kCutoutProgram);
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -52,7 +52,8 @@ private:
     lightmap::Atlas atlas_;
     std::unique_ptr<LightmapBake> bake_;
     gl::Texture indirect_, depth_;
-    gl::Object fbo_, gbufferFbo_, applyPrograms_[2], atlasProgram_, atlasVao_;
+    gl::Object fbo_, gbufferFbo_, atlasProgram_, atlasVao_;
+    std::vector<gl::Object> applyPrograms_;  // kApplyPrograms's, the cut-outs' only where the scene has some
     gl::Buffer rayCounts_;
     int done_ = 0;
     bool changed_ = true;           // something since the last execute() asks for a redraw

@@ -15,7 +15,8 @@ namespace gis::lightmap {
     X(UL_LAYERS, 905, 1)      /* lightmap.atlas: the atlas array's layers */ \
     X(UL_TARGET_SIZE, 906, 1) /* lightmap.atlas: the view's pixels */ \
     X(UL_BAKE_DIRECT, 907, 1) /* bake: 1 adds the punctual lights' direct light at the texel (lightmap.mode=all) */ \
-    X(UL_DIRECTIONAL, 908, 1) /* bake, filter, lookup: 1 where the lightmap keeps the light's direction */
+    X(UL_DIRECTIONAL, 908, 1) /* bake, filter, lookup: 1 where the lightmap keeps the light's direction */ \
+    X(UL_INV_VIEW_PROJ, 909, 1) /* the cut-outs' lookup: the G-buffer's points from its depth */
 
 enum LightmapUniform : int { GIS_LIGHTMAP_UNIFORMS(GIS_UNIFORM_ENUM) };
 inline constexpr gl::UniformSlot kLightmapUniforms[] = {GIS_LIGHTMAP_UNIFORMS(GIS_UNIFORM_SLOT)};
@@ -34,7 +35,8 @@ inline constexpr gl::UniformSlot kLightmapUniforms[] = {GIS_LIGHTMAP_UNIFORMS(GI
     X(TL_LIGHTMAP, 1) \
     X(TL_TEXELS, 2) \
     X(TL_DIRECTION, 3) \
-    X(TL_SHADING_NORMAL, 4)
+    X(TL_SHADING_NORMAL, 4) \
+    X(TL_GBUFFER_DEPTH, 5)
 
 enum LightmapBinding : int { GIS_LIGHTMAP_BINDINGS(GIS_BINDING_ENUM) };
 inline constexpr gl::BindingSlot kLightmapBindings[] = {GIS_LIGHTMAP_BINDINGS(GIS_BINDING_SLOT)};

@@ -6,14 +6,22 @@
 // which side the pixel is on: the taps are then those a ray from the pixel reaches. Where no tap
 // is left (a chart's border), the dilated gutter's light is used. Two programs: RAY_FALLBACK 0
 // shades every pixel without rays (llvmpipe pays for the ray code in every pixel, taken or not:
-// 4 ms of 12 at 256x256 on cornell_point), RAY_FALLBACK 1, drawn after it, only those pixels.
+// 4 ms of 12 at 256x256 on cornell_point), RAY_FALLBACK 1, drawn after it, only those pixels. The
+// alpha-masked surfaces get a third (CUTOUTS 1, every pixel of theirs): the G-buffer saw through
+// their holes, so a fragment of theirs away from the G-buffer's point there is left out before it
+// writes depth (no early tests: a discarded fragment would have hidden the surface behind it).
 #include "gi/lightmap/lightmap_texels.glsl"
 #if RAY_FALLBACK
 #include "ray_scene.glsl"
 #endif
 
 // Against (a copy of) the G-buffer's depth before shading: the pixels behind cost nothing.
+#if !CUTOUTS
 layout(early_fragment_tests) in;
+#else
+layout(binding = TL_GBUFFER_DEPTH) uniform sampler2D s_gbufferDepth;
+layout(location = UL_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
+#endif
 
 in vec3 v_uvLayer;
 in vec3 v_world;
@@ -51,7 +59,7 @@ vec3 lightmapLight(vec2 uv, int layer, out vec3 direction) {
     ivec2 nearest = corner + ivec2(greaterThanEqual(f, vec2(0.5)));
     int flags = texelFlags(texelFetch(s_texels, ivec3(clamp(nearest, ivec2(0), ivec2(u_side - 1)), layer), 0).w);
     bool nearestInside = (flags & TEXEL_INSIDE) != 0;
-#if RAY_FALLBACK
+#if RAY_FALLBACK && !CUTOUTS
     if (!nearestInside) discard;  // shaded by the first program
 #endif
     vec3 n = dot(v_normal, v_normal) > 0.0 ? normalize(v_normal) : vec3(0.0);
@@ -106,6 +114,13 @@ bool atChartEdge(vec2 uv, int layer) {
 
 void main() {
     if (!gl_FrontFacing && v_doubleSided < 0.5) discard;
+#if CUTOUTS
+    // The G-buffer's point in this pixel: a fragment more than half a texel from it lies in a hole.
+    vec2 ndc = gl_FragCoord.xy / vec2(textureSize(s_gbufferDepth, 0)) * 2.0 - 1.0;
+    float depth = texelFetch(s_gbufferDepth, ivec2(gl_FragCoord.xy), 0).r * 2.0 - 1.0;
+    vec4 seen = u_invViewProj * vec4(ndc, depth, 1.0);
+    if (!(distance(seen.xyz / seen.w, v_world) <= 0.5 * u_texelSize)) discard;
+#endif
     int layer = int(v_uvLayer.z + 0.5);
     vec3 direction;
     vec3 light = lightmapLight(v_uvLayer.xy, layer, direction);

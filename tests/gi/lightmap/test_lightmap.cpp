@@ -416,3 +416,48 @@ TEST(Lightmap, ADirectionalBakeLightsANormalMapByWhereTheLightComesFrom) {
     EXPECT_NEAR(ratio[0], 1.0, 0.1) << "without the direction a normal map changes nothing";
     EXPECT_GT(ratio[1], 1.3) << "with it the stripes facing the lit wall get more of its light";
 }
+
+// An alpha-masked plane (a checker of holes) in front of a wall, a point light between them, every
+// light baked (lightmap.mode=all): the wall is bright, the plane's front dark. Through the holes the
+// G-buffer sees the wall, and so must the lookup: the plane's light there (drawn at a nearer depth
+// than the wall's) would paint the wall dark through every hole.
+TEST(Lightmap, AnAlphaMaskedSurfacesHolesShowTheLightBehindThem) {
+    Scene s;
+    s.materials.push_back(lambert(glm::vec3(0.9f)));  // the wall
+    Material leaf = lambert(glm::vec3(0.8f, 0.1f, 0.1f));
+    leaf.alphaMode = AlphaMode::Mask;
+    leaf.baseColorTexture = 0;
+    s.materials.push_back(leaf);
+    Image checker;
+    checker.width = checker.height = 4;
+    for (int i = 0; i < 16; ++i)
+        for (uint8_t c : {uint8_t(255), uint8_t(255), uint8_t(255), uint8_t(((i % 4) + (i / 4)) % 2 ? 255 : 0)})
+            checker.rgba8.push_back(c);
+    s.images.push_back(checker);
+    addQuad(s, glm::vec3(0.0f), glm::vec3(0, 0, 1), 4.0f, 0);
+    addQuad(s, glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0, 0, 1), 2.0f, 1);
+    Light light;
+    light.type = LightType::Point;
+    light.intensity = 2.0f;
+    light.position = {0.0f, 0.0f, 0.5f};
+    s.lights.push_back(light);
+    s.cameras.push_back(lookAtCamera({0.0f, 0.0f, 4.0f}, {0, 0, 0}, 50.0f));
+    finalizeScene(s);
+    context();
+    RenderSettings r = lightmapSettings(64, 2048, 8);
+    setParam(r, "lightmap.mode", "all");
+    Renderer renderer(s, r);
+    const ImageF indirect = bakedIndirect(renderer);
+    const ImageF base = readTextureFloat(renderer.frameTexture("gbuffer.baseColor"), 64, 64);
+    double hole = 0.0, leafLight = 0.0, holes = 0.0, leaves = 0.0;
+    for (int y = 16; y < 48; ++y)  // the plane's middle, away from its rim
+        for (int x = 16; x < 48; ++x) {
+            const bool wall = base.at(x, y)[1] > 0.5f;  // white, not the red leaf
+            (wall ? hole : leafLight) += indirect.at(x, y)[0];
+            (wall ? holes : leaves) += 1.0;
+        }
+    ASSERT_GT(holes, 100.0);
+    ASSERT_GT(leaves, 100.0);
+    std::printf("LIGHTMAP-TABLE cut-outs: through the holes %.4f, on the plane %.4f\n", hole / holes, leafLight / leaves);
+    EXPECT_GT(hole / holes, 5.0 * leafLight / leaves) << "the holes show the plane's light, not the wall's";
+}
