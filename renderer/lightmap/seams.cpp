@@ -103,33 +103,70 @@ bool lookUp(const TexelImage& image, glm::vec2 texel, int layer, glm::vec3& out)
     return t.count > 0;
 }
 
-float stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int sweeps) {
-    std::vector<std::pair<Taps, Taps>> taps;
+namespace {
+using Rows = std::vector<std::pair<Taps, Taps>>;  // each point's equation read(a) - read(b) = 0
+
+std::vector<glm::vec3> residuals(const TexelImage& image, const Rows& rows) {  // A x
+    std::vector<glm::vec3> r(rows.size());
+    for (size_t i = 0; i < rows.size(); ++i) r[i] = read(image, rows[i].first) - read(image, rows[i].second);
+    return r;
+}
+
+// A^T y, added to `image`'s texels scaled by `scale`.
+void addTransposed(TexelImage& image, const Rows& rows, const std::vector<glm::vec3>& y, float scale) {
+    for (size_t i = 0; i < rows.size(); ++i) {
+        move(image, rows[i].first, scale * y[i]);
+        move(image, rows[i].second, -scale * y[i]);
+    }
+}
+
+float dot3(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b, int c) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) sum += double(a[i][c]) * double(b[i][c]);
+    return float(sum);
+}
+}  // namespace
+
+// The least change x - x0 with A x = 0 is -A^T l, where (A A^T) l = A x0: conjugate gradients on
+// that system (one per channel, all at once), A A^T applied as A of A^T through a scratch image
+// holding only the rows' texels.
+float stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int iterations) {
+    Rows rows;
     for (const SeamPoint& p : points) {
         Taps a = tapsAt(image, p.a, p.layerA), b = tapsAt(image, p.b, p.layerB);
-        if (a.count && b.count) taps.push_back({a, b});
+        if (a.count && b.count) rows.push_back({a, b});
     }
-    // Each point's equation read(a) - read(b) = 0, projected onto in turn: the change is the
-    // equation's residual along its row of weights, over the row's squared length.
-    for (int sweep = 0; sweep < sweeps; ++sweep)
-        for (const auto& [a, b] : taps) {
-            float length2 = 0.0f;
-            for (int i = 0; i < a.count; ++i) length2 += a.weight[i] * a.weight[i];
-            for (int i = 0; i < b.count; ++i) length2 += b.weight[i] * b.weight[i];
-            const glm::vec3 residual = (read(image, a) - read(image, b)) / length2;
-            move(image, a, -residual);
-            move(image, b, residual);
+    std::vector<glm::vec3> r = residuals(image, rows), direction = r, lambda(rows.size(), glm::vec3(0.0f));
+    TexelImage scratch{std::vector<float>(image.rgba.size(), 0.0f), image.side, image.layers};
+    glm::vec3 rr(dot3(r, r, 0), dot3(r, r, 1), dot3(r, r, 2));
+    for (int it = 0; it < iterations && rr.x + rr.y + rr.z > 0.0f; ++it) {
+        for (const auto& [a, b] : rows)  // clear the rows' texels, then A^T p into them
+            for (const Taps* t : {&a, &b})
+                for (int k = 0; k < t->count; ++k) std::fill_n(&scratch.rgba[t->at[k]], 3, 0.0f);
+        addTransposed(scratch, rows, direction, 1.0f);
+        const std::vector<glm::vec3> q = residuals(scratch, rows);
+        glm::vec3 next(0.0f);
+        for (int c = 0; c < 3; ++c) {
+            const float pq = dot3(direction, q, c);
+            const float alpha = pq > 0.0f ? rr[c] / pq : 0.0f;
+            for (size_t i = 0; i < rows.size(); ++i) lambda[i][c] += alpha * direction[i][c], r[i][c] -= alpha * q[i][c];
+            next[c] = dot3(r, r, c);
+            const float beta = rr[c] > 0.0f ? next[c] / rr[c] : 0.0f;
+            for (size_t i = 0; i < rows.size(); ++i) direction[i][c] = r[i][c] + beta * direction[i][c];
         }
+        rr = next;
+    }
+    addTransposed(image, rows, lambda, -1.0f);
     for (size_t i = 3; i < image.rgba.size(); i += 4)  // a move never makes light negative
         if (image.rgba[i] == 1.0f)
             for (size_t c = i - 3; c < i; ++c) image.rgba[c] = std::max(image.rgba[c], 0.0f);
     float worst = 0.0f, sum = 0.0f;
-    for (const auto& [a, b] : taps) {
+    for (const auto& [a, b] : rows) {
         const glm::vec3 va = read(image, a), vb = read(image, b);
         worst = std::max(worst, glm::length(va - vb));
         sum += 0.5f * glm::length(va + vb);
     }
-    return sum > 0.0f ? worst / (sum / float(taps.size())) : 0.0f;
+    return sum > 0.0f ? worst / (sum / float(rows.size())) : 0.0f;
 }
 
 }  // namespace gis::lightmap

@@ -3,8 +3,8 @@
 // looked up on their own, so the two sides' light differs along it by the bake's noise, and the
 // edge shows as a line. Stitching makes them agree: points along each seam are looked up on both
 // sides as the lookup does (bilinear over the texels with light of their own) and the texels are
-// moved, as little as possible, until both sides read the same (Kaczmarz's projections onto each
-// point's equation, which converge to the least change that satisfies all of them). A crease (the
+// moved, as little as possible, until both sides read the same (the least-change solution of all
+// the points' equations, by conjugate gradients on their normal equations). A crease (the
 // normals differ across the edge: a box's corner) is no seam: its light differs in truth. No GL.
 #pragma once
 
@@ -48,8 +48,9 @@ struct TexelImage {
 // their own, renormalised); false where none is in its footprint.
 bool lookUp(const TexelImage& image, glm::vec2 texel, int layer, glm::vec3& out);
 
-// Moves the texels with light of their own until both sides of every point read the same.
-// Returns the largest difference left between two sides, over the mean light along the seams.
-float stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int sweeps = 128);
+// Moves the texels with light of their own until both sides of every point read the same
+// (`iterations` of conjugate gradients; 0 moves nothing). Returns the largest difference left
+// between two sides, over the mean light along the seams.
+float stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int iterations = 256);
 
 }  // namespace gis::lightmap

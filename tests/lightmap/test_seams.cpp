@@ -73,9 +73,9 @@ TEST(Seams, ASmoothSphereSplitIntoChartsHasThemABoxHasNone) {
 }
 
 // Noise of 10% on every texel leaves the two sides of the sphere's seams up to 40% apart; stitched
-// they read the same within a tenth of that noise (the projections converge slowly where a seam's
-// points share texels; 2048 sweeps leave 0.002), and the texels move by less than the noise on
-// average.
+// they read the same within a twentieth of that noise (the points' equations are nearly dependent
+// where they share texels, and the solver converges slowly: 1024 iterations leave 0.0004), and the
+// texels move by a fifth of the noise on average.
 TEST(Seams, StitchingMakesBothSidesReadTheSameAndMovesLittle) {
     const Laid sphere = layOut(gis::detail::uvSphere(1.0f, 32, 16, 0), 16.0f);
     const std::vector<SeamPoint> points = gis::lightmap::findSeams(sphere.vertices, sphere.indices);
@@ -87,7 +87,7 @@ TEST(Seams, StitchingMakesBothSidesReadTheSameAndMovesLittle) {
     std::printf("seams: %zu points, worst gap %.4f before, %.5f after (relative %.5f)\n", points.size(), gapBefore,
                 gapAfter, left);
     EXPECT_GT(gapBefore, 0.1);
-    EXPECT_LT(gapAfter, 0.015);
+    EXPECT_LT(gapAfter, 0.008);
     double moved = 0.0;
     size_t texels = 0, untouched = 0;
     for (size_t i = 0; i < image.rgba.size(); i += 4) {
@@ -97,6 +97,6 @@ TEST(Seams, StitchingMakesBothSidesReadTheSameAndMovesLittle) {
         ++texels;
         untouched += d == 0.0 ? 1 : 0;
     }
-    EXPECT_LT(moved / double(texels), 0.02) << "the mean move, against noise of 0.1";
+    EXPECT_LT(moved / double(texels), 0.03) << "the mean move, against noise of 0.1";
     EXPECT_GT(untouched, texels / 2) << "texels away from the seams keep their light";
 }

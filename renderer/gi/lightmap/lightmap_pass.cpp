@@ -108,7 +108,9 @@ void LightmapPass::execute(Frame& frame) {
     if (!cacheTried_) readCache(frame);
     if (done_ < params_.samples) bake(frame);
     if (stale_ && done_ >= params_.samples) stale_ = false;
-    if (!resolved_ && !stale_) bake_->resolve(done_, params_.denoise, params_.stitch), resolved_ = shown_ = true;
+    // Seams are stitched once the bake is done (a solve over every seam: not each partial mean).
+    if (!resolved_ && !stale_)
+        bake_->resolve(done_, params_.denoise, params_.stitch && done_ >= params_.samples), resolved_ = shown_ = true;
     draw(frame, indirect_.id(), kShowLight);
     frame.put(resource::kIndirectDiffuse, indirect_);
     changed_ = false;
