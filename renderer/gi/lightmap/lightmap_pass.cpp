@@ -106,7 +106,7 @@ void LightmapPass::execute(Frame& frame) {
     params_ = now;
     if (!bake_->classified()) rays_.bind(), bake_->classify();
     if (!cacheTried_) readCache(frame);
-    if (done_ < params_.samples) bake(frame);
+    if (done_ < params_.samples && !held()) bake(frame);
     if (stale_ && done_ >= params_.samples) stale_ = false;
     // Seams are stitched once the bake is done (a solve over every seam: not each partial mean).
     if (!resolved_ && !stale_)

@@ -25,9 +25,11 @@ public:
     std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse}; }
     void execute(Frame& frame) override;
     void invalidate(Changes c) override;
-    bool settled() const override { return done_ >= params_.samples && !changed_; }
+    bool settled() const override { return (done_ >= params_.samples || held()) && !changed_; }
     bool writesImagesOrBuffers() const override { return true; }
-    Progress progress() const override { return {done_, params_.samples, "spp", stale_}; }
+    Progress progress() const override {
+        return {done_, params_.samples, held() ? "spp, the re-bake held (lightmap.rebake=hold)" : "spp", stale_};
+    }
     std::vector<std::string> stats() const override;
     std::optional<RayCounts> raysTraced() const override;
     std::optional<int64_t> atlasTexels() const override;
@@ -39,6 +41,7 @@ public:
     static std::vector<std::pair<std::string, uint64_t>> estimateMemory(const Scene& scene, const RenderSettings& s);
 
 private:
+    bool held() const { return stale_ && params_.rebake == kRebakeHold; }
     void bake(Frame& frame);
     void draw(const Frame& frame, GLuint target, int mode);
     void drawAtlas(const Frame& frame, GLuint target);

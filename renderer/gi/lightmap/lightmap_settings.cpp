@@ -34,6 +34,10 @@ const ParamTable<LightmapSettings>& lightmapParams() {
                  "the light's luminance-weighted mean direction per texel too, so a normal map's relief is lit by "
                  "where the light comes from (a first-order spherical-harmonic fit, exact at the surface's own "
                  "normal); 24 more bytes a texel", ParamUpdate::Rebuild)
+        .choice(&S::rebake, "rebake", "Re-bake after an edit",
+                "auto: a light, object or material edit bakes again at once, the last lightmap shown (marked stale) "
+                "until the new one is done; hold: the stale lightmap stays until this is set back to auto",
+                {"auto", "hold"}, ParamUpdate::Live)
         .choice(&S::mode, "mode", "Baked light", "indirect: the light the lighting pass does not draw (its lights "
                 "stay per frame, with shadow maps and highlights); all: the lights' direct diffuse light too, and the "
                 "frame draws no light of its own (the cheapest frame, without the lights' specular highlights)",

@@ -1,7 +1,7 @@
 // The lightmap's parameters: one row each in lightmapParams() (names scripts and checks use:
 // lightmap.texels, lightmap.texels-per-metre, lightmap.samples, lightmap.bounces,
 // lightmap.env-sampling, lightmap.denoise, lightmap.stitch, lightmap.cache, lightmap.mode,
-// lightmap.directional), defaults in the initialisers below.
+// lightmap.directional, lightmap.rebake), defaults in the initialisers below.
 #pragma once
 
 #include <string>
@@ -19,6 +19,10 @@ struct Scene;
 // shadow maps, no emitter pass, no light loop): the cheapest frame, without the lights' specular
 // highlights, as a static light in Godot's LightmapGI.
 enum LightmapMode : int { kLightmapIndirect = 0, kLightmapAll = 1 };
+// lightmap.rebake: after an edit the last lightmap stays on show, marked stale; auto bakes the new
+// one at once (in the background), hold waits until it is set back to auto (a bake costs seconds
+// to minutes: a user placing several lights bakes once).
+enum LightmapRebake : int { kRebakeAuto = 0, kRebakeHold = 1 };
 
 struct LightmapSettings {
     int texels = 16384;            // lightmap.texels: texels on all surfaces together (rebuild)
@@ -30,6 +34,7 @@ struct LightmapSettings {
     bool stitch = true;            // lightmap.stitch: the two sides of a seam made to agree (live)
     bool cache = true;             // lightmap.cache: read and write finished bakes on disk (live)
     bool directional = false;      // lightmap.directional: the light's mean direction kept too (rebuild)
+    int rebake = kRebakeAuto;      // lightmap.rebake: auto or hold (live)
     int mode = kLightmapIndirect;  // lightmap.mode: indirect or all (rebuild: the frame's passes follow it)
 };
 

@@ -461,3 +461,33 @@ TEST(Lightmap, AnAlphaMaskedSurfacesHolesShowTheLightBehindThem) {
     std::printf("LIGHTMAP-TABLE cut-outs: through the holes %.4f, on the plane %.4f\n", hole / holes, leafLight / leaves);
     EXPECT_GT(hole / holes, 5.0 * leafLight / leaves) << "the holes show the plane's light, not the wall's";
 }
+
+// lightmap.rebake=hold: after an edit the stale lightmap stays and no path is traced (the renderer
+// settles on it) until the parameter is set back to auto, which bakes the edited scene.
+TEST(Lightmap, AHeldReBakeKeepsTheStaleLightmapUntilItIsLetGo) {
+    context();
+    Scene scene = wallOnAFloor();
+    RenderSettings s = lightmapSettings(32, 1024, 8);
+    setParam(s, "lightmap.rebake", "hold");
+    Renderer r(scene, s);
+    const Pass* lightmap = nullptr;
+    for (const auto& pass : r.passes())
+        if (std::string(pass->name()) == "lightmap") lightmap = pass.get();
+    ASSERT_NE(lightmap, nullptr);
+    const ImageF before = bakedIndirect(r);  // the first bake is never held: nothing older to show
+    const uint64_t rays = lightmap->raysTraced()->total();
+    scene.lights[0].intensity *= 4.0f;
+    r.lightsChanged();
+    for (int i = 0; i < 3; ++i) r.renderFrame();
+    EXPECT_TRUE(lightmap->progress().stale);
+    EXPECT_TRUE(r.settled()) << "a held re-bake leaves nothing to render";
+    EXPECT_EQ(lightmap->raysTraced()->total(), rays) << "no path traced while held";
+    EXPECT_EQ(readTextureFloat(r.frameTexture("indirect.diffuse"), 32, 32).rgba, before.rgba);
+    setParam(s, "lightmap.rebake", "auto");
+    r.setLiveSettings(s);
+    const ImageF after = bakedIndirect(r);
+    EXPECT_FALSE(lightmap->progress().stale);
+    double sum[2] = {0.0, 0.0};
+    for (size_t i = 0; i < after.rgba.size(); i += 4) sum[0] += before.rgba[i], sum[1] += after.rgba[i];
+    EXPECT_NEAR(sum[1] / sum[0], 4.0, 0.4);
+}
