@@ -87,6 +87,7 @@ std::vector<SeamPoint> findSeams(const std::vector<SeamVertex>& vertices, const 
             const SeamVertex &a0 = vertices[sides[0].from], &a1 = vertices[sides[0].to];
             const SeamVertex &b0 = vertices[sides[s].from], &b1 = vertices[sides[s].to];
             if (samePlace(a0, b0) && samePlace(a1, b1)) continue;  // one chart: the lookup is continuous
+            if (a0.unstitched || a1.unstitched || b0.unstitched || b1.unstitched) continue;
             const float texels = std::max(glm::length(a1.texel - a0.texel), glm::length(b1.texel - b0.texel));
             const int n = std::max(2, int(std::ceil(texels * perTexel)));
             for (int i = 0; i < n; ++i) {

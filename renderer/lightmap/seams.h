@@ -22,6 +22,7 @@ struct SeamVertex {
     glm::vec3 normal;
     glm::vec2 texel;
     int layer = 0;
+    bool unstitched = false;  // its chart is left alone (too narrow for its seams to agree)
 };
 
 // One point of a seam, where the two sides' lookups must agree: each side's place in texels.
@@ -32,7 +33,7 @@ struct SeamPoint {
 
 // Points along every seam: edges two triangles share by position and normal at both ends (bit for
 // bit, as a mesh's welded or split vertices hold them) whose atlas places differ, about
-// `perTexel` points per texel of the longer side.
+// `perTexel` points per texel of the longer side; none where either side is `unstitched`.
 std::vector<SeamPoint> findSeams(const std::vector<SeamVertex>& vertices, const std::vector<uint32_t>& indices,
                                  float perTexel = 2.0f);
 

@@ -21,6 +21,10 @@ const ProgramDesc kTraceProgram{"lightmap-trace", {"gi/lightmap/trace.comp"}, {}
 const ProgramDesc kFilterProgram{"lightmap-filter", {"gi/lightmap/filter.comp"}, {}};
 constexpr int kGroup = 8;           // trace.comp's and filter.comp's local size (x and y)
 enum FilterMode { kCopy = 0, kDenoise = 1, kDilate = 2, kCopyDirection = 3 };  // filter.comp's u_mode
+// Charts narrower than this many texels are not stitched: a column cut into charts a texel wide
+// has no texels between its seams to carry the light's change around it, and making every seam
+// agree smoothed its sunlit side into its shaded one (the atrium's columns: 27.6 -> 26.9 dB).
+constexpr int kStitchedChartTexels = 4;
 // The a-trous steps (Dammertz et al. 2010): 1, 2, 4 texels, a 5x5 kernel each, 29 texels across.
 constexpr int kDenoiseSteps[] = {1, 2, 4};
 }  // namespace
@@ -63,6 +67,7 @@ LightmapMesh lightmapMesh(const Scene& scene, const Atlas& atlas) {
         out.ranges.emplace_back(uint32_t(out.indices.size()), uint32_t(list.size()));
         out.indices.insert(out.indices.end(), list.begin(), list.end());
     }
+    for (const Chart& c : atlas.charts) out.chartTexels.push_back(std::min(c.width, c.height));
     out.cutoutFirst = uint32_t(out.surfaceIndices.size());
     out.surfaceIndices.insert(out.surfaceIndices.end(), cutouts.begin(), cutouts.end());
     return out;
@@ -105,7 +110,8 @@ LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, bool direc
     for (const LightmapMesh::Vertex& v : mesh_.vertices)
         seamVertices.push_back({glm::vec3(v.position[0], v.position[1], v.position[2]),
                                 glm::vec3(v.normal[0], v.normal[1], v.normal[2]),
-                                glm::vec2(v.uv[0], v.uv[1]) * float(mesh_.side), int(v.layer)});
+                                glm::vec2(v.uv[0], v.uv[1]) * float(mesh_.side), int(v.layer),
+                                mesh_.chartTexels[size_t(v.chart)] < kStitchedChartTexels});
     seams_ = findSeams(seamVertices, mesh_.indices);
 }
 

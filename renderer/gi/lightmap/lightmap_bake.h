@@ -33,6 +33,7 @@ struct LightmapMesh {
     // those of alpha-masked materials (whose holes the G-buffer saw through).
     std::vector<uint32_t> surfaceIndices;
     uint32_t cutoutFirst = 0;
+    std::vector<int> chartTexels;  // per chart: its rectangle's shorter side, texels
     int side = 0;                                        // the array's side, texels
     int layers = 0;
 };

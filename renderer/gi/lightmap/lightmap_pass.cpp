@@ -326,7 +326,8 @@ std::vector<std::string> LightmapPass::stats() const {
                   done_ >= params_.samples && bakeSeconds_ > 0.0
                                        ? (", " + std::to_string(bakeSeconds_).substr(0, 6) + " s").c_str() : "");
     out.push_back(line);
-    if (bake_->seamPoints() == 0) out.push_back("lightmap seams: none (every chart border is a crease)");
+    if (bake_->seamPoints() == 0)
+        out.push_back("lightmap seams: none to stitch (chart borders are creases or on charts too narrow to carry light)");
     else {
         std::snprintf(line, sizeof line, "lightmap seams: %d points where a smooth surface's charts meet, %s",
                       bake_->seamPoints(), params_.stitch ? "stitched" : "not stitched (lightmap.stitch=false)");
