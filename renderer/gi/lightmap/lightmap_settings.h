@@ -28,7 +28,7 @@ struct LightmapSettings {
     int texels = 16384;            // lightmap.texels: texels on all surfaces together (rebuild)
     float texelsPerMetre = 0.0f;   // lightmap.texels-per-metre: 0 = from texels and the surfaces' area (rebuild)
     int samples = 64;              // lightmap.samples: paths per texel (live: more continue the bake)
-    int bounces = 8;               // lightmap.bounces: bounces after the texel's first (rebuild)
+    int bounces = 16;              // lightmap.bounces: bounces after the texel's first, as pathtrace.bounces (rebuild)
     bool environmentSampling = true;  // lightmap.env-sampling: a map sampled as a light too (rebuild)
     bool denoise = true;           // lightmap.denoise: the edge-aware filter within each chart (live)
     bool stitch = true;            // lightmap.stitch: the two sides of a seam made to agree (live)
