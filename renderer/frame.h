@@ -126,6 +126,7 @@ public:
         int done = 0, target = 0;
         const char* unit = "spp";  // what is counted: samples per pixel, probe updates ...
         bool stale = false;        // what is shown predates an edit: it is redone in the background
+        bool held = false;         // stale, and the redo waits for the user: rendering adds nothing
     };
     virtual Progress progress() const { return {}; }
     // Debug views: names offered, and drawing one of them (display values, linear, [0, 1] for

@@ -171,8 +171,10 @@ int Renderer::samplesDone() const {
 }
 
 bool Renderer::converged() const {
-    for (const auto& pass : passes_)
-        if (pass->progress().done < pass->progress().target) return false;
+    for (const auto& pass : passes_) {
+        const Pass::Progress p = pass->progress();
+        if (p.done < p.target && !p.held) return false;
+    }
     return true;
 }
 

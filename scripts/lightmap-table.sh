@@ -27,7 +27,7 @@ source scripts/table_lib.sh
 
 # "bake seconds|texels|MiB" from a --timings log's lightmap stats.
 bakeFacts() {
-  awk '/lightmap bake/ {n = split($0, w, " "); s = w[n - 1]}
+  awk '/lightmap bake/ {n = split($0, w, " "); s = w[n] == "s" ? w[n - 1] : "?"}
        /texels on surfaces/ {for (i = 1; i <= NF; ++i) {if ($(i + 1) == "texels" && $(i + 2) == "on") t = $i; if ($(i + 1) == "MiB") m = $i}}
        END {printf "%s|%s|%s", s, t, m}' "$1"
 }
@@ -97,6 +97,7 @@ cat "$tmp/growth.md"
 fi
 
 if wants modes; then
+export GIS_LIGHTMAP_CACHE=$tmp/cache-modes  # its own bakes, timed (the presets' medium would be read back)
 {
   header lightmap.mode
   for scene in cornell_box cornell_point atrium; do

@@ -110,8 +110,9 @@ bool visible(vec3 from, vec3 dir, float dist) {
 }
 
 // Direct light at a surface point: every punctual light, plus one emissive triangle sampled by
-// power and weighted by MIS against BSDF sampling.
-vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, inout Rng rng) {
+// power and weighted by MIS against BSDF sampling. `models`: the diffuse and specular models it is
+// evaluated with (the render's, or a lightmap texel's white Lambertian).
+vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, ivec2 models, inout Rng rng) {
     vec3 origin = offsetRayOrigin(s.position, s.geometricNormal);
     vec3 sum = vec3(0.0);
     for (int i = 0; i < u_lightCount; ++i) {
@@ -121,7 +122,7 @@ vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, ino
         float NoL = dot(s.normal, L);
         if (NoL <= 0.0 || dot(s.geometricNormal, L) <= 0.0 || all(equal(e, vec3(0.0)))) continue;
         if (!visible(origin, L, dist * (1.0 - 1e-4))) continue;
-        sum += evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel) * e * NoL;
+        sum += evaluateBrdf(s.brdf, s.normal, V, L, models.x, models.y) * e * NoL;
     }
     if (u_emitterCount > 0) {
         uint ti = pickEmitter(nextFloat(rng), u_emitterCount);
@@ -148,7 +149,7 @@ vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, ino
                 float lightPdf = a.uv2MaterialEmitter.w * d2 / abs(cosLight);
                 if (lightPdf > 0.0 && visible(origin, L, dist * (1.0 - 1e-4))) {
                     float weight = powerHeuristic(lightPdf, bsdfPdf(s.brdf, s.normal, V, L, pSpecular));
-                    sum += evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel) * le * NoL *
+                    sum += evaluateBrdf(s.brdf, s.normal, V, L, models.x, models.y) * le * NoL *
                            (weight / lightPdf);
                 }
             }
@@ -175,7 +176,7 @@ vec3 environmentTerm(int depth, vec3 diffuseShare) {
 // The environment map as a light: one direction drawn from its luminance, weighted by MIS (power
 // heuristic) against the BSDF sampling the same direction (PBRT 3rd ed., 14.3.1). A constant
 // environment is reached by BSDF samples alone, as it always was, and draws no random numbers.
-vec3 environmentLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel, inout Rng rng, bool first,
+vec3 environmentLight(SurfacePoint s, vec3 V, float pSpecular, ivec2 models, inout Rng rng, bool first,
                       out vec3 diffuseShare) {
     diffuseShare = vec3(0.0);
     if (!environmentIsMap() || u_sampleEnvironment == 0) return vec3(0.0);
@@ -185,7 +186,7 @@ vec3 environmentLight(SurfacePoint s, vec3 V, float pSpecular, int specularModel
     if (!(lightPdf > 0.0) || NoL <= 0.0 || dot(s.geometricNormal, L) <= 0.0) return vec3(0.0);
     if (!visible(offsetRayOrigin(s.position, s.geometricNormal), L, 1e30)) return vec3(0.0);
     float weight = powerHeuristic(lightPdf, bsdfPdf(s.brdf, s.normal, V, L, pSpecular));
-    vec3 f = evaluateBrdf(s.brdf, s.normal, V, L, u_brdfModels.x, specularModel);
+    vec3 f = evaluateBrdf(s.brdf, s.normal, V, L, models.x, models.y);
     // At the first surface it is split by its own lobes; later ones by the first surface's.
     if (first) diffuseShare = diffuseShareOf(s, V, L, f);
     return f * environmentRadiance(L) * NoL * (weight / lightPdf);
@@ -242,11 +243,12 @@ vec3 tracePath(vec3 origin, vec3 dir, inout Rng rng, int firstDepth, float first
         if (noGlossy) s.hasSpecular = false;
         int specularModel = noGlossy ? SPECULAR_NONE : u_brdfModels.y;
         float pSpecular = specularChoice(s.brdf, s.hasSpecular, NoV);
-        radiance += throughput * directLight(s, V, pSpecular, specularModel, rng) *
+        radiance += throughput * directLight(s, V, pSpecular, ivec2(u_brdfModels.x, specularModel), rng) *
                     (depth == 0 ? vec3(kept(TERM_DIRECT)) : keptIndirect(diffuseShare));
         // The environment lights the first surface as indirect light, as the lighting pass splits it.
         vec3 environmentDiffuseShare;
-        vec3 environment = environmentLight(s, V, pSpecular, specularModel, rng, depth == 0, environmentDiffuseShare);
+        vec3 environment = environmentLight(s, V, pSpecular, ivec2(u_brdfModels.x, specularModel), rng, depth == 0,
+                                            environmentDiffuseShare);
         radiance += throughput * environment * environmentTerm(depth, depth == 0 ? environmentDiffuseShare : diffuseShare);
 
         vec3 L;

@@ -54,7 +54,10 @@ std::string progressText(const Renderer& r) {
     for (const auto& pass : r.passes()) {
         const Pass::Progress pr = pass->progress();
         if (pr.target <= 0) continue;
-        return std::string(pr.stale ? "stale since an edit, the last result shown while it redoes it: " : "") +
+        const char* stale = pr.held    ? "stale since an edit, the last result shown, its redo held: "
+                            : pr.stale ? "stale since an edit, the last result shown while it redoes it: "
+                                       : "";
+        return std::string(stale) +
                (pr.done >= pr.target ? "" : std::to_string(pr.done) + "/") + std::to_string(pr.target) + " " + pr.unit;
     }
     return "";

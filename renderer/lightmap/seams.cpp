@@ -131,7 +131,7 @@ float dot3(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b, int
 // The least change x - x0 with A x = 0 is -A^T l, where (A A^T) l = A x0: conjugate gradients on
 // that system (one per channel, all at once), A A^T applied as A of A^T through a scratch image
 // holding only the rows' texels.
-float stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int iterations) {
+float stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int iterations, bool light) {
     Rows rows;
     for (const SeamPoint& p : points) {
         Taps a = tapsAt(image, p.a, p.layerA), b = tapsAt(image, p.b, p.layerB);
@@ -158,9 +158,10 @@ float stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int i
         rr = next;
     }
     addTransposed(image, rows, lambda, -1.0f);
-    for (size_t i = 3; i < image.rgba.size(); i += 4)  // a move never makes light negative
-        if (image.rgba[i] == 1.0f)
-            for (size_t c = i - 3; c < i; ++c) image.rgba[c] = std::max(image.rgba[c], 0.0f);
+    for (const auto& [a, b] : rows)  // a move never makes light negative
+        for (const Taps* t : {&a, &b})
+            for (int k = 0; k < t->count && light; ++k)
+                for (size_t c = 0; c < 3; ++c) image.rgba[t->at[k] + c] = std::max(image.rgba[t->at[k] + c], 0.0f);
     float worst = 0.0f, sum = 0.0f;
     for (const auto& [a, b] : rows) {
         const glm::vec3 va = read(image, a), vb = read(image, b);

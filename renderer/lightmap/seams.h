@@ -50,8 +50,9 @@ struct TexelImage {
 bool lookUp(const TexelImage& image, glm::vec2 texel, int layer, glm::vec3& out);
 
 // Moves the texels with light of their own until both sides of every point read the same
-// (`iterations` of conjugate gradients; 0 moves nothing). Returns the largest difference left
-// between two sides, over the mean light along the seams.
-float stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int iterations = 256);
+// (`iterations` of conjugate gradients; 0 moves nothing); `light`: the values are light, never
+// moved below 0 (a direction's components may be). Returns the largest difference left between
+// two sides, over the mean value along the seams.
+float stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int iterations = 256, bool light = true);
 
 }  // namespace gis::lightmap

@@ -72,10 +72,10 @@ TEST(Seams, ASmoothSphereSplitIntoChartsHasThemABoxHasNone) {
     EXPECT_TRUE(gis::lightmap::findSeams(box.vertices, box.indices).empty()) << "a box's edges are creases";
 }
 
-// Noise of 10% on every texel leaves the two sides of the sphere's seams up to 40% apart; stitched
-// they read the same within a twentieth of that noise (the points' equations are nearly dependent
-// where they share texels, and the solver converges slowly: 1024 iterations leave 0.0004), and the
-// texels move by a fifth of the noise on average.
+// Noise of 10% on every texel leaves the two sides of the sphere's seams far apart; stitched they
+// read the same within a tenth of that noise (the points' equations are nearly dependent where they
+// share texels, so the solver converges slowly), and the texels move by under a third of the noise
+// on average. A direction's negative components stay negative.
 TEST(Seams, StitchingMakesBothSidesReadTheSameAndMovesLittle) {
     const Laid sphere = layOut(gis::detail::uvSphere(1.0f, 32, 16, 0), 16.0f);
     const std::vector<SeamPoint> points = gis::lightmap::findSeams(sphere.vertices, sphere.indices);
@@ -99,4 +99,15 @@ TEST(Seams, StitchingMakesBothSidesReadTheSameAndMovesLittle) {
     }
     EXPECT_LT(moved / double(texels), 0.03) << "the mean move, against noise of 0.1";
     EXPECT_GT(untouched, texels / 2) << "texels away from the seams keep their light";
+
+    // The same with values around 0 that are no light (a direction's components): stitched as they
+    // are, none clamped.
+    TexelImage direction = noisyLight(sphere.atlas, 0.1f, 11);
+    for (size_t i = 0; i < direction.rgba.size(); i += 4)
+        if (direction.rgba[i + 3] == 1.0f) direction.rgba[i] -= 1.0f;
+    gis::lightmap::stitchSeams(points, direction, 256, false);
+    EXPECT_LT(worstGap(points, direction), 0.008);
+    size_t negative = 0;
+    for (size_t i = 0; i < direction.rgba.size(); i += 4) negative += direction.rgba[i + 3] == 1.0f && direction.rgba[i] < 0.0f;
+    EXPECT_GT(negative, texels / 4) << "a direction's negative components were clamped";
 }

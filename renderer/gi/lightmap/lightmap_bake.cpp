@@ -23,7 +23,7 @@ constexpr int kGroup = 8;           // trace.comp's and filter.comp's local size
 enum FilterMode { kCopy = 0, kDenoise = 1, kDilate = 2, kCopyDirection = 3 };  // filter.comp's u_mode
 // Charts narrower than this many texels are not stitched: a column cut into charts a texel wide
 // has no texels between its seams to carry the light's change around it, and making every seam
-// agree smoothed its sunlit side into its shaded one (the atrium's columns: 27.6 -> 26.9 dB).
+// agree smoothed its sunlit side into its shaded one (the atrium's columns: README).
 constexpr int kStitchedChartTexels = 4;
 // The a-trous steps (Dammertz et al. 2010): 1, 2, 4 texels, a 5x5 kernel each, 29 texels across.
 constexpr int kDenoiseSteps[] = {1, 2, 4};
@@ -151,6 +151,7 @@ void LightmapBake::rasterizeTexels() {
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    glVertexArrayElementBuffer(vao, surfaceIndices_.id());  // from now on the lookup draws the surfaces
 }
 
 void LightmapBake::drawSurfaces(bool cutouts) const {
@@ -158,7 +159,6 @@ void LightmapBake::drawSurfaces(bool cutouts) const {
     const uint32_t count = cutouts ? uint32_t(mesh_.surfaceIndices.size()) - first : mesh_.cutoutFirst;
     if (count == 0) return;
     glBindVertexArray(vao_.id());
-    glVertexArrayElementBuffer(vao_.id(), surfaceIndices_.id());
     glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT, reinterpret_cast<const void*>(uintptr_t(first) * 4));
     glBindVertexArray(0);
 }
@@ -255,14 +255,14 @@ void LightmapBake::filterStep(const gl::Texture& from, const gl::Texture& to, in
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-void LightmapBake::stitch(const gl::Texture& lightmap, bool measured) {
+void LightmapBake::stitch(const gl::Texture& lightmap, bool light) {
     TexelImage image{std::vector<float>(size_t(mesh_.side) * size_t(mesh_.side) * size_t(mesh_.layers) * 4), mesh_.side,
                      mesh_.layers};
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
     glGetTextureImage(lightmap.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(image.rgba.size() * 4), image.rgba.data());
-    const float before = measured ? stitchSeams(seams_, image, 0) : 0.0f;  // no sweep: measures only
-    const float after = stitchSeams(seams_, image);
-    if (measured) seamGapBefore_ = before, seamGap_ = after;
+    const float before = light ? stitchSeams(seams_, image, 0) : 0.0f;  // no iteration: measures only
+    const float after = stitchSeams(seams_, image, 256, light);
+    if (light) seamGapBefore_ = before, seamGap_ = after;
     glTextureSubImage3D(lightmap.id(), 0, 0, 0, 0, mesh_.side, mesh_.side, mesh_.layers, GL_RGBA, GL_FLOAT,
                         image.rgba.data());
 }

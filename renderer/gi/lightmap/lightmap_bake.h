@@ -95,7 +95,7 @@ private:
     void rasterizeTexels();
     void splitChartsAtWalls();
     void filterStep(const gl::Texture& from, const gl::Texture& to, int mode, int step, int samples);
-    void stitch(const gl::Texture& lightmap, bool measured);  // measured: its gaps are the ones reported
+    void stitch(const gl::Texture& image, bool light);  // light: its gaps are reported (else the direction)
     const gl::Texture* filterImages(const gl::Texture& source, gl::Texture& ping, gl::Texture& pong, bool denoise,
                                     bool stitchSeams, int samples);
 

@@ -105,12 +105,16 @@ void LightmapPass::execute(Frame& frame) {
     if (now.samples != params_.samples) cacheTried_ = false;  // another bake: its own cache file
     params_ = now;
     if (!bake_->classified()) rays_.bind(), bake_->classify();
-    if (!cacheTried_) readCache(frame);
+    if (!cacheTried_ && !held()) readCache(frame);
     if (done_ < params_.samples && !held()) bake(frame);
     if (stale_ && done_ >= params_.samples) stale_ = false;
     // Seams are stitched once the bake is done (a solve over every seam: not each partial mean).
-    if (!resolved_ && !stale_)
-        bake_->resolve(done_, params_.denoise, params_.stitch && done_ >= params_.samples), resolved_ = shown_ = true;
+    if (!resolved_ && !stale_) {
+        const bool complete = done_ >= params_.samples;
+        bake_->resolve(done_, params_.denoise, params_.stitch && complete);
+        resolved_ = true;
+        shown_ = shown_ || complete;  // a partial first bake is no result to keep through an edit
+    }
     draw(frame, indirect_.id(), kShowLight);
     frame.put(resource::kIndirectDiffuse, indirect_);
     changed_ = false;

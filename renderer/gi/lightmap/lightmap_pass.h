@@ -27,9 +27,7 @@ public:
     void invalidate(Changes c) override;
     bool settled() const override { return (done_ >= params_.samples || held()) && !changed_; }
     bool writesImagesOrBuffers() const override { return true; }
-    Progress progress() const override {
-        return {done_, params_.samples, held() ? "spp, the re-bake held (lightmap.rebake=hold)" : "spp", stale_};
-    }
+    Progress progress() const override { return {done_, params_.samples, "spp", stale_, held()}; }
     std::vector<std::string> stats() const override;
     std::optional<RayCounts> raysTraced() const override;
     std::optional<int64_t> atlasTexels() const override;
@@ -61,7 +59,7 @@ private:
     int done_ = 0;
     bool changed_ = true;           // something since the last execute() asks for a redraw
     bool resolved_ = false;         // the lightmap holds the mean of done_ samples
-    bool shown_ = false;            // a lightmap has been resolved (and drawn) at all
+    bool shown_ = false;            // a complete lightmap has been resolved (and drawn)
     bool stale_ = false;            // the one drawn predates an edit: kept until the next bake is done
     bool cacheTried_ = false;
     std::string cacheState_ = "off";  // what the cache did: off, read <path>, written <path>, ...

@@ -33,7 +33,7 @@ const ParamTable<LightmapSettings>& lightmapParams() {
         .boolean(&S::directional, "directional", "Directional",
                  "the light's luminance-weighted mean direction per texel too, so a normal map's relief is lit by "
                  "where the light comes from (a first-order spherical-harmonic fit, exact at the surface's own "
-                 "normal); 24 more bytes a texel", ParamUpdate::Rebuild)
+                 "normal); 32 more bytes a texel", ParamUpdate::Rebuild)
         .choice(&S::rebake, "rebake", "Re-bake after an edit",
                 "auto: a light, object or material edit bakes again at once, the last lightmap shown (marked stale) "
                 "until the new one is done; hold: the stale lightmap stays until this is set back to auto",

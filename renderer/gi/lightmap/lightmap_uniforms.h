@@ -10,11 +10,11 @@ namespace gis::lightmap {
     X(UL_VIEW_PROJ, 900, 1)   /* the apply pass's camera */ \
     X(UL_STEP, 901, 1)        /* the denoiser's a-trous step, texels */ \
     X(UL_SAMPLES, 902, 1)     /* paths in each texel's mean so far */ \
-    X(UL_MODE, 903, 1)        /* filter: 0 copy, 1 denoise step, 2 dilate */ \
+    X(UL_MODE, 903, 1)        /* filter: 0 copy, 1 denoise step, 2 dilate, 3 copy the direction; lookup: the view */ \
     X(UL_TEXEL_SIZE, 904, 1)  /* world units per texel */ \
     X(UL_LAYERS, 905, 1)      /* lightmap.atlas: the atlas array's layers */ \
     X(UL_TARGET_SIZE, 906, 1) /* lightmap.atlas: the view's pixels */ \
-    X(UL_BAKE_DIRECT, 907, 1) /* bake: 1 adds the punctual lights' direct light at the texel (lightmap.mode=all) */ \
+    X(UL_BAKE_DIRECT, 907, 1) /* bake: 1 samples the lights at the texel too, MIS against its ray (lightmap.mode=all) */ \
     X(UL_DIRECTIONAL, 908, 1) /* bake, filter, lookup: 1 where the lightmap keeps the light's direction */ \
     X(UL_INV_VIEW_PROJ, 909, 1) /* the cut-outs' lookup: the G-buffer's points from its depth */
 

@@ -91,7 +91,9 @@ vec3 lightmapLight(vec2 uv, int layer, out vec3 direction) {
 // hemisphere (none below it) has exactly those two moments for a = 9 - 12 d.n,
 // b = 4 (d - (d.n) n) + (18 d.n - 12) n (per unit of E); its projection on the sphere's first two
 // bands convolved with the clamped cosine (Ramamoorthi and Hanrahan 2001: pi and 2 pi / 3) gives the
-// irradiance towards any m. Uniform light gives (1 + n.m) / 2, one direction the cosine to it.
+// irradiance towards any m. Exact at m = n; uniform light gives (1 + n.m) / 2 and light from along n
+// the cosine to it, light from elsewhere what a first-order fit can hold (a light 60 degrees off n
+// reads 1.41 for m tilted 30 degrees towards it, where the cosine gives 1.73).
 float directionalFactor(vec3 d, vec3 n, vec3 m) {
     float dn = dot(d, n);
     float a = 9.0 - 12.0 * dn;
@@ -124,10 +126,10 @@ void main() {
     int layer = int(v_uvLayer.z + 0.5);
     vec3 direction;
     vec3 light = lightmapLight(v_uvLayer.xy, layer, direction);
-    if (u_directional != 0 && u_mode == 0) {
+    // (The back of a double-sided face keeps the plain light: the direction was baked about its front.)
+    if (u_directional != 0 && u_mode == 0 && gl_FrontFacing) {
         vec3 m = texelFetch(s_shadingNormal, ivec2(gl_FragCoord.xy), 0).xyz;
         vec3 n = dot(v_normal, v_normal) > 0.0 ? normalize(v_normal) : m;
-        if (!gl_FrontFacing) n = -n;  // a double-sided face seen from behind: its normal as the G-buffer's
         if (dot(m, m) > 0.0) light *= directionalFactor(direction, n, normalize(m));
     }
     float peak = max(max(light.r, max(light.g, light.b)), 1e-30);

@@ -33,7 +33,8 @@ vec3 lightsAtTexel(vec3 position, vec3 n, inout Rng rng) {
     s.emitterPdfPerArea = 0.0;
     s.hasSpecular = false;
     vec3 unusedShare;
-    return directLight(s, n, 0.0, SPECULAR_NONE, rng) + environmentLight(s, n, 0.0, SPECULAR_NONE, rng, false, unusedShare);
+    const ivec2 lambert = ivec2(DIFFUSE_LAMBERT, SPECULAR_NONE);
+    return directLight(s, n, 0.0, lambert, rng) + environmentLight(s, n, 0.0, lambert, rng, false, unusedShare);
 }
 
 // The punctual lights' part of lightsAtTexel's luminance times its direction, for the

@@ -259,8 +259,8 @@ TEST(Lightmap, TheAtlasViewShowsTheChartsTheirBordersAndTheTexelsInsideGeometry)
     EXPECT_GT(lit, borders) << "the charts' insides show their light";
 }
 
-// lightmap.mode=all: the bake holds the lights' direct light too (the punctual light by a shadow
-// ray at each texel, the emitter by the paths that hit it) and the frame draws none of its own:
+// lightmap.mode=all: the bake holds the lights' direct light too (sampled at each texel as the
+// path tracer samples them at a vertex, MIS against the texel's ray) and the frame draws none of its own:
 // no emitter pass, no shadow maps. The image is the one the lighting pass lights itself, but for
 // the lights' specular highlights, the shadows at the texels' resolution and the denoiser's blur of
 // 64 paths (512 bring cornell-area's thirds within 2% of the path tracer): per third of the image
@@ -481,6 +481,8 @@ TEST(Lightmap, AHeldReBakeKeepsTheStaleLightmapUntilItIsLetGo) {
     for (int i = 0; i < 3; ++i) r.renderFrame();
     EXPECT_TRUE(lightmap->progress().stale);
     EXPECT_TRUE(r.settled()) << "a held re-bake leaves nothing to render";
+    EXPECT_TRUE(r.converged()) << "a held re-bake is all rendering can give: a viewer, a script's converge, bench end";
+    EXPECT_TRUE(lightmap->progress().held);
     EXPECT_EQ(lightmap->raysTraced()->total(), rays) << "no path traced while held";
     EXPECT_EQ(readTextureFloat(r.frameTexture("indirect.diffuse"), 32, 32).rgba, before.rgba);
     setParam(s, "lightmap.rebake", "auto");
