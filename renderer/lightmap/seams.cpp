@@ -121,6 +121,17 @@ void addTransposed(TexelImage& image, const Rows& rows, const std::vector<glm::v
     }
 }
 
+// The largest difference between two sides, over the mean value along the seams.
+float relativeGap(const TexelImage& image, const Rows& rows) {
+    float worst = 0.0f, sum = 0.0f;
+    for (const auto& [a, b] : rows) {
+        const glm::vec3 va = read(image, a), vb = read(image, b);
+        worst = std::max(worst, glm::length(va - vb));
+        sum += 0.5f * glm::length(va + vb);
+    }
+    return sum > 0.0f ? worst / (sum / float(rows.size())) : 0.0f;
+}
+
 float dot3(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b, int c) {
     double sum = 0.0;
     for (size_t i = 0; i < a.size(); ++i) sum += double(a[i][c]) * double(b[i][c]);
@@ -131,12 +142,13 @@ float dot3(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b, int
 // The least change x - x0 with A x = 0 is -A^T l, where (A A^T) l = A x0: conjugate gradients on
 // that system (one per channel, all at once), A A^T applied as A of A^T through a scratch image
 // holding only the rows' texels.
-float stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int iterations, bool light) {
+StitchGaps stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int iterations, bool light) {
     Rows rows;
     for (const SeamPoint& p : points) {
         Taps a = tapsAt(image, p.a, p.layerA), b = tapsAt(image, p.b, p.layerB);
         if (a.count && b.count) rows.push_back({a, b});
     }
+    const float before = relativeGap(image, rows);
     std::vector<glm::vec3> r = residuals(image, rows), direction = r, lambda(rows.size(), glm::vec3(0.0f));
     TexelImage scratch{std::vector<float>(image.rgba.size(), 0.0f), image.side, image.layers};
     glm::vec3 rr(dot3(r, r, 0), dot3(r, r, 1), dot3(r, r, 2));
@@ -162,13 +174,7 @@ float stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int i
         for (const Taps* t : {&a, &b})
             for (int k = 0; k < t->count && light; ++k)
                 for (size_t c = 0; c < 3; ++c) image.rgba[t->at[k] + c] = std::max(image.rgba[t->at[k] + c], 0.0f);
-    float worst = 0.0f, sum = 0.0f;
-    for (const auto& [a, b] : rows) {
-        const glm::vec3 va = read(image, a), vb = read(image, b);
-        worst = std::max(worst, glm::length(va - vb));
-        sum += 0.5f * glm::length(va + vb);
-    }
-    return sum > 0.0f ? worst / (sum / float(rows.size())) : 0.0f;
+    return {before, relativeGap(image, rows)};
 }
 
 }  // namespace gis::lightmap

@@ -49,10 +49,14 @@ struct TexelImage {
 // their own, renormalised); false where none is in its footprint.
 bool lookUp(const TexelImage& image, glm::vec2 texel, int layer, glm::vec3& out);
 
+// The largest difference between a point's two sides, over the mean value along the seams, before
+// and after stitching.
+struct StitchGaps {
+    float before = 0.0f, after = 0.0f;
+};
 // Moves the texels with light of their own until both sides of every point read the same
-// (`iterations` of conjugate gradients; 0 moves nothing); `light`: the values are light, never
-// moved below 0 (a direction's components may be). Returns the largest difference left between
-// two sides, over the mean value along the seams.
-float stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int iterations = 256, bool light = true);
+// (`iterations` of conjugate gradients); `light`: the values are light, never moved below 0 (a
+// direction's components may be).
+StitchGaps stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, int iterations = 256, bool light = true);
 
 }  // namespace gis::lightmap

@@ -82,7 +82,7 @@ TEST(Seams, StitchingMakesBothSidesReadTheSameAndMovesLittle) {
     TexelImage image = noisyLight(sphere.atlas, 0.1f, 7);
     const TexelImage before = image;
     const double gapBefore = worstGap(points, image);
-    const float left = gis::lightmap::stitchSeams(points, image);
+    const float left = gis::lightmap::stitchSeams(points, image).after;
     const double gapAfter = worstGap(points, image);
     std::printf("seams: %zu points, worst gap %.4f before, %.5f after (relative %.5f)\n", points.size(), gapBefore,
                 gapAfter, left);

@@ -260,9 +260,8 @@ void LightmapBake::stitch(const gl::Texture& lightmap, bool light) {
                      mesh_.layers};
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
     glGetTextureImage(lightmap.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(image.rgba.size() * 4), image.rgba.data());
-    const float before = light ? stitchSeams(seams_, image, 0) : 0.0f;  // no iteration: measures only
-    const float after = stitchSeams(seams_, image, 256, light);
-    if (light) seamGapBefore_ = before, seamGap_ = after;
+    const StitchGaps gaps = stitchSeams(seams_, image, 256, light);
+    if (light) seamGapBefore_ = gaps.before, seamGap_ = gaps.after;
     glTextureSubImage3D(lightmap.id(), 0, 0, 0, 0, mesh_.side, mesh_.side, mesh_.layers, GL_RGBA, GL_FLOAT,
                         image.rgba.data());
 }
