@@ -493,3 +493,26 @@ TEST(Lightmap, AHeldReBakeKeepsTheStaleLightmapUntilItIsLetGo) {
     for (size_t i = 0; i < after.rgba.size(); i += 4) sum[0] += before.rgba[i], sum[1] += after.rgba[i];
     EXPECT_NEAR(sum[1] / sum[0], 4.0, 0.4);
 }
+
+// Every light baked, with the direction kept, at x1e-3 and x1e3: the image the x1 scene gives
+// (the punctual light's falloff scales with the scene as scaledScene scales its intensity).
+TEST(Lightmap, ABakeOfAllTheLightWithItsDirectionHoldsAtEveryScale) {
+    const Scene base = makeBuiltinScene("cornell");
+    context();
+    double mean[3] = {0.0, 0.0, 0.0};
+    const float scales[3] = {1.0f, 1e-3f, 1e3f};
+    for (int i = 0; i < 3; ++i) {
+        const Scene scene = scaledScene(base, scales[i]);
+        RenderSettings s = lightmapSettings(32, 1024, 16);
+        setParam(s, "lightmap.mode", "all");
+        setParam(s, "lightmap.directional", "true");
+        Renderer r(scene, s);
+        bakedIndirect(r);
+        const ImageF image = r.readHdr();
+        ASSERT_TRUE(allFinite(image)) << "scale " << scales[i];
+        for (size_t k = 0; k < image.rgba.size(); k += 4) mean[i] += image.rgba[k] + image.rgba[k + 1] + image.rgba[k + 2];
+        std::printf("LIGHTMAP-TABLE mode all, directional, scale %g: mean %.5f\n", double(scales[i]), mean[i] / 1024.0);
+    }
+    EXPECT_NEAR(mean[1] / mean[0], 1.0, 0.03);
+    EXPECT_NEAR(mean[2] / mean[0], 1.0, 0.03);
+}
