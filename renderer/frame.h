@@ -127,6 +127,7 @@ public:
         const char* unit = "spp";  // what is counted: samples per pixel, probe updates ...
         bool stale = false;        // what is shown predates an edit: it is redone in the background
         bool held = false;         // stale, and the redo waits for the user: rendering adds nothing
+        int read = 0;              // of `done`, those read from a cache rather than made by this run
     };
     virtual Progress progress() const { return {}; }
     // Debug views: names offered, and drawing one of them (display values, linear, [0, 1] for
@@ -158,7 +159,7 @@ struct PassTiming {
     double firstMs = 0.0;    // the first frame, which builds caches
     double totalMs = 0.0;    // every frame in which it worked, warm-up included
     int workedFrames = 0;    // frames in which it did work (progressive: batches of samples)
-    int samples = 0;         // progressive passes: samples accumulated (0 for the others)
+    int samples = 0;         // progressive passes: samples this run made (0 for the others)
     int64_t bytes = 0;       // GPU memory the pass holds
     std::optional<RayCounts> rays;  // rays traced in those frames, for passes that count them
     // Millions of rays per second of the pass's GPU time (0 when not counted or no time).

@@ -421,7 +421,8 @@ std::vector<PassTiming> Renderer::timings(int warmup) const {
         PassTiming t = summarize(pass->name(), pass->timer, warmup);
         auto it = ledger_.bytesByOwner.find(t.pass);
         t.bytes = it == ledger_.bytesByOwner.end() ? 0 : it->second;
-        t.samples = pass->progress().target > 0 ? pass->progress().done : 0;
+        const Pass::Progress progress = pass->progress();
+        t.samples = progress.target > 0 ? progress.done - progress.read : 0;
         t.rays = pass->raysTraced();
         out.push_back(t);
         for (const auto& [step, timer] : pass->steps.steps) {

@@ -94,26 +94,24 @@ std::unique_ptr<GlContext> headlessContext(const std::string& backend, bool debu
 double mib(int64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 
 // GPU milliseconds per pass and its steps: the median over the frames after warm-up in which it
-// worked, the first frame apart (it builds what later frames reuse). A progressive pass (the path
-// tracer) reports its total and its time per sample; "cached" only when no measured frame worked.
+// worked, the first frame apart (it builds what later frames reuse); "total" sums the passes'
+// medians, a frame's cost. A progressive pass (the path tracer, a bake) adds the total it spent on
+// the samples this run made and its time per sample; "cached" only when no measured frame worked.
 void printTimings(const Renderer& renderer, int frames, int warmup) {
     const auto& owners = renderer.memory().bytesByOwner;
     std::printf("%-22s %10s %10s %9s\n", "pass", "median ms", "first ms", "MiB");
     double total = 0.0;
     for (const PassTiming& t : renderer.timings(warmup)) {
         const std::string name = t.step ? "  " + t.pass.substr(t.pass.find('/') + 1) : t.pass;
-        if (t.samples > 0) {
-            std::printf("%-22s %10s %10.3f %9.2f  total %.1f ms for %d samples: %.3f ms/sample\n", name.c_str(), "",
-                        t.firstMs, mib(t.bytes), t.totalMs, t.samples, t.totalMs / t.samples);
-            if (t.rays)
-                std::printf("%-22s %.3g Mrays/s: %.3g M rays (primary %.3g M, bounce %.3g M, shadow %.3g M) in %.1f ms\n",
-                            "  rays", t.megaRaysPerSecond(), t.rays->total() * 1e-6, t.rays->primary * 1e-6,
-                            t.rays->bounce * 1e-6, t.rays->shadow * 1e-6, t.totalMs);
-            total += t.totalMs;
-            continue;
-        }
-        std::printf("%-22s %10.3f %10.3f %9.2f%s\n", name.c_str(), t.medianMs, t.firstMs, t.step ? 0.0 : mib(t.bytes),
+        std::printf("%-22s %10.3f %10.3f %9.2f%s", name.c_str(), t.medianMs, t.firstMs, t.step ? 0.0 : mib(t.bytes),
                     t.cached ? "  (cached: nothing it depends on changed)" : "");
+        if (t.samples > 0)
+            std::printf("  total %.1f ms for %d samples: %.3f ms/sample", t.totalMs, t.samples, t.totalMs / t.samples);
+        std::printf("\n");
+        if (t.samples > 0 && t.rays)
+            std::printf("%-22s %.3g Mrays/s: %.3g M rays (primary %.3g M, bounce %.3g M, shadow %.3g M) in %.1f ms\n",
+                        "  rays", t.megaRaysPerSecond(), t.rays->total() * 1e-6, t.rays->primary * 1e-6,
+                        t.rays->bounce * 1e-6, t.rays->shadow * 1e-6, t.totalMs);
         if (!t.step) total += t.medianMs;
     }
     for (const auto& [owner, bytes] : owners)

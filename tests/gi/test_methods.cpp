@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -509,8 +511,9 @@ TEST(Methods, DebugViewsAreListedAndTheGBufferWorksInEveryMethod) {
     EXPECT_NEAR(floor[2], 128, 2);
 }
 
-// --timings is honest for progressive methods: total and per sample, and "cached" only when
-// nothing ran.
+// --timings is honest for progressive methods: the median frame, the total and per sample, and
+// "cached" only when nothing ran; the total line sums per-frame medians (a frame's cost), not the
+// samples' totals.
 TEST(Methods, ProgressiveTimingsReportTotalAndPerSample) {
     const std::string dir = tempDir("timings");
     const CliResult r = runCli("render --scene builtin:cornell --size 16x16 --gi pathtrace --spp 16 --timings "
@@ -519,6 +522,17 @@ TEST(Methods, ProgressiveTimingsReportTotalAndPerSample) {
     EXPECT_NE(r.out.find("for 16 samples"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("ms/sample"), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("pathtrace  (cached"), std::string::npos) << r.out;
+    std::istringstream lines(r.out);
+    double median = -1.0, total = -1.0, samplesTotal = -1.0;
+    for (std::string line; std::getline(lines, line);) {
+        std::istringstream words(line);
+        std::string name;
+        words >> name;
+        if (name == "pathtrace") words >> median, std::sscanf(line.c_str() + line.find("total"), "total %lf", &samplesTotal);
+        if (name == "total") words >> total;
+    }
+    EXPECT_GT(median, 0.0) << "the pass's median frame is printed\n" << r.out;
+    EXPECT_LT(total, samplesTotal) << "the total line is a frame's cost\n" << r.out;
 }
 
 }  // namespace

@@ -93,7 +93,7 @@ void LightmapPass::invalidate(Changes c) {
     // What the light depends on: the bake is stale and starts over; a lightmap already drawn stays
     // on show (marked stale) until the new one is done, not replaced by the new bake's first paths.
     if (c & (ChangeLights | ChangeGeometry | ChangeMaterials | ChangeBrdfModels)) {
-        done_ = 0, cacheTried_ = false;
+        done_ = read_ = 0, cacheTried_ = false;
         stale_ = shown_;
     }
 }
@@ -101,7 +101,7 @@ void LightmapPass::invalidate(Changes c) {
 void LightmapPass::execute(Frame& frame) {
     const LightmapSettings now = lightmapParams().read("lightmap", frame.settings.params);
     if (now.denoise != params_.denoise || now.stitch != params_.stitch) resolved_ = false;
-    if (now.samples < done_) done_ = 0;  // fewer samples asked than are in: start over
+    if (now.samples < done_) done_ = read_ = 0;  // fewer samples asked than are in: start over
     if (now.samples != params_.samples) cacheTried_ = false;  // another bake: its own cache file
     params_ = now;
     if (!bake_->classified()) rays_.bind(), bake_->classify();
@@ -282,7 +282,7 @@ void LightmapPass::readCache(const Frame& frame) {
     in.read(reinterpret_cast<char*>(texels.data()), std::streamsize(texels.size() * sizeof(float)));
     if (!in) return void(cacheState_ = "truncated " + cachePath_ + " (baking again)");
     bake_->loadMean(texels);
-    done_ = params_.samples;
+    done_ = read_ = params_.samples;
     resolved_ = false;
     cacheState_ = "read " + cachePath_;
 }

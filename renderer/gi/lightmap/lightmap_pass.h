@@ -27,7 +27,7 @@ public:
     void invalidate(Changes c) override;
     bool settled() const override { return (done_ >= params_.samples || held()) && !changed_; }
     bool writesImagesOrBuffers() const override { return true; }
-    Progress progress() const override { return {done_, params_.samples, "spp", stale_, held()}; }
+    Progress progress() const override { return {done_, params_.samples, "spp", stale_, held(), read_}; }
     std::vector<std::string> stats() const override;
     std::optional<RayCounts> raysTraced() const override;
     std::optional<int64_t> atlasTexels() const override;
@@ -57,6 +57,7 @@ private:
     std::vector<gl::Object> applyPrograms_;  // kApplyPrograms's, the cut-outs' only where the scene has some
     gl::Buffer rayCounts_;
     int done_ = 0;
+    int read_ = 0;  // of done_, read from the cache
     bool changed_ = true;           // something since the last execute() asks for a redraw
     bool resolved_ = false;         // the lightmap holds the mean of done_ samples
     bool shown_ = false;            // a complete lightmap has been resolved (and drawn)

@@ -141,6 +141,8 @@ TEST(Lightmap, TheSecondRunReadsTheCacheAndAnEditedLightBakesAgain) {
             if (std::string(pass->name()) != "lightmap") continue;
             EXPECT_EQ(pass->raysTraced()->total(), 0u) << "no path traced";
         }
+        for (const PassTiming& t : r.timings(0))
+            EXPECT_TRUE(t.pass != "lightmap" || t.samples == 0) << "--timings: a bake read is no sample made";
         const ImageF again = readTextureFloat(r.frameTexture("indirect.diffuse"), 32, 32);
         EXPECT_EQ(again.rgba, first.rgba) << "the cached bake looks up as the baked one";
     }
