@@ -94,6 +94,14 @@ LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, bool direc
         directionPong_ = gl::createTexture2DArray(scope, GL_RGBA16F, s, s, n);
         directionResult_ = &directionPing_;
     }
+    // The lookup filters the result bilinearly where no texel of the four is to be left out.
+    for (const gl::Texture* t : {&ping_, &pong_, &directionPing_, &directionPong_})
+        if (t->id()) {
+            glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+            glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+            glTextureParameteri(t->id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+            glTextureParameteri(t->id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        }
     vertices_ = gl::createBuffer(scope, int64_t(mesh_.vertices.size() * sizeof(LightmapMesh::Vertex)), mesh_.vertices.data());
     indices_ = gl::createBuffer(scope, int64_t(mesh_.indices.size() * 4), mesh_.indices.data());
     surfaceIndices_ = gl::createBuffer(scope, int64_t(mesh_.surfaceIndices.size() * 4), mesh_.surfaceIndices.data());

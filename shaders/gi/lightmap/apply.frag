@@ -56,11 +56,25 @@ vec3 lightmapLight(vec2 uv, int layer, out vec3 direction) {
     vec2 st = uv * float(u_side) - 0.5;
     ivec2 corner = ivec2(floor(st));
     vec2 f = st - floor(st);
-    ivec2 nearest = corner + ivec2(greaterThanEqual(f, vec2(0.5)));
+    ivec2 toNearest = ivec2(greaterThanEqual(f, vec2(0.5)));
+    ivec2 nearest = corner + toNearest;
     int flags = texelFlags(texelFetch(s_texels, ivec3(clamp(nearest, ivec2(0), ivec2(u_side - 1)), layer), 0).w);
     bool nearestInside = (flags & TEXEL_INSIDE) != 0;
 #if RAY_FALLBACK && !CUTOUTS
     if (!nearestInside) discard;  // shaded by the first program
+#endif
+    // The taps across a column (row) from the nearest lie one step along x (y) from it: whether
+    // that step is blocked is one bit of its flags, the same for both taps.
+    bvec2 acrossBlocked = bvec2((flags & neighbourBit(ivec2(1 - 2 * toNearest.x, 0))) != 0,
+                                (flags & neighbourBit(ivec2(0, 1 - 2 * toNearest.y))) != 0);
+#if !RAY_FALLBACK
+    // Most pixels: every tap has light of its own and none is across a blocked step, so the
+    // filtering unit's bilinear sample is the answer (alpha 1 only where all four taps' is).
+    vec4 filtered = texture(s_lightmap, vec3(uv, float(layer)));
+    if (filtered.a >= 0.9999 && !any(acrossBlocked)) {
+        direction = u_directional != 0 ? texture(s_direction, vec3(uv, float(layer))).xyz : vec3(0.0);
+        return filtered.rgb;
+    }
 #endif
     vec3 n = dot(v_normal, v_normal) > 0.0 ? normalize(v_normal) : vec3(0.0);
     vec3 pixel = v_world + n * (LIFT * u_texelSize);
@@ -71,10 +85,11 @@ vec3 lightmapLight(vec2 uv, int layer, out vec3 direction) {
         ivec3 tap = ivec3(clamp(corner + offset, ivec2(0), ivec2(u_side - 1)), layer);
         vec4 light = texelFetch(s_lightmap, tap, 0);
         float w = (offset.x == 1 ? f.x : 1.0 - f.x) * (offset.y == 1 ? f.y : 1.0 - f.y);
-        ivec2 step = corner + offset - nearest;
-        bool blocked = nearestInside
-                           ? !reaches(pixel, texelFetch(s_texels, tap, 0).xyz + n * (LIFT * u_texelSize))
-                           : (flags & (neighbourBit(ivec2(step.x, 0)) | neighbourBit(ivec2(0, step.y)))) != 0;
+        bvec2 across = notEqual(offset, toNearest);
+        bool blocked = (across.x && acrossBlocked.x) || (across.y && acrossBlocked.y);
+#if RAY_FALLBACK
+        if (nearestInside) blocked = !reaches(pixel, texelFetch(s_texels, tap, 0).xyz + n * (LIFT * u_texelSize));
+#endif
         vec3 d = u_directional != 0 ? texelFetch(s_direction, tap, 0).xyz : vec3(0.0);
         if (light.a == 1.0 && !blocked) own += vec4(light.rgb, 1.0) * w, ownDirection += d * w;
         if (light.a > 0.0) any += vec4(light.rgb, 1.0) * w, anyDirection += d * w;
