@@ -15,8 +15,13 @@ constexpr double kPi = 3.14159265358979323846;
 // own: coplanar duplicates (z-fighting copies) fold at any angle.
 constexpr double kMinAngleDegrees = 0.5;
 
-// Welds vertices at equal positions: glTF splits a vertex wherever its normal or UV changes, and
-// charts must grow across such splits. Sorted, so the ids do not depend on hashing.
+// Welds vertices at the same position, within a tolerance: glTF splits a vertex wherever its
+// normal or UV changes, and charts must grow across such splits; an exporter that computes a
+// shared corner once per face leaves the copies a few float steps apart (the atrium's floor:
+// every 0.3 m cell a chart of its own, until this tolerance). The tolerance is a millionth of the
+// mesh's size plus a few float steps of its largest coordinate. Each vertex takes the id of the
+// first vertex in sorted order within the tolerance that holds an id of its own (no chaining), so
+// the ids do not depend on hashing.
 std::vector<uint32_t> weld(const std::vector<glm::vec3>& positions) {
     std::vector<uint32_t> order(positions.size());
     std::iota(order.begin(), order.end(), 0u);
@@ -28,10 +33,44 @@ std::vector<uint32_t> weld(const std::vector<glm::vec3>& positions) {
         return a < b;
     };
     std::sort(order.begin(), order.end(), less);
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const glm::vec3& p : positions) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
+    const double largest = positions.empty() ? 0.0 : std::max(glm::length(lo), glm::length(hi));
+    const double tolerance = 1e-6 * glm::length(hi - lo) + 4.0 * largest * 1.2e-7;
     std::vector<uint32_t> id(positions.size());
+    if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {  // one point, or none: exact equality
+        uint32_t next = 0;
+        for (size_t k = 0; k < order.size(); ++k)
+            id[order[k]] = (k > 0 && positions[order[k]] == positions[order[k - 1]]) ? id[order[k - 1]] : next++;
+        return id;
+    }
+    // Representatives by grid cell of the tolerance's size: a match lies in one of the 27 around.
+    auto cellOf = [&](const glm::vec3& p) { return glm::i64vec3(glm::floor((glm::dvec3(p) - lo) / tolerance)); };
+    auto key = [](glm::i64vec3 c) { return uint64_t(c.x) * 73856093u ^ uint64_t(c.y) * 19349663u ^ uint64_t(c.z) * 83492791u; };
+    std::unordered_multimap<uint64_t, uint32_t> representatives;  // cell key -> vertex
     uint32_t next = 0;
-    for (size_t k = 0; k < order.size(); ++k)
-        id[order[k]] = (k > 0 && positions[order[k]] == positions[order[k - 1]]) ? id[order[k - 1]] : next++;
+    for (const uint32_t v : order) {
+        const glm::i64vec3 c = cellOf(positions[v]);
+        uint32_t found = UINT32_MAX;
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const glm::i64vec3 n = c + glm::i64vec3(dx, dy, dz);
+                    auto [first, last] = representatives.equal_range(key(n));
+                    for (auto it = first; it != last; ++it) {
+                        const glm::dvec3 d = glm::dvec3(positions[it->second]) - glm::dvec3(positions[v]);
+                        if (cellOf(positions[it->second]) == n && std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}) <= tolerance &&
+                            (found == UINT32_MAX || id[it->second] < id[found]))
+                            found = it->second;
+                    }
+                }
+        if (found != UINT32_MAX) {
+            id[v] = id[found];
+        } else {
+            id[v] = next++;
+            representatives.emplace(key(c), v);
+        }
+    }
     return id;
 }
 
@@ -73,6 +112,14 @@ private:
     // Triangles across each welded edge; non-manifold edges join all their triangles.
     void buildAdjacency(const std::vector<uint32_t>& kept) {
         const std::vector<uint32_t> id = weld(P_);
+        // A welded corner's copies take one position in the chart, so faces across the weld
+        // meet exactly in the plane (float steps apart they could cross and read as a fold).
+        welded_.resize(P_.size());
+        std::vector<uint32_t> first(P_.size(), UINT32_MAX);
+        for (uint32_t v = 0; v < uint32_t(P_.size()); ++v) {
+            if (first[id[v]] == UINT32_MAX) first[id[v]] = v;
+            welded_[v] = first[id[v]];
+        }
         struct Edge {
             uint32_t a, b, t;
             bool operator<(const Edge& o) const { return std::tie(a, b, t) < std::tie(o.a, o.b, o.t); }
@@ -159,6 +206,7 @@ private:
     std::vector<double> area_;
     std::vector<std::vector<uint32_t>> adj_;
     std::vector<int> mark_;  // per triangle: -2 outside the subset, -1 free, else its chart
+    std::vector<uint32_t> welded_;  // per vertex: the first vertex welded to it (itself if none)
 };
 
 double cross2(glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) {
@@ -234,7 +282,7 @@ bool Charter::flatten(const std::vector<uint32_t>& tris, double cosMax, FlatChar
             const uint32_t src = I_[3 * tris[i] + uint32_t(k)];
             auto [it, added] = local.emplace(src, uint32_t(fc.vertices.size()));
             if (added) {
-                const glm::dvec3 p = glm::dvec3(P_[src]) - origin;
+                const glm::dvec3 p = glm::dvec3(P_[welded_[src]]) - origin;
                 fc.vertices.push_back(src);
                 fc.texels.push_back(glm::dvec2(glm::dot(p, u), glm::dot(p, v)) * density_);
             }

@@ -116,6 +116,37 @@ TEST(Atlas, FoldingChartIsSplit) {
     expectValidLayout(a);
 }
 
+// A floor of separate quads (each with corners of its own, as an exporter writes tiles), 6 x 6 of
+// them 1 m wide, their corners moved by `nudge` steps of the float on every other quad.
+MeshInput tiledFloor(int nudge, float gap = 0.0f) {
+    MeshInput m;
+    for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 6; ++j) {
+            const uint32_t base = uint32_t(m.positions.size());
+            for (const glm::vec2 c : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
+                float x = 100.0f + float(i) + c.x * (1.0f - gap), z = 100.0f + float(j) + c.y * (1.0f - gap);
+                for (int k = 0; k < ((i + j) % 2) * nudge; ++k) x = std::nextafter(x, 1e9f), z = std::nextafter(z, 1e9f);
+                m.positions.push_back({x, 0.0f, z});
+            }
+            m.indices.insert(m.indices.end(), {base, base + 2, base + 1, base, base + 3, base + 2});
+        }
+    return m;
+}
+
+// Shared corners a few float steps apart are welded: the tiles' floor is one chart, as it is when
+// they are exactly equal (the atrium's floor was 1320 charts of a few texels, nearly all gutter).
+// Tiles a millimetre apart are not: a real gap keeps them apart.
+TEST(Atlas, CornersAFewFloatStepsApartAreWelded) {
+    for (int nudge : {0, 1, 3}) {
+        const Atlas a = buildAtlas({tiledFloor(nudge)}, params(8.0f));
+        EXPECT_EQ(a.charts.size(), 1u) << nudge << " float steps apart";
+        expectValidLayout(a);
+    }
+    const Atlas apart = buildAtlas({tiledFloor(0, 0.001f)}, params(8.0f));
+    EXPECT_EQ(apart.charts.size(), 36u);
+    expectValidLayout(apart);
+}
+
 // Coplanar duplicates (a z-fighting copy) overlap at any angle: they end as charts of their own.
 TEST(Atlas, DuplicateFacesGetTheirOwnTexels) {
     MeshInput m = cube(1.0f);

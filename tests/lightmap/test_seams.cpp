@@ -86,8 +86,9 @@ TEST(Seams, StitchingMakesBothSidesReadTheSameAndMovesLittle) {
     const double gapAfter = worstGap(points, image);
     std::printf("seams: %zu points, worst gap %.4f before, %.5f after (relative %.5f)\n", points.size(), gapBefore,
                 gapAfter, left);
+    const double tenthOfTheNoise = 0.01;
     EXPECT_GT(gapBefore, 0.1);
-    EXPECT_LT(gapAfter, 0.008);
+    EXPECT_LT(gapAfter, tenthOfTheNoise);
     double moved = 0.0;
     size_t texels = 0, untouched = 0;
     for (size_t i = 0; i < image.rgba.size(); i += 4) {
@@ -106,7 +107,7 @@ TEST(Seams, StitchingMakesBothSidesReadTheSameAndMovesLittle) {
     for (size_t i = 0; i < direction.rgba.size(); i += 4)
         if (direction.rgba[i + 3] == 1.0f) direction.rgba[i] -= 1.0f;
     gis::lightmap::stitchSeams(points, direction, 256, false);
-    EXPECT_LT(worstGap(points, direction), 0.008);
+    EXPECT_LT(worstGap(points, direction), tenthOfTheNoise);
     size_t negative = 0;
     for (size_t i = 0; i < direction.rgba.size(); i += 4) negative += direction.rgba[i + 3] == 1.0f && direction.rgba[i] < 0.0f;
     EXPECT_GT(negative, texels / 4) << "a direction's negative components were clamped";
