@@ -79,12 +79,13 @@ Scene oneTriangleScene() {
     return one;
 }
 
-ImageF renderHdr(const Scene& scene, RenderSettings settings) {
+ImageF renderHdr(const Scene& scene, RenderSettings settings, int maxFrames) {
     context();
     settings.hdr32 = true;
     Renderer renderer(scene, settings);
+    int frames = 0;
     do renderer.renderFrame();
-    while (!renderer.converged());  // progressive methods: until every sample is in
+    while (!renderer.converged() && ++frames != maxFrames);  // progressive methods: until every sample is in
     const std::string nonFinite = renderer.nonFiniteReport();
     if (!nonFinite.empty()) ADD_FAILURE() << scene.name << " with --gi " << settings.gi << ": " << nonFinite;
     return renderer.readHdr();

@@ -33,9 +33,9 @@ Camera lookAtCamera(glm::vec3 eye, glm::vec3 target, float yfovDegrees = 40.0f);
 // camera (the volume methods' degenerate case: a single, flat, open surface).
 Scene oneTriangleScene();
 
-// Renders with the given settings (progressive methods until converged); returns linear radiance
-// (RGBA32F target).
-ImageF renderHdr(const Scene& scene, RenderSettings settings);
+// Renders with the given settings (progressive methods until converged, or `maxFrames` frames when
+// that is sooner and not 0); returns linear radiance (RGBA32F target).
+ImageF renderHdr(const Scene& scene, RenderSettings settings, int maxFrames = 0);
 
 // Mean of channel c over the square of half-size r pixels around (x, y).
 double meanAround(const ImageF& img, int x, int y, int r, int c = 0);

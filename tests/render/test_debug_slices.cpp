@@ -42,15 +42,15 @@ TEST(DebugSlices, AreSquareAndMarkTheirAxesAndPosition) {
     const View views[] = {{"vct", "vct.slice", "vct.slice-axis", "vct.slice-position"},
                           {"sdf", "sdf.slice", "sdf.slice-axis", "sdf.slice-position"},
                           {"hddagi", "hddagi.occupancy", "hddagi.slice-axis", "hddagi.slice-position"}};
-    // The low presets: the frame is asked, not the volume's contents, and the probes' updates
-    // (converged before the frame is written) are most of a render's time.
+    // The low presets and two frames: the frame is asked, not the volume's contents, and the
+    // probes' updates (until converged, without --frames) were most of a render's time.
     // 96x64: the slice is the middle 64x64, one-pixel bands (64 / 48) around a 62x62 interior.
     // Image rows run top to bottom: the bottom band is row 63.
     for (const View& v : views) {
         for (const char* axis : {"x", "z"}) {
             const std::string out = dir + "/" + v.gi + "_" + axis + ".exr";
             const gis::test::CliResult r =
-                runCli(std::string("render --scene builtin:cornell --size 96x64 --preset low --gi ") + v.gi + " --view " + v.view +
+                runCli(std::string("render --scene builtin:cornell --size 96x64 --frames 2 --preset low --gi ") + v.gi + " --view " + v.view +
                        " --set " + v.axisKey + "=" + axis + " --set " + v.positionKey + "=0.25 --out '" + out + "'");
             ASSERT_EQ(r.status, 0) << r.err;
             const gis::ImageF img = gis::readExr(out);
