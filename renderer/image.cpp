@@ -5,6 +5,7 @@
 #include <tinyexr.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -25,6 +26,34 @@ void flipRows(std::vector<T>& data, int width, int height) {
 
 void flipVertically(ImageU8& image) { flipRows(image.rgba, image.width, image.height); }
 void flipVertically(ImageF& image) { flipRows(image.rgba, image.width, image.height); }
+
+namespace {
+template <class Image, class Sum>
+Image boxDownsample(const Image& image, int factor, Sum sumOf) {
+    Image out;
+    out.width = image.width / factor;
+    out.height = image.height / factor;
+    out.rgba.resize(size_t(out.width) * out.height * 4);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            for (int c = 0; c < 4; ++c) {
+                double sum = 0.0;
+                for (int j = 0; j < factor; ++j)
+                    for (int i = 0; i < factor; ++i)
+                        sum += double(image.rgba[(size_t(y * factor + j) * image.width + size_t(x * factor + i)) * 4 + c]);
+                out.rgba[(size_t(y) * out.width + x) * 4 + c] = sumOf(sum / double(factor * factor));
+            }
+    return out;
+}
+}  // namespace
+
+ImageF downsample(const ImageF& image, int factor) {
+    return boxDownsample(image, factor, [](double mean) { return float(mean); });
+}
+
+ImageU8 downsample(const ImageU8& image, int factor) {
+    return boxDownsample(image, factor, [](double mean) { return uint8_t(std::lround(mean)); });
+}
 
 namespace {
 void stbAppend(void* context, void* data, int size) {

@@ -24,6 +24,12 @@ struct ImageU8 {  // RGBA 8-bit, rows top to bottom
 void flipVertically(ImageU8& image);
 void flipVertically(ImageF& image);
 
+// Each factor x factor block of pixels averaged into one (a box filter one output pixel wide: the
+// Cycles references' pixel, the mean radiance over its square); a size not a multiple of factor
+// loses its last rows and columns.
+ImageF downsample(const ImageF& image, int factor);
+ImageU8 downsample(const ImageU8& image, int factor);
+
 // Throw gis::Error naming the file on failure; leave no partial file behind.
 void writePng(const std::string& path, const ImageU8& image);
 void writeExr(const std::string& path, const ImageF& image);  // RGB float32, ZIP

@@ -151,13 +151,15 @@ void applyRenderPreset(RenderSettings& s, const std::string& given) {
     if (has || !given.empty()) applyPreset(s, s.gi, preset);
 }
 
-// The frame as --out asks (.exr: linear HDR, else PNG). With GIS_CHECK_FINITE=1 an image whose
-// shaders replaced a NaN or Inf is a bug's image: not written.
-void writeRenderedImage(const Renderer& renderer, const std::string& out) {
+// The frame as --out asks (.exr: linear HDR, else PNG), box-filtered down by --supersample: the
+// EXR's pixel is then the mean radiance over its square, as the Cycles references' is, the PNG's
+// the mean of the display values. With GIS_CHECK_FINITE=1 an image whose shaders replaced a NaN or
+// Inf is a bug's image: not written.
+void writeRenderedImage(const Renderer& renderer, const RenderOptions& o) {
     const std::string report = renderer.nonFiniteReport();
     if (!report.empty()) throw Error("GIS_CHECK_FINITE: " + report + "; the image is not written");
-    if (endsWith(out, ".exr")) writeExr(out, renderer.readHdr());
-    else writePng(out, renderer.readLdr());
+    if (endsWith(o.out, ".exr")) writeExr(o.out, downsample(renderer.readHdr(), o.supersample));
+    else writePng(o.out, downsample(renderer.readLdr(), o.supersample));
 }
 
 // `render --flythrough`: the scripted path's frames (renderer/camera_path.h), the last one written;
@@ -165,7 +167,7 @@ void writeRenderedImage(const Renderer& renderer, const std::string& out) {
 // over the path (the warm-up frame left out).
 int renderFlythrough(Renderer& renderer, const Scene& scene, const RenderOptions& o) {
     const std::vector<FlythroughFrame> frames = flyThrough(renderer, scene.bounds, o.flythrough);
-    writeRenderedImage(renderer, o.out);
+    writeRenderedImage(renderer, o);
     if (o.timings) {
         printFlythrough(frames);
         printTimings(renderer, o.flythrough + 1, 1);
@@ -215,6 +217,10 @@ void addRenderOptions(CLI::App& cmd, RenderOptions& o) {
                    "--settings names one");
     cmd.add_option("--out", o.out, "Output image: .png (tonemapped sRGB 8-bit) or .exr (linear float radiance)");
     cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+    cmd.add_option("--supersample", o.supersample,
+                   "Render N x N pixels for each written one and average them (1-4): edges as the Cycles "
+                   "references' box-filtered pixels have them; --timings then times the larger frame")
+        ->capture_default_str();
     cmd.add_option("--backend", o.backend, "OpenGL context: auto (EGL, else OSMesa), egl, osmesa, glfw (hidden window)")
         ->capture_default_str();
     addSceneSetupOptions(cmd, o.setup);
@@ -314,6 +320,7 @@ void readRenderSettingsFile(RenderJob& job) {
 
 void checkRenderCounts(const RenderOptions& o) {
     if (o.frames < 1 || o.frames > 100000) throw Error("--frames must be in [1, 100000]");
+    if (o.supersample < 1 || o.supersample > 4) throw Error("--supersample must be in [1, 4]");
     if (o.timings && (o.warmup < 0 || o.warmup >= o.frames)) throw Error("--warmup must be in [0, --frames)");
     if (o.flythrough < 0 || o.flythrough > 100000)
         throw Error("--flythrough=N must be in [0, 100000] (0: a still camera)");
@@ -455,9 +462,10 @@ int runRender(const RenderOptions& o) {
     if (job.sceneSpec.empty()) throw Error("--scene is required (or --settings FILE)");
     RenderSettings& s = job.s;
     if (job.use("--size")) parseRenderSize(o.size, s.width, s.height);
+    checkRenderCounts(o);
+    s.width *= o.supersample, s.height *= o.supersample;  // the renderer's own size limits apply to these
     const bool listViews = job.given("--view") && o.view == "list";
     checkRenderOut(o, listViews);
-    checkRenderCounts(o);
     applyLookFlags(job);
     applyParameterFlags(job);
     if (!listViews) checkWritable(o.out, "--out");
@@ -483,7 +491,7 @@ int runRender(const RenderOptions& o) {
     const int frames = framesToRender(o, s);
     const std::vector<double> wallMs = renderFrames(renderer, frames, o.timings);
     renderRestToConvergence(renderer, job);
-    writeRenderedImage(renderer, o.out);
+    writeRenderedImage(renderer, o);
     if (o.timings) {
         printTimings(renderer, frames, o.warmup);
         std::printf("%-22s %10.3f %10.3f %9s  (wall clock per frame with glFinish, median after warm-up)\n", "wall",

@@ -16,6 +16,7 @@ struct RenderOptions {
     std::string scene;
     std::string out;
     std::string size = "256x256";
+    int supersample = 1;                 // --supersample N: rendered at N x the size, box-filtered down
     std::string backend = "auto";
     SceneSetupOptions setup;             // --lighting, --camera, --camera-pos, --look-at, --fov
     std::string gi = kDefaultGiMethod;

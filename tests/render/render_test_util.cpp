@@ -257,18 +257,6 @@ std::vector<bool> interiorPixels(const std::vector<PixelHit>& hits, int width, i
     return keep;
 }
 
-ImageF downsample(const ImageF& img, int factor) {
-    ImageF out;
-    out.width = img.width / factor;
-    out.height = img.height / factor;
-    out.rgba.assign(size_t(out.width) * out.height * 4, 0.0f);
-    const float norm = 1.0f / float(factor * factor);
-    for (int y = 0; y < out.height * factor; ++y)
-        for (int x = 0; x < out.width * factor; ++x)
-            for (int c = 0; c < 4; ++c) out.at(x / factor, y / factor)[c] += img.at(x, y)[c] * norm;
-    return out;
-}
-
 Scene scaledScene(const Scene& in, float scale) {
     Scene s = in;
     const glm::mat4 m = glm::scale(glm::mat4(1.0f), glm::vec3(scale));

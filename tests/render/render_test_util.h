@@ -89,9 +89,6 @@ double blockRmse(const ImageF& a, const ImageF& b, const std::vector<bool>& inte
 // where the wall is seen, is left out. Writes the left sum to `litSum` if given.
 double darkOverLitRoom(const ImageF& img, double* litSum = nullptr);
 
-// Box-filter downsampling by an integer factor.
-ImageF downsample(const ImageF& img, int factor);
-
 // A flat-RGBE Radiance file (the layout stb_image reads without run-length encoding) of the
 // radiance at each texel centre's (u, v), u from the left, v from the top.
 void writeHdrTexels(const std::string& path, int width, int height, const std::function<glm::vec3(glm::vec2)>& radiance);

@@ -55,6 +55,35 @@ TEST(Cli, RendersPngAndExr) {
     EXPECT_EQ(entries, 2u) << "a temporary file was left behind";
 }
 
+// --supersample N renders N x N pixels for each written one and writes their mean: the EXR is the
+// larger render box-filtered down (the Cycles references' pixel), edges take in-between values
+// where one sample per pixel has none, and N past 4 is one clear error.
+TEST(Cli, SupersampleWritesTheMeanOfTheLargerRender) {
+    const std::string dir = tempDir("cli_supersample");
+    const std::string scene = "render --scene builtin:cornell --gi none ";
+    ASSERT_EQ(runCli(scene + "--size 64x48 --out " + dir + "/big.exr").status, 0);
+    const CliResult r = runCli(scene + "--size 32x24 --supersample 2 --out " + dir + "/ss.exr");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const ImageF big = readExr(dir + "/big.exr"), ss = readExr(dir + "/ss.exr");
+    ASSERT_EQ(ss.width, 32);
+    ASSERT_EQ(ss.height, 24);
+    const ImageF expected = downsample(big, 2);
+    int mixed = 0;
+    for (size_t i = 0; i < ss.rgba.size(); ++i) {
+        ASSERT_NEAR(ss.rgba[i], expected.rgba[i], 1e-6f * (1.0f + std::abs(expected.rgba[i]))) << i;
+        if (i % 4 == 0) {  // a pixel whose four samples differ by half its value: an edge, averaged
+            const int x = int(i / 4) % 32, y = int(i / 4) / 32;
+            const float a = big.at(2 * x, 2 * y)[0], b = big.at(2 * x + 1, 2 * y + 1)[0];
+            mixed += std::abs(a - b) > 0.5f * std::max(a, b) ? 1 : 0;
+        }
+    }
+    EXPECT_GT(mixed, 0) << "no edge pixel took two surfaces' values";
+    const CliResult bad = runCli(scene + "--size 32x24 --supersample 5 --out " + dir + "/bad.exr");
+    EXPECT_NE(bad.status, 0);
+    EXPECT_NE(bad.err.find("--supersample must be in [1, 4]"), std::string::npos) << bad.err;
+    EXPECT_FALSE(fileExists(dir + "/bad.exr"));
+}
+
 TEST(Cli, TimingsListEveryPassWithMemory) {
     const std::string dir = tempDir("cli_timings");
     CliResult r = runCli("render --scene builtin:cornell --size 64x64 --out " + dir + "/t.png --timings --frames 4 --warmup 1");
