@@ -19,9 +19,9 @@ constexpr double kMinAngleDegrees = 0.5;
 // normal or UV changes, and charts must grow across such splits; an exporter that computes a
 // shared corner once per face leaves the copies a few float steps apart (the atrium's floor:
 // every 0.3 m cell a chart of its own, until this tolerance). The tolerance is a millionth of the
-// mesh's size plus a few float steps of its largest coordinate. Each vertex takes the id of the
-// first vertex in sorted order within the tolerance that holds an id of its own (no chaining), so
-// the ids do not depend on hashing.
+// mesh's size plus a few float steps of its largest coordinate. Returns, per vertex, the vertex it
+// is welded to: the first in sorted order within the tolerance that is welded to none before it
+// (no chaining), so the result does not depend on hashing; its position stands for all of them.
 std::vector<uint32_t> weld(const std::vector<glm::vec3>& positions) {
     std::vector<uint32_t> order(positions.size());
     std::iota(order.begin(), order.end(), 0u);
@@ -37,18 +37,16 @@ std::vector<uint32_t> weld(const std::vector<glm::vec3>& positions) {
     for (const glm::vec3& p : positions) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
     const double largest = positions.empty() ? 0.0 : std::max(glm::length(lo), glm::length(hi));
     const double tolerance = 1e-6 * glm::length(hi - lo) + 4.0 * largest * 1.2e-7;
-    std::vector<uint32_t> id(positions.size());
+    std::vector<uint32_t> to(positions.size());
     if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {  // one point, or none: exact equality
-        uint32_t next = 0;
         for (size_t k = 0; k < order.size(); ++k)
-            id[order[k]] = (k > 0 && positions[order[k]] == positions[order[k - 1]]) ? id[order[k - 1]] : next++;
-        return id;
+            to[order[k]] = (k > 0 && positions[order[k]] == positions[order[k - 1]]) ? to[order[k - 1]] : order[k];
+        return to;
     }
     // Representatives by grid cell of the tolerance's size: a match lies in one of the 27 around.
     auto cellOf = [&](const glm::vec3& p) { return glm::i64vec3(glm::floor((glm::dvec3(p) - lo) / tolerance)); };
     auto key = [](glm::i64vec3 c) { return uint64_t(c.x) * 73856093u ^ uint64_t(c.y) * 19349663u ^ uint64_t(c.z) * 83492791u; };
     std::unordered_multimap<uint64_t, uint32_t> representatives;  // cell key -> vertex
-    uint32_t next = 0;
     for (const uint32_t v : order) {
         const glm::i64vec3 c = cellOf(positions[v]);
         uint32_t found = UINT32_MAX;
@@ -60,18 +58,14 @@ std::vector<uint32_t> weld(const std::vector<glm::vec3>& positions) {
                     for (auto it = first; it != last; ++it) {
                         const glm::dvec3 d = glm::dvec3(positions[it->second]) - glm::dvec3(positions[v]);
                         if (cellOf(positions[it->second]) == n && std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}) <= tolerance &&
-                            (found == UINT32_MAX || id[it->second] < id[found]))
+                            (found == UINT32_MAX || less(it->second, found)))
                             found = it->second;
                     }
                 }
-        if (found != UINT32_MAX) {
-            id[v] = id[found];
-        } else {
-            id[v] = next++;
-            representatives.emplace(key(c), v);
-        }
+        to[v] = found != UINT32_MAX ? found : v;
+        if (found == UINT32_MAX) representatives.emplace(key(c), v);
     }
-    return id;
+    return to;
 }
 
 class Charter {
@@ -111,15 +105,9 @@ private:
 
     // Triangles across each welded edge; non-manifold edges join all their triangles.
     void buildAdjacency(const std::vector<uint32_t>& kept) {
-        const std::vector<uint32_t> id = weld(P_);
-        // A welded corner's copies take one position in the chart, so faces across the weld
-        // meet exactly in the plane (float steps apart they could cross and read as a fold).
-        welded_.resize(P_.size());
-        std::vector<uint32_t> first(P_.size(), UINT32_MAX);
-        for (uint32_t v = 0; v < uint32_t(P_.size()); ++v) {
-            if (first[id[v]] == UINT32_MAX) first[id[v]] = v;
-            welded_[v] = first[id[v]];
-        }
+        // A welded corner's copies take one position in the chart (flatten), so faces across the
+        // weld meet exactly in the plane (float steps apart they could cross and read as a fold).
+        welded_ = weld(P_);
         struct Edge {
             uint32_t a, b, t;
             bool operator<(const Edge& o) const { return std::tie(a, b, t) < std::tie(o.a, o.b, o.t); }
@@ -127,7 +115,7 @@ private:
         std::vector<Edge> edges;
         for (uint32_t t : kept)
             for (uint32_t k = 0; k < 3; ++k) {
-                uint32_t a = id[I_[3 * t + k]], b = id[I_[3 * t + (k + 1) % 3]];
+                uint32_t a = welded_[I_[3 * t + k]], b = welded_[I_[3 * t + (k + 1) % 3]];
                 if (a > b) std::swap(a, b);
                 if (a != b) edges.push_back({a, b, t});
             }
@@ -206,7 +194,7 @@ private:
     std::vector<double> area_;
     std::vector<std::vector<uint32_t>> adj_;
     std::vector<int> mark_;  // per triangle: -2 outside the subset, -1 free, else its chart
-    std::vector<uint32_t> welded_;  // per vertex: the first vertex welded to it (itself if none)
+    std::vector<uint32_t> welded_;  // per vertex: the vertex it is welded to (weld; itself if none)
 };
 
 double cross2(glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) {

@@ -170,10 +170,11 @@ StitchGaps stitchSeams(const std::vector<SeamPoint>& points, TexelImage& image, 
         rr = next;
     }
     addTransposed(image, rows, lambda, -1.0f);
-    for (const auto& [a, b] : rows)  // a move never makes light negative
-        for (const Taps* t : {&a, &b})
-            for (int k = 0; k < t->count && light; ++k)
-                for (size_t c = 0; c < 3; ++c) image.rgba[t->at[k] + c] = std::max(image.rgba[t->at[k] + c], 0.0f);
+    if (light)  // a move never makes light negative
+        for (const auto& [a, b] : rows)
+            for (const Taps* t : {&a, &b})
+                for (int k = 0; k < t->count; ++k)
+                    for (size_t c = 0; c < 3; ++c) image.rgba[t->at[k] + c] = std::max(image.rgba[t->at[k] + c], 0.0f);
     return {before, relativeGap(image, rows)};
 }
 

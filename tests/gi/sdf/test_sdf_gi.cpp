@@ -119,9 +119,10 @@ const GiReference& reference(const std::string& name) { return giReference(name,
 double interiorRmse(const ImageF& a, const ImageF& b, const GiReference& r) { return test::interiorRmse(a, b, r.interior()); }
 
 // The band (80-120% on the walls and floor), with the near-field occlusion on (sdf.ao=1) and off
-// (the default; switched live on the converged field: the same bits as a fresh render). With probes a quarter of the room apart the default's back wall and floor read
-// just above 120% (the occlusion had hidden it by darkening the room's edges); an eighth apart,
-// the default since issue #39, they are within it (README, "sdf.ao against the truth").
+// (the default; switched live on the converged field: the same bits as a fresh render). With
+// probes a quarter of the room apart the default's back wall and floor read just above 120% (the
+// occlusion had hidden it by darkening the room's edges); an eighth apart, the default since issue
+// #39, they are within it (README, "sdf.ao against the truth").
 TEST(SdfGi, CornellIndirectEnergyPerWallAgainstPathTracer) {
     const GiReference& ref = reference("cornell");
     const ImageF pt = subtract(ref.ptFull(), ref.ptDirect());
