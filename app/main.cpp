@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
+#include <memory>
 #include <new>
 
 #include "cli/commands.h"
@@ -56,6 +58,24 @@ std::string parseErrorMessage(CLI::App& app, const CLI::ParseError& e, int argc,
     return what;
 }
 
+// A subcommand: its name, its help line, and `attach`, which adds its options to the parsed
+// command and returns what runs it with them.
+struct Subcommand {
+    const char* name;
+    const char* help;
+    std::function<std::function<int()>(CLI::App&)> attach;
+};
+
+template <class Options>
+Subcommand subcommand(const char* name, const char* help, void (*addOptions)(CLI::App&, Options&),
+                      int (*run)(const Options&)) {
+    return {name, help, [addOptions, run](CLI::App& cmd) -> std::function<int()> {
+                auto options = std::make_shared<Options>();
+                addOptions(cmd, *options);
+                return [options, run] { return run(*options); };
+            }};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -71,33 +91,30 @@ int main(int argc, char** argv) {
         return std::string("gisandbox: error: ") + e.what() + " (see --help)\n";
     });
 
-    gis::RenderOptions render;
-    CLI::App* renderCmd = app.add_subcommand("render", "Render a scene headless (or in a hidden window) to PNG or EXR");
-    gis::addRenderOptions(*renderCmd, render);
-
-    gis::InfoOptions info;
-    CLI::App* infoCmd = app.add_subcommand("info", "Print a scene's meshes, triangles, materials, lights, bounds and GPU memory");
-    gis::addInfoOptions(*infoCmd, info);
-
-    gis::MethodsOptions methods;
-    CLI::App* methodsCmd = app.add_subcommand("methods", "List the GI methods, or one method's parameters and presets");
-    gis::addMethodsOptions(*methodsCmd, methods);
-    gis::ExportOptions exportScene;
-    CLI::App* exportCmd = app.add_subcommand("export", "Write a scene (e.g. a built-in one) as glTF for other renderers");
-    gis::addExportOptions(*exportCmd, exportScene);
-    gis::ShaderDumpOptions dump;
-    CLI::App* shadersCmd = app.add_subcommand("shaders", "Write every shader program the app can request, preprocessed");
-    gis::addShaderDumpOptions(*shadersCmd, dump);
-
-    gis::BenchOptions bench;
-    CLI::App* benchCmd = app.add_subcommand("bench", "Measure every GI method and preset: GPU ms, memory, error vs a path-traced reference");
-    gis::addBenchOptions(*benchCmd, bench);
-    gis::ViewOptions view;
-    CLI::App* viewCmd = app.add_subcommand("view", "Open the interactive sandbox: a window with the GI methods side by side and a panel");
-    gis::addViewOptions(*viewCmd, view);
-    gis::DiffOptions diff;
-    CLI::App* diffCmd = app.add_subcommand("diff", "Compare an image with a reference: RMSE, relMSE, PSNR, SSIM, FLIP");
-    gis::addDiffOptions(*diffCmd, diff);
+    // The subcommands in the order --help lists them; each is declared once here.
+    const Subcommand subcommands[] = {
+        subcommand("render", "Render a scene headless (or in a hidden window) to PNG or EXR", gis::addRenderOptions,
+                   gis::runRender),
+        subcommand("info", "Print a scene's meshes, triangles, materials, lights, bounds and GPU memory",
+                   gis::addInfoOptions, gis::runInfo),
+        subcommand("methods", "List the GI methods, or one method's parameters and presets", gis::addMethodsOptions,
+                   gis::runMethods),
+        subcommand("export", "Write a scene (e.g. a built-in one) as glTF for other renderers", gis::addExportOptions,
+                   gis::runExport),
+        subcommand("shaders", "Write every shader program the app can request, preprocessed", gis::addShaderDumpOptions,
+                   gis::runShaderDump),
+        subcommand("bench", "Measure every GI method and preset: GPU ms, memory, error vs a path-traced reference",
+                   gis::addBenchOptions, gis::runBench),
+        subcommand("view", "Open the interactive sandbox: a window with the GI methods side by side and a panel",
+                   gis::addViewOptions, gis::runView),
+        subcommand("diff", "Compare an image with a reference: RMSE, relMSE, PSNR, SSIM, FLIP", gis::addDiffOptions,
+                   gis::runDiff),
+    };
+    std::vector<std::pair<const CLI::App*, std::function<int()>>> runs;
+    for (const Subcommand& c : subcommands) {
+        CLI::App* cmd = app.add_subcommand(c.name, c.help);
+        runs.emplace_back(cmd, c.attach(*cmd));
+    }
 
     // Exit status: 0 success (and --help, --version), 1 any failure, usage errors included.
     try {
@@ -113,14 +130,8 @@ int main(int argc, char** argv) {
         return 1;
     }
     try {
-        if (renderCmd->parsed()) return gis::runRender(render);
-        if (infoCmd->parsed()) return gis::runInfo(info);
-        if (shadersCmd->parsed()) return gis::runShaderDump(dump);
-        if (methodsCmd->parsed()) return gis::runMethods(methods);
-        if (exportCmd->parsed()) return gis::runExport(exportScene);
-        if (benchCmd->parsed()) return gis::runBench(bench);
-        if (diffCmd->parsed()) return gis::runDiff(diff);
-        if (viewCmd->parsed()) return gis::runView(view);
+        for (const auto& [cmd, run] : runs)
+            if (cmd->parsed()) return run();
     } catch (const gis::Error& e) {
         std::fprintf(stderr, "gisandbox: error: %s\n", e.what());
         return 1;

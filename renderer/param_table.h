@@ -27,6 +27,11 @@ enum class ParamUpdate { Live, Rebuild };
 struct ParamValue {
     ParamValue() = default;
     ParamValue(double n) : number(n) {}  // Int, Float, Bool (1 = true)
+    static ParamValue choice(const char* name) {  // a Choice row's value, by its name
+        ParamValue v;
+        v.text = name;
+        return v;
+    }
     double number = 0.0;
     std::string text;
     glm::vec3 colour{0.0f};

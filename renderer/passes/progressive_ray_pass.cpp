@@ -4,9 +4,9 @@
 
 namespace gis {
 
-ProgressiveRayPass::ProgressiveRayPass(RayScene& rays, const RenderSettings& settings,
-                                       const gl::MemoryScope& scope, const ProgramDesc& program)
-    : rays_(rays), samples_(scope, settings.width, settings.height, 1, settings.samplesPerFrame) {
+ProgressiveRayPass::ProgressiveRayPass(const char* name, RayScene& rays, const RenderSettings& settings,
+                                       gl::MemoryLedger& ledger, const ProgramDesc& program)
+    : rays_(rays), samples_({&ledger, name}, settings.width, settings.height, 1, settings.samplesPerFrame), name_(name) {
     program_ = buildProgram(program);
 }
 

@@ -12,6 +12,7 @@ namespace gis {
 
 class ProgressiveRayPass : public Pass {
 public:
+    const char* name() const override { return name_; }
     std::vector<std::string> outputs() const override { return {resource::kRadiance}; }
     bool reusedLastFrame() const override { return reused_; }  // finished before the last execute()
     // Finished, and no live parameter since, which execute() would compare.
@@ -22,8 +23,8 @@ public:
     static uint64_t accumulationBytes(const RenderSettings& s) { return uint64_t(s.width) * uint64_t(s.height) * 32; }
 
 protected:
-    // `scope` names the pass (its name() cannot be asked while it is being built).
-    ProgressiveRayPass(RayScene& rays, const RenderSettings& settings, const gl::MemoryScope& scope,
+    // `name` is the pass's and its method's (its GPU memory is booked under it).
+    ProgressiveRayPass(const char* name, RayScene& rays, const RenderSettings& settings, gl::MemoryLedger& ledger,
                        const ProgramDesc& program);
     // Puts the image so far as "radiance" and aims at `spp` samples, from the first when `restart`
     // or when fewer are asked than are done. True when this frame adds samples: the program is
@@ -41,6 +42,7 @@ protected:
     SampleAccumulator samples_;
 
 private:
+    const char* name_;
     gl::Object program_;
     bool liveChanged_ = false;
     bool reused_ = false;

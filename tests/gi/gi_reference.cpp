@@ -73,6 +73,21 @@ ImageF subtract(const ImageF& a, const ImageF& b) {
     return r;
 }
 
+GiReference::FloorBleeding GiReference::floorBleeding(const ImageF& indirect) const {
+    const int w = indirect.width, h = indirect.height;
+    double red[2] = {0, 0}, green[2] = {0, 0};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const int i = y * w + x;
+            if (!interior_[i] || hits_[i].region != kCornellFaces.at("floor")) continue;
+            const int side = x < w / 4 ? 0 : x >= 3 * w / 4 ? 1 : -1;
+            if (side < 0) continue;
+            red[side] += indirect.at(x, y)[0];
+            green[side] += indirect.at(x, y)[1];
+        }
+    return {red[0] / green[0], red[1] / green[1]};
+}
+
 double GiReference::regionMean(const ImageF& img, int region, int channel) const {
     return test::regionMean(img, hits_, interior_, region, channel);
 }

@@ -44,6 +44,12 @@ public:
     const std::vector<bool>& interior() const { return interior_; }  // pixels 2 away from a face's edge
     // The mean over the interior pixels of a face (kCornellFaces) of channel c, or of R, G, B.
     double regionMean(const ImageF& img, int region, int channel = -1) const;
+    // Colour bleeding on the Cornell floor: red over green of `indirect` on the floor's interior
+    // pixels in the image's left quarter (near the red wall) and in its right quarter (near the green).
+    struct FloorBleeding {
+        double nearRed, nearGreen;
+    };
+    FloorBleeding floorBleeding(const ImageF& indirect) const;
 
 private:
     const ImageF& render(const std::string& what, const RenderSettings& settings) const;

@@ -1,7 +1,7 @@
 #include "gi/ao_reference/ao_reference_pass.h"
 
 #include "debug_view.h"
-#include "gi/method.h"
+#include "gi/progressive_method.h"
 #include "gi/ssao/ssao_pass.h"
 #include "uniforms.h"
 
@@ -22,7 +22,7 @@ std::vector<ProgramDesc> AoReferencePass::programs() {
 }
 
 AoReferencePass::AoReferencePass(SceneServices& services, const RenderSettings& s, gl::MemoryLedger& ledger)
-    : ProgressiveRayPass(services.rays(), s, {&ledger, kName}, programs()[0]),
+    : ProgressiveRayPass(kName, services.rays(), s, ledger, programs()[0]),
       params_(aoReferenceParams().read("ao-reference", s.params)) {
     samples_.target = params_.spp;
 }
@@ -49,16 +49,8 @@ GiMethod aoReferenceMethod() {
     m.role = MethodRole::AoReference;
     m.benchmarked = false;
     m.params = aoReferenceParams().rows;
-    for (auto [name, spp] : {std::pair{"low", 16}, {"medium", 64}, {"high", 256}})
-        m.presets.push_back({name, std::to_string(spp) + " rays per pixel", {{"ao-reference.spp", {double(spp)}}}});
-    m.programs = &AoReferencePass::programs;
-    m.estimateMemory = [](const Scene&, const RenderSettings& s) {
-        return std::vector<std::pair<std::string, uint64_t>>{
-            {"ao-reference accumulation (2 x RGBA32F)", ProgressiveRayPass::accumulationBytes(s)}};
-    };
-    m.addPasses = [](MethodBuild& b) {
-        b.add(std::make_unique<AoReferencePass>(b.services, b.settings, b.ledger));
-    };
+    addProgressiveRayParts<AoReferencePass>(m, "ao-reference.spp", "rays per pixel",
+                                            {{"low", 16}, {"medium", 64}, {"high", 256}});
     return m;
 }
 

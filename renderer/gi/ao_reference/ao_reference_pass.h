@@ -18,7 +18,6 @@ class AoReferencePass final : public ProgressiveRayPass {
 public:
     static constexpr const char* kName = "ao-reference";
     AoReferencePass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger);
-    const char* name() const override { return kName; }
     void execute(Frame& frame) override;
     static std::vector<ProgramDesc> programs();
     // AO depends on geometry and camera only: lights, BRDFs and exposure leave it as it is.

@@ -15,12 +15,6 @@ using namespace hddagi;
 namespace {
 const ProgramDesc kDebugProgram{"hddagi_debug", {"gi/hddagi/hddagi_debug.comp"}, {}};
 
-ParamValue choiceValue(const char* name) {
-    ParamValue v;
-    v.text = name;
-    return v;
-}
-
 // What HDDAGI asks of the scene volume: cascades of voxels and their light, the occupancy
 // hierarchy instead of a distance field, and cascades that scroll.
 VolumeRequest volumeRequest(const HddagiSettings& s) {
@@ -42,68 +36,36 @@ VolumeRequest checkedVolumeRequest(const RenderSettings& settings) {
     checkHddagiSettings(s);
     return volumeRequest(s);
 }
+
+// What is fixed when the pass is built, from valid settings.
+probes::ProbeFieldShape shapeOf(const HddagiSettings& s) {
+    return {volumeRequest(s), s.probeSpacing, s.field(), s.gatherScale()};
+}
 }  // namespace
 
 std::vector<ProgramDesc> HddagiPass::programs() {
-    std::vector<ProgramDesc> all = SceneVolume::programs(volumeRequest(HddagiSettings{}));
-    for (const auto& list : {probes::fieldPrograms(), probes::ScreenGather::programs(), probes::ScreenReflection::programs()})
-        all.insert(all.end(), list.begin(), list.end());
+    std::vector<ProgramDesc> all = ProbeFieldPass::programs(volumeRequest(HddagiSettings{}));
     all.push_back(kDebugProgram);
     return all;
 }
 
 std::vector<std::pair<std::string, uint64_t>> HddagiPass::estimateMemory(const Scene& scene, const RenderSettings& settings) {
-    const HddagiSettings s = hddagiParams().read("hddagi", settings.params);
-    const VolumeRequest request = volumeRequest(s);
-    const CascadeLayout layout = volumeLayout(sceneAirBounds(scene), request);  // as SceneServices fits it
-    const int probes = probes::cascadeProbeCount(scene.bounds, layout, s.probeSpacing);
-    return {{"HDDAGI scene volume (" + std::to_string(layout.count) + " cascades: voxels, light, occupancy)",
-             uint64_t(sceneVolumeBytes(request, layout.count))},
-            {"HDDAGI probes (" + std::to_string(probes) + ": irradiance, distance moments, state)",
-             uint64_t(probes::fieldStorageBytes(s.field(), probes))},
-            {"HDDAGI probe rays", uint64_t(probes::fieldRayBytes(s.field(), probes))},
-            {"HDDAGI screen gather", uint64_t(probes::ScreenGather::bytes(settings.width, settings.height, s.gatherScale()))},
-            {"HDDAGI reflection (mean, specular)", uint64_t(probes::ScreenReflection::bytes(settings.width, settings.height))}};
+    return ProbeFieldPass::estimateMemory("HDDAGI", scene, settings, shapeOf(hddagiParams().read(kName, settings.params)));
 }
 
 HddagiPass::HddagiPass(SceneServices& services, const RenderSettings& settings)
-    : VolumePass(services.volume(checkedVolumeRequest(settings))), built_(hddagiParams().read("hddagi", settings.params)),
-      slice_({&services.ledger, name()}) {
-    const gl::MemoryScope scope{&services.ledger, name()};
-    sceneBounds_ = services.bounds();
-    field_ = std::make_unique<probes::ProbeField>(
-        scope, *volume_, probes::cascadeProbeGrids(*volume_, sceneBounds_, built_.probeSpacing), built_.field());
-    gather_ = std::make_unique<probes::ScreenGather>(scope, settings.width, settings.height, built_.gatherScale(),
-                                                     field_->tracer());
-    reflection_ = std::make_unique<probes::ScreenReflection>(scope, settings.width, settings.height, field_->tracer());
+    : ProbeFieldPass(kName, services.volume(checkedVolumeRequest(settings)), services.ledger, services.bounds(), settings,
+                     shapeOf(hddagiParams().read(kName, settings.params))),
+      built_(hddagiParams().read(kName, settings.params)), slice_({&services.ledger, kName}) {
     debugProgram_ = buildProgram(kDebugProgram);
 }
 
-// The volume rebuilds what the change touched (a light edit relights it alone); the probes restart.
-void HddagiPass::invalidate(Changes c) {
-    field_->invalidate(c);
-    changed_ = true;
-}
-
-void HddagiPass::run(Frame& frame) {
-    const HddagiSettings live = hddagiParams().read("hddagi", frame.settings.params);
-    probes::followCascades(*field_, *volume_, sceneBounds_, built_.probeSpacing);
-    field_->update(frame, live.field());
-    {
-        auto t = frame.step("gather");
-        gather_->run(frame, *field_, live.gather());
-    }
-    {
-        auto t = frame.step("reflection");
-        reflection_->run(frame, *field_, live.field(), gather_->result(), live, changed_);
-    }
-    frame.put(resource::kIndirectDiffuse, gather_->result());
-    frame.put(resource::kIndirectSpecular, reflection_->result());
-    changed_ = false;
+probes::ProbeFieldLive HddagiPass::live(const RenderSettings& settings) const {
+    const HddagiSettings s = hddagiParams().read(kName, settings.params);
+    return {s.field(), s.gather(), s};
 }
 
 std::vector<std::string> HddagiPass::stats() const {
-    std::vector<std::string> out{field_->describe()};
     const SceneVolume::Builds all = volume_->builds();
     char line[240];
     std::snprintf(line, sizeof line, "occupancy %d cascades of %d^3 voxels (%.1f KiB of masks); %d voxelizations, %d scrolls, "
@@ -111,10 +73,7 @@ std::vector<std::string> HddagiPass::stats() const {
                   volume_->cascadeCount(), volume_->layout().resolution(),
                   double(occupancyBytes(volume_->layout().resolution(), volume_->cascadeCount())) / 1024.0,
                   all.voxelizations, all.scrolls, static_cast<long long>(all.voxelizedCells));
-    out.push_back(line);
-    for (int i = 0; i < volume_->cascadeCount(); ++i) out.push_back(volume_->describeCascade(i));
-    out.push_back(reflection_->describe());
-    return out;
+    return ProbeFieldPass::stats(line);
 }
 
 std::vector<DebugViewDesc> HddagiPass::debugViews() const {
@@ -129,7 +88,7 @@ std::vector<DebugViewDesc> HddagiPass::debugViews() const {
 }
 
 void HddagiPass::drawDebugView(const std::string& view, const Frame& frame, GLuint target) {
-    const HddagiSettings live = hddagiParams().read("hddagi", frame.settings.params);
+    const HddagiSettings live = hddagiParams().read(kName, frame.settings.params);
     const std::string probeViews = "hddagi.probes.";
     if (view.compare(0, probeViews.size(), probeViews) == 0) {
         field_->drawDebugView(view.substr(probeViews.size()), frame, target, live.field());
@@ -177,13 +136,13 @@ GiMethod hddagiMethod() {
          {{"hddagi.resolution", {32.0}},
           {"hddagi.spacing", {0.34}},
           {"hddagi.rays", {64.0}},
-          {"hddagi.storage", choiceValue("sh1")}}},
+          {"hddagi.storage", ParamValue::choice("sh1")}}},
         {"medium", "64^3, probes every 1/5 with 128 rays, SH L2, gathered at half resolution", {}},
         {"high", "128^3, probes every 1/6 with 256 rays, octahedral maps, gathered at full resolution",
          {{"hddagi.resolution", {128.0}},
           {"hddagi.spacing", {0.167}},
           {"hddagi.rays", {256.0}},
-          {"hddagi.storage", choiceValue("octahedral")},
+          {"hddagi.storage", ParamValue::choice("octahedral")},
           {"hddagi.half-res", {0.0}}}},
         {"realtime", "medium's probes within a budget of 8192 rays per frame (64 probes)",
          {{"hddagi.ray-budget", {8192.0}}}},

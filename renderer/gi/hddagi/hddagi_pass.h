@@ -11,53 +11,30 @@
 // and restarts the probes; a camera move scrolls what left the snap distance.
 #pragma once
 
-#include <memory>
-
 #include "gi/hddagi/hddagi_settings.h"
 #include "gi/hddagi/hddagi_uniforms.h"
-#include "probes/probe_field.h"
-#include "probes/screen_gather.h"
-#include "probes/screen_reflection.h"
-#include "frame.h"
 #include "gl/shader.h"
-#include "volume/volume_pass.h"
+#include "probes/probe_field_pass.h"
 
 namespace gis {
 
 struct SceneServices;
 
-class HddagiPass final : public VolumePass {
+class HddagiPass final : public probes::ProbeFieldPass {
 public:
+    static constexpr const char* kName = "hddagi";
     HddagiPass(SceneServices& services, const RenderSettings& settings);
-    const char* name() const override { return "hddagi"; }
-    std::vector<std::string> ownInputs() const override {
-        return {resource::kGbufferDepth, resource::kGbufferNormal, resource::kGbufferMaterial};
-    }
-    std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse, resource::kIndirectSpecular}; }
-    void run(Frame& frame) override;
-    bool settled() const override { return field_->converged() && !changed_ && reflection_->settled(); }
-    Progress progress() const override { return reflection_->progress(field_->progress(), field_->converged()); }
-    void invalidate(Changes c) override;
-    bool writesImagesOrBuffers() const override { return true; }
     std::vector<std::string> stats() const override;
-    std::optional<RayCounts> raysTraced() const override { return field_->raysTraced(); }
     std::vector<DebugViewDesc> debugViews() const override;
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     static std::vector<ProgramDesc> programs();
     static std::vector<std::pair<std::string, uint64_t>> estimateMemory(const Scene& scene, const RenderSettings& s);
-
-    // What tests and the bench look at.
-    const probes::ProbeField& field() const { return *field_; }
     const HddagiSettings& rebuildSettings() const { return built_; }
 
 private:
+    probes::ProbeFieldLive live(const RenderSettings& settings) const override;
     HddagiSettings built_;
-    Aabb sceneBounds_;
-    std::unique_ptr<probes::ProbeField> field_;
-    std::unique_ptr<probes::ScreenGather> gather_;
-    std::unique_ptr<probes::ScreenReflection> reflection_;
     gl::Object debugProgram_;
-    bool changed_ = true;             // something arrived through invalidate() since the last execute
     gl::UniformBuffer<hddagi::HddagiSliceBlock> slice_;
 };
 

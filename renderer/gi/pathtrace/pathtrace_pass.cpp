@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "gi/method.h"
+#include "gi/progressive_method.h"
 #include "uniforms.h"
 
 namespace gis {
@@ -67,7 +67,7 @@ const ParamTable<PathTraceSettings>& pathTraceParams() {
 std::vector<ProgramDesc> PathTracePass::programs() { return {{"pathtrace", {"gi/pathtrace/pathtrace.comp"}, {}}}; }
 
 PathTracePass::PathTracePass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger)
-    : ProgressiveRayPass(services.rays(), settings, {&ledger, kName}, programs()[0]),
+    : ProgressiveRayPass(kName, services.rays(), settings, ledger, programs()[0]),
       params_(pathTraceParams().read("pathtrace", settings.params)), term_(termOf(settings.view)) {
     samples_.target = params_.spp;
     rayCounts_ = createRayCounts({&ledger, name()});
@@ -107,16 +107,7 @@ GiMethod pathtraceMethod() {
     m.termViews = {"direct", "emission", "indirect.diffuse", "indirect.specular"};
     m.params = pathTraceParams().rows;
     // At low sample counts: the reference's own speed/noise trade.
-    for (auto [name, spp] : {std::pair{"low", 4}, {"medium", 16}, {"high", 64}})
-        m.presets.push_back({name, std::to_string(spp) + " spp", {{"pathtrace.spp", {double(spp)}}}});
-    m.programs = &PathTracePass::programs;
-    m.estimateMemory = [](const Scene&, const RenderSettings& s) {
-        return std::vector<std::pair<std::string, uint64_t>>{
-            {"pathtrace accumulation (2 x RGBA32F)", ProgressiveRayPass::accumulationBytes(s)}};
-    };
-    m.addPasses = [](MethodBuild& b) {
-        b.add(std::make_unique<PathTracePass>(b.services, b.settings, b.ledger));
-    };
+    addProgressiveRayParts<PathTracePass>(m, "pathtrace.spp", "spp", {{"low", 4}, {"medium", 16}, {"high", 64}});
     return m;
 }
 

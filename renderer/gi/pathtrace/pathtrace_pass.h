@@ -22,7 +22,6 @@ class PathTracePass final : public ProgressiveRayPass {
 public:
     static constexpr const char* kName = "pathtrace";
     PathTracePass(SceneServices& services, const RenderSettings& settings, gl::MemoryLedger& ledger);
-    const char* name() const override { return kName; }
     void execute(Frame& frame) override;
     static std::vector<ProgramDesc> programs();
 

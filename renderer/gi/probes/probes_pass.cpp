@@ -14,14 +14,6 @@ namespace gis {
 using namespace probes;
 
 namespace {
-ParamValue choiceValue(const char* name) {
-    ParamValue v;
-    v.text = name;
-    return v;
-}
-}  // namespace
-
-namespace {
 // What probes ask of the scene volume: voxels with their distance field (the rays' sphere tracing)
 // and their direct light and emission (what the rays see), in cascades around the camera.
 VolumeRequest volumeRequest(const ProbeSettings& s) {
@@ -42,56 +34,27 @@ VolumeRequest checkedVolumeRequest(const RenderSettings& settings) {
     checkProbeSettings(s);
     return volumeRequest(s);
 }
+
+// What is fixed when the pass is built, from valid settings.
+ProbeFieldShape shapeOf(const ProbeSettings& s) { return {volumeRequest(s), s.spacing, s.field(), s.gatherPixels()}; }
 }  // namespace
 
-std::vector<ProgramDesc> ProbesPass::programs() {
-    std::vector<ProgramDesc> all = SceneVolume::programs(volumeRequest(ProbeSettings{}));
-    for (const auto& list : {fieldPrograms(), ScreenGather::programs(), ScreenReflection::programs()}) all.insert(all.end(), list.begin(), list.end());
-    return all;
-}
+std::vector<ProgramDesc> ProbesPass::programs() { return ProbeFieldPass::programs(volumeRequest(ProbeSettings{})); }
 
 ProbesPass::ProbesPass(SceneServices& services, const RenderSettings& settings)
-    : VolumePass(services.volume(checkedVolumeRequest(settings))), built_(probeParams().read("probes", settings.params)) {
-    const gl::MemoryScope scope{&services.ledger, name()};
-    // The volume was fitted to the scene's air (SceneServices::airBounds): the coarsest grid gets a
-    // layer in it.
-    sceneBounds_ = services.bounds();
-    field_ = std::make_unique<ProbeField>(scope, *volume_, cascadeProbeGrids(*volume_, sceneBounds_, built_.spacing), built_.field());
-    gather_ = std::make_unique<ScreenGather>(scope, settings.width, settings.height, built_.gatherPixels(), field_->tracer());
-    reflection_ = std::make_unique<ScreenReflection>(scope, settings.width, settings.height, field_->tracer());
-}
+    : ProbeFieldPass(kName, services.volume(checkedVolumeRequest(settings)), services.ledger, services.bounds(), settings,
+                     shapeOf(probeParams().read(kName, settings.params))),
+      built_(probeParams().read(kName, settings.params)) {}
 
-// The scene volume rebuilds what the change touched (a light edit relights it alone); the probes
-// restart, so the new light is followed at once.
-void ProbesPass::invalidate(Changes c) {
-    field_->invalidate(c);
-    changed_ = true;
-}
-
-Pass::Progress ProbesPass::progress() const { return reflection_->progress(field_->progress(), field_->converged()); }
-
-void ProbesPass::run(Frame& frame) {
-    const ProbeSettings live = probeParams().read("probes", frame.settings.params);
-    followCascades(*field_, *volume_, sceneBounds_, built_.spacing);
-    field_->update(frame, live.field());
-    {
-        auto t = frame.step("shade");
-        gather_->run(frame, *field_, {live.normalBias, live.intensity, live.visibility, live.pathTest});
-    }
-    {
-        auto t = frame.step("reflection");
-        reflection_->run(frame, *field_, live.field(), gather_->result(), live, changed_);
-    }
-    frame.put(resource::kIndirectDiffuse, gather_->result());
-    frame.put(resource::kIndirectSpecular, reflection_->result());
-    changed_ = false;
+ProbeFieldLive ProbesPass::live(const RenderSettings& settings) const {
+    const ProbeSettings s = probeParams().read(kName, settings.params);
+    return {s.field(), {s.normalBias, s.intensity, s.visibility, s.pathTest}, s};
 }
 
 std::vector<DebugViewDesc> ProbesPass::debugViews() const { return field_->debugViews("probes", "probe probes.debug-probe"); }
 
 void ProbesPass::drawDebugView(const std::string& view, const Frame& frame, GLuint target) {
-    const ProbeSettings live = probeParams().read("probes", frame.settings.params);
-    field_->drawDebugView(view.substr(std::string("probes.").size()), frame, target, live.field());
+    field_->drawDebugView(view.substr(std::string("probes.").size()), frame, target, live(frame.settings).field);
 }
 
 GiMethod probesMethod() {
@@ -101,30 +64,20 @@ GiMethod probesMethod() {
     m.params = probeParams().rows;
     m.presets = {
         {"low", "SH L1, spacing 1/3, 64 rays, 32^3 field",
-         {{"probes.spacing", {0.34}}, {"probes.rays", {64.0}}, {"probes.storage", choiceValue("sh1")},
+         {{"probes.spacing", {0.34}}, {"probes.rays", {64.0}}, {"probes.storage", ParamValue::choice("sh1")},
           {"probes.sdf-resolution", {32.0}}}},
         {"medium", "SH L2, spacing 1/8, 32 rays, 64^3 field", {}},
         {"high", "octahedral maps, spacing 1/8, 128 rays, 64^3 field",
-         {{"probes.rays", {128.0}}, {"probes.storage", choiceValue("octahedral")}}},
+         {{"probes.rays", {128.0}}, {"probes.storage", ParamValue::choice("octahedral")}}},
         {"realtime", "high's probes within 16384 rays per frame (128 probes), gathered every 4x4 pixels and upsampled",
          {{"probes.rays", {128.0}},
-          {"probes.storage", choiceValue("octahedral")},
+          {"probes.storage", ParamValue::choice("octahedral")},
           {"probes.ray-budget", {16384.0}},
-          {"probes.gather-scale", choiceValue("4")}}},
+          {"probes.gather-scale", ParamValue::choice("4")}}},
     };
     m.programs = &ProbesPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) {
-        const ProbeSettings p = probeParams().read("probes", s.params);
-        const VolumeRequest request = volumeRequest(p);
-        const CascadeLayout layout = volumeLayout(sceneAirBounds(scene), request);  // as SceneServices fits it
-        const int cascades = layout.count;
-        const int probes = cascadeProbeCount(scene.bounds, layout, p.spacing);
-        return std::vector<std::pair<std::string, uint64_t>>{
-            {"probe voxels and distance field", uint64_t(sceneVolumeBytes(request, cascades))},
-            {"probes (irradiance, distance moments, state)", uint64_t(fieldStorageBytes(p.field(), probes))},
-            {"probe rays", uint64_t(fieldRayBytes(p.field(), probes))},
-            {"probe screen target", uint64_t(ScreenGather::bytes(s.width, s.height, p.gatherPixels()))},
-            {"probe reflection (mean, specular)", uint64_t(ScreenReflection::bytes(s.width, s.height))}};
+        return ProbeFieldPass::estimateMemory(ProbesPass::kName, scene, s, shapeOf(probeParams().read(ProbesPass::kName, s.params)));
     };
     m.addPasses = [](MethodBuild& b) { b.add(std::make_unique<ProbesPass>(b.services, b.settings)); };
     // Updates stop when converged or after max-updates; the bench renders this many frames first.
@@ -139,10 +92,7 @@ GiMethod probesMethod() {
 }
 
 std::vector<std::string> ProbesPass::stats() const {
-    std::vector<std::string> out{field_->describe(), describeVolume(volume_->grid().fit, "voxels / distance-field cells")};
-    for (int i = 0; i < volume_->cascadeCount(); ++i) out.push_back(volume_->describeCascade(i));
-    out.push_back(reflection_->describe());
-    return out;
+    return ProbeFieldPass::stats(describeVolume(volume_->grid().fit, "voxels / distance-field cells"));
 }
 
 }  // namespace gis

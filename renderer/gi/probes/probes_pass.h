@@ -10,45 +10,24 @@
 // voxels (no voxelization, no flood) and restarts the probes.
 #pragma once
 
-#include <memory>
-
-#include "probes/probe_math.h"
-#include "probes/screen_gather.h"
-#include "probes/screen_reflection.h"
 #include "gi/probes/probe_settings.h"
-#include "frame.h"
-#include "gl/shader.h"
-#include "volume/volume_pass.h"
+#include "probes/probe_field_pass.h"
 
 namespace gis {
 
 struct SceneServices;
 
-class ProbesPass final : public VolumePass {
+class ProbesPass final : public probes::ProbeFieldPass {
 public:
+    static constexpr const char* kName = "probes";
     ProbesPass(SceneServices& services, const RenderSettings& settings);
-    const char* name() const override { return "probes"; }
-    std::vector<std::string> ownInputs() const override {
-        return {resource::kGbufferDepth, resource::kGbufferNormal, resource::kGbufferMaterial};
-    }
-    std::vector<std::string> outputs() const override { return {resource::kIndirectDiffuse, resource::kIndirectSpecular}; }
-    void run(Frame& frame) override;
-    bool settled() const override { return field_->converged() && !changed_ && reflection_->settled(); }
-    // Updates as progress, so `render` (and the sandbox's "converge") renders until the probes
-    // have converged: done = updates read back, target = the most updates there can be, and both
-    // the updates done once no probe is due any more.
-    Progress progress() const override;
-    void invalidate(Changes c) override;
-    bool writesImagesOrBuffers() const override { return true; }
     std::vector<std::string> stats() const override;
-    std::optional<RayCounts> raysTraced() const override { return field_->raysTraced(); }
     std::vector<DebugViewDesc> debugViews() const override;
     void drawDebugView(const std::string& view, const Frame& frame, GLuint target) override;
     static std::vector<ProgramDesc> programs();
 
     // What tests and the bench look at: the finest grid (the only one in a scene of one cascade).
     const probes::ProbeGrid& grid() const { return field_->grids()[0]; }
-    const probes::ProbeField& field() const { return *field_; }
     int updates() const { return field_->updates(); }   // frames with a probe update since the last restart
     bool converged() const { return field_->converged(); }
     bool updatedLastFrame() const { return field_->updatedLastFrame(); }
@@ -59,12 +38,8 @@ public:
     const ProbeSettings& rebuildSettings() const { return built_; }
 
 private:
+    probes::ProbeFieldLive live(const RenderSettings& settings) const override;
     ProbeSettings built_;
-    Aabb sceneBounds_;
-    std::unique_ptr<probes::ProbeField> field_;
-    std::unique_ptr<probes::ScreenGather> gather_;
-    std::unique_ptr<probes::ScreenReflection> reflection_;
-    bool changed_ = true;             // something arrived through invalidate() since the last execute
 };
 
 }  // namespace gis

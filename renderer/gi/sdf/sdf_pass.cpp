@@ -33,12 +33,6 @@ int sdfFramesToConverge(float temporal) {
     return temporal <= 0.0f ? 1 : std::min(64, int(std::ceil(4.0f / (1.0f - temporal))));
 }
 
-ParamValue choiceValue(const char* name) {
-    ParamValue v;
-    v.text = name;
-    return v;
-}
-
 }  // namespace
 
 const ProgramDesc kTraceProgram{"sdf_gi_trace", {"gi/sdf/sdf_trace.comp"}, {}};
@@ -333,7 +327,7 @@ GiMethod sdfMethod() {
         {"low", "32^3, one volume, plain JFA, probes every 1/3 with 64 rays, 32 steps",
          {{"sdf.resolution", {32.0}},
           {"sdf.cascades", {1.0}},
-          {"sdf.jfa", choiceValue("plain")},
+          {"sdf.jfa", ParamValue::choice("plain")},
           {"sdf.probe-spacing", {0.34}},
           {"sdf.probe-rays", {64.0}},
           {"sdf.max-steps", {32.0}}}},
@@ -341,12 +335,12 @@ GiMethod sdfMethod() {
         {"high", "128^3, JFA+2, probes every 1/8 with 128 rays, mirror rays at full resolution, 128 steps",
          {{"sdf.resolution", {128.0}},
           {"sdf.probe-rays", {128.0}},
-          {"sdf.trace-scale", choiceValue("1")},
+          {"sdf.trace-scale", ParamValue::choice("1")},
           {"sdf.max-steps", {128.0}}}},
         {"realtime",
          "medium's probes within a budget of 8192 rays per frame (256 probes), gathered, mirror rays and occlusion every "
          "4x4 pixels and upsampled",
-         {{"sdf.probe-ray-budget", {8192.0}}, {"sdf.trace-scale", choiceValue("4")}, {"sdf.filter-radius", {0.0}}}},
+         {{"sdf.probe-ray-budget", {8192.0}}, {"sdf.trace-scale", ParamValue::choice("4")}, {"sdf.filter-radius", {0.0}}}},
     };
     m.programs = &SdfGiPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) { return SdfGiPass::estimateMemory(scene, s); };

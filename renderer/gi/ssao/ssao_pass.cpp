@@ -17,12 +17,6 @@ constexpr int kMaxSlices = 64;
 constexpr float kTemporalFrames = 16;   // running mean over at most this many frames
 constexpr float kTemporalDepthTolerance = 0.02f;
 
-ParamValue choiceValue(const char* name) {
-    ParamValue v;
-    v.text = name;
-    return v;
-}
-
 float radicalInverse(uint32_t bits) {  // van der Corput in base 2
     bits = (bits << 16u) | (bits >> 16u);
     bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
@@ -236,7 +230,7 @@ void addPresets(GiMethod& m, SsaoKernel kernel, const std::string& prefix) {
                              std::string(gtao ? "GTAO, " : "hemisphere, ") + std::to_string(counts[i]) +
                                  (gtao ? " slices x " : " directions x ") + std::to_string(steps[i]) +
                                  (gtao ? " steps per side" : " steps") + (half[i] ? ", half resolution" : ""),
-                             {{"ssao.kernel", choiceValue(gtao ? "gtao" : "hemisphere")},
+                             {{"ssao.kernel", ParamValue::choice(gtao ? "gtao" : "hemisphere")},
                               {gtao ? "ssao.slices" : "ssao.samples", {double(counts[i])}},
                               {"ssao.steps", {double(steps[i])}},
                               {"ssao.half-res", {half[i] ? 1.0 : 0.0}}}});

@@ -21,12 +21,6 @@ ConeSettings coneSettingsOf(const VctSettings& s) {
     return {s.coneSet, s.stepFactor, s.maxDistance * float(s.resolution), s.offset, s.skyRays};
 }
 
-ParamValue choiceValue(const char* name) {
-    ParamValue v;
-    v.text = name;
-    return v;
-}
-
 int tracedSize(int fullSize, int scale) { return (fullSize + scale - 1) / scale; }
 
 // What VCT asks of the scene volume (vctVolumeRequest), with the feedback light when vct.feedback.
@@ -289,7 +283,7 @@ GiMethod vctMethod() {
           {"vct.anisotropic", {0.0}},
           {"vct.step", {1.0}},
           {"vct.specular", {0.0}},
-          {"vct.cones", choiceValue("four")}}},
+          {"vct.cones", ParamValue::choice("four")}}},
         {"medium", "64^3, directional mips, three bounces, six cones", {}},
         // Traced at quarter resolution: once converged (framesToConverge, 16 frames) its image is
         // the full-resolution trace's, at a sixteenth of the cones per frame (issue #24: a high
@@ -302,7 +296,7 @@ GiMethod vctMethod() {
          {{"vct.resolution", {128.0}},
           {"vct.bounces", {2.0}},
           {"vct.offset", {3.0}},
-          {"vct.trace-scale", choiceValue("4")}}},
+          {"vct.trace-scale", ParamValue::choice("4")}}},
         // The cheapest settings found that keep cornell_point at 24.5 dB PSNR or more against
         // Cycles (the table in renderer/gi/vct/README.md): the trace is the per-frame cost, so it
         // is cut on every axis. Two bounces (once per lighting) scored best of one to three.
@@ -311,11 +305,11 @@ GiMethod vctMethod() {
          "0.5, trace scale 4",
          {{"vct.resolution", {32.0}},
           {"vct.bounces", {2.0}},
-          {"vct.cones", choiceValue("four")},
+          {"vct.cones", ParamValue::choice("four")},
           {"vct.step", {2.0}},
           {"vct.max-distance", {0.5}},
           {"vct.specular-roughness", {0.5}},
-          {"vct.trace-scale", choiceValue("4")}}},
+          {"vct.trace-scale", ParamValue::choice("4")}}},
     };
     m.programs = &VctPass::programs;
     m.estimateMemory = [](const Scene&, const RenderSettings& s) {
