@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -114,17 +115,34 @@ bool entersSolid(const std::vector<const FacingTriangle*>& near, const glm::vec3
 }
 
 // Whether rays cast inward at face f, on a grid over it, enter the solid of the scene on the
-// face over at least 1 / kOutwardFaceShare of it. Only triangles reaching that deep can be met.
+// face over at least 1 / kOutwardFaceShare of it. Only triangles reaching that deep can be met, and
+// a ray along the axis only by the triangles whose bounds, seen along it, hold its origin: each
+// ray tests the triangles binned to its grid point (in the scene's order, as one list would).
 bool facesOut(const std::vector<FacingTriangle>& all, const Aabb& b, int f, float depth, float skin) {
     constexpr int kSamples = 32;  // per edge of the face: a surface a voxel of a 32^3 volume wide is met
     const int a = f / 2, u = (a + 1) % 3, w = (a + 2) % 3;
     const float side = f % 2 == 0 ? -1.0f : 1.0f;
     const float plane = f % 2 == 0 ? b.min[a] : b.max[a];
     const float reach = 2.0f * depth + skin;
-    std::vector<const FacingTriangle*> near;
+    const auto sample = [&](int axis, int i) {
+        return b.min[axis] + (float(i) + 0.5f) / float(kSamples) * (b.max[axis] - b.min[axis]);
+    };
+    // The grid points within [lo, hi] (widened by a float step's worth) along one of the face's axes.
+    const auto samplesWithin = [&](int axis, float lo, float hi) {
+        const float step = (b.max[axis] - b.min[axis]) / float(kSamples), slack = 1e-4f * step;
+        if (!(step > 0.0f)) return std::pair<int, int>{0, kSamples - 1};
+        const int first = std::max(0, int(std::ceil((lo - slack - b.min[axis]) / step - 0.5f)));
+        const int last = std::min(kSamples - 1, int(std::floor((hi + slack - b.min[axis]) / step - 0.5f)));
+        return std::pair<int, int>{first, last};
+    };
+    std::vector<std::vector<const FacingTriangle*>> near(size_t(kSamples * kSamples));
     for (const FacingTriangle& t : all) {
         const float lo = std::min({t.p0[a], t.p1[a], t.p2[a]}), hi = std::max({t.p0[a], t.p1[a], t.p2[a]});
-        if (side > 0.0f ? hi >= plane - reach : lo <= plane + reach) near.push_back(&t);
+        if (!(side > 0.0f ? hi >= plane - reach : lo <= plane + reach)) continue;
+        const auto [i0, i1] = samplesWithin(u, std::min({t.p0[u], t.p1[u], t.p2[u]}), std::max({t.p0[u], t.p1[u], t.p2[u]}));
+        const auto [j0, j1] = samplesWithin(w, std::min({t.p0[w], t.p1[w], t.p2[w]}), std::max({t.p0[w], t.p1[w], t.p2[w]}));
+        for (int i = i0; i <= i1; ++i)
+            for (int j = j0; j <= j1; ++j) near[size_t(i * kSamples + j)].push_back(&t);
     }
     glm::vec3 dir(0.0f);
     dir[a] = -side;
@@ -133,9 +151,9 @@ bool facesOut(const std::vector<FacingTriangle>& all, const Aabb& b, int f, floa
         for (int j = 0; j < kSamples; ++j) {
             glm::vec3 o;
             o[a] = plane + side * depth;
-            o[u] = b.min[u] + (float(i) + 0.5f) / float(kSamples) * (b.max[u] - b.min[u]);
-            o[w] = b.min[w] + (float(j) + 0.5f) / float(kSamples) * (b.max[w] - b.min[w]);
-            if (entersSolid(near, o, dir, 2.0f * depth, skin)) ++solid;
+            o[u] = sample(u, i);
+            o[w] = sample(w, j);
+            if (entersSolid(near[size_t(i * kSamples + j)], o, dir, 2.0f * depth, skin)) ++solid;
         }
     return solid * kOutwardFaceShare >= kSamples * kSamples;
 }
