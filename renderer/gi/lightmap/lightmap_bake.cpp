@@ -103,7 +103,6 @@ LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, bool direc
             glTextureParameteri(t->id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
         }
     vertices_ = gl::createBuffer(scope, int64_t(mesh_.vertices.size() * sizeof(LightmapMesh::Vertex)), mesh_.vertices.data());
-    indices_ = gl::createBuffer(scope, int64_t(mesh_.indices.size() * 4), mesh_.indices.data());
     surfaceIndices_ = gl::createBuffer(scope, int64_t(mesh_.surfaceIndices.size() * 4), mesh_.surfaceIndices.data());
     texelProgram_ = buildProgram(kTexelProgram);
     classify_ = buildProgram(kClassifyProgram);
@@ -113,7 +112,7 @@ LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, bool direc
     glProgramUniform1f(filter_.id(), UL_TEXEL_SIZE, texelSize_);
     glProgramUniform1i(trace_.id(), UL_DIRECTIONAL, directional_ ? 1 : 0);
     result_ = &ping_;
-    rasterizeTexels();
+    rasterizeTexels(scope);
     std::vector<SeamVertex> seamVertices;
     for (const LightmapMesh::Vertex& v : mesh_.vertices)
         seamVertices.push_back({glm::vec3(v.position[0], v.position[1], v.position[2]),
@@ -123,11 +122,13 @@ LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, bool direc
     seams_ = findSeams(seamVertices, mesh_.indices);
 }
 
-void LightmapBake::rasterizeTexels() {
+// The atlas triangles' indices are needed for this draw alone (the lookup draws surfaceIndices_).
+void LightmapBake::rasterizeTexels(const gl::MemoryScope& scope) {
+    const gl::Buffer atlasIndices = gl::createBuffer(scope, int64_t(mesh_.indices.size() * 4), mesh_.indices.data());
     vao_ = gl::createVertexArray();
     const GLuint vao = vao_.id();
     glVertexArrayVertexBuffer(vao, 0, vertices_.id(), 0, sizeof(LightmapMesh::Vertex));
-    glVertexArrayElementBuffer(vao, indices_.id());
+    glVertexArrayElementBuffer(vao, atlasIndices.id());
     const GLuint offsets[] = {offsetof(LightmapMesh::Vertex, position), offsetof(LightmapMesh::Vertex, normal),
                               offsetof(LightmapMesh::Vertex, uv), offsetof(LightmapMesh::Vertex, layer)};
     const GLint sizes[] = {3, 3, 2, 3};

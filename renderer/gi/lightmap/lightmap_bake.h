@@ -46,6 +46,7 @@ public:
     // the mean direction and its two filter targets too.
     static constexpr int64_t kBytesPerTexel = 16 + 16 + 16 + 8 + 8;
     static constexpr int64_t kDirectionalBytesPerTexel = 16 + 8 + 8;
+    // GPU bytes at the peak, while the texels are rasterized (the atlas's index buffer is then held too).
     static int64_t bytes(const LightmapMesh& mesh, bool directional);
 
     // `texelSize`: world units per texel (the atlas's 1 / texels per metre). `directional`: the
@@ -92,7 +93,7 @@ public:
     float texelSize() const { return texelSize_; }
 
 private:
-    void rasterizeTexels();
+    void rasterizeTexels(const gl::MemoryScope& scope);
     void splitChartsAtWalls();
     void filterStep(const gl::Texture& from, const gl::Texture& to, int mode, int step, int samples);
     void stitch(const gl::Texture& image, bool light);  // light: its gaps are reported (else the direction)
@@ -101,7 +102,7 @@ private:
 
     LightmapMesh mesh_;
     float texelSize_ = 0.0f;
-    gl::Buffer vertices_, indices_, surfaceIndices_;
+    gl::Buffer vertices_, surfaceIndices_;
     gl::Object vao_, texelProgram_, classify_, trace_, filter_;
     bool classified_ = false;  // classify.comp ran (it needs the ray scene, bound at the first trace)
     bool directional_ = false;
