@@ -339,6 +339,62 @@ TEST(Lightmap, SmoothSurfacesSeamsAreStitchedAndABoxHasNone) {
     EXPECT_NEAR(mean[1] / mean[0], 1.0, 0.01) << "stitching moves light along seams, not into or out of the image";
 }
 
+// The same seams in the image, as a user sees them: the mirror box with its spheres made white and
+// Lambertian (smooth surfaces cut into many charts), at the default density and paths. On a
+// sphere's pixels, the step in indirect.diffuse to the neighbouring pixels is hardly larger where
+// a chart edge crosses (lightmap.seams' magenta) than elsewhere on the sphere; unstitched it is
+// nearly twice as large. What this does not see: patches a chart wide (the lightmap README).
+TEST(Lightmap, NoSeamShowsInTheImageAcrossASmoothSurface) {
+    Scene spheres = makeBuiltinScene("mirror");
+    for (size_t m = spheres.materials.size() - 2; m < spheres.materials.size(); ++m)
+        spheres.materials[m] = lambert(glm::vec3(0.8f));
+    constexpr int kSize = 128;
+    RenderSettings s = lightmapSettings(kSize, 16384, 64);  // the medium preset, the default
+    setParam(s, "lightmap.cache", "true");  // one bake for the three images (the stitch runs after it)
+    s.view = "lightmap.seams";
+    const ImageF edges = renderHdr(spheres, s);
+    const std::vector<PixelHit> hits = castPixels(spheres, 0, kSize, kSize, nullptr);
+    const auto sphereOf = [&](int x, int y) { return hits[size_t(y * kSize + x)].region / 8; };
+    double ratio[2] = {0.0, 0.0};
+    for (int stitch = 0; stitch < 2; ++stitch) {
+        s.view = "indirect.diffuse";
+        setParam(s, "lightmap.stitch", stitch ? "true" : "false");
+        const ImageF light = renderHdr(spheres, s);
+        ASSERT_TRUE(allFinite(light));
+        const auto luminance = [&](int x, int y) {
+            const float* p = light.at(x, y);
+            return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+        };
+        // Mean step to the four neighbours, at chart-edge pixels and at the others, on pixels whose
+        // 3 x 3 neighbourhood is one sphere; relative to that sphere pixels' mean light.
+        double step[2] = {0.0, 0.0}, count[2] = {0.0, 0.0}, sum = 0.0, pixels = 0.0;
+        for (int y = 1; y + 1 < kSize; ++y)
+            for (int x = 1; x + 1 < kSize; ++x) {
+                const int sphere = sphereOf(x, y);
+                if (sphere < 3) continue;
+                bool inside = true;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) inside = inside && sphereOf(x + dx, y + dy) == sphere;
+                if (!inside) continue;
+                const double l = luminance(x, y);
+                const double d = std::abs(luminance(x + 1, y) - l) + std::abs(luminance(x - 1, y) - l) +
+                                 std::abs(luminance(x, y + 1) - l) + std::abs(luminance(x, y - 1) - l);
+                const int seam = isMagenta(edges.at(x, y)) ? 1 : 0;
+                step[seam] += d / 4.0, count[seam] += 1.0, sum += l, pixels += 1.0;
+            }
+        ASSERT_GT(count[1], 50.0) << "chart edges on the spheres";
+        ASSERT_GT(count[0], 300.0);
+        const double mean = sum / pixels;
+        ratio[stitch] = (step[1] / count[1]) / (step[0] / count[0]);
+        std::printf("LIGHTMAP-TABLE seams in the image, white spheres, %s: step at chart edges %.4f, elsewhere "
+                    "%.4f of the spheres' mean light (%.0f and %.0f pixels): %.2fx\n",
+                    stitch ? "stitched" : "not stitched", step[1] / count[1] / mean, step[0] / count[0] / mean,
+                    count[1], count[0], ratio[stitch]);
+    }
+    EXPECT_LT(ratio[1], 1.25) << "a seam shows where chart edges cross the spheres";
+    EXPECT_GT(ratio[0], ratio[1]) << "stitching is what hides the seams";
+}
+
 // A light edited after the bake: the last lightmap stays on show, marked stale, while the next
 // bake runs (its first paths would be noise), and the new one replaces it when done.
 TEST(Lightmap, AnEditKeepsTheLastLightmapMarkedStaleUntilTheNextBakeIsDone) {
