@@ -15,7 +15,10 @@ namespace gis {
 using namespace lightmap;
 
 namespace {
-const ProgramDesc kTexelProgram{"lightmap-texels", {"gi/lightmap/texels.vert", "gi/lightmap/texels.frag"}, {}};
+const ProgramDesc kTexelProgram{"lightmap-texels", {"gi/lightmap/texels.vert", "gi/lightmap/texels.frag"}, {{"EDGES", "0"}}};
+const ProgramDesc kTexelEdgesProgram{"lightmap-texel-edges",
+                                     {"gi/lightmap/texels.vert", "gi/lightmap/texel_edges.geom", "gi/lightmap/texels.frag"},
+                                     {{"EDGES", "1"}}};
 const ProgramDesc kClassifyProgram{"lightmap-classify", {"gi/lightmap/classify.comp"}, {}};
 const ProgramDesc kTraceProgram{"lightmap-trace", {"gi/lightmap/trace.comp"}, {}};
 const ProgramDesc kFilterProgram{"lightmap-filter", {"gi/lightmap/filter.comp"}, {}};
@@ -29,7 +32,7 @@ constexpr int kStitchedChartTexels = 4;
 constexpr int kDenoiseSteps[] = {1, 2, 4};
 }  // namespace
 
-std::vector<ProgramDesc> lightmapBakePrograms() { return {kTexelProgram, kClassifyProgram, kTraceProgram, kFilterProgram}; }
+std::vector<ProgramDesc> lightmapBakePrograms() { return {kTexelProgram, kTexelEdgesProgram, kClassifyProgram, kTraceProgram, kFilterProgram}; }
 
 LightmapMesh lightmapMesh(const Scene& scene, const Atlas& atlas) {
     LightmapMesh out;
@@ -140,7 +143,7 @@ void LightmapBake::rasterizeTexels(const gl::MemoryScope& scope) {
     gl::Object fbo = gl::createFramebuffer();
     const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(fbo.id(), 2, buffers);
-    glUseProgram(texelProgram_.id());
+    const gl::Object edgesProgram = buildProgram(kTexelEdgesProgram);
     glBindVertexArray(vao);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
@@ -154,9 +157,16 @@ void LightmapBake::rasterizeTexels(const gl::MemoryScope& scope) {
         glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
         for (int i = 0; i < 2; ++i) glClearNamedFramebufferfv(fbo.id(), GL_COLOR, i, clear);
         const auto [first, count] = mesh_.ranges[size_t(layer)];
-        // Texels whose centre a triangle covers; a chart's border texels that no centre falls in stay
-        // gutters (the lookup then leans on the chart's own texels: apply.frag).
-        glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT, reinterpret_cast<const void*>(uintptr_t(first) * 4));
+        // Texels whose centre a triangle covers get its point there. The triangles' outlines are drawn
+        // first as lines (texel_edges.geom): a triangle thinner than a texel in the atlas (a sphere's
+        // pole) covers no centre, and its pixels would find only gutters within reach of their
+        // lookup (black); the texels along its edges get points next to the edges. The fill then
+        // wins where both reach.
+        const void* offset = reinterpret_cast<const void*>(uintptr_t(first) * 4);
+        glUseProgram(edgesProgram.id());
+        glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT, offset);
+        glUseProgram(texelProgram_.id());
+        glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT, offset);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);

@@ -1,5 +1,10 @@
 // A texel's point of the surface: position (w = 1: the texel is on a chart) and normal (w = its
 // chart + 1, so the denoiser never mixes charts).
+#if EDGES  // drawn through texel_edges.geom
+#define v_position g_position
+#define v_normal g_normal
+#define v_chart g_chart
+#endif
 in vec3 v_position;
 in vec3 v_normal;
 flat in float v_chart;
