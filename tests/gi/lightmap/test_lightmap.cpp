@@ -343,7 +343,7 @@ TEST(Lightmap, SmoothSurfacesSeamsAreStitchedAndABoxHasNone) {
 // Lambertian (smooth surfaces cut into many charts), at the default density and paths. On a
 // sphere's pixels, the step in indirect.diffuse to the neighbouring pixels is hardly larger where
 // a chart edge crosses (lightmap.seams' magenta) than elsewhere on the sphere; unstitched it is
-// nearly twice as large. What this does not see: patches a chart wide (the lightmap README).
+// nearly twice as large. And no pixel of theirs is black.
 TEST(Lightmap, NoSeamShowsInTheImageAcrossASmoothSurface) {
     Scene spheres = makeBuiltinScene("mirror");
     for (size_t m = spheres.materials.size() - 2; m < spheres.materials.size(); ++m)
@@ -368,10 +368,12 @@ TEST(Lightmap, NoSeamShowsInTheImageAcrossASmoothSurface) {
         // Mean step to the four neighbours, at chart-edge pixels and at the others, on pixels whose
         // 3 x 3 neighbourhood is one sphere; relative to that sphere pixels' mean light.
         double step[2] = {0.0, 0.0}, count[2] = {0.0, 0.0}, sum = 0.0, pixels = 0.0;
+        int black = 0;  // a sphere's pixel without light: its atlas triangle covered no texel centre
         for (int y = 1; y + 1 < kSize; ++y)
             for (int x = 1; x + 1 < kSize; ++x) {
                 const int sphere = sphereOf(x, y);
                 if (sphere < 3) continue;
+                black += luminance(x, y) == 0.0 ? 1 : 0;
                 bool inside = true;
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx) inside = inside && sphereOf(x + dx, y + dy) == sphere;
@@ -382,6 +384,7 @@ TEST(Lightmap, NoSeamShowsInTheImageAcrossASmoothSurface) {
                 const int seam = isMagenta(edges.at(x, y)) ? 1 : 0;
                 step[seam] += d / 4.0, count[seam] += 1.0, sum += l, pixels += 1.0;
             }
+        EXPECT_EQ(black, 0) << "black pixels on the spheres";
         ASSERT_GT(count[1], 50.0) << "chart edges on the spheres";
         ASSERT_GT(count[0], 300.0);
         const double mean = sum / pixels;
