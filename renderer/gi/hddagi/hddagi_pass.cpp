@@ -30,11 +30,11 @@ VolumeRequest volumeRequest(const HddagiSettings& s) {
     return r;
 }
 
-// The request of valid settings (checkHddagiSettings throws first, naming the parameter).
-VolumeRequest checkedVolumeRequest(const RenderSettings& settings) {
-    const HddagiSettings s = hddagiParams().read("hddagi", settings.params);
+// The settings, once checkHddagiSettings has found them valid (it throws, naming the parameter).
+HddagiSettings checkedSettings(const RenderSettings& settings) {
+    const HddagiSettings s = hddagiParams().read(HddagiPass::kName, settings.params);
     checkHddagiSettings(s);
-    return volumeRequest(s);
+    return s;
 }
 
 // What is fixed when the pass is built, from valid settings.
@@ -54,9 +54,12 @@ std::vector<std::pair<std::string, uint64_t>> HddagiPass::estimateMemory(const S
 }
 
 HddagiPass::HddagiPass(SceneServices& services, const RenderSettings& settings)
-    : ProbeFieldPass(kName, services.volume(checkedVolumeRequest(settings)), services.ledger, services.bounds(), settings,
-                     shapeOf(hddagiParams().read(kName, settings.params))),
-      built_(hddagiParams().read(kName, settings.params)), slice_({&services.ledger, kName}) {
+    : HddagiPass(services, settings, checkedSettings(settings)) {}
+
+HddagiPass::HddagiPass(SceneServices& services, const RenderSettings& settings, const HddagiSettings& valid)
+    : ProbeFieldPass(kName, services.volume(volumeRequest(valid)), services.ledger, services.bounds(), settings,
+                     shapeOf(valid)),
+      built_(valid), slice_({&services.ledger, kName}) {
     debugProgram_ = buildProgram(kDebugProgram);
 }
 

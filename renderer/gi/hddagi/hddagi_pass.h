@@ -32,6 +32,7 @@ public:
     const HddagiSettings& rebuildSettings() const { return built_; }
 
 private:
+    HddagiPass(SceneServices& services, const RenderSettings& settings, const HddagiSettings& valid);
     probes::ProbeFieldLive live(const RenderSettings& settings) const override;
     HddagiSettings built_;
     gl::Object debugProgram_;

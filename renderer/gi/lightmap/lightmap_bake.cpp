@@ -107,7 +107,6 @@ LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, bool direc
         }
     vertices_ = gl::createBuffer(scope, int64_t(mesh_.vertices.size() * sizeof(LightmapMesh::Vertex)), mesh_.vertices.data());
     surfaceIndices_ = gl::createBuffer(scope, int64_t(mesh_.surfaceIndices.size() * 4), mesh_.surfaceIndices.data());
-    texelProgram_ = buildProgram(kTexelProgram);
     classify_ = buildProgram(kClassifyProgram);
     trace_ = buildProgram(kTraceProgram);
     filter_ = buildProgram(kFilterProgram);
@@ -125,7 +124,8 @@ LightmapBake::LightmapBake(const LightmapMesh& mesh, float texelSize, bool direc
     seams_ = findSeams(seamVertices, mesh_.indices);
 }
 
-// The atlas triangles' indices are needed for this draw alone (the lookup draws surfaceIndices_).
+// The atlas triangles' indices and the two texel programs are needed for this draw alone (the
+// lookup draws surfaceIndices_).
 void LightmapBake::rasterizeTexels(const gl::MemoryScope& scope) {
     const gl::Buffer atlasIndices = gl::createBuffer(scope, int64_t(mesh_.indices.size() * 4), mesh_.indices.data());
     vao_ = gl::createVertexArray();
@@ -143,7 +143,7 @@ void LightmapBake::rasterizeTexels(const gl::MemoryScope& scope) {
     gl::Object fbo = gl::createFramebuffer();
     const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(fbo.id(), 2, buffers);
-    const gl::Object edgesProgram = buildProgram(kTexelEdgesProgram);
+    const gl::Object fillProgram = buildProgram(kTexelProgram), edgesProgram = buildProgram(kTexelEdgesProgram);
     glBindVertexArray(vao);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
@@ -165,7 +165,7 @@ void LightmapBake::rasterizeTexels(const gl::MemoryScope& scope) {
         const void* offset = reinterpret_cast<const void*>(uintptr_t(first) * 4);
         glUseProgram(edgesProgram.id());
         glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT, offset);
-        glUseProgram(texelProgram_.id());
+        glUseProgram(fillProgram.id());
         glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT, offset);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

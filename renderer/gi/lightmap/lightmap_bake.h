@@ -103,7 +103,7 @@ private:
     LightmapMesh mesh_;
     float texelSize_ = 0.0f;
     gl::Buffer vertices_, surfaceIndices_;
-    gl::Object vao_, texelProgram_, classify_, trace_, filter_;
+    gl::Object vao_, classify_, trace_, filter_;
     bool classified_ = false;  // classify.comp ran (it needs the ray scene, bound at the first trace)
     bool directional_ = false;
     gl::Texture position_, normal_, mean_, ping_, pong_;

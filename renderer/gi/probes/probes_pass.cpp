@@ -28,11 +28,11 @@ VolumeRequest volumeRequest(const ProbeSettings& s) {
     return r;
 }
 
-// The request of valid settings (checkProbeSettings throws first, naming the parameter).
-VolumeRequest checkedVolumeRequest(const RenderSettings& settings) {
-    const ProbeSettings s = probeParams().read("probes", settings.params);
+// The settings, once checkProbeSettings has found them valid (it throws, naming the parameter).
+ProbeSettings checkedSettings(const RenderSettings& settings) {
+    const ProbeSettings s = probeParams().read(ProbesPass::kName, settings.params);
     checkProbeSettings(s);
-    return volumeRequest(s);
+    return s;
 }
 
 // What is fixed when the pass is built, from valid settings.
@@ -42,9 +42,12 @@ ProbeFieldShape shapeOf(const ProbeSettings& s) { return {volumeRequest(s), s.sp
 std::vector<ProgramDesc> ProbesPass::programs() { return ProbeFieldPass::programs(volumeRequest(ProbeSettings{})); }
 
 ProbesPass::ProbesPass(SceneServices& services, const RenderSettings& settings)
-    : ProbeFieldPass(kName, services.volume(checkedVolumeRequest(settings)), services.ledger, services.bounds(), settings,
-                     shapeOf(probeParams().read(kName, settings.params))),
-      built_(probeParams().read(kName, settings.params)) {}
+    : ProbesPass(services, settings, checkedSettings(settings)) {}
+
+ProbesPass::ProbesPass(SceneServices& services, const RenderSettings& settings, const ProbeSettings& valid)
+    : ProbeFieldPass(kName, services.volume(volumeRequest(valid)), services.ledger, services.bounds(), settings,
+                     shapeOf(valid)),
+      built_(valid) {}
 
 ProbeFieldLive ProbesPass::live(const RenderSettings& settings) const {
     const ProbeSettings s = probeParams().read(kName, settings.params);

@@ -38,6 +38,7 @@ public:
     const ProbeSettings& rebuildSettings() const { return built_; }
 
 private:
+    ProbesPass(SceneServices& services, const RenderSettings& settings, const ProbeSettings& valid);
     probes::ProbeFieldLive live(const RenderSettings& settings) const override;
     ProbeSettings built_;
 };
