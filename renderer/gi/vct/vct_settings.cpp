@@ -81,8 +81,9 @@ const ParamTable<VctSettings>& vctParams() {
                 "cosine (closer to the path tracer, 8x the trace)",
                 {"six", "four", "many"}, U::Live)
         .real(&S::stepFactor, "step", "Step", "step as a fraction of the cone's diameter", 0.05, 2.0, U::Live)
-        .real(&S::maxDistance, "max-distance", "Max distance", "cone length as a fraction of the volume's edge", 0.01,
-              2.0, U::Live)
+        .real(&S::maxDistance, "max-distance", "Max distance",
+              "diffuse cones' length as a fraction of the volume's edge (the specular cone goes at least the edge)",
+              0.01, 2.0, U::Live)
         .real(&S::offset, "offset", "Self-occlusion offset", "start offset along the normal, in voxels", 0.0, 8.0,
               U::Live)
         .real(&S::intensity, "intensity", "Intensity", "scales the indirect terms", 0.0, 16.0, U::Live)

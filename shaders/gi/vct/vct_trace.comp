@@ -89,8 +89,13 @@ void main() {
         // The specular cone marches: one ray's visibility over a rough lobe was noise no filter
         // takes out (renderer/gi/vct/README.md, *Sky rays*).
         float tanHalf = specularConeTan(material.y);
+        // A mirror shows the far wall as it shows the near one: the specular cone goes at least the
+        // volume's edge whatever vct.max-distance cuts the diffuse cones to (realtime's half-length
+        // cones left builtin:mirror's spheres with 0.44 of Cycles' light).
+        ConeTracer mirror = t;
+        mirror.maxDistance = max(t.maxDistance, float(u_resolution));
         bool escaped;
-        vec4 c = traceCone(t, origin, R, tanHalf, 1.0, N, escaped);
+        vec4 c = traceCone(mirror, origin, R, tanHalf, 1.0, N, escaped);
         specular = coneRadiance(c, R, tanHalf, escaped);
     }
     imageStore(i_diffuse, texel, vec4(finiteOrZero(diffuse.rgb * u_intensity), 1.0));
