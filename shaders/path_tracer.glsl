@@ -109,10 +109,12 @@ bool visible(vec3 from, vec3 dir, float dist) {
     return !traceRay(from, dir, dist, true, h);
 }
 
-// Direct light at a surface point: every punctual light, plus one emissive triangle sampled by
-// power and weighted by MIS against BSDF sampling. `models`: the diffuse and specular models it is
-// evaluated with (the render's, or a lightmap texel's white Lambertian).
-vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, ivec2 models, inout Rng rng) {
+// Every punctual light at a surface point, a shadow ray each (no ray can hit one: they are only
+// sampled so). `models`: the diffuse and specular models it is evaluated with (the render's, or a
+// lightmap texel's white Lambertian). `moment` adds, per light, the luminance a white Lambertian
+// surface there reflects (E cos / pi) times the light's direction in xyz and alone in w: the
+// lightmap's directional bake.
+vec3 punctualLight(SurfacePoint s, vec3 V, ivec2 models, inout vec4 moment) {
     vec3 origin = offsetRayOrigin(s.position, s.geometricNormal);
     vec3 sum = vec3(0.0);
     for (int i = 0; i < u_lightCount; ++i) {
@@ -123,7 +125,16 @@ vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, ivec2 models, inout Rn
         if (NoL <= 0.0 || dot(s.geometricNormal, L) <= 0.0 || all(equal(e, vec3(0.0)))) continue;
         if (!visible(origin, L, dist * (1.0 - 1e-4))) continue;
         sum += evaluateBrdf(s.brdf, s.normal, V, L, models.x, models.y) * e * NoL;
+        float l = luminance(e) * NoL * INV_PI;
+        moment += vec4(l * L, l);
     }
+    return sum;
+}
+
+// One emissive triangle sampled by power at a surface point, weighted by MIS against BSDF sampling.
+vec3 emitterLight(SurfacePoint s, vec3 V, float pSpecular, ivec2 models, inout Rng rng) {
+    vec3 origin = offsetRayOrigin(s.position, s.geometricNormal);
+    vec3 sum = vec3(0.0);
     if (u_emitterCount > 0) {
         uint ti = pickEmitter(nextFloat(rng), u_emitterCount);
         TraceTriangle tri = u_triangles[ti];
@@ -156,6 +167,12 @@ vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, ivec2 models, inout Rn
         }
     }
     return sum;
+}
+
+// Direct light at a surface point: every punctual light, plus one emissive triangle.
+vec3 directLight(SurfacePoint s, vec3 V, float pSpecular, ivec2 models, inout Rng rng) {
+    vec4 unusedMoment = vec4(0.0);
+    return punctualLight(s, V, models, unusedMoment) + emitterLight(s, V, pSpecular, models, rng);
 }
 
 // The diffuse lobe's share of `f` (the whole BRDF at L), per channel; 0 where f is (nothing of it is

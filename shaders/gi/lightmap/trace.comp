@@ -20,10 +20,12 @@ layout(location = U_SEED) uniform uint u_seed;
 layout(location = UL_BAKE_DIRECT) uniform int u_bakeDirect;
 layout(location = UL_DIRECTIONAL) uniform int u_directional;
 
-// The light sampled at the texel as the path tracer samples it at a vertex (directLight: every
-// punctual light, one emitter by power; environmentLight: the map by luminance), MIS-weighted
-// against the cosine ray, on a white Lambertian surface: E / pi.
-vec3 lightsAtTexel(vec3 position, vec3 n, inout Rng rng) {
+// The light sampled at the texel as the path tracer samples it at a vertex (every punctual light,
+// one emitter by power, the map by luminance), MIS-weighted against the cosine ray, on a white
+// Lambertian surface: E / pi. `punctualMoment`: the punctual lights' luminance times their
+// directions (xyz) and alone (w), for the directional mean; the one emitter and the map sampled
+// here count along the texel's normal, their directions not kept.
+vec3 lightsAtTexel(vec3 position, vec3 n, inout Rng rng, out vec4 punctualMoment) {
     SurfacePoint s;
     s.position = position;
     s.geometricNormal = n;
@@ -34,27 +36,9 @@ vec3 lightsAtTexel(vec3 position, vec3 n, inout Rng rng) {
     s.hasSpecular = false;
     vec3 unusedShare;
     const ivec2 lambert = ivec2(DIFFUSE_LAMBERT, SPECULAR_NONE);
-    return directLight(s, n, 0.0, lambert, rng) + environmentLight(s, n, 0.0, lambert, rng, false, unusedShare);
-}
-
-// The punctual lights' part of lightsAtTexel's luminance times its direction, for the
-// directional mean (lightmap.mode=all): a shadow ray each again; the one emitter and the map
-// sampled there are counted along the texel's normal, their direction not kept.
-vec3 punctualMoment(vec3 position, vec3 n, out float level) {
-    vec3 origin = offsetRayOrigin(position, n);
-    vec3 moment = vec3(0.0);
-    level = 0.0;
-    for (int i = 0; i < u_lightCount; ++i) {
-        vec3 L;
-        float dist;
-        vec3 e = lightIrradiance(u_lights[i], position, L, dist);
-        float NoL = dot(n, L);
-        if (NoL <= 0.0 || all(equal(e, vec3(0.0))) || !visible(origin, L, dist * (1.0 - 1e-4))) continue;
-        float l = luminance(e) * NoL * INV_PI;
-        moment += l * L;
-        level += l;
-    }
-    return moment;
+    punctualMoment = vec4(0.0);
+    return punctualLight(s, n, lambert, punctualMoment) + emitterLight(s, n, 0.0, lambert, rng) +
+           environmentLight(s, n, 0.0, lambert, rng, false, unusedShare);
 }
 
 void main() {
@@ -70,7 +54,8 @@ void main() {
     bool direct = u_bakeDirect != 0;
     vec3 path = finiteOrZero(min(tracePath(offsetRayOrigin(position.xyz, n), dir, rng, 1,
                                            direct ? max(dot(n, dir), 0.0) * INV_PI : 0.0), vec3(MAX_RADIANCE)));
-    vec3 lights = direct ? finiteOrZero(min(lightsAtTexel(position.xyz, n, rng), vec3(MAX_RADIANCE))) : vec3(0.0);
+    vec4 punctual = vec4(0.0);
+    vec3 lights = direct ? finiteOrZero(min(lightsAtTexel(position.xyz, n, rng, punctual), vec3(MAX_RADIANCE))) : vec3(0.0);
     vec3 radiance = min(path + lights, vec3(MAX_RADIANCE));
     float lum = luminance(radiance);
     vec4 mean = u_sampleIndex == 0u ? vec4(0.0) : imageLoad(u_mean, texel);
@@ -80,12 +65,8 @@ void main() {
     if (u_directional != 0) {
         // The luminance-weighted mean direction of the light arriving (the cosine-weighted first
         // moment of the radiance over pi, from which apply.frag fits its first-order harmonics).
-        float punctualLevel = 0.0;
         vec3 moment = luminance(path) * dir;
-        if (direct) {
-            vec3 punctual = punctualMoment(position.xyz, n, punctualLevel);
-            moment += punctual + max(luminance(lights) - punctualLevel, 0.0) * n;
-        }
+        if (direct) moment += punctual.xyz + max(luminance(lights) - punctual.w, 0.0) * n;
         vec4 directionMean = u_sampleIndex == 0u ? vec4(0.0) : imageLoad(u_direction, texel);
         directionMean += (vec4(moment, 0.0) - directionMean) / count;
         imageStore(u_direction, texel, directionMean);
