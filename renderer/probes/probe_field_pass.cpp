@@ -40,7 +40,12 @@ void ProbeFieldPass::run(Frame& frame) {
     }
     {
         auto t = frame.step("reflection");
-        reflection_->run(frame, *field_, now.field, gather_->result(), now.reflection, changed_);
+        // A point no probe sees is lit by rays of its own through the occupancy (HDDAGI). Not
+        // through a distance field (probe GI): from such points in builtin:building's hall, where
+        // its coarsest cascade's cells are three times the walls' thickness, the rays found the
+        // sunlit outside (renderer/gi/probes/README.md).
+        const bool lightUnseen = field_->tracer() == Tracer::Occupancy;
+        reflection_->run(frame, *field_, now.field, gather_->result(), now.reflection, changed_, lightUnseen);
     }
     frame.put(resource::kIndirectDiffuse, gather_->result());
     frame.put(resource::kIndirectSpecular, reflection_->result());
@@ -72,7 +77,7 @@ std::vector<std::pair<std::string, uint64_t>> ProbeFieldPass::estimateMemory(con
              uint64_t(fieldStorageBytes(shape.field, probes))},
             {method + " probe rays", uint64_t(fieldRayBytes(shape.field, probes))},
             {method + " screen gather", uint64_t(ScreenGather::bytes(s.width, s.height, shape.gatherPixels))},
-            {method + " reflection (mean, specular)", uint64_t(ScreenReflection::bytes(s.width, s.height))}};
+            {method + " reflection (means, specular)", uint64_t(ScreenReflection::bytes(s.width, s.height))}};
 }
 
 }  // namespace gis::probes

@@ -52,7 +52,7 @@ inline std::string gridKey(const std::string& method, const std::string& prefix,
 inline const char* const kPathTestHelp =
     "with visibility, a probe counts only where its straight path to the shading point is clear through the "
     "method's volume: no light through walls thinner than the probe step, but a point no probe sees gets no "
-    "probe light";
+    "probe light (HDDAGI lights it with rays of its own)";
 
 // The rows a field reads live each frame: visibility, path test, feedback, hysteresis, convergence.
 template <class S>

@@ -41,8 +41,8 @@ inline constexpr gl::UniformSlot kProbeUniforms[] = {GIS_PROBE_UNIFORMS(GIS_UNIF
 // (probes/probe_hit_light.glsl: the probes' own rays and the screen reflection's): the voxel
 // radiance, the albedo (both a layer per cascade, as the volume holds them), the slab voxels' sides; the
 // screen gather's and the reflection's G-buffer inputs. Image units: each program's output, the
-// gathered pixels, the reflection's running mean and the gather's indirect.diffuse it blends
-// towards. All below 11, where the environment's units begin (volume/volume_slots.h).
+// gathered pixels, the reflection's running mean, the gather's indirect.diffuse it blends
+// towards (and fills where no probe sees a point), and that fill's running mean. All below 11, where the environment's units begin (volume/volume_slots.h).
 #define GIS_PROBE_BINDINGS(X) \
     X(SP_IRRADIANCE, 0) \
     X(SP_DISTANCE, 1) \
@@ -64,7 +64,8 @@ inline constexpr gl::UniformSlot kProbeUniforms[] = {GIS_PROBE_UNIFORMS(GIS_UNIF
     X(IP_OUTPUT, 0) \
     X(IP_REFLECT_SPECULAR, 0) \
     X(IP_REFLECT_MEAN, 1) \
-    X(IP_REFLECT_DIFFUSE, 2)
+    X(IP_REFLECT_DIFFUSE, 2) \
+    X(IP_UNSEEN_MEAN, 3)
 
 enum ProbeBinding : int { GIS_PROBE_BINDINGS(GIS_BINDING_ENUM) };
 inline constexpr gl::BindingSlot kProbeBindings[] = {GIS_PROBE_BINDINGS(GIS_BINDING_SLOT)};
@@ -92,6 +93,7 @@ GIS_UNIFORM_BLOCK(ProbeGatherBlock, 7, GIS_PROBE_GATHER_BLOCK)
     M(float, roughness)         /* rays below this roughness; at and above it the diffuse gather */ \
     M(int, rays)                /* per pixel per frame, drawn from the GGX lobe (one at a mirror) */ \
     M(float, framesAveraged)    /* still frames already in the running mean */ \
-    M(int, frame)               /* random stream */
+    M(int, frame)               /* random stream */ \
+    M(int, lightUnseen)         /* 1: pixels no probe sees trace their diffuse light (cosine rays, same count) */
 GIS_UNIFORM_BLOCK(ProbeReflectBlock, 14, GIS_PROBE_REFLECT_BLOCK)
 }  // namespace gis::probes

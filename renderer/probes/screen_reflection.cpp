@@ -17,12 +17,13 @@ const ProgramDesc kEnvironmentProgram{"probe_screen_reflection_environment", {"p
 
 std::vector<ProgramDesc> ScreenReflection::programs() { return {kProgram, kOccupancyProgram, kEnvironmentProgram}; }
 
-int64_t ScreenReflection::bytes(int width, int height) { return 2 * int64_t(width) * height * 8; }
+int64_t ScreenReflection::bytes(int width, int height) { return 3 * int64_t(width) * height * 8; }
 
 ScreenReflection::ScreenReflection(const gl::MemoryScope& scope, int width, int height, Tracer tracer)
     : block_(scope) {
     mean_ = gl::createTexture2D(scope, GL_RGBA16F, width, height);
     specular_ = gl::createTexture2D(scope, GL_RGBA16F, width, height);
+    unseenMean_ = gl::createTexture2D(scope, GL_RGBA16F, width, height);
     program_ = buildProgram(tracer == Tracer::Occupancy ? kOccupancyProgram : kProgram);
     environmentProgram_ = buildProgram(kEnvironmentProgram);
 }
@@ -54,7 +55,7 @@ bool sameSettings(const ReflectionSettings& a, const ReflectionSettings& b) {
 }  // namespace
 
 void ScreenReflection::run(const Frame& frame, const ProbeField& field, const FieldSettings& live,
-                           const gl::Texture& diffuse, const ReflectionSettings& s, bool changed) {
+                           const gl::Texture& diffuse, const ReflectionSettings& s, bool changed, bool lightUnseen) {
     if (changed || field.updatedLastFrame() || !sameSettings(s, live_)) framesAveraged_ = 0;
     live_ = s;
     const bool rays = s.mode() == Reflection::Rays;
@@ -69,11 +70,13 @@ void ScreenReflection::run(const Frame& frame, const ProbeField& field, const Fi
     b.rays = s.reflectionRays;
     b.framesAveraged = float(framesAveraged_);
     b.frame = frame_++;
+    b.lightUnseen = lightUnseen ? 1 : 0;
     block_.set(b);
     glBindTextureUnit(TP_REFLECT_DEPTH, frame.texture(resource::kGbufferDepth));
     glBindTextureUnit(TP_REFLECT_NORMAL, frame.texture(resource::kGbufferNormal));
     glBindTextureUnit(TP_REFLECT_MATERIAL, frame.texture(resource::kGbufferMaterial));
-    glBindImageTexture(IP_REFLECT_DIFFUSE, diffuse.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
+    glBindImageTexture(IP_REFLECT_DIFFUSE, diffuse.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+    glBindImageTexture(IP_UNSEEN_MEAN, unseenMean_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glBindImageTexture(IP_REFLECT_MEAN, mean_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glBindImageTexture(IP_REFLECT_SPECULAR, specular_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl::dispatchCompute(gl::groupsFor(specular_.width, 8), gl::groupsFor(specular_.height, 8), 1, "probe reflection");

@@ -3,7 +3,10 @@
 // cut-off, rays drawn from the GGX lobe are walked through the field's tracer and shaded as the
 // probes' own rays are (shaders/probes/probe_hit_light.glsl), averaged over the frames of a still
 // view, and blended towards the diffuse gather as the lobe widens; into "indirect.specular".
-// Probe GI, HDDAGI and SDF GI (with its probes) reflect this way.
+// Probe GI, HDDAGI and SDF GI (with its probes) reflect this way. For probe GI and HDDAGI, whose
+// gather leaves a point no probe sees black (issue #39: the far end of a building's corridor, in a
+// cascade whose probes are all behind its walls), cosine rays light such a pixel the same way, into
+// the gather's "indirect.diffuse".
 #pragma once
 
 #include <string>
@@ -34,8 +37,10 @@ public:
     // Traces this frame's rays for `field` (bound as its update `live` shades hits) and folds them
     // into the mean, which restarts when `changed` (the pass was invalidated: the view, the light,
     // a parameter), when the probes updated this frame or when `s` differs from the last frame's.
+    // `lightUnseen`: `diffuse`'s alpha is the share of its light probes gave (ScreenGather), and
+    // the rest is traced here and added into it (with rays only).
     void run(const Frame& frame, const ProbeField& field, const FieldSettings& live, const gl::Texture& diffuse,
-             const ReflectionSettings& s, bool changed);
+             const ReflectionSettings& s, bool changed, bool lightUnseen);
     const gl::Texture& result() const { return specular_; }
     // The mean holds the frames the last run's settings ask for (at once without rays).
     bool settled() const;
@@ -46,7 +51,7 @@ public:
     static int64_t bytes(int width, int height);
 
 private:
-    gl::Texture mean_, specular_;
+    gl::Texture mean_, specular_, unseenMean_;
     gl::Object program_, environmentProgram_;
     gl::UniformBuffer<ProbeReflectBlock> block_;
     ReflectionSettings live_;

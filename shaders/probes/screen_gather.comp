@@ -10,5 +10,5 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, imageSize(i_diffuse)))) return;
     GatherSurface s = gatherSurface(pixel * u_scale);
-    imageStore(i_diffuse, pixel, s.valid ? vec4(gatherAt(s), 1.0) : vec4(0.0));
+    imageStore(i_diffuse, pixel, s.valid ? gatherAt(s) : vec4(0.0));
 }

@@ -3,7 +3,8 @@
 // point (in the finest grid that holds it), moved off the surface along the normal and towards
 // the eye (DDGI's bias, in units of the smallest probe step) so that a probe's distance moments do
 // not shadow the very surface they were measured on. Shared by the gather at the traced
-// resolution (screen_gather.comp) and the upsampling's fall-back (screen_upsample.comp).
+// resolution (screen_gather.comp) and the upsampling's fall-back (screen_upsample.comp). Alpha:
+// the share of the pixel's light that probes gave (0 where none sees it).
 #include "gbuffer_layout.glsl"
 #define PROBE_SEGMENT_TEST 1
 #include "probes/probe_common.glsl"
@@ -29,7 +30,9 @@ GatherSurface gatherSurface(ivec2 pixel) {
     return s;
 }
 
-vec3 gatherAt(GatherSurface s) {
-    vec3 e = sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_gather.normalBias, u_gather.visibility).rgb;
-    return finiteOrZero(e * u_gather.intensity);
+// E / pi, and in a whether any probe counted (0: none sees the point; the screen reflection's rays
+// light it, screen_reflection.comp).
+vec4 gatherAt(GatherSurface s) {
+    vec4 e = sampleProbesSeenFrom(s.position, s.normal, u_cameraPos, u_gather.normalBias, u_gather.visibility);
+    return vec4(finiteOrZero(e.rgb * u_gather.intensity), e.a);
 }

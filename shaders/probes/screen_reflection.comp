@@ -4,7 +4,9 @@
 // through the field's tracer and shaded as the probes' own rays are (probe_hit_light.glsl: the
 // voxels' light, the probes' irradiance for the next bounce, the sky for a miss), averaged over
 // the frames of a still view; over the last quarter below the cut-off the estimate blends into the
-// diffuse gather, the cosine lobe's mean radiance, which stands in for a wide lobe.
+// diffuse gather, the cosine lobe's mean radiance, which stands in for a wide lobe. Where the
+// gather found no probe that sees the point, cosine rays light it the same way (averaged alike),
+// into indirect.diffuse.
 // With REFLECTION_ENVIRONMENT (a program of its own: llvmpipe runs both sides of a uniform branch)
 // the prefiltered environment instead, what the lighting pass shows without the term.
 #include "common.glsl"
@@ -26,7 +28,10 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = TP_REFLECT_DEPTH) uniform sampler2D s_depth;
 layout(binding = TP_REFLECT_NORMAL) uniform sampler2D s_gbufNormal;
 layout(binding = TP_REFLECT_MATERIAL) uniform sampler2D s_gbufMaterial;  // metallic, roughness, occlusion, specular
-layout(binding = IP_REFLECT_DIFFUSE, rgba16f) uniform readonly image2D i_diffuse;  // the screen gather's indirect.diffuse
+// The screen gather's indirect.diffuse, alpha the share probes gave it (screen_gather.glsl): where
+// that is short of 1, the unseen part is lit here by the pixel's own rays and written back.
+layout(binding = IP_REFLECT_DIFFUSE, rgba16f) uniform image2D i_diffuse;
+layout(binding = IP_UNSEEN_MEAN, rgba16f) uniform image2D i_unseenMean;  // those rays' running mean
 layout(binding = IP_REFLECT_MEAN, rgba16f) uniform image2D i_mean;       // the traced radiance's running mean
 layout(binding = IP_REFLECT_SPECULAR, rgba16f) uniform writeonly image2D i_specular;
 layout(location = UP_INV_VIEW_PROJ) uniform mat4 u_invViewProj;
@@ -72,6 +77,24 @@ vec3 tracedRadiance(vec3 P, vec3 N, vec3 V, float roughness, ivec2 pixel) {
     }
     return kept > 0.0 ? sum / kept : fieldRayRadiance(origin, reflect(-V, N), 0.0).rgb;
 }
+
+// A point no probe sees (the far end of a corridor in a coarse cascade, where every probe of the
+// grid is behind a wall): this frame's estimate of E / pi from u_reflect.rays cosine-distributed
+// rays, shaded as the probes' rays are (a miss: the sky's own texel).
+vec3 unseenIrradiance(vec3 P, vec3 N, vec3 V, ivec2 pixel) {
+    vec3 origin = rayStart(P, N, V);
+    Rng rng = makeRng(uvec2(pixel), uint(u_reflect.frame), 0x0d1fu);
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < u_reflect.rays; ++i) sum += fieldRayRadiance(origin, cosineDirection(N, nextFloat2(rng)), 0.0).rgb;
+    return sum / float(max(u_reflect.rays, 1));
+}
+
+// mean += (x - mean) / n over the still frames (the first frame of a view replaces it). Not
+// guarded: the estimate is finite, and a NaN here is a bug the finiteness checks must see.
+vec3 runningMean(vec4 stored, vec3 estimate) {
+    vec3 mean = u_reflect.framesAveraged > 0.0 ? stored.rgb : vec3(0.0);
+    return mean + (estimate - mean) / (u_reflect.framesAveraged + 1.0);
+}
 #endif
 
 void main() {
@@ -91,16 +114,19 @@ void main() {
     vec3 reflected = environmentIsDirectLight() ? vec3(0.0) : environmentSpecular(reflect(-V, N), roughness);
     imageStore(i_specular, pixel, vec4(reflected, 1.0));
 #else
-    vec3 diffuse = imageLoad(i_diffuse, pixel).rgb;
+    vec4 gathered = imageLoad(i_diffuse, pixel);
+    vec3 diffuse = gathered.rgb;
+    if (u_reflect.lightUnseen != 0 && gathered.a < 1.0) {
+        vec3 unseen = runningMean(imageLoad(i_unseenMean, pixel), unseenIrradiance(P, N, V, pixel));
+        imageStore(i_unseenMean, pixel, vec4(unseen, 1.0));
+        diffuse += (1.0 - gathered.a) * unseen;
+        imageStore(i_diffuse, pixel, vec4(diffuse, 1.0));
+    }
     if (!(roughness < u_reflect.roughness)) {
         imageStore(i_specular, pixel, vec4(diffuse, 1.0));
         return;
     }
-    vec3 estimate = tracedRadiance(P, N, V, roughness, pixel);
-    // mean += (x - mean) / n over the still frames (the first frame of a view replaces it). Not
-    // guarded: the estimate is finite, and a NaN here is a bug the finiteness checks must see.
-    vec3 mean = u_reflect.framesAveraged > 0.0 ? imageLoad(i_mean, pixel).rgb : vec3(0.0);
-    mean += (estimate - mean) / (u_reflect.framesAveraged + 1.0);
+    vec3 mean = runningMean(imageLoad(i_mean, pixel), tracedRadiance(P, N, V, roughness, pixel));
     imageStore(i_mean, pixel, vec4(mean, 1.0));
     // The rays are right at any roughness; the blend only hides the cut-off, over its last quarter.
     float towardsDiffuse = smoothstep(0.75 * u_reflect.roughness, u_reflect.roughness, roughness);

@@ -25,7 +25,7 @@ void main() {
     ivec2 q0 = ivec2(floor(p));
     vec2 f = p - vec2(q0);
     float planeScale = 0.01 * max(distance(s.position, u_cameraPos), 1e-30);
-    vec3 sum = vec3(0.0);
+    vec4 sum = vec4(0.0);  // a: the share probes gave (screen_gather.glsl)
     float total = 0.0, best = 0.0;
     for (int k = 0; k < 4; ++k) {
         ivec2 q = min(q0 + ivec2(k & 1, k >> 1), coarse - 1);
@@ -36,10 +36,10 @@ void main() {
         float agree = pow(saturate(dot(t.normal, s.normal)), 8.0);
         float alike = agree * (plane < 1.0 ? 1.0 - plane : 0.0);
         float w = (b.x * b.y + 1e-3) * alike;
-        sum += w * texelFetch(s_gathered, q, 0).rgb;
+        sum += w * texelFetch(s_gathered, q, 0);
         total += w;
         best = max(best, alike);
     }
-    vec3 e = best >= 0.5 ? sum / total : gatherAt(s);
-    imageStore(i_diffuse, pixel, vec4(finiteOrZero(e), 1.0));
+    vec4 e = best >= 0.5 ? sum / total : gatherAt(s);
+    imageStore(i_diffuse, pixel, vec4(finiteOrZero(e.rgb), e.a));
 }

@@ -69,7 +69,7 @@ std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Sc
         rows.push_back({"SDFGI probes (" + std::to_string(probes) + ": irradiance, distance moments, state)",
                         uint64_t(probes::fieldStorageBytes(s.probeField(), probes))});
         rows.push_back({"SDFGI probe rays", uint64_t(probes::fieldRayBytes(s.probeField(), probes))});
-        rows.push_back({"SDFGI reflection (mean, specular)", uint64_t(probes::ScreenReflection::bytes(settings.width, settings.height))});
+        rows.push_back({"SDFGI reflection (means, specular)", uint64_t(probes::ScreenReflection::bytes(settings.width, settings.height))});
     }
     return rows;
 }
@@ -242,7 +242,8 @@ void SdfGiPass::run(Frame& frame) {
     }
     if (field_) {
         auto t = frame.step("reflection");
-        screenReflection_->run(frame, *field_, built_.probeField(), diffuse_, live, changed_);
+        // SDF GI's gather lights a pixel no probe sees with rays of its own (sdf.rays).
+        screenReflection_->run(frame, *field_, built_.probeField(), diffuse_, live, changed_, false);
     }
     prevViewProj_ = frame.camera.viewProj;
     prevCameraPos_ = frame.camera.position;
