@@ -530,13 +530,12 @@ TEST(Vct, UnlitOutsidesKeepAClosedRoomInASunlitBuildingClosed) {
     EXPECT_LT(leak[0], 1.05 * leak[1] + 0.01);
 }
 
-// The specular cone: a glossy metal floor in front of a red emissive wall reflects red, and a
-// rough one reflects a wider, dimmer, still red image.
-TEST(Vct, GlossyFloorReflectsAnEmitter) {
+// A 4 m metal floor of `roughness` before a red emissive wall 2 m away, seen from 3 m in front.
+Scene metalFloorBeforeALamp(float roughness) {
     Scene s;
     Material metal = lambert(glm::vec3(0.9f));
     metal.metallicFactor = 1.0f;
-    metal.roughnessFactor = 0.1f;
+    metal.roughnessFactor = roughness;
     metal.specularFactor = 1.0f;
     s.materials.push_back(metal);
     Material lamp = lambert(glm::vec3(0.0f));
@@ -546,9 +545,20 @@ TEST(Vct, GlossyFloorReflectsAnEmitter) {
     addQuad(s, {0, 1, -2}, {0, 0, 1}, 2.0f, 1);
     s.cameras.push_back(lookAtCamera({0, 1.0f, 3}, {0, 0, -1}, 40.0f));
     finalizeScene(s);
+    return s;
+}
+
+// VCT at its defaults with the lamp's emission in the volume, where the specular cone sees it.
+RenderSettings lampInTheVolume() {
     RenderSettings r = vctSettings();
-    setParam(r, "emitters.mode", "gi");  // the specular cone must see the emission in the volume
-    const VctImages v = renderVct(s, r);
+    setParam(r, "emitters.mode", "gi");
+    return r;
+}
+
+// The specular cone: a glossy metal floor in front of a red emissive wall reflects red, and a
+// rough one reflects a wider, dimmer, still red image.
+TEST(Vct, GlossyFloorReflectsAnEmitter) {
+    const VctImages v = renderVct(metalFloorBeforeALamp(0.1f), lampInTheVolume());
     ASSERT_TRUE(allFinite(v.specular));
     double red = 0.0, green = 0.0;
     for (int y = kSize / 2; y < kSize; ++y)  // the floor: lower half of the image
@@ -567,22 +577,9 @@ TEST(Vct, GlossyFloorReflectsAnEmitter) {
 // A mirror floor before a red lamp 2-4 m away in a 4 m volume: the floor's reflected red is the
 // same with cones a tenth of the volume long as with cones its whole length.
 TEST(Vct, ShortDiffuseConesLeaveAMirrorItsFarReflection) {
-    Scene s;
-    Material mirror = lambert(glm::vec3(0.9f));
-    mirror.metallicFactor = 1.0f;
-    mirror.roughnessFactor = 0.0f;
-    mirror.specularFactor = 1.0f;
-    s.materials.push_back(mirror);
-    Material lamp = lambert(glm::vec3(0.0f));
-    lamp.emissive = glm::vec3(4.0f, 0.2f, 0.2f);
-    s.materials.push_back(lamp);
-    addQuad(s, {0, 0, 0}, {0, 1, 0}, 4.0f, 0);
-    addQuad(s, {0, 1, -2}, {0, 0, 1}, 2.0f, 1);
-    s.cameras.push_back(lookAtCamera({0, 1.0f, 3}, {0, 0, -1}, 40.0f));
-    finalizeScene(s);
+    const Scene s = metalFloorBeforeALamp(0.0f);
     auto floorRed = [&](const char* maxDistance) {
-        RenderSettings r = vctSettings();
-        setParam(r, "emitters.mode", "gi");  // the specular cone must see the emission in the volume
+        RenderSettings r = lampInTheVolume();
         setVct(r, "max-distance", maxDistance);
         const VctImages v = renderVct(s, r);
         EXPECT_TRUE(allFinite(v.specular));
