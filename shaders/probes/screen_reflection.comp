@@ -85,7 +85,8 @@ vec3 unseenIrradiance(vec3 P, vec3 N, vec3 V, ivec2 pixel) {
     vec3 origin = rayStart(P, N, V);
     Rng rng = makeRng(uvec2(pixel), uint(u_reflect.frame), 0x0d1fu);
     vec3 sum = vec3(0.0);
-    for (int i = 0; i < u_reflect.rays; ++i) sum += fieldRayRadiance(origin, cosineDirection(N, nextFloat2(rng)), 0.0).rgb;
+    for (int i = 0; i < u_reflect.rays; ++i)
+        sum += fieldRayRadiance(origin, cosineDirection(N, nextFloat2(rng)), 0.0).rgb;
     return sum / float(max(u_reflect.rays, 1));
 }
 
