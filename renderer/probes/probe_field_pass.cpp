@@ -44,8 +44,8 @@ void ProbeFieldPass::run(Frame& frame) {
         // through a distance field (probe GI): from such points in builtin:building's hall, where
         // its coarsest cascade's cells are three times the walls' thickness, the rays found the
         // sunlit outside (renderer/gi/probes/README.md).
-        const bool lightUnseen = field_->tracer() == Tracer::Occupancy;
-        reflection_->run(frame, *field_, now.field, gather_->result(), now.reflection, changed_, lightUnseen);
+        const float unseen = field_->tracer() == Tracer::Occupancy ? now.gather.intensity : 0.0f;
+        reflection_->run(frame, *field_, now.field, gather_->result(), now.reflection, changed_, unseen);
     }
     frame.put(resource::kIndirectDiffuse, gather_->result());
     frame.put(resource::kIndirectSpecular, reflection_->result());

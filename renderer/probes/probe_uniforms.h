@@ -94,6 +94,6 @@ GIS_UNIFORM_BLOCK(ProbeGatherBlock, 7, GIS_PROBE_GATHER_BLOCK)
     M(int, rays)                /* per pixel per frame, drawn from the GGX lobe (one at a mirror) */ \
     M(float, framesAveraged)    /* still frames already in the running mean */ \
     M(int, frame)               /* random stream */ \
-    M(int, lightUnseen)         /* 1: pixels no probe sees trace their diffuse light (cosine rays, same count) */
+    M(float, unseenIntensity)   /* > 0: pixels no probe sees trace their diffuse light (cosine rays, as many), scaled so */
 GIS_UNIFORM_BLOCK(ProbeReflectBlock, 14, GIS_PROBE_REFLECT_BLOCK)
 }  // namespace gis::probes

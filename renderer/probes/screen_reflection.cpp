@@ -55,7 +55,8 @@ bool sameSettings(const ReflectionSettings& a, const ReflectionSettings& b) {
 }  // namespace
 
 void ScreenReflection::run(const Frame& frame, const ProbeField& field, const FieldSettings& live,
-                           const gl::Texture& diffuse, const ReflectionSettings& s, bool changed, bool lightUnseen) {
+                           const gl::Texture& diffuse, const ReflectionSettings& s, bool changed,
+                           float unseenIntensity) {
     if (changed || field.updatedLastFrame() || !sameSettings(s, live_)) framesAveraged_ = 0;
     live_ = s;
     const bool rays = s.mode() == Reflection::Rays;
@@ -70,7 +71,7 @@ void ScreenReflection::run(const Frame& frame, const ProbeField& field, const Fi
     b.rays = s.reflectionRays;
     b.framesAveraged = float(framesAveraged_);
     b.frame = frame_++;
-    b.lightUnseen = lightUnseen ? 1 : 0;
+    b.unseenIntensity = unseenIntensity;
     block_.set(b);
     glBindTextureUnit(TP_REFLECT_DEPTH, frame.texture(resource::kGbufferDepth));
     glBindTextureUnit(TP_REFLECT_NORMAL, frame.texture(resource::kGbufferNormal));

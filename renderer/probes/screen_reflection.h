@@ -37,10 +37,11 @@ public:
     // Traces this frame's rays for `field` (bound as its update `live` shades hits) and folds them
     // into the mean, which restarts when `changed` (the pass was invalidated: the view, the light,
     // a parameter), when the probes updated this frame or when `s` differs from the last frame's.
-    // `lightUnseen`: `diffuse`'s alpha is the share of its light probes gave (ScreenGather), and
-    // the rest is traced here and added into it (with rays only).
+    // `unseenIntensity` > 0: `diffuse`'s alpha is the share of its light probes gave (ScreenGather),
+    // and the rest is traced here, scaled by it (the gather's METHOD.intensity), and added into it
+    // (with rays only).
     void run(const Frame& frame, const ProbeField& field, const FieldSettings& live, const gl::Texture& diffuse,
-             const ReflectionSettings& s, bool changed, bool lightUnseen);
+             const ReflectionSettings& s, bool changed, float unseenIntensity);
     const gl::Texture& result() const { return specular_; }
     // The mean holds the frames the last run's settings ask for (at once without rays).
     bool settled() const;

@@ -117,10 +117,10 @@ void main() {
 #else
     vec4 gathered = imageLoad(i_diffuse, pixel);
     vec3 diffuse = gathered.rgb;
-    if (u_reflect.lightUnseen != 0 && gathered.a < 1.0) {
+    if (u_reflect.unseenIntensity > 0.0 && gathered.a < 1.0) {
         vec3 unseen = runningMean(imageLoad(i_unseenMean, pixel), unseenIrradiance(P, N, V, pixel));
         imageStore(i_unseenMean, pixel, vec4(unseen, 1.0));
-        diffuse += (1.0 - gathered.a) * unseen;
+        diffuse += (1.0 - gathered.a) * u_reflect.unseenIntensity * unseen;
         imageStore(i_diffuse, pixel, vec4(diffuse, 1.0));
     }
     if (!(roughness < u_reflect.roughness)) {

@@ -243,7 +243,7 @@ void SdfGiPass::run(Frame& frame) {
     if (field_) {
         auto t = frame.step("reflection");
         // SDF GI's gather lights a pixel no probe sees with rays of its own (sdf.rays).
-        screenReflection_->run(frame, *field_, built_.probeField(), diffuse_, live, changed_, false);
+        screenReflection_->run(frame, *field_, built_.probeField(), diffuse_, live, changed_, 0.0f);
     }
     prevViewProj_ = frame.camera.viewProj;
     prevCameraPos_ = frame.camera.position;
