@@ -42,7 +42,8 @@ inline constexpr gl::UniformSlot kProbeUniforms[] = {GIS_PROBE_UNIFORMS(GIS_UNIF
 // radiance, the albedo (both a layer per cascade, as the volume holds them), the slab voxels' sides; the
 // screen gather's and the reflection's G-buffer inputs. Image units: each program's output, the
 // gathered pixels, the reflection's running mean, the gather's indirect.diffuse it blends
-// towards (and fills where no probe sees a point), and that fill's running mean. All below 11, where the environment's units begin (volume/volume_slots.h).
+// towards (and fills where no probe sees a point), and that fill's running mean. All below 11,
+// where the environment's units begin (volume/volume_slots.h).
 #define GIS_PROBE_BINDINGS(X) \
     X(SP_IRRADIANCE, 0) \
     X(SP_DISTANCE, 1) \
@@ -94,6 +95,7 @@ GIS_UNIFORM_BLOCK(ProbeGatherBlock, 7, GIS_PROBE_GATHER_BLOCK)
     M(int, rays)                /* per pixel per frame, drawn from the GGX lobe (one at a mirror) */ \
     M(float, framesAveraged)    /* still frames already in the running mean */ \
     M(int, frame)               /* random stream */ \
-    M(float, unseenIntensity)   /* > 0: pixels no probe sees trace their diffuse light (cosine rays, as many), scaled so */
+    M(float, unseenIntensity)   /* > 0: pixels no probe sees trace cosine rays (as many) for their diffuse light, \
+                                   scaled by it (METHOD.intensity); 0: left as the gather leaves them */
 GIS_UNIFORM_BLOCK(ProbeReflectBlock, 14, GIS_PROBE_REFLECT_BLOCK)
 }  // namespace gis::probes
