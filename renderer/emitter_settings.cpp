@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "gi/method.h"
 #include "scene/scene_lighting.h"
 
 namespace gis {
@@ -38,10 +39,12 @@ const ParamTable<EmitterLightSettings>& emitterLightParams() {
         .integer(&S::volumeSamples, "volume-samples", "Volume samples",
                  "emitter points per voxel when the voxel methods light their volume with the emitters (0 = none)", 0,
                  256, ParamUpdate::Rebuild)
-        .boolean(&S::environment, "environment", "Environment as a light",
-                 "the environment (a map or a background) is a light of this pass too, with a visibility ray per "
-                 "sample, so it casts shadows under every method; the GI methods then carry only its indirect light",
-                 ParamUpdate::Rebuild)
+        .choice(&S::environment, "environment", "Environment as a light",
+                "true: the environment (a map or a background) is a light of this pass too, with a visibility ray "
+                "per sample, so it casts shadows under every method; the GI methods then carry only its indirect "
+                "light; auto: as the GI method declares (`gisandbox methods NAME` says; true where its page measured it "
+                "closer to Cycles)",
+                {"auto", "true", "false"}, ParamUpdate::Rebuild)
         .integer(&S::environmentCandidates, "environment-candidates", "Environment candidates",
                  "initial candidates per pixel drawn from the environment (by luminance for a map, by cosine for a "
                  "constant)",
@@ -85,8 +88,19 @@ bool environmentSendsLight(const Scene& scene, const RenderSettings& settings) {
     return !settings.environment.empty() || std::max({background.r, background.g, background.b}) > 0.0f;
 }
 
+bool environmentLightChosen(const RenderSettings& settings) {
+    switch (EnvironmentLightChoice(emitterLightSettings(settings).environment)) {
+        case EnvironmentLightChoice::True: return true;
+        case EnvironmentLightChoice::False: return false;
+        default: {
+            const GiMethod* method = findGiMethod(settings.gi);
+            return method && method->environmentLightByDefault;
+        }
+    }
+}
+
 bool environmentIsLight(const Scene& scene, const RenderSettings& settings) {
-    return emitterLightSettings(settings).environment && environmentSendsLight(scene, settings);
+    return environmentLightChosen(settings) && environmentSendsLight(scene, settings);
 }
 
 bool directPassHasLights(const Scene& scene, const RenderSettings& settings) {

@@ -16,6 +16,13 @@ enum class EmitterMode {
     Auto = 3,    // Lights when the scene's emission is bright enough to light it (emissionLightsScene), else Off
 };
 
+// Whether the environment is a light of the direct pass (emitters.environment).
+enum class EnvironmentLightChoice {
+    Auto = 0,   // as the GI method declares (GiMethod::environmentLightByDefault)
+    True = 1,
+    False = 2,
+};
+
 struct EmitterLightSettings {
     int mode = int(EmitterMode::Auto);  // lights measured closer to Cycles than gi (README)
     int candidates = 8;       // M: initial candidates per pixel, drawn by power
@@ -27,7 +34,7 @@ struct EmitterLightSettings {
     int maxHistory = 20;      // the temporal M cap, in multiples of M
     int accumulate = 64;      // frames a still view averages (0: every frame shows its own estimate)
     int volumeSamples = 16;   // emitter points per voxel lighting the GI volume (voxel light injection)
-    bool environment = false; // the environment is a light of this pass too (environmentIsLight)
+    int environment = int(EnvironmentLightChoice::Auto);  // the environment is a light of this pass too (environmentIsLight)
     int environmentCandidates = 8;        // candidates per pixel drawn from the environment
     int environmentVolumeSamples = 32;    // environment directions per voxel lighting the GI volume
 };
@@ -45,7 +52,10 @@ bool emittersAreLights(const Scene& scene, const RenderSettings& settings);
 // The environment sends light into the scene: a map, or a background (the settings' or the scene's)
 // above 0.
 bool environmentSendsLight(const Scene& scene, const RenderSettings& settings);
-// The environment is a light of the direct pass (emitters.environment, and it sends light): ReSTIR draws candidates from it with a visibility ray each, so its sun and sky cast
+// emitters.environment as the settings' method resolves it (`auto`: the method's default), whether
+// or not the environment sends light.
+bool environmentLightChosen(const RenderSettings& settings);
+// The environment is a light of the direct pass (environmentLightChosen, and it sends light): ReSTIR draws candidates from it with a visibility ray each, so its sun and sky cast
 // shadows under every method; the GI methods' rays that leave the scene then see black
 // (environment.glsl's environmentMiss*) and their volume is lit by it through injection, so it
 // is counted once, as the emitters are under `lights`.

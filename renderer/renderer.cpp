@@ -333,7 +333,7 @@ bool requiresRebuild(const RenderSettings& a, const RenderSettings& b) {
     if (a.view != b.view && giMethod(a.gi).pipeline != MethodPipeline::Deferred) return true;
     // A background that is a light of the direct pass decides whether that pass exists and lights
     // the volume: a new one rebuilds, as a new map does.
-    if (a.background != b.background && (emitterLightSettings(a).environment || emitterLightSettings(b).environment))
+    if (a.background != b.background && (environmentLightChosen(a) || environmentLightChosen(b)))
         return true;
     // A rebuild parameter of the method or of a shared table whose value differs (defaults included).
     auto differs = [&a, &b](const std::string& prefix, const std::vector<ParamDesc>& rows) {

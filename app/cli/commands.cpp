@@ -634,7 +634,8 @@ int runMethods(const MethodsOptions& o) {
         list.push_back(&giMethod(o.method));
     for (const GiMethod* m : list) {
         nlohmann::ordered_json e{{"name", m->name}, {"summary", m->summary},
-                                 {"pipeline", m->pipeline == MethodPipeline::Deferred ? "deferred" : "standalone"}};
+                                 {"pipeline", m->pipeline == MethodPipeline::Deferred ? "deferred" : "standalone"},
+                                 {"environment_light_by_default", m->environmentLightByDefault}};
         for (const GiPreset& p : m->presets) e["presets"][p.name] = p.description;
         for (const ParamDesc& d : m->params)
             e["params"].push_back({{"key", m->name + "." + d.key}, {"type", paramTypeName(d.type)},
@@ -664,7 +665,10 @@ int runMethods(const MethodsOptions& o) {
     for (const GiMethod* m : list) nameWidth = std::max(nameWidth, m->name.size());
     for (const GiMethod* m : list) {
         std::printf("%-*s  %s\n", int(nameWidth), m->name.c_str(), m->summary.c_str());
-        if (!o.method.empty()) printMethodTable(*m);
+        if (o.method.empty()) continue;
+        printMethodTable(*m);
+        std::printf("emitters.environment=auto: the environment is %sa light of the direct pass under %s\n",
+                    m->environmentLightByDefault ? "" : "not ", m->name.c_str());
     }
     for (const ParamGroup* g : groups) {
         std::printf("%-13s %s (shared by every method)\n", g->name.c_str(), g->summary.c_str());

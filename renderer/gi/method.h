@@ -63,6 +63,10 @@ struct GiMethod {
     bool scoredAgainstAo = false;           // its "ao" output is also scored against the AO reference
     bool physicalBrdfsOnly = false;         // refuses wrap/toon/blinn (the path tracer)
     bool benchmarked = true;                // a row in `bench` (not the reference itself)
+    // emitters.environment=auto makes the environment a light of the direct pass (its sun's shadow
+    // by ReSTIR, the method carrying only its indirect light): for the methods whose pages measured
+    // that closer to Cycles on the building, the courtyard and the map-lit atrium.
+    bool environmentLightByDefault = false;
     std::vector<ParamDesc> params;
     std::vector<GiPreset> presets;          // low, medium, high
     // Standalone methods: the lighting pass's term views ("direct", "emission") it writes itself.

@@ -268,6 +268,32 @@ TEST(EmitterLights, AutoRunsOnlyForEmissionThatLights) {
     EXPECT_EQ(emitterLightSettings(RenderSettings()).mode, int(EmitterMode::Auto)) << "the default";
 }
 
+// emitters.environment=auto (the default) is what each method declares; true and false override it,
+// and only an environment that sends light makes the pass.
+TEST(EmitterLights, EnvironmentLightAutoIsTheMethodsChoice) {
+    Scene sky = emitterFloorScene();
+    sky.background = glm::vec3(0.5f);
+    Scene dark = sky;
+    dark.background = glm::vec3(0.0f);
+    for (const GiMethod& m : giMethods()) {
+        SCOPED_TRACE(m.name);
+        RenderSettings s;
+        s.gi = m.name;
+        EXPECT_EQ(environmentLightChosen(s), m.environmentLightByDefault);
+        EXPECT_EQ(environmentIsLight(sky, s), m.environmentLightByDefault);
+        EXPECT_FALSE(environmentIsLight(dark, s));
+        setParam(s, "emitters.environment", "false");
+        EXPECT_FALSE(environmentIsLight(sky, s));
+        setParam(s, "emitters.environment", "true");
+        EXPECT_TRUE(environmentIsLight(sky, s));
+    }
+    int byDefault = 0;
+    for (const char* name : {"sdf", "probes", "hddagi"}) byDefault += giMethod(name).environmentLightByDefault ? 1 : 0;
+    EXPECT_EQ(byDefault, 3) << "the methods whose pages measured it closer to Cycles";
+    EXPECT_FALSE(giMethod("vct").environmentLightByDefault) << "its slab walls take no sky (emitters README)";
+    EXPECT_FALSE(giMethod("none").environmentLightByDefault) << "it would lose the ambient that stands for its indirect light";
+}
+
 TEST(EmitterLights, MovingCameraLeavesNoTrail) {
     // The occluders seen from one camera, then a camera moved sideways: the first frame after the
     // move must be as close to the converged image there as a renderer that started there (one

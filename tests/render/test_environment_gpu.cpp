@@ -118,6 +118,9 @@ TEST(EnvironmentGpu, UniformMapEqualsBackgroundForEveryMethod) {
         constant.background = value;
         constant.ambient = value;  // what render's --background does for the baseline's ambient
         map.environment = file;
+        // The lookups, not the direct pass's sampler (test_environment_light.cpp has the map and
+        // the constant as lights: the same mean, other candidates).
+        for (RenderSettings* s : {&constant, &map}) setParam(*s, "emitters.environment", "false");
         // The path tracer's map (and the lightmap bake's, the same paths) is sampled as a light too:
         // another estimator of the same mean (the importance-sampling test); BSDF samples alone draw
         // the same random numbers as the constant.

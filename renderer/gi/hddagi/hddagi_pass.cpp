@@ -130,6 +130,7 @@ GiMethod hddagiMethod() {
     m.name = "hddagi";
     m.summary = "HDDAGI: probes traced by hierarchical DDA through voxel occupancy (no distance field), cascades "
                 "that scroll, gathered at half resolution";
+    m.environmentLightByDefault = true;
     m.params = hddagiParams().rows;
     m.shaderTables.uniforms = tableRows(hddagi::kHddagiUniforms);
     m.shaderTables.bindings = tableRows(hddagi::kHddagiBindings);

@@ -64,6 +64,7 @@ GiMethod probesMethod() {
     GiMethod m;
     m.name = "probes";
     m.summary = "irradiance probes sphere-traced through the SDF, SH or octahedral storage, Chebyshev visibility";
+    m.environmentLightByDefault = true;
     m.params = probeParams().rows;
     m.presets = {
         {"low", "SH L1, spacing 1/3, 64 rays, 32^3 field",

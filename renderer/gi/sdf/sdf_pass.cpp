@@ -320,6 +320,7 @@ GiMethod sdfMethod() {
     m.name = "sdf";
     m.summary = "SDF GI: jump-flooded distance field, sphere-traced rays shaded from voxel radiance, temporal + "
                 "edge-aware filter";
+    m.environmentLightByDefault = true;
     m.params = sdfParams().rows;
     m.shaderTables.uniforms = tableRows(sdfgi::kSdfGiUniforms);
     m.shaderTables.bindings = tableRows(sdfgi::kSdfGiBindings);

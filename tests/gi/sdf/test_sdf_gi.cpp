@@ -713,6 +713,7 @@ TEST(SdfGi, TheProbesRaysTakeTheHitThreshold) {
         RenderSettings s = base("sdf");
         s.width = s.height = 64;
         s.background = glm::vec3(0.35f, 0.45f, 0.6f);
+        setParam(s, "emitters.environment", "false");  // the sky's own light through the probes' rays
         setSdf(s, "hit-threshold", thresholds[i]);
         const SdfImages img = renderSdf(atrium, s, 24);
         ASSERT_TRUE(allFinite(img.diffuse));
@@ -733,6 +734,7 @@ TEST(SdfGi, OpenFloorSeesTheSky) {
     finalizeScene(s);
     RenderSettings r = base("sdf");
     r.background = glm::vec3(1.0f);
+    setParam(r, "emitters.environment", "false");  // the sky through the method's rays, not the direct pass
     const SdfImages v = renderSdf(s, r);
     const float* centre = v.diffuse.at(kSize / 2, kSize / 2);
     std::printf("SDF-TABLE open floor under a sky of 1: indirect.diffuse %.4f %.4f %.4f, ao %.4f\n", centre[0],
