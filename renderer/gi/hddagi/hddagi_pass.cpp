@@ -148,8 +148,10 @@ GiMethod hddagiMethod() {
           {"hddagi.rays", {256.0}},
           {"hddagi.storage", ParamValue::choice("octahedral")},
           {"hddagi.half-res", {0.0}}}},
-        {"realtime", "medium's probes within a budget of 8192 rays per frame (64 probes)",
-         {{"hddagi.ray-budget", {8192.0}}}},
+        {"realtime",
+         "medium's probes within a budget of 8192 rays per frame (64 probes), the sky through its own rays (no "
+         "environment light in the direct pass)",
+         {{"hddagi.ray-budget", {8192.0}}, {"emitters.environment", ParamValue::choice("false")}}},
     };
     m.programs = &HddagiPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) { return HddagiPass::estimateMemory(scene, s); };

@@ -73,11 +73,14 @@ GiMethod probesMethod() {
         {"medium", "SH L2, spacing 1/8, 32 rays, 64^3 field", {}},
         {"high", "octahedral maps, spacing 1/8, 128 rays, 64^3 field",
          {{"probes.rays", {128.0}}, {"probes.storage", ParamValue::choice("octahedral")}}},
-        {"realtime", "high's probes within 16384 rays per frame (128 probes), gathered every 4x4 pixels and upsampled",
+        {"realtime",
+         "high's probes within 16384 rays per frame (128 probes), gathered every 4x4 pixels and upsampled, the sky "
+         "through its own rays (no environment light in the direct pass)",
          {{"probes.rays", {128.0}},
           {"probes.storage", ParamValue::choice("octahedral")},
           {"probes.ray-budget", {16384.0}},
-          {"probes.gather-scale", ParamValue::choice("4")}}},
+          {"probes.gather-scale", ParamValue::choice("4")},
+          {"emitters.environment", ParamValue::choice("false")}}},
     };
     m.programs = &ProbesPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) {

@@ -341,8 +341,11 @@ GiMethod sdfMethod() {
           {"sdf.max-steps", {128.0}}}},
         {"realtime",
          "medium's probes within a budget of 8192 rays per frame (256 probes), gathered, mirror rays and occlusion every "
-         "4x4 pixels and upsampled",
-         {{"sdf.probe-ray-budget", {8192.0}}, {"sdf.trace-scale", ParamValue::choice("4")}, {"sdf.filter-radius", {0.0}}}},
+         "4x4 pixels and upsampled, the sky through its own rays (no environment light in the direct pass)",
+         {{"sdf.probe-ray-budget", {8192.0}},
+          {"sdf.trace-scale", ParamValue::choice("4")},
+          {"sdf.filter-radius", {0.0}},
+          {"emitters.environment", ParamValue::choice("false")}}},
     };
     m.programs = &SdfGiPass::programs;
     m.estimateMemory = [](const Scene& scene, const RenderSettings& s) { return SdfGiPass::estimateMemory(scene, s); };
