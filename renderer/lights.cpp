@@ -1,19 +1,31 @@
 #include "lights.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gis {
 
+int shadowMapLayers(const std::vector<Light>& lights) {
+    int layers = 0;
+    for (const Light& l : lights)
+        layers += l.type == LightType::Directional ? kDirectionalShadowLayers : l.type == LightType::Spot ? 1 : 0;
+    return layers;
+}
+
+int shadowCubes(const std::vector<Light>& lights) {
+    return int(std::count_if(lights.begin(), lights.end(), [](const Light& l) { return l.type == LightType::Point; }));
+}
+
 void checkShadowLayers(const std::vector<Light>& lights, int maxLayers, const std::string& remedy) {
-    size_t points = 0, flat = 0;
-    for (const Light& l : lights) (l.type == LightType::Point ? points : flat) += 1;
+    const size_t points = size_t(shadowCubes(lights)), flat = size_t(shadowMapLayers(lights));
     const size_t maxPoints = size_t(maxLayers) / 6;
     if (points > maxPoints)
         throw Error("the scene has " + std::to_string(points) + " point lights; shadow cube maps hold at most " +
                     std::to_string(maxPoints) + " (GL_MAX_ARRAY_TEXTURE_LAYERS " + std::to_string(maxLayers) +
                     " / 6): " + remedy);
     if (flat > size_t(maxLayers))
-        throw Error("the scene has " + std::to_string(flat) + " spot/directional lights; shadow maps hold at most " +
+        throw Error("the scene's spot and directional lights need " + std::to_string(flat) +
+                    " shadow-map layers; shadow maps hold at most " +
                     std::to_string(maxLayers) + " (GL_MAX_ARRAY_TEXTURE_LAYERS): " + remedy);
 }
 

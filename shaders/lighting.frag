@@ -49,6 +49,8 @@ layout(location = U_MAX_RADIANCE) uniform float u_maxRadiance;  // 65504 for an 
 in vec2 v_uv;
 layout(location = 0) out vec4 o_radiance;
 
+// The pixels the camera sees: a directional light's map around the camera where it reaches.
+#define SHADOW_CAMERA_MAP 1
 #include "shadows.glsl"
 
 // Adds the direct light to `radiance`: every punctual light with its shadow, then the emissive

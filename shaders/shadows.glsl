@@ -34,17 +34,54 @@ vec3 cubeFaceCoordinates(vec3 d) {
     return vec3(0.5 * vec2(d.z > 0.0 ? d.x : -d.x, -d.y) / a.z + 0.5, d.z > 0.0 ? 4.0 : 5.0);
 }
 
+// A directional light's map around the camera (the shadow pass's second layer for it, its box a
+// part of the scene map's: light.viewCascade) serves the includer that defines SHADOW_CAMERA_MAP 1
+// (the lighting pass: the pixels the camera sees); the others read the scene's map alone, which a
+// camera move leaves as it is.
+#ifndef SHADOW_CAMERA_MAP
+#define SHADOW_CAMERA_MAP 0
+#endif
+
+// Where `p` falls in a 2D map: the scene's (camera false) or the camera's around it.
+vec3 shadowMapCoordinates(GpuLight light, bool camera, vec3 p, out bool outside) {
+    vec4 clip = light.shadowMatrix * vec4(p, 1.0);
+    if (camera) clip.xy = clip.xy * light.viewCascade.xy + light.viewCascade.zw * clip.w;
+    vec3 c = clip.xyz / max(clip.w, 1e-20) * 0.5 + 0.5;
+    // Outside the map (or behind a spot light) nothing was rendered: lit.
+    outside = clip.w <= 0.0 || any(lessThan(c, vec3(0.0))) || any(greaterThan(c, vec3(1.0)));
+    return c;
+}
+
+// PCF taps lie in the receiver's tangent plane (T, B), one shadow texel apart, around P moved
+// along the normal by the bias (returned): taps spread across the light's view instead would sink
+// into a tilted receiver and shadow it (acne at grazing).
+vec3 tapFrame(vec3 P, vec3 N, float texel, float NoL, out vec3 T, out vec3 B) {
+    T = normalize(abs(N.y) < 0.99 ? cross(N, vec3(0.0, 1.0, 0.0)) : cross(N, vec3(1.0, 0.0, 0.0)));
+    B = cross(N, T);
+    return P + N * texel * SHADOW_NORMAL_OFFSET_TEXELS * (1.0 - 0.5 * NoL);
+}
+
+// The taps of a 2D map (directional or spot) at P, summed: `texel` its world size there, `layer`
+// the map's.
+float mapVisibility(GpuLight light, bool camera, int layer, float texel, vec3 P, vec3 N, float NoL, int radius) {
+    vec3 T, B;
+    vec3 Po = tapFrame(P, N, texel, NoL, T, B);
+    float sum = 0.0;
+    for (int i = -radius; i <= radius; ++i)
+        for (int j = -radius; j <= radius; ++j) {
+            bool outside;
+            vec3 c = shadowMapCoordinates(light, camera, Po + (T * float(i) + B * float(j)) * texel, outside);
+            sum += outside ? 1.0 : texture(s_shadowMaps, vec4(c.xy, float(layer), c.z));
+        }
+    return sum;
+}
+
 float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
     int layer = int(light.cone.z);
     if (u_shadowsEnabled == 0 || layer < 0) return 1.0;
     int type = int(light.positionType.w);
     float distance = type == LIGHT_DIRECTIONAL ? 0.0 : length(light.positionType.xyz - P);
     float texel = light.shadowParams.x + light.shadowParams.y * distance;
-    vec3 Po = P + N * texel * SHADOW_NORMAL_OFFSET_TEXELS * (1.0 - 0.5 * NoL);
-    // PCF taps lie in the receiver's tangent plane, one shadow texel apart: taps spread across
-    // the light's view instead would sink into a tilted receiver and shadow it (acne at grazing).
-    vec3 T = normalize(abs(N.y) < 0.99 ? cross(N, vec3(0.0, 1.0, 0.0)) : cross(N, vec3(1.0, 0.0, 0.0)));
-    vec3 B = cross(N, T);
 
     // One loop per kind of map, each with a trip count the compiler cannot fold (u_shadowsEnabled
     // is 1 here). Unrolled under a per-tap branch on the light's type, llvmpipe evaluated both
@@ -52,9 +89,12 @@ float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
     // way the other kind's loop ends after one masked pass: same image, the lighting pass ~20%
     // faster on cornell_point and the atrium (interleaved runs, docs/godot.md).
     int radius = PCF_RADIUS * u_shadowsEnabled;
+    float taps = float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
     float sum = 0.0;
 #if SHADOW_CUBES
     if (type == LIGHT_POINT) {
+        vec3 T, B;
+        vec3 Po = tapFrame(P, N, texel, NoL, T, B);
         // Compare with the depth the cube face's perspective projection stores: its view depth is
         // the distance along the dominant axis.
         float n = light.shadowParams.z, f = light.shadowParams.w;
@@ -71,16 +111,24 @@ float shadowVisibility(GpuLight light, vec3 P, vec3 N, float NoL) {
 #endif
 #if SHADOW_MAPS
     if (type != LIGHT_POINT) {
-        for (int i = -radius; i <= radius; ++i)
-            for (int j = -radius; j <= radius; ++j) {
-                vec4 clip = light.shadowMatrix * vec4(Po + (T * float(i) + B * float(j)) * texel, 1.0);
-                vec3 p = clip.xyz / max(clip.w, 1e-20) * 0.5 + 0.5;
-                // Outside the map (or behind a spot light) nothing was rendered: lit.
-                bool outside = clip.w <= 0.0 || any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)));
-                sum += outside ? 1.0 : texture(s_shadowMaps, vec4(p.xy, float(layer), p.z));
-            }
+        // The share of the scene's map: 1 outside the camera's, falling to 0 across the camera
+        // map's outer fifth, so the two maps' edges blend instead of meeting in a seam.
+        float sceneShare = 1.0;
+#if SHADOW_CAMERA_MAP
+        if (type == LIGHT_DIRECTIONAL && light.viewCascade.x > 0.0) {
+            bool outside;
+            vec3 c = shadowMapCoordinates(light, true, P, outside);
+            // Every tap of the camera's map inside it: the normal offset and the taps' reach.
+            float reach = (float(PCF_RADIUS) + SHADOW_NORMAL_OFFSET_TEXELS + 1.0) / float(textureSize(s_shadowMaps, 0).x);
+            float edge = max(abs(c.x - 0.5), abs(c.y - 0.5)) * 2.0, inner = 1.0 - 2.0 * reach;
+            sceneShare = outside ? 1.0 : smoothstep(0.8 * inner, inner, edge);
+            float cameraTexel = texel / max(light.viewCascade.x, light.viewCascade.y);
+            if (sceneShare < 1.0)
+                sum += (1.0 - sceneShare) * mapVisibility(light, true, layer + 1, cameraTexel, P, N, NoL, radius);
+        }
+#endif
+        if (sceneShare > 0.0) sum += sceneShare * mapVisibility(light, false, layer, texel, P, N, NoL, radius);
     }
 #endif
-    float taps = float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
     return sum / taps;
 }

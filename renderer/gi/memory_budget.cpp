@@ -8,6 +8,7 @@
 #include "emitters/emitter_lights.h"
 #include "environment.h"
 #include "environment_gpu.h"
+#include "lights.h"
 #include "gi/method.h"
 #include "passes/gbuffer_pass.h"
 #include "gl/gpu_budget.h"
@@ -41,8 +42,7 @@ MemoryEstimate estimateGpuMemory(const Scene& scene, const RenderSettings& s) {
         if (directPassHasLights(scene, s))
             e.parts.push_back({"emitter lights (ReSTIR reservoirs)", EmitterLightPass::targetBytes(s.width, s.height, environmentIsLight(scene, s))});
         if (s.shadows && !scene.draws.empty()) {
-            uint64_t points = 0, flat = 0;
-            for (const Light& l : scene.lights) (l.type == LightType::Point ? points : flat) += 1;
+            const uint64_t points = uint64_t(shadowCubes(scene.lights)), flat = uint64_t(shadowMapLayers(scene.lights));
             const uint64_t map = uint64_t(s.shadowMapSize) * uint64_t(s.shadowMapSize) * 4;
             const uint64_t cube = uint64_t(s.shadowCubeSize) * uint64_t(s.shadowCubeSize) * 4 * 6;
             e.parts.push_back({"shadow maps", flat * map + points * cube});

@@ -173,6 +173,72 @@ INSTANTIATE_TEST_SUITE_P(AllLightTypes, ShadowTest,
                                                                                      : "Point");
                          });
 
+// An 80 m floor under a roof with a 20 cm slit, the sun straight down: one map over the scene has
+// texels of 8 cm, and its filter dims the strip of sun the slit lets through. The map the shadow
+// pass fits around the camera (a quarter of the scene's diameter along the view) resolves it: the
+// strip's middle gets the full sun (E / pi on white), the floor beside it none.
+Scene sunThroughASlit() {
+    Scene s;
+    s.materials.push_back(lambert(glm::vec3(1.0f)));
+    addQuad(s, glm::vec3(0), glm::vec3(0, 1, 0), 80.0f, 0);
+    const float slit = 0.2f, roof = 12.0f;
+    for (float side : {-1.0f, 1.0f}) addQuad(s, glm::vec3(side * 0.5f * (roof + slit), 3.0f, 0), glm::vec3(0, 1, 0), roof, 0);
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::vec3(0, -1, 0);
+    sun.intensity = 2.0f;
+    s.lights.push_back(sun);
+    s.cameras.push_back(lookAtCamera(glm::vec3(0, 1.6f, 3.0f), glm::vec3(0, 0, -1.0f), 60.0f));
+    finalizeScene(s);
+    return s;
+}
+
+TEST(Physics, ASunThroughANarrowSlitIsSharpInALargeScene) {
+    const Scene s = sunThroughASlit();
+    RenderSettings r = plainSettings();
+    const ImageF img = renderHdr(s, r);
+    const double full = 2.0 / kPi;
+    for (float z : {0.0f, -1.0f, -2.0f}) {
+        const glm::ivec2 middle = projectToPixel(s, r, glm::vec3(0, 0, z));
+        const glm::ivec2 beside = projectToPixel(s, r, glm::vec3(0.35f, 0, z));
+        std::printf("[ measured ] z %.0f: the strip's middle %.4f, beside it %.4f (E/pi %.4f)\n", z,
+                    meanAround(img, middle.x, middle.y, 0), meanAround(img, beside.x, beside.y, 0), full);
+        EXPECT_NEAR(meanAround(img, middle.x, middle.y, 0), full, 0.03 * full) << "z " << z;
+        EXPECT_LT(meanAround(img, beside.x, beside.y, 0), 0.01 * full) << "z " << z;
+    }
+}
+
+// The map around the camera follows it on a grid of its own texels: a still view renders no map,
+// a move within a texel renders none either, a move of a metre renders it again; the scene's map
+// stays (the volume's light injection reads it, and a camera move keeps the volume).
+TEST(Physics, TheSunsMapAroundTheCameraFollowsItAndAStillViewRendersNothing) {
+    context();
+    const Scene s = sunThroughASlit();
+    Renderer r(s, plainSettings());
+    const Pass* shadows = nullptr;
+    for (const auto& p : r.passes())
+        if (std::string(p->name()) == "shadows") shadows = p.get();
+    ASSERT_NE(shadows, nullptr);
+    auto moveBy = [&r](glm::vec3 d) {
+        CameraMatrices m = r.camera();
+        m.position += d;
+        m.view = glm::translate(m.view, -d);
+        m.viewProj = m.proj * m.view;
+        m.invViewProj = glm::inverse(m.viewProj);
+        r.setCamera(m);
+        r.renderFrame();
+    };
+    r.renderFrame();
+    EXPECT_FALSE(shadows->reusedLastFrame()) << "the first frame renders the maps";
+    r.renderFrame();
+    EXPECT_TRUE(shadows->settled());
+    moveBy(glm::vec3(1e-4f, 0.0f, 0.0f));
+    EXPECT_TRUE(shadows->reusedLastFrame()) << "a move within a texel of the camera's map";
+    moveBy(glm::vec3(1.0f, 0.0f, 0.0f));
+    EXPECT_FALSE(shadows->reusedLastFrame()) << "a move of a metre";
+    EXPECT_TRUE(shadows->settled());
+}
+
 TEST(Physics, SpotConeIsFullInsideInnerAndDarkOutsideOuter) {
     Scene s = floorScene();
     Light l;
