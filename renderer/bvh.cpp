@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <limits>
 #include <memory>
 
 namespace gis {
@@ -157,6 +158,52 @@ Bvh buildBvh(const Scene& scene) {
     flatten(root, 0, rootLo, rootHi, 1);
     bvh.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return bvh;
+}
+
+namespace {
+// Slab test: whether the ray enters [lo, hi] before `tMax`.
+bool hitsBox(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& origin, const glm::vec3& inverseDir, float tMax) {
+    const glm::vec3 a = (lo - origin) * inverseDir, b = (hi - origin) * inverseDir;
+    const glm::vec3 near = glm::min(a, b), far = glm::max(a, b);
+    const float enter = std::max({near.x, near.y, near.z, 0.0f}), leave = std::min({far.x, far.y, far.z, tMax});
+    return enter <= leave;
+}
+
+// Moller and Trumbore 1997, both faces; +inf on a miss.
+float hitTriangle(const TraceTriangle& t, const glm::vec3& origin, const glm::vec3& dir) {
+    const glm::vec3 e1 = t.p1 - t.p0, e2 = t.p2 - t.p0, p = glm::cross(dir, e2);
+    const float det = glm::dot(e1, p);
+    if (!(std::abs(det) > 0.0f)) return std::numeric_limits<float>::infinity();
+    const float inv = 1.0f / det;
+    const glm::vec3 s = origin - t.p0;
+    const float u = glm::dot(s, p) * inv;
+    if (u < 0.0f || u > 1.0f) return std::numeric_limits<float>::infinity();
+    const glm::vec3 q = glm::cross(s, e1);
+    const float v = glm::dot(dir, q) * inv;
+    if (v < 0.0f || u + v > 1.0f) return std::numeric_limits<float>::infinity();
+    const float d = glm::dot(e2, q) * inv;
+    return d > 0.0f ? d : std::numeric_limits<float>::infinity();
+}
+}  // namespace
+
+float nearestHit(const Bvh& bvh, const glm::vec3& origin, const glm::vec3& dir) {
+    float best = std::numeric_limits<float>::infinity();
+    if (bvh.triangles.empty()) return best;
+    const glm::vec3 inverseDir = 1.0f / dir;  // +-inf on an axis the ray runs along: the slabs still hold
+    std::vector<uint32_t> stack{0};
+    while (!stack.empty()) {
+        const BvhNode& node = bvh.nodes[stack.back()];
+        stack.pop_back();
+        if (!hitsBox(node.boundsMin, node.boundsMax, origin, inverseDir, best)) continue;
+        if (node.triangleCount == 0) {
+            stack.push_back(node.leftOrFirst);
+            stack.push_back(node.leftOrFirst + 1);
+            continue;
+        }
+        for (uint32_t i = 0; i < node.triangleCount; ++i)
+            best = std::min(best, hitTriangle(bvh.triangles[node.leftOrFirst + i], origin, dir));
+    }
+    return best;
 }
 
 }  // namespace gis

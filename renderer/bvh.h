@@ -44,4 +44,9 @@ std::vector<TraceTriangle> worldTriangles(const Scene& scene);
 // (one root node, no triangles).
 Bvh buildBvh(const Scene& scene);
 
+// The distance along `dir` (unit length) from `origin` to the nearest triangle, either face; +inf
+// when the ray leaves the scene. The tree the shaders walk, walked on the CPU, for the few rays a
+// host-side choice needs (the cascades' view depth, volume/volume_cascades.h).
+float nearestHit(const Bvh& bvh, const glm::vec3& origin, const glm::vec3& dir);
+
 }  // namespace gis

@@ -84,7 +84,7 @@ Renderer::Renderer(const Scene& scene, const RenderSettings& settings) : setting
     checkMemoryBudget(scene, settings_);  // before any allocation: refuse what cannot fit
     camera_ = cameraMatrices(scene, settings_.camera, float(settings_.width) / float(settings_.height));
     gpuScene_ = std::make_unique<GpuScene>(scene, ledger_);
-    services_ = std::make_unique<SceneServices>(*gpuScene_, ledger_);
+    services_ = std::make_unique<SceneServices>(*gpuScene_, ledger_, camera_);
     environment_ = std::make_unique<GpuEnvironment>(settings_.environment, ledger_);
     const GiMethod& method = giMethod(settings_.gi);
     const int w = settings_.width, h = settings_.height;

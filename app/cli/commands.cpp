@@ -13,10 +13,12 @@
 #include <regex>
 #include <unistd.h>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 
 #include "cli/flythrough.h"
 #include "bvh.h"
+#include "volume/volume_cascades.h"
 #include "camera_path.h"
 #include "cli/progress.h"
 #include "gi/method.h"
@@ -511,6 +513,8 @@ void addInfoOptions(CLI::App& cmd, InfoOptions& o) {
     cmd.add_option("--gi", o.gi, "The GI method whose passes, memory and volumes (voxel size, probe count) to report")
         ->capture_default_str();
     cmd.add_option("--preset", o.preset, "Its preset: low, medium, high");
+    cmd.add_option("--camera", o.camera, "The scene camera the view depth and the methods' cascades follow")
+        ->capture_default_str();
 }
 
 int runInfo(const InfoOptions& o) {
@@ -542,6 +546,9 @@ int runInfo(const InfoOptions& o) {
         j["bvh"] = {{"builder", "Embree rtcBuildBVH, SAH, binary, <= 4 triangles per leaf"},
                     {"nodes", bvh.nodes.size()}, {"leaves", bvh.leafCount}, {"depth", bvh.depth},
                     {"sah_cost", bvh.sahCost}, {"build_ms", bvh.buildMs}};
+        // What the cascades' count follows (METHOD.cascade-extent 0): the render camera's view depth.
+        const float depth = nearViewDepth(bvh, cameraMatrices(scene, o.camera, float(w) / float(h)));
+        j["view_depth"] = std::isfinite(depth) ? nlohmann::ordered_json(depth) : nlohmann::ordered_json(nullptr);
     }
     if (!o.noGpu) {
         auto ctx = headlessContext(o.backend, false, false);
@@ -549,6 +556,7 @@ int runInfo(const InfoOptions& o) {
         s.width = w;
         s.height = h;
         s.gi = o.gi;
+        s.camera = o.camera;
         if (!o.preset.empty()) applyPreset(s, o.gi, o.preset);
         Renderer renderer(scene, s);
         renderer.renderFrame();  // what methods build on their first frame (volumes, probes) exists then
@@ -580,6 +588,9 @@ int runInfo(const InfoOptions& o) {
         std::printf("BVH        %zu nodes, %d leaves, depth %d, SAH cost %.2f, built in %.2f ms (Embree SAH)\n",
                     j["bvh"]["nodes"].get<size_t>(), j["bvh"]["leaves"].get<int>(), j["bvh"]["depth"].get<int>(),
                     j["bvh"]["sah_cost"].get<double>(), j["bvh"]["build_ms"].get<double>());
+    if (j.contains("view_depth"))
+        std::printf("view depth %s (the distance to the nearest tenth of the camera's view: cascades follow it)\n",
+                    j["view_depth"].is_null() ? "infinite" : std::to_string(j["view_depth"].get<double>()).c_str());
     for (const std::string& warning : scene.warnings) std::printf("warning    %s\n", warning.c_str());
     if (!o.noGpu) {
         std::printf("GPU memory at %s on %s:\n", o.size.c_str(), j["gpu"]["renderer"].get<std::string>().c_str());

@@ -57,6 +57,7 @@ struct InfoOptions {
     std::string preset;
     std::string size = "256x256";
     std::string backend = "auto";
+    int camera = 0;
     bool json = false;
     bool noGpu = false;
 };

@@ -69,7 +69,8 @@ std::vector<ProgramDesc> ProbeFieldPass::programs(const VolumeRequest& volume) {
 std::vector<std::pair<std::string, uint64_t>> ProbeFieldPass::estimateMemory(const std::string& method, const Scene& scene,
                                                                              const RenderSettings& s,
                                                                              const ProbeFieldShape& shape) {
-    const CascadeLayout layout = volumeLayout(sceneAirBounds(scene), shape.volume);  // as SceneServices fits it
+    const CascadeLayout layout =  // as SceneServices fits it
+        volumeLayout(sceneAirBounds(scene), shape.volume, viewDepthFor(shape.volume, scene, s));
     const int probes = cascadeProbeCount(scene.bounds, layout, shape.spacing);
     return {{method + " scene volume (" + std::to_string(layout.count) + " cascades)",
              uint64_t(sceneVolumeBytes(shape.volume, layout.count))},

@@ -7,8 +7,16 @@ RayScene& SceneServices::rays() {
     return *rays_;
 }
 
+float SceneServices::viewDepth() {
+    if (!viewDepth_) viewDepth_ = nearViewDepth(rays_ ? rays_->bvh : buildBvh(scene.cpu), camera_);
+    return *viewDepth_;
+}
+
 void SceneServices::invalidate(Changes changes) {
-    if (changes & ChangeGeometry) air_ = sceneAirBounds(scene.cpu);
+    if (changes & ChangeGeometry) {
+        air_ = sceneAirBounds(scene.cpu);
+        viewDepth_.reset();
+    }
     volumes_.invalidate(changes);
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "gpu_scene.h"
 #include "ray_scene.h"
@@ -13,15 +14,19 @@
 namespace gis {
 
 struct SceneServices {
-    SceneServices(const GpuScene& scene, gl::MemoryLedger& ledger)
-        : scene(scene), ledger(ledger), air_(sceneAirBounds(scene.cpu)),
-          volumes_(air_, ledger, [this]() -> RayScene& { return rays(); }) {}
+    // `camera`: the render's (its settings'), whose view the volumes' cascade count may follow.
+    SceneServices(const GpuScene& scene, gl::MemoryLedger& ledger, const CameraMatrices& camera)
+        : scene(scene), ledger(ledger), camera_(camera), air_(sceneAirBounds(scene.cpu)),
+          volumes_(air_, ledger, [this]() -> RayScene& { return rays(); }, [this] { return viewDepth(); }) {}
     const GpuScene& scene;
     gl::MemoryLedger& ledger;
 
     // The BVH and ray-tracing buffers: built on first use (about 14 ms for DamagedHelmet).
     RayScene& rays();
     bool hasRays() const { return rays_ != nullptr; }
+    // The render camera's near view depth (volume/volume_cascades.h): traced on first use, with
+    // the ray scene's BVH when there is one; again after a geometry edit.
+    float viewDepth();
     const Aabb& bounds() const { return scene.cpu.bounds; }
     // The bounds with air outside each face behind which the scene is solid (volume/volume_fit.h:
     // sceneAirBounds): what the scene volumes are fitted to, so one model gets the space around
@@ -37,6 +42,8 @@ struct SceneServices {
 
 private:
     std::unique_ptr<RayScene> rays_;
+    CameraMatrices camera_;
+    std::optional<float> viewDepth_;
     Aabb air_;   // before volumes_, which keep a reference to it
     SceneVolumes volumes_;
 };

@@ -1,10 +1,13 @@
 #include "volume/scene_volume.h"
 
 #include <cstdio>
+#include <limits>
 
 #include <tuple>
 #include <type_traits>
 #include <utility>
+
+#include "bvh.h"
 
 namespace gis {
 
@@ -87,14 +90,22 @@ int64_t sceneVolumeBytes(const VolumeRequest& r, int cascades) {
            (r.occupancy ? occupancyBytes(n, cascades) : 0) + atlasBytes(n, cascades, r.albedoAtlas);
 }
 
-CascadeLayout volumeLayout(const Aabb& bounds, const VolumeRequest& r) {
-    return layoutCascades(bounds, r.resolution, r.cascadeExtent, r.cascades, r.method, r.marginVoxels);
+CascadeLayout volumeLayout(const Aabb& bounds, const VolumeRequest& r, float viewDepth) {
+    return layoutCascades(bounds, r.resolution, finestCascadeExtent(r.cascadeExtent, viewDepth), r.cascades, r.method,
+                          r.marginVoxels);
 }
 
-SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::MemoryLedger& ledger, RaySceneSource rays)
+float viewDepthFor(const VolumeRequest& request, const Scene& scene, const RenderSettings& settings) {
+    if (!request.countFromView()) return std::numeric_limits<float>::infinity();
+    return nearViewDepth(buildBvh(scene), cameraMatrices(scene, settings.camera,
+                                                           float(settings.width) / float(std::max(1, settings.height))));
+}
+
+SceneVolume::SceneVolume(const Aabb& bounds, const VolumeRequest& request, float viewDepth, gl::MemoryLedger& ledger,
+                         RaySceneSource rays)
     : request_(request), scope_{&ledger, request.method}, rays_(std::move(rays)) {
     const int n = request.resolution;
-    layout_ = volumeLayout(bounds, request);
+    layout_ = volumeLayout(bounds, request, viewDepth);
     const int count = layout_.count;
     // Refuse before allocating anything: the whole volume at once.
     checkVoxelBudget(n, sceneVolumeBytes(request, count), request.resolutionKey);

@@ -58,9 +58,11 @@ struct VolumeRequest {
     // A second light that sums the bounce series over frames (vct.feedback: restartFeedback(),
     // addFeedbackBounce()); the tracers then read it, while the volume's own stays the injected light.
     bool feedback = false;
-    // Cascades around the camera: `cascades` > 0 a fixed count, 0 from `cascadeExtent`.
+    // Cascades around the camera: `cascades` > 0 a fixed count, 0 from `cascadeExtent` (world
+    // units), or with that 0 too, from the render camera's view depth (volume_cascades.h).
     int cascades = 1;
     float cascadeExtent = 1.0f;
+    bool countFromView() const { return cascades == 0 && cascadeExtent == 0.0f; }
 
     bool operator==(const VolumeRequest& o) const;
 };
@@ -69,14 +71,20 @@ struct VolumeRequest {
 // while it is built), for the budget check before anything is allocated.
 int64_t sceneVolumeBytes(const VolumeRequest& request, int cascades);
 
-// Where the cascades of the volume `request` describes lie in a scene with `bounds`.
-CascadeLayout volumeLayout(const Aabb& bounds, const VolumeRequest& request);
+// Where the cascades of the volume `request` describes lie in a scene with `bounds`, seen from a
+// camera whose near view depth is `viewDepth` (read only when request.countFromView()).
+CascadeLayout volumeLayout(const Aabb& bounds, const VolumeRequest& request, float viewDepth);
+// The view depth volumeLayout needs for `request` from the render `settings` describe (their
+// camera in `scene`): traced only when request.countFromView(), else +inf, unused.
+float viewDepthFor(const VolumeRequest& request, const Scene& scene, const RenderSettings& settings);
 
 class SceneVolume {
 public:
     // Refuses (gis::Error naming request.resolutionKey) what exceeds the voxel budget, then
     // allocates; cascades are placed around the camera by the first update().
-    SceneVolume(const Aabb& bounds, const VolumeRequest& request, gl::MemoryLedger& ledger, RaySceneSource rays);
+    // `viewDepth`: the render camera's (volumeLayout), when request.countFromView().
+    SceneVolume(const Aabb& bounds, const VolumeRequest& request, float viewDepth, gl::MemoryLedger& ledger,
+                RaySceneSource rays);
     SceneVolume(const SceneVolume&) = delete;
     SceneVolume& operator=(const SceneVolume&) = delete;
 

@@ -5,7 +5,8 @@ namespace gis {
 SceneVolume& SceneVolumes::get(const VolumeRequest& request) {
     for (const auto& v : volumes_)
         if (v->request() == request) return *v;
-    volumes_.push_back(std::make_unique<SceneVolume>(bounds_, request, ledger_, rays_));
+    const float depth = request.countFromView() ? viewDepth_() : std::numeric_limits<float>::infinity();
+    volumes_.push_back(std::make_unique<SceneVolume>(bounds_, request, depth, ledger_, rays_));
     return *volumes_.back();
 }
 

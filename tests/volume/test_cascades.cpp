@@ -3,9 +3,15 @@
 // one moves only those whose position changed.
 #include <gtest/gtest.h>
 
-#include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
 
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "bvh.h"
 #include "render_test_util.h"
+#include "volume/scene_volume.h"
 #include "volume/volume_cascades.h"
 
 namespace gis::test {
@@ -56,6 +62,85 @@ TEST(SdfCascades, CountFollowsTheExtentCappedAndCanBeForced) {
     Scene empty;
     finalizeScene(empty);
     EXPECT_EQ(layoutCascades(empty.bounds, 32, kExtent, 0, "sdf").count, 1);
+}
+
+// The count from the view (cascade-extent 0, the default): a scene and its camera scaled together
+// get the same count at every unit of length; the rooms and single models one volume; the
+// building and the courtyard, where the camera stands among walls far smaller than the scene,
+// several. Prints the README's table ("VIEW-TABLE").
+TEST(SdfCascades, TheCountFromTheViewIsTheSameAtEveryUnitOfLength) {
+    const std::vector<std::pair<const char*, int>> expected = {
+        {"cornell", 1}, {"room", 1}, {"leak", 1}, {"building", kMaxCascades}, {"atrium", 3}};
+    for (const auto& [name, count] : expected) {
+        const Scene unit = makeBuiltinScene(name);
+        for (float scale : {1.0f, 1e-3f, 1e3f}) {
+            const Scene scene = scale == 1.0f ? unit : scaledScene(unit, scale);
+            RenderSettings settings;
+            settings.width = settings.height = 128;
+            for (int n : {32, 64}) {
+                VolumeRequest request;
+                request.method = "sdf";
+                request.resolution = n;
+                request.cascades = 0;
+                request.cascadeExtent = 0.0f;
+                const float depth = viewDepthFor(request, scene, settings);
+                const CascadeLayout l = volumeLayout(sceneAirBounds(scene), request, depth);
+                // How far the finest extent from the view sits from the scene cube's nearest
+                // power-of-two division, where the count would change.
+                const float perCube = finestCascadeExtent(0.0f, depth) / l.scene.size;
+                if (scale == 1.0f)
+                    std::printf("VIEW-TABLE %s at %d^3: view depth %.3g, scene cube %.3g, %.3g of it from the view: "
+                                "%d cascade(s), the finest %.3g\n",
+                                name, n, double(depth), double(l.scene.size), double(perCube), l.count,
+                                double(l.extent(0)));
+                EXPECT_EQ(l.count, count) << name << " at " << n << "^3, scale " << scale << ": view depth " << depth;
+            }
+        }
+    }
+}
+
+// A view that sees nothing of the scene (every ray leaves it) gets one volume, not an error.
+TEST(SdfCascades, AViewOfNothingGetsOneVolume) {
+    const Scene scene = makeBuiltinScene("atrium");
+    CameraMatrices away = cameraMatrices(scene, 0, 1.0f);
+    const glm::vec3 outside = scene.bounds.max + glm::vec3(10.0f);
+    away.view = glm::lookAt(outside, outside + glm::vec3(1.0f), glm::vec3(0, 1, 0));
+    away.position = outside;
+    away.viewProj = away.proj * away.view;
+    away.invViewProj = glm::inverse(away.viewProj);
+    const float depth = nearViewDepth(buildBvh(scene), away);
+    EXPECT_TRUE(std::isinf(depth)) << depth;
+    EXPECT_EQ(layoutCascades(scene.bounds, 64, finestCascadeExtent(0.0f, depth), 0, "sdf").count, 1);
+}
+
+// The CPU walk of the BVH finds what a walk of every triangle finds.
+TEST(SdfCascades, TheBvhWalkFindsTheNearestTriangle) {
+    const Scene scene = makeBuiltinScene("building");
+    const Bvh bvh = buildBvh(scene);
+    uint32_t rng = 3;
+    auto uniform = [&rng] {
+        rng = rng * 1664525u + 1013904223u;
+        return float(rng >> 8) / 16777216.0f;
+    };
+    const glm::vec3 lo = scene.bounds.min, size = scene.bounds.max - scene.bounds.min;
+    int hits = 0;
+    for (int i = 0; i < 200; ++i) {
+        const glm::vec3 origin = lo + glm::vec3(uniform(), uniform(), uniform()) * size;
+        const glm::vec3 dir = glm::normalize(glm::vec3(uniform(), uniform(), uniform()) * 2.0f - 1.0f);
+        float brute = std::numeric_limits<float>::infinity();
+        for (const TraceTriangle& t : bvh.triangles) {
+            const glm::vec3 e1 = t.p1 - t.p0, e2 = t.p2 - t.p0, p = glm::cross(dir, e2), s = origin - t.p0;
+            const float det = glm::dot(e1, p), u = glm::dot(s, p) / det;
+            const glm::vec3 q = glm::cross(s, e1);
+            const float v = glm::dot(dir, q) / det, d = glm::dot(e2, q) / det;
+            if (det != 0.0f && u >= 0.0f && v >= 0.0f && u + v <= 1.0f && d > 0.0f) brute = std::min(brute, d);
+        }
+        const float walked = nearestHit(bvh, origin, dir);
+        hits += std::isfinite(brute);
+        if (std::isinf(brute)) EXPECT_TRUE(std::isinf(walked)) << i;
+        else EXPECT_NEAR(walked, brute, 1e-4f * brute) << i;
+    }
+    EXPECT_GT(hits, 100);  // most rays from inside the building hit something
 }
 
 CascadeLayout testLayout() {

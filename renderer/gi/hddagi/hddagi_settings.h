@@ -15,7 +15,7 @@ namespace gis {
 struct HddagiSettings : probes::ReflectionSettings {
     int resolution = 64;         // hddagi.resolution: voxels per cascade edge, a power of two (rebuild)
     int cascades = 0;            // hddagi.cascades: 0 = from the scene's extent, else 1..4 (rebuild)
-    float cascadeExtent = 8.0f;  // hddagi.cascade-extent: the finest cascade's largest edge, world units (rebuild)
+    float cascadeExtent = 0.0f;  // hddagi.cascade-extent: the finest cascade's largest edge, world units, 0 = from the view (rebuild)
     float probeSpacing = 0.2f;   // hddagi.spacing: probe cell as a fraction of each cascade's extent (rebuild)
     int rays = 128;              // hddagi.rays: rays per probe per update (rebuild)
     int rayBudget = 0;           // hddagi.ray-budget: probe rays per frame, 0 = every due probe (rebuild)

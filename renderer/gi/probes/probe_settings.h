@@ -27,7 +27,7 @@ struct ProbeSettings : probes::ReflectionSettings {
     // probes.cascades, probes.cascade-extent (rebuild): the volume in cascades around the camera,
     // each with its probe grid, so a 20 cm wall near the camera is resolved by both.
     int cascades = 0;
-    float cascadeExtent = 8.0f;
+    float cascadeExtent = 0.0f;
     int inside = 0;             // probes.inside: relocate | off, for probes inside solid geometry (rebuild)
     bool bounces = true;        // probes.multibounce: ray hits also get the probes' own irradiance (live)
     float hysteresis = 0.98f;   // probes.hysteresis: weight of the old value once warmed up (live)

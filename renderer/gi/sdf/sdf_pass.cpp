@@ -53,7 +53,7 @@ std::vector<std::pair<std::string, uint64_t>> SdfGiPass::estimateMemory(const Sc
     const SdfGiSettings s = sdfParams().read("sdf", settings.params);
     const int scale = s.tracePixels();
     const VolumeRequest request = sdfVolumeRequest(s);
-    const CascadeLayout layout = volumeLayout(sceneAirBounds(scene), request);  // as SceneServices fits it
+    const CascadeLayout layout = volumeLayout(sceneAirBounds(scene), request, viewDepthFor(request, scene, settings));  // as SceneServices fits it
     const int count = layout.count;
     const uint64_t traced = uint64_t(tracedSize(settings.width, scale)) * uint64_t(tracedSize(settings.height, scale));
     const uint64_t full = uint64_t(settings.width) * uint64_t(settings.height);
@@ -259,9 +259,9 @@ void SdfGiPass::run(Frame& frame) {
 std::vector<std::string> SdfGiPass::stats() const {
     const CascadeLayout& layout = volume_->layout();
     char line[200];
-    std::snprintf(line, sizeof line, "%d cascade%s (%s; scene cube %.4g world units, sdf.cascade-extent %.4g)",
-                  layout.count, layout.count > 1 ? "s" : "", built_.cascades > 0 ? "sdf.cascades" : "auto",
-                  double(layout.scene.size), double(built_.cascadeExtent));
+    const char* from = built_.cascades > 0 ? "sdf.cascades" : built_.cascadeExtent > 0.0f ? "sdf.cascade-extent" : "the view depth";
+    std::snprintf(line, sizeof line, "%d cascade%s (from %s; scene cube %.4g world units, the finest %.4g)", layout.count,
+                  layout.count > 1 ? "s" : "", from, double(layout.scene.size), double(layout.extent(0)));
     std::vector<std::string> out = {line};
     if (field_) out.push_back("SDFGI " + field_->describe());
     if (field_) out.push_back(screenReflection_->describe());

@@ -16,7 +16,7 @@ struct SdfGiSettings : probes::ReflectionSettings {
     int resolution = 64;        // sdf.resolution: cells per edge of the voxel grid and the field (rebuild)
     int jfa = 2;                // sdf.jfa: plain | 1+jfa | jfa+2 (JfaVariant order; rebuild)
     int cascades = 0;           // sdf.cascades: 0 = from the scene's extent, else 1..4 (rebuild)
-    float cascadeExtent = 8.0f; // sdf.cascade-extent: the finest cascade's largest edge, world units (rebuild)
+    float cascadeExtent = 0.0f; // sdf.cascade-extent: the finest cascade's largest edge, world units, 0 = from the view (rebuild)
     int bounces = 1;            // sdf.bounces: 1 = hits see direct light and emission; more gather again (rebuild)
     int diffuse = 0;            // sdf.diffuse: probes (SDFGI's gather) | rays (per pixel) (rebuild)
     // sdf.probe-spacing: probe cell as a fraction of each cascade's extent (rebuild): SDFGI's fraction. Twice
