@@ -65,7 +65,9 @@ float nearViewDepth(const Bvh& bvh, const CameraMatrices& camera) {
             const glm::vec3 near = unproject(x, y, -1.0f), mid = unproject(x, y, 0.0f);
             const glm::vec3 dir = glm::normalize(mid - near);
             if (!std::isfinite(dir.x + dir.y + dir.z)) continue;
-            depths.push_back(glm::distance(camera.position, near) + nearestHit(bvh, near, dir));
+            // Along the ray from the camera's plane: its position for a perspective camera, its
+            // plane through the pixel for an orthographic one.
+            depths.push_back(std::max(0.0f, glm::dot(near - camera.position, dir)) + nearestHit(bvh, near, dir));
         }
     if (depths.empty()) return std::numeric_limits<float>::infinity();
     const size_t k = depths.size() / kNearViewFraction;
