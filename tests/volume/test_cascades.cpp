@@ -17,7 +17,9 @@
 namespace gis::test {
 namespace {
 
-constexpr float kExtent = 8.0f;  // sdf.cascade-extent's default
+// An extent given in world units (sdf.cascade-extent > 0; its default, 0, takes it from the view):
+// the fixed 8 m the count once followed.
+constexpr float kExtent = 8.0f;
 
 // The Cornell box, the room and the two rooms of the leak scene fit in one volume; the atrium's
 // 29 m cube gets three cascades (7.2, 14.4 and 28.9 m at 64^3). Prints the README's table
