@@ -19,7 +19,7 @@ void addCascadeRows(ParamTable<S>& t, const std::string& method) {
               0, kMaxCascades, ParamUpdate::Rebuild)
         .real(&S::cascadeExtent, "cascade-extent", "Finest cascade extent",
               "world units: a scene cube up to this edge gets one volume; each doubling beyond it one more cascade; "
-              "0 = the render camera's median view depth (the same at every unit of length)",
+              "0 = from how near the render camera stands to what it sees (the same at every unit of length)",
               0.0, 1e9, ParamUpdate::Rebuild);
 }
 
