@@ -19,30 +19,41 @@ trap 'rm -rf "$tmp"' EXIT
 source scripts/table_lib.sh
 
 reference=assets/reference/building/hall/full.exr
-hallMean() {  # flags... -> the image's mean over Cycles'
-  render "$tmp/hall.exr" --scene builtin:building --camera 1 --size 256x256 "$@"
-  ratio "$tmp/hall.exr" "$reference"
+hall() {  # NAME flags...: renders the hall into NAME.exr, in this shell, so that a failed render ends the script
+  local name=$1; shift
+  render "$tmp/$name.exr" --scene builtin:building --camera 1 --size 256x256 "$@"
 }
+mean() { ratio "$tmp/$1.exr" "$reference"; }  # NAME -> its mean over Cycles'
 # METHOD -> the flag that leaves its first bounce alone, or nothing where it has none to set
 firstBounceFlag() {
   case $1 in vct) echo "--set vct.bounces=1" ;; probes|hddagi) echo "--set $1.multibounce=false" ;; esac
 }
+ptBounces=$("$bin" methods pathtrace | awk '$1 == "pathtrace.bounces" {print $6}')
+
+hall pt1 --gi pathtrace --spp 64 --max-bounces 1
+hall pt2 --gi pathtrace --spp 64 --max-bounces 2
+hall pt --gi pathtrace --spp 64
+methods=(vct sdf probes hddagi)
+for m in "${methods[@]}"; do
+  read -r -a first <<< "$(firstBounceFlag "$m")"
+  [ ${#first[@]} -eq 0 ] || hall "$m-first" --gi "$m" "${first[@]}"
+  hall "$m" --gi "$m"
+done
 
 gl=$("$bin" render --scene builtin:cornell --size 8x8 --out "$tmp/gl.png" -v 2>&1 | sed -n 's/^GL_RENDERER: //p')
 {
   echo "\`scripts/hall-bounce-table.sh\`, $(date -u +%Y-%m-%d), ${gl:-unknown GL renderer}. \`builtin:building\`'s hall"
   echo "(camera 1), 256x256: the image's mean radiance over Cycles', with the first bounce alone and with"
-  echo "every bounce (the defaults; the path tracer: 16 bounces, 64 samples per pixel). Much of Cycles' mean"
+  echo "every bounce (the defaults; the path tracer: $ptBounces bounces, 64 samples per pixel). Much of Cycles' mean"
   echo "is the sky seen through the doorways, which every row has."
   echo
   echo "| method | first bounce | every bounce |"
   echo "|---|---|---|"
-  echo "| pathtrace | $(hallMean --gi pathtrace --spp 64 --max-bounces 1) | $(hallMean --gi pathtrace --spp 64) (two bounces: $(hallMean --gi pathtrace --spp 64 --max-bounces 2)) |"
-  for m in vct sdf probes hddagi; do
-    read -r -a first <<< "$(firstBounceFlag "$m")"
+  echo "| pathtrace | $(mean pt1) | $(mean pt) (two bounces: $(mean pt2)) |"
+  for m in "${methods[@]}"; do
     one="-"
-    [ ${#first[@]} -eq 0 ] || one=$(hallMean --gi "$m" "${first[@]}")
-    echo "| $m | $one | $(hallMean --gi "$m") |"
+    [ ! -f "$tmp/$m-first.exr" ] || one=$(mean "$m-first")
+    echo "| $m | $one | $(mean "$m") |"
   done
 } > "$tmp/table.md"
 python3 scripts/page_table.py renderer/gi/hddagi/README.md hall-bounce-table \
