@@ -25,12 +25,18 @@ vec3 unpremultiply(vec4 v) { return v.a > 1e-4 ? v.rgb / v.a : vec3(0.0); }
 
 // The multi-bounce term: the probes' own irradiance at the hit times its albedo, on the side the
 // ray `dir` came from (a field's gradient at a wall thinner than a cell may point out of the room,
-// and the gather's path test would then start behind the wall).
+// and the gather's path test would then start behind the wall). A hit whose every surrounding probe
+// the path test rejects takes them under the distance moments alone (DDGI's visibility) instead of
+// no bounce: in a coarse cascade whose probe step is taller than the room, the probes above the
+// ceiling and below the floor are all there is, and with none of them the hall of builtin:building
+// kept a quarter of Cycles' later bounces (renderer/gi/hddagi/README.md, bounce by bounce).
 vec3 bounceLight(vec3 P, vec3 N, vec3 dir, vec3 albedo) {
     if (u_update.multiBounce == 0) return vec3(0.0);
     N = faceforward(N, dir, N);
     float bias = u_update.normalBias * gridMinStep(gridAt(P));
-    return albedo * sampleProbes(P + N * bias, N, -dir, u_update.visibility, PathStart(P, -dir)).rgb;
+    vec4 e = sampleProbes(P + N * bias, N, -dir, u_update.visibility, PathStart(P, -dir));
+    if (e.a == 0.0) e = sampleProbes(P + N * bias, N, -dir, min(u_update.visibility, 1), PathStart(P, -dir));
+    return albedo * e.rgb;
 }
 
 #ifdef PROBE_TRACER_OCCUPANCY
