@@ -25,17 +25,21 @@ vec3 unpremultiply(vec4 v) { return v.a > 1e-4 ? v.rgb / v.a : vec3(0.0); }
 
 // The multi-bounce term: the probes' own irradiance at the hit times its albedo, on the side the
 // ray `dir` came from (a field's gradient at a wall thinner than a cell may point out of the room,
-// and the gather's path test would then start behind the wall). A hit whose every surrounding probe
-// the path test rejects takes them under the distance moments alone (DDGI's visibility) instead of
-// no bounce: in a coarse cascade whose probe step is taller than the room, the probes above the
-// ceiling and below the floor are all there is, and with none of them the hall of builtin:building
-// kept a quarter of Cycles' later bounces (renderer/gi/hddagi/README.md, bounce by bounce).
-vec3 bounceLight(vec3 P, vec3 N, vec3 dir, vec3 albedo) {
+// and the gather's path test would then start behind the wall). With `momentsWhereNoPath`, a hit
+// whose every surrounding probe the path test rejects takes them under the distance moments alone
+// (DDGI's visibility) instead of no bounce: in a coarse cascade whose probe step is taller than the
+// room, the probes above the ceiling and below the floor may be all there is, and with none of them
+// the hall of builtin:building kept a quarter of Cycles' later bounces (renderer/gi/hddagi/README.md,
+// bounce by bounce). The probes' own rays ask for it; the screen's rays do not: a few per pixel, each
+// taking what the moments let through from probes outside, made HDDAGI's realtime hall too bright
+// and noisy (its page).
+vec3 bounceLight(vec3 P, vec3 N, vec3 dir, vec3 albedo, bool momentsWhereNoPath) {
     if (u_update.multiBounce == 0) return vec3(0.0);
     N = faceforward(N, dir, N);
     float bias = u_update.normalBias * gridMinStep(gridAt(P));
     vec4 e = sampleProbes(P + N * bias, N, -dir, u_update.visibility, PathStart(P, -dir));
-    if (e.a == 0.0) e = sampleProbes(P + N * bias, N, -dir, min(u_update.visibility, 1), PathStart(P, -dir));
+    if (e.a == 0.0 && momentsWhereNoPath)
+        e = sampleProbes(P + N * bias, N, -dir, min(u_update.visibility, 1), PathStart(P, -dir));
     return albedo * e.rgb;
 }
 
@@ -53,19 +57,20 @@ vec3 lightSeen(vec4 light, int cascade, ivec3 v, vec3 origin) {
 // u_update.missDistance, averaged over `missSteradians` around dir: a probe ray stands for 4 pi / n
 // of the sphere, and a point-sampled sun far smaller than that is hit by almost no probe's rays and
 // by one of them with all its light, so the probes' mean fell to 0.62 of Cycles' on the atrium lit
-// by sky_sun.hdr alone with 32 rays; 0: the map's own texel, for a reflection ray).
-vec4 fieldRayRadiance(vec3 origin, vec3 dir, float missSteradians) {
+// by sky_sun.hdr alone with 32 rays; 0: the map's own texel, for a reflection ray). `probeRay`: the
+// ray is a probe's (bounceLight's momentsWhereNoPath).
+vec4 fieldRayRadiance(vec3 origin, vec3 dir, float missSteradians, bool probeRay) {
     HddaCascades cs = HddaCascades(u_cascades, u_cascadeCount, u_sdfResolution);
     HddaHit h = hddaTraceCascades(cs, origin, dir, 0.0, u_update.missDistance, 4096);
     if (!h.hit) return vec4(environmentMissCone(dir, missSteradians), u_update.missDistance);
     // The hit voxel's own light and albedo (one voxel, no filtering: its neighbours may be empty).
     ivec3 texel = h.voxel + ivec3(0, 0, h.cascade * u_sdfResolution);
     vec3 radiance = lightSeen(texelFetch(s_voxelRadiance, texel, 0), h.cascade, h.voxel, origin);
-    radiance += bounceLight(h.position, h.normal, dir, unpremultiply(texelFetch(s_voxelAlbedo, texel, 0)));
+    radiance += bounceLight(h.position, h.normal, dir, unpremultiply(texelFetch(s_voxelAlbedo, texel, 0)), probeRay);
     return vec4(finiteOrZero(radiance), max(h.t, 0.0));
 }
 #else
-vec4 fieldRayRadiance(vec3 origin, vec3 dir, float missSteradians) {
+vec4 fieldRayRadiance(vec3 origin, vec3 dir, float missSteradians, bool probeRay) {
     SdfCascades cs = SdfCascades(u_cascades, u_cascadeCount, u_sdfResolution);
     SdfMarchParams params = sdfDefaultParams(u_update.missDistance);
     params.maxSteps = 128;
@@ -75,7 +80,7 @@ vec4 fieldRayRadiance(vec3 origin, vec3 dir, float missSteradians) {
     SdfVolume vol = sdfCascadeVolume(cs, h.cascade);
     vec3 radiance = sdfHitLight(s_voxelRadiance, s_voxelSides, cs, h, dir);
     vec3 albedoCoord = sdfLayerCoord(vol, h.cascade, sdfLayers(s_voxelAlbedo, vol), h.position);
-    radiance += bounceLight(h.position, h.normal, dir, unpremultiply(textureLod(s_voxelAlbedo, albedoCoord, 0.0)));
+    radiance += bounceLight(h.position, h.normal, dir, unpremultiply(textureLod(s_voxelAlbedo, albedoCoord, 0.0)), probeRay);
     return vec4(finiteOrZero(radiance), max(h.t, 0.0));
 }
 #endif

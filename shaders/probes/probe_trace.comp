@@ -31,7 +31,7 @@ void main() {
     for (int r = int(gl_LocalInvocationID.x); r < u_rays; r += int(gl_WorkGroupSize.x)) {
         vec4 result = vec4(0.0, 0.0, 0.0, u_update.missDistance);
         if (!off) {
-            result = fieldRayRadiance(origin, normalize(u_rotation * fibonacciDirection(r, u_rays)), 4.0 * PI / float(u_rays));
+            result = fieldRayRadiance(origin, normalize(u_rotation * fibonacciDirection(r, u_rays)), 4.0 * PI / float(u_rays), true);
             ++traced;
         }
         rayResults[slot * u_rays + r] = result;

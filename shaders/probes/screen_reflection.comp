@@ -61,7 +61,7 @@ vec3 rayStart(vec3 P, vec3 N, vec3 V) {
 vec3 tracedRadiance(vec3 P, vec3 N, vec3 V, float roughness, ivec2 pixel) {
     vec3 origin = rayStart(P, N, V);
     float alpha = roughness * roughness;
-    if (alpha < 1e-4) return fieldRayRadiance(origin, reflect(-V, N), 0.0).rgb;
+    if (alpha < 1e-4) return fieldRayRadiance(origin, reflect(-V, N), 0.0, false).rgb;
     vec3 t, b;
     orthonormalBasis(N, t, b);
     vec3 vLocal = vec3(dot(V, t), dot(V, b), max(dot(V, N), 1e-4));
@@ -72,10 +72,10 @@ vec3 tracedRadiance(vec3 P, vec3 N, vec3 V, float roughness, ivec2 pixel) {
         vec3 h = sampleGgxVisibleNormal(vLocal, alpha, nextFloat2(rng));
         vec3 L = reflect(-V, normalize(h.x * t + h.y * b + h.z * N));
         if (dot(L, N) <= 0.0) continue;
-        sum += fieldRayRadiance(origin, L, 0.0).rgb;
+        sum += fieldRayRadiance(origin, L, 0.0, false).rgb;
         kept += 1.0;
     }
-    return kept > 0.0 ? sum / kept : fieldRayRadiance(origin, reflect(-V, N), 0.0).rgb;
+    return kept > 0.0 ? sum / kept : fieldRayRadiance(origin, reflect(-V, N), 0.0, false).rgb;
 }
 
 // A point no probe sees (the far end of a corridor in a coarse cascade, where every probe of the
@@ -86,7 +86,7 @@ vec3 unseenIrradiance(vec3 P, vec3 N, vec3 V, ivec2 pixel) {
     Rng rng = makeRng(uvec2(pixel), uint(u_reflect.frame), 0x0d1fu);
     vec3 sum = vec3(0.0);
     for (int i = 0; i < u_reflect.rays; ++i)
-        sum += fieldRayRadiance(origin, cosineDirection(N, nextFloat2(rng)), 0.0).rgb;
+        sum += fieldRayRadiance(origin, cosineDirection(N, nextFloat2(rng)), 0.0, false).rgb;
     return sum / float(max(u_reflect.rays, 1));
 }
 

@@ -267,8 +267,8 @@ TEST(Hddagi, APointNoProbeSeesIsLitByRaysOfItsOwn) {
 // the multi-bounce adds to the first bounce against what the path tracer's later bounces add to its
 // first. Most of the probe rays' hits there lie in coarse cascades whose probe step is taller than
 // the hall, and the path test rejected every probe around them: the bounce then kept about a
-// quarter of the path tracer's (0.22 measured at this size); the distance moments alone now stand in
-// (probes/probe_hit_light.glsl, bounceLight), 0.62.
+// fifth of the path tracer's at this size; for a probe's ray the distance moments alone now stand in
+// (probes/probe_hit_light.glsl, bounceLight), and it keeps more than half.
 TEST(Hddagi, TheLaterBouncesReachTheHallThroughItsDoorways) {
     const Scene building = makeBuiltinScene("building");
     RenderSettings s = base();
