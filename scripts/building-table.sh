@@ -10,16 +10,18 @@
 # Writes each method's table between the "scale-table" markers of renderer/gi/METHOD/README.md.
 #
 # Usage (project root, after a build): bash scripts/building-table.sh [BIN (build/gisandbox)]
-# Environment: METHODS (vct,sdf,probes,hddagi), PRESETS (default,realtime,path-test; "default" = no
-# preset; "path-test" = the defaults with the probe gather's path test switched the other way, for
-# the methods that have one: the trade between leaks through walls and points no probe reaches; a
-# KEY=VALUE: the defaults with that one parameter set).
+# Environment: METHODS (vct,sdf,probes,hddagi), PRESETS (default,realtime,path-test,environment;
+# "default" = no preset; "path-test" = the defaults with the probe gather's path test switched the
+# other way, for the methods that have one: the trade between leaks through walls and points no
+# probe reaches; "environment" = the defaults with emitters.environment switched the other way from
+# what the method does by default: the sky as a light of the direct pass or through the method's
+# own rays; a KEY=VALUE: the defaults with that one parameter set).
 set -euo pipefail
 case ${1:-} in -h|--help) sed -n '2,/^set -e/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;; esac
 cd "$(dirname "$0")/.."
 bin=${1:-build/gisandbox}
 methods=${METHODS:-vct,sdf,probes,hddagi}
-presets=${PRESETS:-default,realtime,path-test}
+presets=${PRESETS:-default,realtime,path-test,environment}
 shared=../shared/assets
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -34,6 +36,13 @@ for i in "${!models[@]}"; do render "$tmp/model$i-pt.exr" --scene "${models[$i]}
 
 pathTestKey() {  # METHOD -> its path-test key, or nothing
   case $1 in probes|hddagi) echo "$1.path-test" ;; sdf) echo "sdf.probe-path-test" ;; esac
+}
+environmentFlipped() {  # METHOD -> emitters.environment set against what the method does under auto
+  if "$bin" methods "$1" 2>/dev/null | grep -q '^emitters.environment=auto: the environment is a light'; then
+    echo "emitters.environment=false"
+  else
+    echo "emitters.environment=true"
+  fi
 }
 pathTestFlipped() {  # METHOD -> the row's flags and label: the key set to the other value than its default
   local key now
@@ -57,6 +66,9 @@ for m in ${methods//,/ }; do
         [ -n "$(pathTestKey "$m")" ] || continue
         read -r -a extra <<< "$(pathTestFlipped "$m")"
         flags+=("${extra[@]}"); p="\`${extra[1]}\`"
+      elif [ "$p" = environment ]; then
+        p=$(environmentFlipped "$m")
+        flags+=(--set "$p"); p="\`$p\`"
       elif [[ $p == *=* ]]; then
         flags+=(--set "$p"); p="\`$p\`"
       elif [ "$p" != default ]; then
