@@ -38,11 +38,11 @@ pathTestKey() {  # METHOD -> its path-test key, or nothing
   case $1 in probes|hddagi) echo "$1.path-test" ;; sdf) echo "sdf.probe-path-test" ;; esac
 }
 environmentFlipped() {  # METHOD -> emitters.environment set against what the method does under auto
-  if "$bin" methods "$1" 2>/dev/null | grep -q '^emitters.environment=auto: the environment is a light'; then
-    echo "emitters.environment=false"
-  else
-    echo "emitters.environment=true"
-  fi
+  case $("$bin" methods "$1" 2>/dev/null | sed -n 's/^emitters.environment=auto: the environment is //p') in
+    "a light"*) echo "emitters.environment=false" ;;
+    "not a light"*) echo "emitters.environment=true" ;;
+    *) echo "$(basename "$0" .sh): \`methods $1\` no longer says what emitters.environment=auto does" >&2; exit 1 ;;
+  esac
 }
 pathTestFlipped() {  # METHOD -> the row's flags and label: the key set to the other value than its default
   local key now
